@@ -1,0 +1,243 @@
+#include "CFamilyPrinter.h"
+
+#include "rill/ir/Printer.h"
+#include "rill/ir/Visitor.h"
+
+namespace rill::codegen {
+
+using namespace ir;
+
+namespace {
+const char* kComp[] = {"x", "y", "z", "w"};
+
+std::string pad_of(int indent) { return std::string(static_cast<size_t>(indent) * 2, ' '); }
+
+// Suffix of the rill_* helper for a scalar kind: rill_min_f, rill_min_i.
+const char* suffix(ScalarKind k) { return k == ScalarKind::Float ? "_f" : k == ScalarKind::Int ? "_i" : "_b"; }
+
+std::string call(const std::string& fn, std::initializer_list<std::string> args) {
+  std::string s = fn + "(";
+  bool first = true;
+  for (const auto& a : args) {
+    if (!first) s += ", ";
+    s += a;
+    first = false;
+  }
+  return s + ")";
+}
+}  // namespace
+
+std::string CFamilyPrinter::component(VarId v, int c) const {
+  std::string n = f_.var_name(v);
+  if (f_.var(v).type.width == 1) return n;
+  if (d_.scalarize()) return n + "_" + std::to_string(c);
+  return n + "." + kComp[c];
+}
+
+std::string CFamilyPrinter::operand(const Operand& o, int c) const {
+  if (o.is_const()) {
+    int k = o.width() == 1 ? 0 : c;
+    return d_.literal(o.type.kind, o.value.bits[static_cast<size_t>(k)]);
+  }
+  return component(o.var, o.component(c));
+}
+
+std::string CFamilyPrinter::declarations(int indent) const {
+  std::string out, pad = pad_of(indent);
+  // Only variables the body mentions (passes leave the others behind), plus the interface.
+  std::vector<bool> used(f_.vars.size(), false);
+  for (VarId v : f_.inputs) used[v] = true;
+  for (VarId v : f_.outputs) used[v] = true;
+  for_each_operand(f_.body, [&](const Operand& o) {
+    if (o.is_var()) used[o.var] = true;
+  });
+  for_each_stmt(f_.body, [&](const Stmt& s) {
+    if (s.kind == StmtKind::Assign) used[s.dst] = true;
+  });
+  for (VarId v = 0; v < f_.vars.size(); ++v) {
+    if (!used[v]) continue;
+    const Variable& var = f_.vars[v];
+    std::string qual = var.type.is_float() ? d_.float_qualifier() : "";
+    if (d_.scalarize() || var.type.width == 1) {
+      for (int c = 0; c < var.type.width; ++c)
+        out += pad + qual + d_.scalar_type(var.type.kind) + " " + component(v, c) + " = " +
+               d_.initial_value(f_, v, c) + ";\n";
+    } else {
+      std::string init = d_.vector_type(var.type) + "(";
+      for (int c = 0; c < var.type.width; ++c)
+        init += (c ? ", " : "") + d_.initial_value(f_, v, c);
+      out += pad + qual + d_.vector_type(var.type) + " " + f_.var_name(v) + " = " + init + ");\n";
+    }
+  }
+  return out;
+}
+
+std::string CFamilyPrinter::body(int indent) const {
+  std::string out;
+  block(out, f_.body, indent);
+  return out;
+}
+
+void CFamilyPrinter::block(std::string& out, const Block& b, int indent) const {
+  for (const Stmt& s : b) stmt(out, s, indent);
+}
+
+void CFamilyPrinter::stmt(std::string& out, const Stmt& s, int indent) const {
+  std::string pad = pad_of(indent);
+  switch (s.kind) {
+    case StmtKind::Assign:
+      assign(out, s, pad);
+      return;
+    case StmtKind::If:
+      out += pad + "if (" + operand(s.cond, 0) + ") {\n";
+      block(out, s.then_body, indent + 1);
+      if (!s.else_body.empty()) {
+        out += pad + "} else {\n";
+        block(out, s.else_body, indent + 1);
+      }
+      out += pad + "}\n";
+      return;
+    case StmtKind::Loop: {
+      // Every loop is an endless loop with explicit exits (see passes/LowerContinue.cpp).
+      out += pad + d_.loop_header() + " {\n";
+      if (s.loop != LoopKind::DoUntil) {
+        block(out, s.cond_body, indent + 1);
+        out += pad + "  if (!" + operand(s.cond, 0) + ") break;\n";
+      }
+      block(out, s.body, indent + 1);
+      block(out, s.step, indent + 1);
+      if (s.loop == LoopKind::DoUntil) {
+        block(out, s.cond_body, indent + 1);
+        out += pad + "  if (" + operand(s.cond, 0) + ") break;\n";
+      }
+      out += pad + "}\n";
+      return;
+    }
+    case StmtKind::Break: out += pad + "break;\n"; return;
+    case StmtKind::Continue: out += pad + "continue;\n"; return;
+    case StmtKind::Discard: out += pad + d_.discard() + "\n"; return;
+  }
+}
+
+void CFamilyPrinter::assign(std::string& out, const Stmt& s, const std::string& pad) const {
+  const Type dst_type = f_.var(s.dst).type;
+  const int width = s.mask.full() ? dst_type.width : s.mask.count;
+  auto dst_comp = [&](int c) { return s.mask.full() ? c : static_cast<int>(s.mask.comps[static_cast<size_t>(c)]); };
+
+  if (s.op == Op::Gather) {
+    std::vector<std::string> index, dst;
+    for (const Operand& a : s.args) index.push_back(operand(a, 0));
+    for (int c = 0; c < width; ++c) dst.push_back(component(s.dst, dst_comp(c)));
+    std::string g = d_.gather(f_, s, index, dst);
+    // Indent every line the dialect produced.
+    size_t start = 0;
+    while (start < g.size()) {
+      size_t nl = g.find('\n', start);
+      out += pad + g.substr(start, nl - start + 1);
+      start = nl + 1;
+    }
+    return;
+  }
+
+  std::vector<std::string> values;
+  for (int c = 0; c < width; ++c) values.push_back(scalar_expr(s, c));
+
+  // If the destination is also read, component-by-component writes could clobber a
+  // component before it is read (v = v.yx): compute into temporaries first.
+  bool aliased = false;
+  if (width > 1)
+    for (const Operand& a : s.args) aliased = aliased || (a.is_var() && a.var == s.dst);
+  if (!aliased) {
+    for (int c = 0; c < width; ++c) out += pad + component(s.dst, dst_comp(c)) + " = " + values[static_cast<size_t>(c)] + ";\n";
+    return;
+  }
+  out += pad + "{\n";
+  std::string qual = dst_type.is_float() ? d_.float_qualifier() : "";
+  for (int c = 0; c < width; ++c)
+    out += pad + "  " + qual + d_.scalar_type(dst_type.kind) + " r" + std::to_string(c) + " = " + values[static_cast<size_t>(c)] + ";\n";
+  for (int c = 0; c < width; ++c)
+    out += pad + "  " + component(s.dst, dst_comp(c)) + " = r" + std::to_string(c) + ";\n";
+  out += pad + "}\n";
+}
+
+std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
+  auto a = [&](size_t i) { return operand(s.args[i], c); };
+  ScalarKind k = s.args.empty() ? ScalarKind::Int : s.args[0].type.kind;
+  std::string sx = suffix(k);
+  switch (s.op) {
+    case Op::Copy: return a(0);
+    case Op::Neg: return k == ScalarKind::Int ? call("rill_neg_i", {a(0)}) : "(-" + a(0) + ")";
+    case Op::Add: return k == ScalarKind::Int ? call("rill_add_i", {a(0), a(1)}) : "(" + a(0) + " + " + a(1) + ")";
+    case Op::Sub: return k == ScalarKind::Int ? call("rill_sub_i", {a(0), a(1)}) : "(" + a(0) + " - " + a(1) + ")";
+    case Op::Mul: return k == ScalarKind::Int ? call("rill_mul_i", {a(0), a(1)}) : "(" + a(0) + " * " + a(1) + ")";
+    case Op::Div: return k == ScalarKind::Int ? call("rill_div_i", {a(0), a(1)}) : "(" + a(0) + " / " + a(1) + ")";
+    case Op::Mod: return call("rill_mod" + sx, {a(0), a(1)});
+    case Op::Min: return call("rill_min" + sx, {a(0), a(1)});
+    case Op::Max: return call("rill_max" + sx, {a(0), a(1)});
+    case Op::Abs: return call("rill_abs" + sx, {a(0)});
+    case Op::Sign: return call("rill_sign" + sx, {a(0)});
+    case Op::Floor: return call("rill_floor", {a(0)});
+    case Op::Ceil: return call("rill_ceil", {a(0)});
+    case Op::Fract: return call("rill_fract", {a(0)});
+    case Op::Sqrt: return call("rill_sqrt", {a(0)});
+    case Op::Rsqrt: return call("rill_rsqrt", {a(0)});
+    case Op::Exp: return call("rill_exp", {a(0)});
+    case Op::Log: return call("rill_log", {a(0)});
+    case Op::Exp2: return call("rill_exp2", {a(0)});
+    case Op::Log2: return call("rill_log2", {a(0)});
+    case Op::Sin: return call("rill_sin", {a(0)});
+    case Op::Cos: return call("rill_cos", {a(0)});
+    case Op::Tan: return call("rill_tan", {a(0)});
+    case Op::Atan: return call("rill_atan", {a(0)});
+    case Op::Pow: return call("rill_pow", {a(0), a(1)});
+    case Op::Atan2: return call("rill_atan2", {a(0), a(1)});
+    case Op::BitAnd: return "(" + a(0) + " & " + a(1) + ")";
+    case Op::BitOr: return "(" + a(0) + " | " + a(1) + ")";
+    case Op::BitXor: return "(" + a(0) + " ^ " + a(1) + ")";
+    case Op::BitNot: return "(~" + a(0) + ")";
+    case Op::Shl: return call("rill_shl", {a(0), a(1)});
+    case Op::Shr: return call("rill_shr", {a(0), a(1)});
+    case Op::And: return "(" + a(0) + " && " + a(1) + ")";
+    case Op::Or: return "(" + a(0) + " || " + a(1) + ")";
+    case Op::Not: return "(!" + a(0) + ")";
+    case Op::Lt: return "(" + a(0) + " < " + a(1) + ")";
+    case Op::Le: return "(" + a(0) + " <= " + a(1) + ")";
+    case Op::Gt: return "(" + a(0) + " > " + a(1) + ")";
+    case Op::Ge: return "(" + a(0) + " >= " + a(1) + ")";
+    case Op::Eq: return "(" + a(0) + " == " + a(1) + ")";
+    case Op::Ne: return "(" + a(0) + " != " + a(1) + ")";
+    case Op::Select: return "(" + a(0) + " ? " + a(1) + " : " + a(2) + ")";
+    case Op::IntToFloat: return call("rill_i2f", {a(0)});
+    case Op::FloatToInt: return call("rill_f2i", {a(0)});
+    case Op::FloatBitsToInt: return call("rill_fbits", {a(0)});
+    case Op::IntBitsToFloat: return call("rill_ibits", {a(0)});
+    case Op::Dot: {
+      // ((a.x*b.x + a.y*b.y) + a.z*b.z) + a.w*b.w: one fixed order everywhere.
+      std::string sum;
+      for (int i = 0; i < s.args[0].width(); ++i) {
+        std::string p = "(" + operand(s.args[0], i) + " * " + operand(s.args[1], i) + ")";
+        sum = i == 0 ? p : "(" + sum + " + " + p + ")";
+      }
+      return sum;
+    }
+    case Op::Cross: {
+      int i = (c + 1) % 3, j = (c + 2) % 3;
+      return "((" + operand(s.args[0], i) + " * " + operand(s.args[1], j) + ") - (" +
+             operand(s.args[0], j) + " * " + operand(s.args[1], i) + "))";
+    }
+    case Op::Construct: {
+      int k2 = c;
+      for (const Operand& o : s.args) {
+        if (k2 < o.width()) return operand(o, k2);
+        k2 -= o.width();
+      }
+      throw Error("internal: construct has too few components");
+    }
+    case Op::ElementIndex: return d_.element_index();
+    case Op::ElementCoord: return d_.element_coord(c);
+    case Op::Gather: break;
+  }
+  throw Error(std::string("internal: no C-family form for op ") + op_name(s.op));
+}
+
+}  // namespace rill::codegen

@@ -1,0 +1,78 @@
+// The one printer for C-family targets (C for the CPU backend, OpenCL C, GLSL).
+//
+// The three languages share statements, expressions, operators and structured control
+// flow; they differ in type names, literals, built-in function names, how a vector's
+// component is named, and how a kernel reads its inputs and ends an element. The printer
+// owns everything shared; a Dialect answers the differences. A backend then wraps the
+// printed body in its own entry point (an element loop, an OpenCL kernel, a main()).
+//
+// Semantics are fixed here, not in the dialects: every componentwise operation is printed
+// per component, in a fixed evaluation order and fully parenthesized, and every operation
+// whose meaning the languages disagree on (min/max with NaN, integer division by zero,
+// float-to-int overflow, mod, sign, fract) calls a rill_* helper whose definition each
+// dialect's prelude gives with the same semantics.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rill/Backend.h"
+#include "rill/ir/IR.h"
+
+namespace rill::codegen {
+
+class Dialect {
+ public:
+  virtual ~Dialect() = default;
+
+  // True: a vector variable is printed as one scalar variable per component (C).
+  // False: as a native vector with .x/.y/.z/.w components (OpenCL C, GLSL).
+  virtual bool scalarize() const = 0;
+  // Type of one component of kind k ("float", "double", "int", "bool").
+  virtual std::string scalar_type(ir::ScalarKind k) const = 0;
+  // Type of a whole variable (for non-scalarizing dialects): "float3", "vec3".
+  virtual std::string vector_type(ir::Type t) const = 0;
+  // A literal of one component, exact (float bits preserved).
+  virtual std::string literal(ir::ScalarKind k, uint32_t bits) const = 0;
+  // Header of an endless loop: "for (;;)" or "while (true)".
+  virtual std::string loop_header() const { return "for (;;)"; }
+  // What ends an element without writing it (goto, return, discard).
+  virtual std::string discard() const = 0;
+  // Qualifier put before float declarations (GLSL's "precise" in strict mode).
+  virtual std::string float_qualifier() const { return ""; }
+
+  // Value a variable starts with: inputs, outputs (the stream's current element) and
+  // uniforms come from the launch; everything else starts at zero.
+  virtual std::string initial_value(const ir::Function& f, ir::VarId v, int comp) const = 0;
+  // Statements computing a Gather; `dst(c)` names component c of the destination.
+  virtual std::string gather(const ir::Function& f, const ir::Stmt& s,
+                             const std::vector<std::string>& index,
+                             const std::vector<std::string>& dst) const = 0;
+  virtual std::string element_index() const = 0;
+  virtual std::string element_coord(int comp) const = 0;
+};
+
+class CFamilyPrinter {
+ public:
+  CFamilyPrinter(const ir::Function& f, const Dialect& d) : f_(f), d_(d) {}
+
+  // Declarations of every variable with its initial value, one per line.
+  std::string declarations(int indent) const;
+  // The kernel body's statements.
+  std::string body(int indent) const;
+
+  // Names used by the backends' wrappers.
+  std::string component(ir::VarId v, int c) const;  // one component, as an lvalue
+  std::string operand(const ir::Operand& o, int c) const;
+
+ private:
+  void block(std::string& out, const ir::Block& b, int indent) const;
+  void stmt(std::string& out, const ir::Stmt& s, int indent) const;
+  void assign(std::string& out, const ir::Stmt& s, const std::string& pad) const;
+  std::string scalar_expr(const ir::Stmt& s, int c) const;
+
+  const ir::Function& f_;
+  const Dialect& d_;
+};
+
+}  // namespace rill::codegen

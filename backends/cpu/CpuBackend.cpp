@@ -1,0 +1,113 @@
+#include "CpuBackend.h"
+
+#include <dlfcn.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/info.h>
+
+#include "CEmitter.h"
+#include "SharedObjectCache.h"
+#include "rill/Parameters.h"
+
+namespace rill::cpu {
+
+namespace {
+
+// Mirrors rill_launch in the generated C.
+struct Launch {
+  void* const* inputs;
+  void* const* outputs;
+  const uint32_t* uniforms;
+  const void* const* arrays;
+  const int64_t* array_shapes;
+  int64_t count, width, height;
+};
+using RunFn = int64_t (*)(const Launch*, int64_t, int64_t);
+
+class CpuKernel : public CompiledKernel {
+ public:
+  CpuKernel(std::string source, SharedObject so) : source_(std::move(source)), so_(std::move(so)) {
+    run_ = reinterpret_cast<RunFn>(so_.symbol);
+    from_disk_cache = so_.from_disk_cache;
+  }
+  ~CpuKernel() override {
+    if (so_.handle) dlclose(so_.handle);
+  }
+
+  int64_t run(const LaunchArgs& a) override {
+    std::vector<void*> in, out;
+    std::vector<const void*> arrays;
+    std::vector<int64_t> shapes;
+    std::vector<uint32_t> uniforms;
+    for (auto* s : a.inputs) {
+      s->sync_to_host();
+      in.push_back(s->host.data());
+    }
+    for (auto* s : a.outputs) {
+      s->sync_to_host();
+      out.push_back(s->host.data());
+    }
+    for (auto* arr : a.arrays) {
+      arr->sync_to_host();
+      arrays.push_back(arr->host.data());
+      shapes.insert(shapes.end(), {arr->shape[0], arr->shape[1], arr->shape[2]});
+    }
+    for (auto* u : a.uniforms) uniforms.insert(uniforms.end(), u->bits.begin(), u->bits.end());
+    Launch L{in.data(), out.data(), uniforms.data(), arrays.data(), shapes.data(), a.count, a.width, a.height};
+
+    // Ranges of a few thousand elements amortize the call and let TBB balance uneven work
+    // (a Mandelbrot row inside the set costs far more than one outside).
+    const int64_t grain = 1024;
+    int64_t written = tbb::parallel_reduce(
+        tbb::blocked_range<int64_t>(0, a.count, grain), int64_t{0},
+        [&](const tbb::blocked_range<int64_t>& r, int64_t acc) { return acc + run_(&L, r.begin(), r.end()); },
+        [](int64_t x, int64_t y) { return x + y; });
+    for (auto* s : a.outputs) s->host_written();
+    return written;
+  }
+
+  const std::string& source() const override { return source_; }
+
+ private:
+  std::string source_;
+  SharedObject so_;
+  RunFn run_ = nullptr;
+};
+
+class CpuBackend : public Backend {
+ public:
+  std::string name() const override { return "cpu"; }
+  std::string description() const override {
+    return "cpu: generated C compiled by " + c_compiler() + ", " +
+           std::to_string(tbb::info::default_concurrency()) + " threads (oneTBB), cache " +
+           cache_directory();
+  }
+  bool supports(Accuracy) const override { return true; }
+
+  std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
+    std::string source = emit_c(f, o.accuracy);
+    SharedObject so = compile_shared_object(source, compiler_flags(o.accuracy), "rill_run");
+    return std::make_unique<CpuKernel>(std::move(source), std::move(so));
+  }
+};
+
+}  // namespace
+
+std::vector<std::string> compiler_flags(Accuracy a) {
+  std::vector<std::string> f{"-std=c99", "-O2", "-fPIC", "-shared", "-fno-math-errno", "-fwrapv",
+                             "-fno-strict-aliasing", "-w"};
+  if (a == Accuracy::Fast) {
+    // -ffast-math's parts, spelled out: the option itself would also link crtfastmath.o,
+    // which turns on flush-to-zero for the whole process, strict kernels included.
+    f.insert(f.end(), {"-fno-trapping-math", "-fno-signed-zeros", "-fassociative-math",
+                       "-freciprocal-math", "-ffinite-math-only", "-fno-rounding-math",
+                       "-fcx-limited-range", "-ffp-contract=fast"});
+  } else {
+    f.insert(f.end(), {"-fno-fast-math", "-ffp-contract=off", "-fexcess-precision=standard"});
+  }
+  return f;
+}
+
+std::unique_ptr<Backend> make_backend() { return std::make_unique<CpuBackend>(); }
+
+}  // namespace rill::cpu

@@ -1,0 +1,90 @@
+// The interface every backend implements, and the options a compile takes.
+//
+// A backend turns an optimized Function into something it can launch (CompiledKernel), and
+// moves stream and array data between the host and its device. Backends register by name;
+// rill::backend("cpu") finds one. A backend that cannot run on this machine (no OpenCL
+// platform, no GL context) stays registered and says why in unavailable_reason().
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rill/Stream.h"
+#include "rill/ir/IR.h"
+
+namespace rill {
+
+enum class Accuracy : uint8_t {
+  Strict,  // IEEE binary32, no contraction, same bits on every backend
+  Fast,    // native builtins, contraction and relaxed math allowed
+  Double,  // binary64 arithmetic where the backend has it (the reference)
+};
+const char* accuracy_name(Accuracy a);
+Accuracy parse_accuracy(const std::string& s);  // "strict" | "fast" | "double"
+
+// Which optimizer passes run; each can be switched off (for debugging or comparison).
+struct PassOptions {
+  bool constant_folding = true;
+  bool copy_propagation = true;
+  bool common_subexpressions = true;
+  bool dead_code = true;
+  bool operator==(const PassOptions&) const = default;
+};
+
+struct CompileOptions {
+  Accuracy accuracy = Accuracy::Strict;
+  PassOptions passes;
+  bool operator==(const CompileOptions&) const = default;
+  uint64_t hash() const;
+};
+
+namespace detail {
+struct UniformState;
+}
+
+// Everything a launch needs, resolved and checked by Kernel.
+struct LaunchArgs {
+  std::vector<detail::StreamState*> inputs;   // parallel to Function::inputs
+  std::vector<detail::StreamState*> outputs;  // parallel to Function::outputs
+  std::vector<const detail::UniformState*> uniforms;
+  std::vector<detail::ArrayState*> arrays;
+  int64_t count = 0;                 // elements to run
+  int64_t width = 0, height = 1;     // domain shape (of the first output)
+};
+
+class CompiledKernel {
+ public:
+  virtual ~CompiledKernel() = default;
+  // Runs the kernel over all elements; returns how many were written (not discarded).
+  virtual int64_t run(const LaunchArgs& args) = 0;
+  // The generated source (C, OpenCL C, GLSL...).
+  virtual const std::string& source() const = 0;
+
+  double compile_ms = 0;         // time this compile took
+  bool from_disk_cache = false;  // the backend reused a binary compiled earlier
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual std::string name() const = 0;
+  // Empty when the backend can run here; otherwise why not (shown to users and tests).
+  virtual std::string unavailable_reason() const { return {}; }
+  // Device and driver in one line, for `info` listings.
+  virtual std::string description() const { return name(); }
+  virtual bool supports(Accuracy a) const { return a != Accuracy::Double; }
+  virtual std::unique_ptr<CompiledKernel> compile(const ir::Function& optimized,
+                                                  const CompileOptions& options) = 0;
+  // Copies a stream or array from this backend's device to the host (called by
+  // Storage::sync_to_host when this backend holds the freshest copy).
+  virtual void read_back(detail::Storage&) {}
+};
+
+// Backends by name. The CPU backend is always present.
+Backend& backend(const std::string& name);
+std::vector<Backend*> backends();
+void register_backend(std::unique_ptr<Backend> b);
+
+}  // namespace rill

@@ -1,0 +1,100 @@
+// Capture: how running C++ records IR (retained mode, as in Sh).
+//
+// While a program's body runs (see Program.h), a Builder is current on this thread. Every
+// operation on a DSL value appends an Assign to the block the Builder is filling, and the
+// control-flow macros (ControlFlow.h) open and close nested blocks. Host C++ between them
+// runs once, at definition time: it is the metaprogramming layer that decides what code
+// exists.
+//
+// This header is the narrow interface between the value types and the Builder; users never
+// call it directly.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rill/Error.h"
+#include "rill/ir/IR.h"
+
+namespace rill::detail {
+
+struct UniformState;
+struct ArrayState;
+
+// What a DSL value refers to: a constant (values made outside any program), a variable of
+// one particular program, or a uniform (bound to a variable in whichever program reads it).
+struct Ref {
+  enum class Kind : uint8_t { Const, Var, Uniform };
+  Kind kind = Kind::Const;
+  uint64_t program = 0;  // serial of the owning program, for Var
+  ir::VarId var = ir::kNoVar;
+  ir::Constant value;  // for Const
+  std::shared_ptr<UniformState> uniform;
+
+  static Ref constant(const ir::Constant& c) {
+    Ref r;
+    r.value = c;
+    return r;
+  }
+};
+
+bool in_program();
+// Throws unless a program is being defined; `what` names the operation for the message.
+void require_program(const char* what, SourceLoc loc = {});
+
+// Turns a value into an operand of the current program, checking that it belongs there.
+ir::Operand operand(const Ref& r, ir::Type t, SourceLoc loc = {});
+// Appends `result = op(args)` and returns the new temporary.
+Ref emit(ir::Op op, ir::Type result, std::vector<ir::Operand> args, SourceLoc loc = {});
+// Appends a gather from `array` (registering it with the program on first use).
+Ref emit_gather(const std::shared_ptr<ArrayState>& array, std::vector<ir::Operand> index,
+                SourceLoc loc = {});
+// A new variable of the current program.
+Ref new_var(ir::Type t, ir::VarRole role, std::string name = {}, SourceLoc loc = {});
+// Appends `dst[.mask] = src`. dst must be a variable of the current program.
+void assign(const Ref& dst, const ir::Mask& mask, const ir::Operand& src, SourceLoc loc = {});
+// Name of the program a serial belongs to ("" if unknown), for error messages.
+std::string program_name(uint64_t serial);
+
+// Control flow (called by the RILL_* macros; each checks that it closes what is open).
+void begin_if(const ir::Operand& cond, SourceLoc loc);
+void begin_else(SourceLoc loc);
+void begin_else_if(SourceLoc loc);  // followed by begin_if(cond) on the chained if
+void end_if(SourceLoc loc);
+void begin_while(SourceLoc loc);
+void while_body(const ir::Operand& cond, SourceLoc loc);
+void end_while(SourceLoc loc);
+void begin_do(SourceLoc loc);
+void begin_until(SourceLoc loc);
+void end_until(const ir::Operand& cond, SourceLoc loc);
+void begin_for(SourceLoc loc);
+void for_cond(const ir::Operand& cond, SourceLoc loc);
+void for_body(SourceLoc loc);
+void end_for(SourceLoc loc);
+void emit_break(SourceLoc loc);
+void emit_continue(SourceLoc loc);
+void emit_discard(SourceLoc loc);
+
+// Program definition scope (used by rill::program).
+struct CapturedProgram {
+  std::shared_ptr<ir::Function> fn;
+  std::vector<std::shared_ptr<UniformState>> uniforms;  // parallel to fn->uniforms
+  std::vector<std::shared_ptr<ArrayState>> arrays;      // parallel to fn->arrays
+};
+
+class ProgramScope {
+ public:
+  ProgramScope(std::string name, SourceLoc loc);
+  ~ProgramScope();
+  ProgramScope(const ProgramScope&) = delete;
+  ProgramScope& operator=(const ProgramScope&) = delete;
+  // Checks the captured program (macros closed, outputs written, IR valid) and returns it.
+  CapturedProgram finish();
+
+ private:
+  bool finished_ = false;
+};
+
+}  // namespace rill::detail

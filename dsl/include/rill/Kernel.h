@@ -1,0 +1,82 @@
+// Kernels: a program compiled for one backend, bound to streams, and launched.
+//
+//   rill::Kernel k = rill::compile(grow, "cpu");     // or grow with options
+//   k.inputs(s).outputs(s);                          // the same stream may be both
+//   int64_t written = k.execute();                   // elements not discarded
+//   int64_t passes = k.loop();                       // until a pass writes nothing
+//
+// Compiled kernels are cached by (IR hash, backend, options): compiling the same program
+// twice, or an identical program defined again, costs nothing the second time.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "rill/Backend.h"
+#include "rill/Program.h"
+#include "rill/Stream.h"
+
+namespace rill {
+
+struct CompileInfo {
+  double compile_ms = 0;       // 0 on a cache hit
+  bool cache_hit = false;      // served from the in-process kernel cache
+  bool from_disk_cache = false;
+};
+
+class Kernel {
+ public:
+  Kernel() = default;
+
+  // Binds streams to the program's inputs / outputs in declaration order.
+  template <class... S>
+  Kernel& inputs(const S&... s) {
+    bind_all(true, {StreamRef(s)...});
+    return *this;
+  }
+  template <class... S>
+  Kernel& outputs(const S&... s) {
+    bind_all(false, {StreamRef(s)...});
+    return *this;
+  }
+  // Binds one input or output by the name it was declared with.
+  Kernel& bind(const std::string& name, StreamRef s);
+
+  // Runs once over every element; returns the number of elements written.
+  int64_t execute();
+  // Runs until a pass writes nothing; returns the number of passes, the last (empty) one
+  // included. Throws if max_passes pass without termination.
+  int64_t loop(int64_t max_passes = std::numeric_limits<int64_t>::max());
+
+  const std::string& source() const;  // generated code
+  std::string ir() const;             // optimized IR text
+  const CompileInfo& info() const { return info_; }
+  const Program& program() const { return program_; }
+  std::string backend_name() const;
+
+  struct Shared;  // compiled code, shared by every Kernel made from the same cache entry
+
+ private:
+  friend Kernel compile(const Program&, const std::string&, const CompileOptions&);
+  void bind_all(bool inputs, std::initializer_list<StreamRef> s);
+  LaunchArgs prepare();
+
+  std::shared_ptr<Shared> shared_;
+  Program program_;
+  std::vector<std::shared_ptr<detail::StreamState>> in_, out_;
+  CompileInfo info_;
+};
+
+Kernel compile(const Program& p, const std::string& backend = "cpu",
+               const CompileOptions& options = {});
+
+// The in-process kernel cache.
+struct CacheStats {
+  int64_t hits = 0, misses = 0;
+};
+CacheStats kernel_cache_stats();
+void clear_kernel_cache();
+
+}  // namespace rill

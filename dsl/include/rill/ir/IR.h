@@ -1,0 +1,149 @@
+// Rill's intermediate representation, all in one place.
+//
+// A kernel is a Function: typed variables, an interface (inputs, outputs, uniforms, arrays)
+// and a structured body. The body is a tree of statements:
+//
+//   Assign   dst[.mask] = op(operands)      three-address form; operands are variables
+//                                           (optionally swizzled) or constants
+//   If       if (cond) { then } else { else }
+//   Loop     while / do-until / for, each with a condition block that computes the test
+//   Break, Continue, Discard
+//
+// The IR is structured (no gotos), so every emitter prints readable code without recovering
+// structure, and every pass can reason about dominance by position: a statement dominates
+// what follows it in its block and everything nested there.
+//
+// Variables are mutable (a DSL value assigned inside RILL_IF is one variable written in two
+// places). Temporaries created by operations are written once; the passes exploit that.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rill/Error.h"
+#include "rill/ir/Ops.h"
+#include "rill/ir/Type.h"
+
+namespace rill::ir {
+
+using VarId = uint32_t;
+constexpr VarId kNoVar = ~VarId{0};
+
+// A constant of up to four components, stored as raw bits so that folding and printing are
+// exact (float components are binary32 bit patterns; bool components are 0 or 1).
+struct Constant {
+  Type type;
+  std::array<uint32_t, 4> bits{};
+
+  static Constant of_float(float v);
+  static Constant of_int(int32_t v);
+  static Constant of_bool(bool v);
+  float f(int c) const;
+  int32_t i(int c) const;
+  bool b(int c) const { return bits[static_cast<size_t>(c)] != 0; }
+  bool operator==(const Constant&) const = default;
+};
+
+// An operand: a variable read through a swizzle, or a constant.
+struct Operand {
+  enum class Kind : uint8_t { Var, Const };
+  Kind kind = Kind::Const;
+  VarId var = kNoVar;
+  std::array<uint8_t, 4> swizzle{0, 1, 2, 3};  // which components of var, for Var operands
+  Type type;                                   // type of the operand as read (after swizzle)
+  Constant value;                              // for Const operands
+
+  static Operand of_var(VarId v, Type var_type);  // identity swizzle
+  static Operand of_var(VarId v, ScalarKind kind, std::initializer_list<int> swizzle);
+  static Operand of_const(const Constant& c);
+
+  bool is_var() const { return kind == Kind::Var; }
+  bool is_const() const { return kind == Kind::Const; }
+  int width() const { return type.width; }
+  // Which component of `var` gives component c of this operand (broadcast if width 1).
+  int component(int c) const { return swizzle[static_cast<size_t>(type.width == 1 ? 0 : c)]; }
+  bool identity_swizzle(int var_width) const;
+  bool operator==(const Operand&) const = default;
+};
+
+// A write mask: which components of the destination an Assign writes, in order.
+// An empty mask writes the whole variable.
+struct Mask {
+  uint8_t count = 0;
+  std::array<uint8_t, 4> comps{0, 1, 2, 3};
+
+  bool full() const { return count == 0; }
+  bool operator==(const Mask&) const = default;
+};
+
+enum class StmtKind : uint8_t { Assign, If, Loop, Break, Continue, Discard };
+enum class LoopKind : uint8_t { While, DoUntil, For };
+
+struct Stmt;
+using Block = std::vector<Stmt>;
+
+struct Stmt {
+  StmtKind kind = StmtKind::Assign;
+  SourceLoc loc;
+
+  // Assign
+  VarId dst = kNoVar;
+  Mask mask;
+  Op op = Op::Copy;
+  std::vector<Operand> args;
+  int array = -1;  // Gather: which of Function::arrays
+
+  // If: cond (scalar bool) selects then_body or else_body.
+  // Loop: cond_body computes cond.
+  //   While:   each iteration runs cond_body, exits if !cond, then body.
+  //   DoUntil: each iteration runs body, then cond_body, exits if cond.
+  //   For:     like While, with step run after body (the init is emitted before the loop).
+  Operand cond;
+  Block then_body, else_body;
+  LoopKind loop = LoopKind::While;
+  Block cond_body, body, step;
+
+  static Stmt assign(VarId dst, Op op, std::vector<Operand> args, SourceLoc loc = {});
+  static Stmt make_if(Operand cond, SourceLoc loc = {});
+  static Stmt make_loop(LoopKind kind, SourceLoc loc = {});
+  static Stmt make(StmtKind kind, SourceLoc loc = {});
+};
+
+enum class VarRole : uint8_t { Temp, Local, Input, Output, Uniform };
+
+struct Variable {
+  std::string name;  // user name or "" (printers then use "t<id>")
+  Type type;
+  VarRole role = VarRole::Temp;
+  int slot = -1;  // index in Function::inputs / outputs / uniforms
+};
+
+struct ArrayDecl {
+  std::string name;
+  Type elem;
+  int dims = 1;  // 1, 2 or 3: how many indices a Gather takes
+};
+
+// A whole kernel.
+struct Function {
+  std::string name;
+  std::vector<Variable> vars;
+  std::vector<VarId> inputs;    // stream elements read, in declaration order
+  std::vector<VarId> outputs;   // stream elements written, in declaration order
+  std::vector<VarId> uniforms;  // host values, read-only, set per launch
+  std::vector<ArrayDecl> arrays;
+  Block body;
+
+  VarId add_var(Type t, VarRole role = VarRole::Temp, std::string name = {});
+  const Variable& var(VarId v) const { return vars.at(v); }
+  // "x" for named variables, "t12" for temporaries.
+  std::string var_name(VarId v) const;
+};
+
+// Structural helpers shared by passes, emitters and tests.
+int count_statements(const Block& b);  // all statements, nested ones included
+int count_loops(const Block& b);
+
+}  // namespace rill::ir

@@ -1,0 +1,42 @@
+// The optimizer passes and the pipeline that runs them.
+//
+// Each pass rewrites a Function in place, returns whether it changed anything, and leaves
+// a valid Function behind (tests check this with the verifier). They are small on purpose:
+//
+//   constant_fold            ops on constants, with exact binary32 semantics (the host's
+//                            float arithmetic, never wider), plus exact identities
+//                            (i + 0, b && true, select on a constant) and constant branches
+//   copy_propagate           reads of `t = copy(s)` read s instead, when both are written once
+//   eliminate_common_subexpressions
+//                            a pure op recomputed where an identical one dominates it
+//   eliminate_dead_code      assignments nobody reads, empty ifs, code after a jump
+//   lower_continue           `continue` in for / do-until loops becomes a guard flag, so that
+//                            every emitter can print loops as `while (true)` (not optional)
+//
+// optimize() runs the enabled passes to a fixed point, then lower_continue.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "rill/Backend.h"
+#include "rill/ir/IR.h"
+
+namespace rill::passes {
+
+bool constant_fold(ir::Function& f, Accuracy accuracy = Accuracy::Strict);
+bool copy_propagate(ir::Function& f);
+bool eliminate_common_subexpressions(ir::Function& f);
+bool eliminate_dead_code(ir::Function& f);
+bool lower_continue(ir::Function& f);
+
+ir::Function optimize(const ir::Function& f, const PassOptions& passes, Accuracy accuracy);
+
+// How many times each variable is assigned; inputs and uniforms count one assignment on
+// entry. Variables assigned exactly once hold one value wherever they are read.
+std::vector<int> count_definitions(const ir::Function& f);
+
+// Folds one operation on constants; nullopt when the op cannot be folded exactly.
+std::optional<ir::Constant> fold(ir::Op op, ir::Type result, const std::vector<ir::Constant>& args);
+
+}  // namespace rill::passes

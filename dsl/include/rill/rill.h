@@ -1,0 +1,17 @@
+// Rill: write stream kernels once, in C++, and run them on every backend.
+//
+// This umbrella header is all a user needs:
+//   values (Value.h), operators and math (Operators.h, Math.h), control flow
+//   (ControlFlow.h), kernel interfaces (Parameters.h), streams and arrays (Stream.h),
+//   programs (Program.h), and compiling and launching kernels (Kernel.h).
+#pragma once
+
+#include "rill/Backend.h"
+#include "rill/ControlFlow.h"
+#include "rill/Kernel.h"
+#include "rill/Math.h"
+#include "rill/Operators.h"
+#include "rill/Parameters.h"
+#include "rill/Program.h"
+#include "rill/Stream.h"
+#include "rill/Value.h"

@@ -1,0 +1,87 @@
+#include "rill/Backend.h"
+
+#include <map>
+#include <mutex>
+
+#include "rill/ir/Hash.h"
+
+namespace rill {
+
+const char* accuracy_name(Accuracy a) {
+  switch (a) {
+    case Accuracy::Strict: return "strict";
+    case Accuracy::Fast: return "fast";
+    case Accuracy::Double: return "double";
+  }
+  return "?";
+}
+
+Accuracy parse_accuracy(const std::string& s) {
+  if (s == "strict") return Accuracy::Strict;
+  if (s == "fast") return Accuracy::Fast;
+  if (s == "double") return Accuracy::Double;
+  throw Error("unknown accuracy mode '" + s + "' (expected strict, fast or double)");
+}
+
+uint64_t CompileOptions::hash() const {
+  std::string key = accuracy_name(accuracy);
+  key += passes.constant_folding ? 'F' : 'f';
+  key += passes.copy_propagation ? 'P' : 'p';
+  key += passes.common_subexpressions ? 'C' : 'c';
+  key += passes.dead_code ? 'D' : 'd';
+  return ir::hash_bytes(key);
+}
+
+namespace detail {
+// Defined by the library that bundles the backends (backends/Registry.cpp).
+void register_builtin_backends();
+}  // namespace detail
+
+namespace {
+struct Registry {
+  std::mutex mutex;
+  std::vector<std::unique_ptr<Backend>> list;
+  bool builtins = false;
+};
+Registry& registry() {
+  static Registry r;
+  return r;
+}
+void ensure_builtins() {
+  Registry& r = registry();
+  {
+    std::lock_guard<std::mutex> lock(r.mutex);
+    if (r.builtins) return;
+    r.builtins = true;
+  }
+  detail::register_builtin_backends();
+}
+}  // namespace
+
+void register_backend(std::unique_ptr<Backend> b) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  for (auto& existing : r.list)
+    if (existing->name() == b->name()) throw Error("backend '" + b->name() + "' is registered twice");
+  r.list.push_back(std::move(b));
+}
+
+std::vector<Backend*> backends() {
+  ensure_builtins();
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  std::vector<Backend*> out;
+  for (auto& b : r.list) out.push_back(b.get());
+  return out;
+}
+
+Backend& backend(const std::string& name) {
+  std::string known;
+  for (Backend* b : backends()) {
+    if (b->name() == name) return *b;
+    known += (known.empty() ? "" : ", ") + b->name();
+  }
+  throw Error("unknown backend '" + name + "' (this build has: " + known + ")");
+}
+
+}  // namespace rill

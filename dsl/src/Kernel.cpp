@@ -1,0 +1,190 @@
+#include "rill/Kernel.h"
+
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "rill/Parameters.h"
+#include "rill/ir/Printer.h"
+#include "rill/ir/Verifier.h"
+#include "rill/passes/Passes.h"
+
+namespace rill {
+
+struct Kernel::Shared {
+  Backend* backend = nullptr;
+  ir::Function optimized;
+  std::unique_ptr<CompiledKernel> compiled;
+  std::mutex run_mutex;  // a compiled kernel runs one launch at a time
+};
+
+namespace {
+
+using CacheKey = std::tuple<uint64_t, std::string, uint64_t>;
+
+struct Cache {
+  std::mutex mutex;
+  std::map<CacheKey, std::shared_ptr<Kernel::Shared>> entries;
+  CacheStats stats;
+};
+Cache& cache() {
+  static Cache c;
+  return c;
+}
+
+std::string describe_param(const ir::Function& f, ir::VarId v, const char* dir) {
+  return std::string(dir) + " '" + f.var(v).name + "' (" + f.var(v).type.str() + ")";
+}
+
+}  // namespace
+
+CacheStats kernel_cache_stats() {
+  std::lock_guard<std::mutex> lock(cache().mutex);
+  return cache().stats;
+}
+
+void clear_kernel_cache() {
+  std::lock_guard<std::mutex> lock(cache().mutex);
+  cache().entries.clear();
+  cache().stats = {};
+}
+
+Kernel compile(const Program& p, const std::string& backend_name, const CompileOptions& options) {
+  if (!p.valid()) throw Error("compile(): the program is empty (default-constructed)");
+  Backend& be = backend(backend_name);
+  std::string why = be.unavailable_reason();
+  if (!why.empty()) throw Error("backend '" + be.name() + "' is not available: " + why);
+  if (!be.supports(options.accuracy))
+    throw Error("backend '" + be.name() + "' does not support accuracy mode '" +
+                accuracy_name(options.accuracy) + "'");
+
+  Kernel k;
+  k.program_ = p;
+  k.in_.resize(p.ir().inputs.size());
+  k.out_.resize(p.ir().outputs.size());
+  CacheKey key{p.hash(), be.name(), options.hash()};
+
+  Cache& c = cache();
+  std::unique_lock<std::mutex> lock(c.mutex);
+  auto it = c.entries.find(key);
+  if (it != c.entries.end()) {
+    ++c.stats.hits;
+    k.shared_ = it->second;
+    k.info_.cache_hit = true;
+    return k;
+  }
+  ++c.stats.misses;
+  lock.unlock();
+
+  auto start = std::chrono::steady_clock::now();
+  auto shared = std::make_shared<Kernel::Shared>();
+  shared->backend = &be;
+  shared->optimized = passes::optimize(p.ir(), options.passes, options.accuracy);
+  shared->compiled = be.compile(shared->optimized, options);
+  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  shared->compiled->compile_ms = ms;
+  k.info_.compile_ms = ms;
+  k.info_.from_disk_cache = shared->compiled->from_disk_cache;
+
+  lock.lock();
+  auto [pos, inserted] = c.entries.emplace(key, shared);
+  k.shared_ = pos->second;  // another thread may have compiled it meanwhile
+  return k;
+}
+
+void Kernel::bind_all(bool inputs, std::initializer_list<StreamRef> s) {
+  if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
+  const ir::Function& f = program_.ir();
+  auto& slots = inputs ? in_ : out_;
+  const auto& params = inputs ? f.inputs : f.outputs;
+  if (s.size() != params.size())
+    throw Error("kernel '" + f.name + "' has " + std::to_string(params.size()) +
+                (inputs ? " input(s)" : " output(s)") + " but " + std::to_string(s.size()) +
+                " stream(s) were bound");
+  size_t i = 0;
+  for (const StreamRef& r : s) slots[i++] = r.shared();
+}
+
+Kernel& Kernel::bind(const std::string& name, StreamRef s) {
+  if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
+  const ir::Function& f = program_.ir();
+  for (size_t i = 0; i < f.inputs.size(); ++i)
+    if (f.var(f.inputs[i]).name == name) {
+      in_[i] = s.shared();
+      return *this;
+    }
+  for (size_t i = 0; i < f.outputs.size(); ++i)
+    if (f.var(f.outputs[i]).name == name) {
+      out_[i] = s.shared();
+      return *this;
+    }
+  throw Error("kernel '" + f.name + "' has no input or output named '" + name + "'");
+}
+
+LaunchArgs Kernel::prepare() {
+  if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
+  const ir::Function& f = program_.ir();
+  LaunchArgs a;
+  auto check = [&](const std::shared_ptr<detail::StreamState>& s, ir::VarId v, const char* dir) {
+    if (!s)
+      throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) + " is not bound to a stream");
+    if (s->type != f.var(v).type)
+      throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) +
+                  " is bound to a stream of " + s->type.str());
+  };
+  for (size_t i = 0; i < out_.size(); ++i) {
+    check(out_[i], f.outputs[i], "output");
+    if (i == 0) {
+      a.count = out_[0]->count;
+      a.width = out_[0]->width;
+      a.height = out_[0]->height;
+    } else if (out_[i]->count != a.count) {
+      throw Error("kernel '" + f.name + "': " + describe_param(f, f.outputs[i], "output") +
+                  " has " + std::to_string(out_[i]->count) + " elements but output '" +
+                  f.var(f.outputs[0]).name + "' has " + std::to_string(a.count));
+    }
+    a.outputs.push_back(out_[i].get());
+  }
+  for (size_t i = 0; i < in_.size(); ++i) {
+    check(in_[i], f.inputs[i], "input");
+    if (in_[i]->count != a.count)
+      throw Error("kernel '" + f.name + "': " + describe_param(f, f.inputs[i], "input") + " has " +
+                  std::to_string(in_[i]->count) + " elements but the kernel runs over " +
+                  std::to_string(a.count) + " (the size of its outputs)");
+    a.inputs.push_back(in_[i].get());
+  }
+  for (const auto& u : program_.captured().uniforms) a.uniforms.push_back(u.get());
+  for (const auto& arr : program_.captured().arrays) a.arrays.push_back(arr.get());
+  return a;
+}
+
+int64_t Kernel::execute() {
+  LaunchArgs a = prepare();
+  std::lock_guard<std::mutex> lock(shared_->run_mutex);
+  return shared_->compiled->run(a);
+}
+
+int64_t Kernel::loop(int64_t max_passes) {
+  int64_t passes = 0;
+  while (passes < max_passes) {
+    ++passes;
+    if (execute() == 0) return passes;
+  }
+  throw Error("kernel '" + program_.name() + "': loop() still wrote elements after " +
+              std::to_string(max_passes) + " passes");
+}
+
+const std::string& Kernel::source() const {
+  if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
+  return shared_->compiled->source();
+}
+
+std::string Kernel::ir() const {
+  if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
+  return ir::print(shared_->optimized);
+}
+
+std::string Kernel::backend_name() const { return shared_ ? shared_->backend->name() : std::string(); }
+
+}  // namespace rill

@@ -1,0 +1,36 @@
+#include "rill/ir/Hash.h"
+
+#include <cstdio>
+
+#include "rill/ir/Printer.h"
+
+namespace rill::ir {
+
+uint64_t hash_bytes(std::string_view bytes, uint64_t h) {
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+uint64_t hash(const Function& f) {
+  // The printed form is complete (types, interface, body) and independent of pointers and
+  // process state, which is what makes the hash stable. The kernel's name is left out:
+  // renaming a kernel does not change what it computes. Bits of every constant are printed
+  // exactly (shortest round-trip form), so distinct constants give distinct text.
+  std::string text = print(f);
+  size_t nl = text.find('\n');
+  std::string_view sig(text);
+  std::string_view rest = sig.substr(nl);
+  size_t paren = text.find('(');
+  return hash_bytes(rest, hash_bytes(sig.substr(paren, nl - paren)));
+}
+
+std::string hex(uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+}  // namespace rill::ir

@@ -1,0 +1,127 @@
+#include "rill/ir/IR.h"
+
+#include <bit>
+
+namespace rill::ir {
+
+Constant Constant::of_float(float v) {
+  Constant c;
+  c.type = float_type(1);
+  c.bits[0] = std::bit_cast<uint32_t>(v);
+  return c;
+}
+Constant Constant::of_int(int32_t v) {
+  Constant c;
+  c.type = int_type(1);
+  c.bits[0] = static_cast<uint32_t>(v);
+  return c;
+}
+Constant Constant::of_bool(bool v) {
+  Constant c;
+  c.type = bool_type(1);
+  c.bits[0] = v ? 1u : 0u;
+  return c;
+}
+float Constant::f(int c) const { return std::bit_cast<float>(bits[static_cast<size_t>(c)]); }
+int32_t Constant::i(int c) const { return static_cast<int32_t>(bits[static_cast<size_t>(c)]); }
+
+Operand Operand::of_var(VarId v, Type var_type) {
+  Operand o;
+  o.kind = Kind::Var;
+  o.var = v;
+  o.type = var_type;
+  return o;
+}
+Operand Operand::of_var(VarId v, ScalarKind kind, std::initializer_list<int> swz) {
+  Operand o;
+  o.kind = Kind::Var;
+  o.var = v;
+  o.type = Type{kind, static_cast<uint8_t>(swz.size())};
+  size_t i = 0;
+  for (int s : swz) o.swizzle[i++] = static_cast<uint8_t>(s);
+  return o;
+}
+Operand Operand::of_const(const Constant& c) {
+  Operand o;
+  o.kind = Kind::Const;
+  o.type = c.type;
+  o.value = c;
+  return o;
+}
+bool Operand::identity_swizzle(int var_width) const {
+  if (!is_var() || type.width != var_width) return false;
+  for (int i = 0; i < var_width; ++i)
+    if (swizzle[static_cast<size_t>(i)] != i) return false;
+  return true;
+}
+
+Stmt Stmt::assign(VarId dst, Op op, std::vector<Operand> args, SourceLoc loc) {
+  Stmt s;
+  s.kind = StmtKind::Assign;
+  s.dst = dst;
+  s.op = op;
+  s.args = std::move(args);
+  s.loc = loc;
+  return s;
+}
+Stmt Stmt::make_if(Operand cond, SourceLoc loc) {
+  Stmt s;
+  s.kind = StmtKind::If;
+  s.cond = cond;
+  s.loc = loc;
+  return s;
+}
+Stmt Stmt::make_loop(LoopKind kind, SourceLoc loc) {
+  Stmt s;
+  s.kind = StmtKind::Loop;
+  s.loop = kind;
+  s.loc = loc;
+  return s;
+}
+Stmt Stmt::make(StmtKind kind, SourceLoc loc) {
+  Stmt s;
+  s.kind = kind;
+  s.loc = loc;
+  return s;
+}
+
+VarId Function::add_var(Type t, VarRole role, std::string n) {
+  vars.push_back(Variable{std::move(n), t, role, -1});
+  return static_cast<VarId>(vars.size() - 1);
+}
+
+std::string Function::var_name(VarId v) const {
+  const Variable& var = vars.at(v);
+  if (var.name.empty()) return "t" + std::to_string(v);
+  // Keep only identifier characters, and add the id: names stay unique and can never
+  // collide with a keyword of any target language.
+  std::string out;
+  for (char ch : var.name) {
+    bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9');
+    out += ok ? ch : '_';
+  }
+  if (out.empty() || (out[0] >= '0' && out[0] <= '9')) out = "v" + out;
+  return out + "_" + std::to_string(v);
+}
+
+int count_statements(const Block& b) {
+  int n = 0;
+  for (const Stmt& s : b) {
+    ++n;
+    n += count_statements(s.then_body) + count_statements(s.else_body) +
+         count_statements(s.cond_body) + count_statements(s.body) + count_statements(s.step);
+  }
+  return n;
+}
+
+int count_loops(const Block& b) {
+  int n = 0;
+  for (const Stmt& s : b) {
+    if (s.kind == StmtKind::Loop) ++n;
+    n += count_loops(s.then_body) + count_loops(s.else_body) + count_loops(s.cond_body) +
+         count_loops(s.body) + count_loops(s.step);
+  }
+  return n;
+}
+
+}  // namespace rill::ir
