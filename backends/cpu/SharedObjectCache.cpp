@@ -144,6 +144,11 @@ SharedObject compile_shared_object(const std::string& source, const std::vector<
   }
 
   so.handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!so.handle && so.from_disk_cache) {
+    // A damaged cache file (a disk that filled up, a copy cut short): compile it afresh.
+    fs::remove(lib, ec);
+    return compile_shared_object(source, flags, entry);
+  }
   if (!so.handle) throw Error(std::string("CPU backend: cannot load compiled kernel: ") + dlerror());
   so.symbol = dlsym(so.handle, entry.c_str());
   if (!so.symbol) {

@@ -214,7 +214,10 @@ Ref new_var(ir::Type t, ir::VarRole role, std::string name, SourceLoc loc) {
       throw Error(std::string(what) + " inside " + describe(b.open.back()) +
                       ": inputs and outputs belong at the top of the program body",
                   loc);
-    for (ir::VarId other : role == ir::VarRole::Input ? b.fn->inputs : b.fn->outputs)
+    const auto& same = role == ir::VarRole::Input ? b.fn->inputs : b.fn->outputs;
+    if (name.empty())
+      name = (role == ir::VarRole::Input ? "in" : "out") + std::to_string(same.size());
+    for (ir::VarId other : same)
       if (b.fn->vars[other].name == name)
         throw Error(std::string(what) + ": the name '" + name + "' is already taken", loc);
   }

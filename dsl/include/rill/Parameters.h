@@ -8,6 +8,7 @@
 //     y = x * gain;
 //   });
 //
+// Unnamed inputs and outputs are called in0, in1, ... and out0, out1, ...
 // Inputs and outputs bind to streams in declaration order (Kernel::inputs/outputs) or by
 // name (Kernel::bind). Every output must be written somewhere in the program. An output that
 // is not written on some path keeps the value its stream already had.
@@ -31,7 +32,7 @@ struct UniformState {
 template <class V>
 class Input : public V {
  public:
-  explicit Input(std::string name = "in", SourceLoc loc = RILL_HERE)
+  explicit Input(std::string name = {}, SourceLoc loc = RILL_HERE)
       : V(detail::new_var(V::type(), ir::VarRole::Input, std::move(name), loc),
           detail::AdoptTag{}) {}
   using V::operator=;
@@ -40,7 +41,7 @@ class Input : public V {
 template <class V>
 class Output : public V {
  public:
-  explicit Output(std::string name = "out", SourceLoc loc = RILL_HERE)
+  explicit Output(std::string name = {}, SourceLoc loc = RILL_HERE)
       : V(detail::new_var(V::type(), ir::VarRole::Output, std::move(name), loc),
           detail::AdoptTag{}) {}
   using V::operator=;
