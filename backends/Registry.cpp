@@ -1,11 +1,17 @@
 // Registers the backends this build includes (see CMakeLists.txt: RILL_WITH_*).
 #include "cpu/CpuBackend.h"
+#ifdef RILL_HAVE_OPENCL
+#include "opencl/OpenCLBackend.h"
+#endif
 #include "rill/Backend.h"
 
 namespace rill::detail {
 
 void register_builtin_backends() {
   register_backend(cpu::make_backend());
+#ifdef RILL_HAVE_OPENCL
+  register_backend(opencl::make_backend());
+#endif
 }
 
 }  // namespace rill::detail

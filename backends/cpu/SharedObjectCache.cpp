@@ -13,6 +13,7 @@
 
 #include <fcntl.h>
 
+#include "../codegen/SourceText.h"
 #include "rill/Error.h"
 #include "rill/ir/Hash.h"
 
@@ -27,19 +28,6 @@ namespace {
 std::string env(const char* name) {
   const char* v = std::getenv(name);
   return v ? std::string(v) : std::string();
-}
-
-std::string numbered(const std::string& source) {
-  std::istringstream in(source);
-  std::ostringstream out;
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) {
-    char num[16];
-    std::snprintf(num, sizeof num, "%5d  ", ++n);
-    out << num << line << "\n";
-  }
-  return out.str();
 }
 
 std::string read_file(const fs::path& p) {
@@ -136,7 +124,7 @@ SharedObject compile_shared_object(const std::string& source, const std::vector<
         throw Error("CPU backend: the C compiler '" + cc +
                     "' could not be run; install one (apt-get install gcc) or set RILL_CC");
       throw Error("CPU backend: the C compiler rejected the generated kernel (exit " +
-                  std::to_string(rc) + "):\n" + messages + "\ngenerated source:\n" + numbered(source));
+                  std::to_string(rc) + "):\n" + messages + "\ngenerated source:\n" + codegen::numbered(source));
     }
     fs::remove(src, ec);
     fs::rename(tmp, lib, ec);

@@ -1,0 +1,105 @@
+// The dialect shared by the C and OpenCL C emitters.
+//
+// Both print scalarized code (one variable per vector component) over the same naming
+// convention, which their entry points set up: the element index is `rill_i`; input,
+// output and array data are `in<k>`, `out<k>`, `arr<k>` (element-interleaved components)
+// with `arr<k>_shape[3]`; uniform components are `u<k>_<c>`. They differ only in how an
+// element is abandoned (a goto in C, a return in OpenCL) and where the domain width lives.
+#pragma once
+
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+#include "CFamilyPrinter.h"
+
+namespace rill::codegen {
+
+class CDialect : public Dialect {
+ public:
+  // discard: the statement that abandons an element; width: expression for the domain's
+  // row length (for element_coord).
+  CDialect(Accuracy a, std::string discard, std::string width)
+      : accuracy_(a), discard_(std::move(discard)), width_(std::move(width)) {}
+
+  bool scalarize() const override { return true; }
+  std::string scalar_type(ir::ScalarKind k) const override {
+    switch (k) {
+      case ir::ScalarKind::Float: return "rill_real";
+      case ir::ScalarKind::Int: return "int32_t";
+      case ir::ScalarKind::Bool: return "int";
+    }
+    return "?";
+  }
+  std::string vector_type(ir::Type t) const override { return scalar_type(t.kind); }
+  std::string literal(ir::ScalarKind k, uint32_t bits) const override {
+    switch (k) {
+      case ir::ScalarKind::Int:
+        if (bits == 0x80000000u) return "(-2147483647 - 1)";
+        return std::to_string(static_cast<int32_t>(bits));
+      case ir::ScalarKind::Bool: return bits ? "1" : "0";
+      case ir::ScalarKind::Float: {
+        float v = std::bit_cast<float>(bits);
+        if (v != v || v == INFINITY || v == -INFINITY) {
+          char buf[48];
+          std::snprintf(buf, sizeof buf, "rill_word_f(0x%08xu)", bits);
+          return buf;
+        }
+        // The shortest decimal that reads back as this float, with the f suffix: C compilers
+        // round float literals correctly, so the value is exact (and widens exactly to
+        // double in double mode).
+        char buf[48];
+        auto r = std::to_chars(buf, buf + sizeof buf, v);
+        std::string s(buf, r.ptr);
+        if (s.find_first_of(".e") == std::string::npos) s += ".0";
+        return s + "f";
+      }
+    }
+    return "?";
+  }
+  std::string discard() const override { return discard_; }
+
+  std::string initial_value(const ir::Function& f, ir::VarId v, int c) const override {
+    const ir::Variable& var = f.var(v);
+    int w = var.type.width;
+    std::string at = "[rill_i * " + std::to_string(w) + " + " + std::to_string(c) + "]";
+    switch (var.role) {
+      case ir::VarRole::Input: return "in" + std::to_string(var.slot) + at;
+      case ir::VarRole::Output: return "out" + std::to_string(var.slot) + at;
+      case ir::VarRole::Uniform: return "u" + std::to_string(var.slot) + "_" + std::to_string(c);
+      default:
+        return literal(var.type.kind, 0);
+    }
+  }
+
+  std::string gather(const ir::Function& f, const ir::Stmt& s, const std::vector<std::string>& index,
+                     const std::vector<std::string>& dst) const override {
+    const ir::ArrayDecl& a = f.arrays.at(static_cast<size_t>(s.array));
+    std::string id = std::to_string(s.array);
+    std::string shape = "arr" + id + "_shape";
+    // Clamp each index into its dimension, then linearize (x fastest).
+    std::string lin = "rill_clamp_index(" + index[0] + ", " + shape + "[0])";
+    if (index.size() > 1) lin += " + " + shape + "[0] * rill_clamp_index(" + index[1] + ", " + shape + "[1])";
+    if (index.size() > 2)
+      lin += " + " + shape + "[0] * " + shape + "[1] * rill_clamp_index(" + index[2] + ", " + shape + "[2])";
+    std::string out = "{\n  const int64_t g = (" + lin + ") * " + std::to_string(a.elem.width) + ";\n";
+    for (size_t c = 0; c < dst.size(); ++c) {
+      std::string load = "arr" + id + "[g + " + std::to_string(c) + "]";
+      out += "  " + dst[c] + " = " + (a.elem.is_float() ? "(rill_real)" : "") + load + ";\n";
+    }
+    return out + "}\n";
+  }
+
+  std::string element_index() const override { return "((int32_t)rill_i)"; }
+  std::string element_coord(int c) const override {
+    return c == 0 ? "((int32_t)(rill_i % " + width_ + "))" : "((int32_t)(rill_i / " + width_ + "))";
+  }
+
+ private:
+  Accuracy accuracy_;
+  std::string discard_, width_;
+};
+
+
+}  // namespace rill::codegen

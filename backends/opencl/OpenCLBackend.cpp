@@ -1,0 +1,365 @@
+#include "OpenCLBackend.h"
+
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+
+#include "../codegen/SourceText.h"
+#include "OpenCLEmitter.h"
+#include "rill/Parameters.h"
+
+namespace rill::opencl {
+
+namespace {
+
+std::string cl_error_name(cl_int e) {
+  switch (e) {
+    case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
+    case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+    case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_VALUE: return "CL_INVALID_VALUE";
+    case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
+    case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE";
+    case CL_INVALID_HOST_PTR: return "CL_INVALID_HOST_PTR";
+    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR";
+    default: return "OpenCL error " + std::to_string(e);
+  }
+}
+
+void check(cl_int e, const char* what) {
+  if (e != CL_SUCCESS) throw Error(std::string("OpenCL backend: ") + what + " failed: " + cl_error_name(e));
+}
+
+std::string platform_string(cl_platform_id p, cl_platform_info what) {
+  size_t n = 0;
+  clGetPlatformInfo(p, what, 0, nullptr, &n);
+  std::string s(n, '\0');
+  clGetPlatformInfo(p, what, n, s.data(), nullptr);
+  while (!s.empty() && s.back() == '\0') s.pop_back();
+  return s;
+}
+
+std::string device_string(cl_device_id d, cl_device_info what) {
+  size_t n = 0;
+  clGetDeviceInfo(d, what, 0, nullptr, &n);
+  std::string s(n, '\0');
+  clGetDeviceInfo(d, what, n, s.data(), nullptr);
+  while (!s.empty() && s.back() == '\0') s.pop_back();
+  return s;
+}
+
+struct Found {
+  std::vector<DeviceInfo> infos;
+  std::vector<cl_device_id> ids;
+  std::string error;  // why there is none
+};
+
+Found enumerate() {
+  Found f;
+  cl_uint np = 0;
+  cl_int e = clGetPlatformIDs(0, nullptr, &np);
+  if (e != CL_SUCCESS || np == 0) {
+    f.error = "no OpenCL platform found (" + (e == CL_SUCCESS ? std::string("0 platforms") : cl_error_name(e)) +
+              "); install an ICD such as pocl-opencl-icd, or a GPU driver's";
+    return f;
+  }
+  std::vector<cl_platform_id> platforms(np);
+  clGetPlatformIDs(np, platforms.data(), nullptr);
+  for (cl_uint p = 0; p < np; ++p) {
+    cl_uint nd = 0;
+    if (clGetDeviceIDs(platforms[p], CL_DEVICE_TYPE_ALL, 0, nullptr, &nd) != CL_SUCCESS) continue;
+    std::vector<cl_device_id> devs(nd);
+    clGetDeviceIDs(platforms[p], CL_DEVICE_TYPE_ALL, nd, devs.data(), nullptr);
+    for (cl_uint d = 0; d < nd; ++d) {
+      DeviceInfo info;
+      info.platform = static_cast<int>(p);
+      info.device = static_cast<int>(d);
+      info.platform_name = platform_string(platforms[p], CL_PLATFORM_NAME);
+      info.device_name = device_string(devs[d], CL_DEVICE_NAME);
+      info.version = device_string(devs[d], CL_DEVICE_VERSION);
+      info.fp64 = device_string(devs[d], CL_DEVICE_EXTENSIONS).find("cl_khr_fp64") != std::string::npos;
+      f.infos.push_back(info);
+      f.ids.push_back(devs[d]);
+    }
+  }
+  if (f.ids.empty()) f.error = "OpenCL platforms were found but none has a device";
+  return f;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// Picks a device by spec (see OpenCLBackend.h); returns its index in `found`.
+size_t choose(const Found& found, const std::string& spec) {
+  if (spec.empty()) return 0;
+  int p = -1, d = -1;
+  if (std::sscanf(spec.c_str(), "%d:%d", &p, &d) == 2) {
+    for (size_t i = 0; i < found.infos.size(); ++i)
+      if (found.infos[i].platform == p && found.infos[i].device == d) return i;
+  } else {
+    for (size_t i = 0; i < found.infos.size(); ++i) {
+      std::string name = lower(found.infos[i].platform_name + " " + found.infos[i].device_name);
+      if (name.find(lower(spec)) != std::string::npos) return i;
+    }
+  }
+  std::string avail;
+  for (const auto& i : found.infos)
+    avail += "\n  " + std::to_string(i.platform) + ":" + std::to_string(i.device) + "  " + i.platform_name + " / " +
+             i.device_name;
+  throw Error("OpenCL backend: no device matches '" + spec + "' (RILL_OPENCL_DEVICE); available:" + avail);
+}
+
+// The device's context and queue, created on first use.
+struct Device {
+  DeviceInfo info;
+  cl_device_id id = nullptr;
+  cl_context context = nullptr;
+  cl_command_queue queue = nullptr;
+  size_t max_group = 64;
+};
+
+// Device memory for a stream or array.
+struct ClBuffer : detail::DeviceBuffer {
+  cl_mem mem = nullptr;
+  size_t bytes = 0;
+  ~ClBuffer() override {
+    if (mem) clReleaseMemObject(mem);
+  }
+};
+
+class OpenCLBackend;
+
+class ClKernel : public CompiledKernel {
+ public:
+  ClKernel(OpenCLBackend& be, const ir::Function& f, std::string source, cl_program program, cl_kernel kernel)
+      : be_(be), fn_(f), source_(std::move(source)), program_(program), kernel_(kernel) {}
+  ~ClKernel() override {
+    clReleaseKernel(kernel_);
+    clReleaseProgram(program_);
+  }
+  int64_t run(const LaunchArgs& a) override;
+  const std::string& source() const override { return source_; }
+
+ private:
+  OpenCLBackend& be_;
+  ir::Function fn_;
+  std::string source_;
+  cl_program program_;
+  cl_kernel kernel_;
+};
+
+class OpenCLBackend : public Backend {
+ public:
+  std::string name() const override { return "opencl"; }
+
+  std::string unavailable_reason() const override {
+    try {
+      const_cast<OpenCLBackend*>(this)->device();
+      return {};
+    } catch (const Error& e) {
+      return e.what();
+    }
+  }
+
+  std::string description() const override {
+    std::string why = unavailable_reason();
+    if (!why.empty()) return "opencl: unavailable: " + why;
+    const Device& d = const_cast<OpenCLBackend*>(this)->device();
+    return "opencl: " + d.info.platform_name + " / " + d.info.device_name + " (" + d.info.version + ")";
+  }
+
+  bool supports(Accuracy a) const override {
+    if (a != Accuracy::Double) return true;
+    return unavailable_reason().empty() && const_cast<OpenCLBackend*>(this)->device().info.fp64;
+  }
+
+  std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
+    Device& d = device();
+    if (o.accuracy == Accuracy::Double && !d.info.fp64)
+      throw Error("OpenCL backend: device '" + d.info.device_name + "' has no fp64 support (cl_khr_fp64)");
+    std::string source = emit_opencl(f, o.accuracy);
+    const char* text = source.c_str();
+    size_t len = source.size();
+    cl_int e = CL_SUCCESS;
+    cl_program prog = clCreateProgramWithSource(d.context, 1, &text, &len, &e);
+    check(e, "clCreateProgramWithSource");
+    std::string options = "-cl-std=CL1.2";
+    if (o.accuracy == Accuracy::Fast) options += " -cl-fast-relaxed-math -cl-mad-enable";
+    else options += " -cl-fp32-correctly-rounded-divide-sqrt";
+    e = clBuildProgram(prog, 1, &d.id, options.c_str(), nullptr, nullptr);
+    if (e != CL_SUCCESS) {
+      size_t n = 0;
+      clGetProgramBuildInfo(prog, d.id, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
+      std::string log(n, '\0');
+      clGetProgramBuildInfo(prog, d.id, CL_PROGRAM_BUILD_LOG, n, log.data(), nullptr);
+      clReleaseProgram(prog);
+      throw Error("OpenCL backend: the driver (" + d.info.device_name + ") rejected kernel '" + f.name + "' (" +
+                  cl_error_name(e) + "):\n" + log + "\ngenerated source:\n" + codegen::numbered(source));
+    }
+    cl_kernel k = clCreateKernel(prog, "rill_run", &e);
+    if (e != CL_SUCCESS) clReleaseProgram(prog);
+    check(e, "clCreateKernel");
+    return std::make_unique<ClKernel>(*this, f, std::move(source), prog, k);
+  }
+
+  // Makes the device copy of s current and returns its buffer.
+  cl_mem to_device(detail::Storage& s) {
+    Device& d = device();
+    auto* buf = s.device_owner == this ? static_cast<ClBuffer*>(s.device.get()) : nullptr;
+    if (buf && s.device_valid) return buf->mem;
+    s.sync_to_host();
+    size_t bytes = std::max<size_t>(4, s.host.size() * 4);
+    if (!buf || buf->bytes != bytes) {
+      auto fresh = std::make_unique<ClBuffer>();
+      cl_int e = CL_SUCCESS;
+      fresh->mem = clCreateBuffer(d.context, CL_MEM_READ_WRITE, bytes, nullptr, &e);
+      check(e, "clCreateBuffer");
+      fresh->bytes = bytes;
+      buf = fresh.get();
+      s.device = std::move(fresh);
+      s.device_owner = this;
+    }
+    if (!s.host.empty())
+      check(clEnqueueWriteBuffer(d.queue, buf->mem, CL_TRUE, 0, s.host.size() * 4, s.host.data(), 0, nullptr, nullptr),
+            "clEnqueueWriteBuffer");
+    s.device_valid = true;
+    return buf->mem;
+  }
+
+  // The device wrote s: the host copy is stale until read back.
+  void device_written(detail::Storage& s) {
+    s.host_valid = false;
+    s.device_valid = true;
+  }
+
+  void read_back(detail::Storage& s) override {
+    auto* buf = static_cast<ClBuffer*>(s.device.get());
+    if (!s.host.empty())
+      check(clEnqueueReadBuffer(device().queue, buf->mem, CL_TRUE, 0, s.host.size() * 4, s.host.data(), 0, nullptr,
+                                nullptr),
+            "clEnqueueReadBuffer");
+  }
+
+  cl_mem scratch(size_t bytes, const void* data) {
+    Device& d = device();
+    cl_int e = CL_SUCCESS;
+    // Kernels always get a buffer, even for an empty table; pad to 8 bytes.
+    std::vector<unsigned char> copy(std::max<size_t>(bytes, 8), 0);
+    if (bytes) std::memcpy(copy.data(), data, bytes);
+    cl_mem m = clCreateBuffer(d.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, copy.size(), copy.data(), &e);
+    check(e, "clCreateBuffer");
+    return m;
+  }
+
+  Device& device() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (dev_) return *dev_;
+    if (!init_error_.empty()) throw Error(init_error_);
+    try {
+      Found found = enumerate();
+      if (found.ids.empty()) throw Error(found.error);
+      const char* env = std::getenv("RILL_OPENCL_DEVICE");
+      size_t i = choose(found, spec_.empty() && env ? std::string(env) : spec_);
+      auto d = std::make_unique<Device>();
+      d->info = found.infos[i];
+      d->id = found.ids[i];
+      cl_int e = CL_SUCCESS;
+      d->context = clCreateContext(nullptr, 1, &d->id, nullptr, nullptr, &e);
+      check(e, "clCreateContext");
+      d->queue = clCreateCommandQueue(d->context, d->id, 0, &e);
+      check(e, "clCreateCommandQueue");
+      clGetDeviceInfo(d->id, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof d->max_group, &d->max_group, nullptr);
+      dev_ = std::move(d);
+    } catch (const Error& e) {
+      init_error_ = e.what();
+      throw;
+    }
+    return *dev_;
+  }
+
+  void set_spec(const std::string& spec) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (dev_) throw Error("OpenCL backend: set_device() must be called before the first OpenCL kernel is compiled");
+    spec_ = spec;
+    init_error_.clear();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::unique_ptr<Device> dev_;  // never released: buffers of live streams refer to it
+  std::string init_error_, spec_;
+};
+
+OpenCLBackend* g_backend = nullptr;
+
+int64_t ClKernel::run(const LaunchArgs& a) {
+  Device& d = be_.device();
+  cl_uint arg = 0;
+  auto set_mem = [&](cl_mem m) { check(clSetKernelArg(kernel_, arg++, sizeof(cl_mem), &m), "clSetKernelArg"); };
+  for (auto* s : a.inputs) set_mem(be_.to_device(*s));
+  for (auto* s : a.outputs) set_mem(be_.to_device(*s));
+  std::vector<cl_long> shapes;
+  for (auto* arr : a.arrays) {
+    set_mem(be_.to_device(*arr));
+    shapes.insert(shapes.end(), {arr->shape[0], arr->shape[1], arr->shape[2]});
+  }
+  std::vector<cl_uint> uniforms;
+  for (auto* u : a.uniforms) uniforms.insert(uniforms.end(), u->bits.begin(), u->bits.end());
+  cl_uint zero = 0;
+  cl_mem shape_buf = be_.scratch(shapes.size() * sizeof(cl_long), shapes.data());
+  cl_mem uniform_buf = be_.scratch(uniforms.size() * sizeof(cl_uint), uniforms.data());
+  cl_mem counter = be_.scratch(sizeof zero, &zero);
+  cl_long width = a.width, count = a.count;
+  set_mem(shape_buf);
+  set_mem(uniform_buf);
+  check(clSetKernelArg(kernel_, arg++, sizeof width, &width), "clSetKernelArg");
+  check(clSetKernelArg(kernel_, arg++, sizeof count, &count), "clSetKernelArg");
+  set_mem(counter);
+
+  cl_uint written = 0;
+  cl_int e = CL_SUCCESS;
+  if (a.count > 0) {
+    size_t group = 64;
+    size_t kernel_group = 0;
+    clGetKernelWorkGroupInfo(kernel_, d.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_group, &kernel_group, nullptr);
+    group = std::max<size_t>(1, std::min({group, kernel_group ? kernel_group : group, d.max_group}));
+    size_t global = (static_cast<size_t>(a.count) + group - 1) / group * group;
+    e = clEnqueueNDRangeKernel(d.queue, kernel_, 1, nullptr, &global, &group, 0, nullptr, nullptr);
+    if (e == CL_SUCCESS)
+      e = clEnqueueReadBuffer(d.queue, counter, CL_TRUE, 0, sizeof written, &written, 0, nullptr, nullptr);
+  }
+  clReleaseMemObject(shape_buf);
+  clReleaseMemObject(uniform_buf);
+  clReleaseMemObject(counter);
+  check(e, "running the kernel");
+  for (auto* s : a.outputs) be_.device_written(*s);
+  return written;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() { return enumerate().infos; }
+
+void set_device(const std::string& spec) {
+  backend("opencl");  // make sure the registry created it
+  if (!g_backend) throw Error("OpenCL backend is not part of this build");
+  g_backend->set_spec(spec);
+}
+
+std::unique_ptr<Backend> make_backend() {
+  auto b = std::make_unique<OpenCLBackend>();
+  g_backend = b.get();
+  return b;
+}
+
+}  // namespace rill::opencl
