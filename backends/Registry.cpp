@@ -3,6 +3,9 @@
 #ifdef RILL_HAVE_OPENCL
 #include "opencl/OpenCLBackend.h"
 #endif
+#ifdef RILL_HAVE_GLSL
+#include "glsl/GLSLBackend.h"
+#endif
 #include "rill/Backend.h"
 
 namespace rill::detail {
@@ -11,6 +14,9 @@ void register_builtin_backends() {
   register_backend(cpu::make_backend());
 #ifdef RILL_HAVE_OPENCL
   register_backend(opencl::make_backend());
+#endif
+#ifdef RILL_HAVE_GLSL
+  register_backend(glsl::make_backend());
 #endif
 }
 

@@ -1,0 +1,417 @@
+// The GLSL backend: streams as float textures, kernels as fragment shaders drawn over them.
+//
+// Layout: a stream or array of n elements is a 2D texture of rows of min(n, 4096) texels
+// (R32F, RG32F or RGBA32F; integer formats for Int data; 3-component data is padded to 4).
+// A launch draws one triangle covering the outputs' texture with the kernel's shader:
+//   - inputs and arrays are bound as textures and read with texelFetch;
+//   - each output is a color attachment; a discarded fragment leaves its texel as it was,
+//     which is the "discarded elements keep their previous value" rule for free;
+//   - the previous values the kernel may read (an output not written on some path, or a
+//     stream bound as both input and output) come from a copy taken before the draw, so no
+//     texture is ever read while it is being rendered to;
+//   - a GL_SAMPLES_PASSED query counts the fragments written.
+// With more outputs than the context has draw buffers, the kernel is drawn once per group
+// of outputs (each draw computes everything and writes its group).
+#include "GLSLBackend.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+
+#include "../codegen/SourceText.h"
+#include "GLContext.h"
+#include "GLSLEmitter.h"
+#include "rill/Parameters.h"
+
+namespace rill::glsl {
+
+namespace {
+
+constexpr int64_t kMaxRow = 4096;
+
+struct Format {
+  GLenum internal, format, type;
+  int channels;
+};
+
+Format format_of(ir::Type t) {
+  bool f = t.is_float();
+  switch (t.width) {
+    case 1: return {GLenum(f ? GL_R32F : GL_R32I), GLenum(f ? GL_RED : GL_RED_INTEGER), GLenum(f ? GL_FLOAT : GL_INT), 1};
+    case 2: return {GLenum(f ? GL_RG32F : GL_RG32I), GLenum(f ? GL_RG : GL_RG_INTEGER), GLenum(f ? GL_FLOAT : GL_INT), 2};
+    default:
+      return {GLenum(f ? GL_RGBA32F : GL_RGBA32I), GLenum(f ? GL_RGBA : GL_RGBA_INTEGER), GLenum(f ? GL_FLOAT : GL_INT), 4};
+  }
+}
+
+struct Shape {
+  int row = 1, rows = 1;
+};
+Shape shape_of(int64_t count) {
+  Shape s;
+  s.row = static_cast<int>(std::clamp<int64_t>(count, 1, kMaxRow));
+  s.rows = static_cast<int>(std::max<int64_t>(1, (count + s.row - 1) / s.row));
+  return s;
+}
+
+class GLSLBackend;
+
+struct Texture : detail::DeviceBuffer {
+  GLSLBackend* owner = nullptr;
+  GLuint tex = 0;
+  Format fmt{};
+  Shape shape;
+  ~Texture() override;
+};
+
+class GLSLKernel : public CompiledKernel {
+ public:
+  struct Pass {
+    std::vector<int> outputs;
+    GLuint program = 0;
+    std::string source;
+  };
+  GLSLKernel(GLSLBackend& be, ir::Function f, std::vector<Pass> passes)
+      : be_(be), fn_(std::move(f)), passes_(std::move(passes)) {
+    for (const Pass& p : passes_) source_ += p.source;
+  }
+  ~GLSLKernel() override;
+  int64_t run(const LaunchArgs& a) override;
+  const std::string& source() const override { return source_; }
+
+ private:
+  GLSLBackend& be_;
+  ir::Function fn_;
+  std::vector<Pass> passes_;
+  std::string source_;
+};
+
+class GLSLBackend : public Backend {
+ public:
+  std::string name() const override { return "glsl"; }
+
+  std::string unavailable_reason() const override {
+    try {
+      const_cast<GLSLBackend*>(this)->context();
+      return {};
+    } catch (const Error& e) {
+      return e.what();
+    }
+  }
+  std::string description() const override {
+    std::string why = unavailable_reason();
+    if (!why.empty()) return "glsl: unavailable: " + why;
+    auto* self = const_cast<GLSLBackend*>(this);
+    return "glsl: " + self->context().kind() + ", " + self->context().renderer;
+  }
+  bool supports(Accuracy a) const override { return a != Accuracy::Double; }
+
+  std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const GL& gl = current();
+    if (o.accuracy == Accuracy::Double)
+      throw Error("GLSL backend: accuracy mode 'double' is not supported (GLSL kernels compute in binary32)");
+    int group = std::max(1, max_draw_buffers_);
+    std::vector<GLSLKernel::Pass> passes;
+    for (size_t first = 0; first < std::max<size_t>(1, f.outputs.size()); first += static_cast<size_t>(group)) {
+      GLSLKernel::Pass p;
+      for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group)); ++i)
+        p.outputs.push_back(static_cast<int>(i));
+      p.source = emit_glsl(f, o.accuracy, p.outputs);
+      p.program = link(gl, f.name, p.source);
+      passes.push_back(std::move(p));
+    }
+    return std::make_unique<GLSLKernel>(*this, f, std::move(passes));
+  }
+
+  void read_back(detail::Storage& s) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const GL& gl = current();
+    auto* t = static_cast<Texture*>(s.device.get());
+    std::vector<uint32_t> padded(static_cast<size_t>(t->shape.row) * static_cast<size_t>(t->shape.rows) *
+                                 static_cast<size_t>(t->fmt.channels));
+    gl.glBindTexture(GL_TEXTURE_2D, t->tex);
+    gl.glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.glGetTexImage(GL_TEXTURE_2D, 0, t->fmt.format, t->fmt.type, padded.data());
+    check(gl, "reading a texture back");
+    int w = s.type.width;
+    for (int64_t i = 0; i < s.count; ++i)
+      for (int c = 0; c < w; ++c)
+        s.host[static_cast<size_t>(i * w + c)] = padded[static_cast<size_t>(i * t->fmt.channels + c)];
+  }
+
+  // --- used by GLSLKernel::run, under the lock --------------------------------------------
+
+  std::mutex mutex_;
+
+  const GL& current() {
+    GLContext& c = context_locked();
+    c.make_current();
+    return c.gl();
+  }
+
+  static void check(const GL& gl, const char* what) {
+    GLenum e = gl.glGetError();
+    if (e != GL_NO_ERROR) throw Error(std::string("GLSL backend: OpenGL error 0x") + hex(e) + " while " + what);
+  }
+
+  // The texture holding s, current with the host copy.
+  Texture& to_device(const GL& gl, detail::Storage& s) {
+    auto* t = s.device_owner == this ? static_cast<Texture*>(s.device.get()) : nullptr;
+    if (t && s.device_valid) return *t;
+    s.sync_to_host();
+    Format fmt = format_of(s.type);
+    Shape shape = shape_of(s.count);
+    if (!t || t->fmt.internal != fmt.internal || t->shape.row != shape.row || t->shape.rows != shape.rows) {
+      auto fresh = std::make_unique<Texture>();
+      fresh->owner = this;
+      fresh->fmt = fmt;
+      fresh->shape = shape;
+      fresh->tex = new_texture(gl, fmt, shape);
+      t = fresh.get();
+      s.device = std::move(fresh);
+      s.device_owner = this;
+    }
+    std::vector<uint32_t> padded(static_cast<size_t>(shape.row) * static_cast<size_t>(shape.rows) *
+                                 static_cast<size_t>(fmt.channels));
+    int w = s.type.width;
+    for (int64_t i = 0; i < s.count; ++i)
+      for (int c = 0; c < w; ++c)
+        padded[static_cast<size_t>(i * fmt.channels + c)] = s.host[static_cast<size_t>(i * w + c)];
+    gl.glBindTexture(GL_TEXTURE_2D, t->tex);
+    gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl.glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, shape.row, shape.rows, fmt.format, fmt.type, padded.data());
+    check(gl, "uploading a texture");
+    s.device_valid = true;
+    return *t;
+  }
+
+  GLuint new_texture(const GL& gl, const Format& fmt, const Shape& shape) {
+    GLuint tex = 0;
+    gl.glGenTextures(1, &tex);
+    gl.glBindTexture(GL_TEXTURE_2D, tex);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    gl.glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(fmt.internal), shape.row, shape.rows, 0, fmt.format,
+                    fmt.type, nullptr);
+    check(gl, "allocating a texture");
+    return tex;
+  }
+
+  void release(GLuint tex) {
+    // Called from Texture destructors, possibly after the backend is gone at exit.
+    if (!context_) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    const GL& gl = current();
+    gl.glDeleteTextures(1, &tex);
+  }
+
+  GLuint fbo() const { return fbo_; }
+  GLuint vao() const { return vao_; }
+  GLuint query() const { return query_; }
+  int max_texture_units() const { return max_units_; }
+
+ private:
+  static std::string hex(GLenum e) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%04x", e);
+    return buf;
+  }
+
+  GLuint link(const GL& gl, const std::string& name, const std::string& fragment) {
+    auto compile_one = [&](GLenum kind, const std::string& src) {
+      GLuint sh = gl.glCreateShader(kind);
+      const char* text = src.c_str();
+      gl.glShaderSource(sh, 1, &text, nullptr);
+      gl.glCompileShader(sh);
+      GLint ok = 0;
+      gl.glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+      if (!ok) {
+        GLint n = 0;
+        gl.glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &n);
+        std::string log(static_cast<size_t>(std::max(n, 1)), '\0');
+        gl.glGetShaderInfoLog(sh, n, nullptr, log.data());
+        gl.glDeleteShader(sh);
+        throw Error("GLSL backend: the driver (" + context_->renderer + ") rejected the shader of kernel '" + name +
+                    "':\n" + log + "\ngenerated source:\n" + codegen::numbered(src));
+      }
+      return sh;
+    };
+    GLuint vs = compile_one(GL_VERTEX_SHADER, vertex_shader());
+    GLuint fs = compile_one(GL_FRAGMENT_SHADER, fragment);
+    GLuint prog = gl.glCreateProgram();
+    gl.glAttachShader(prog, vs);
+    gl.glAttachShader(prog, fs);
+    gl.glLinkProgram(prog);
+    gl.glDeleteShader(vs);
+    gl.glDeleteShader(fs);
+    GLint ok = 0;
+    gl.glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      GLint n = 0;
+      gl.glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &n);
+      std::string log(static_cast<size_t>(std::max(n, 1)), '\0');
+      gl.glGetProgramInfoLog(prog, n, nullptr, log.data());
+      gl.glDeleteProgram(prog);
+      throw Error("GLSL backend: linking kernel '" + name + "' failed:\n" + log + "\ngenerated source:\n" +
+                  codegen::numbered(fragment));
+    }
+    return prog;
+  }
+
+  GLContext& context() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return context_locked();
+  }
+
+  GLContext& context_locked() {
+    if (context_) return *context_;
+    if (!init_error_.empty()) throw Error(init_error_);
+    try {
+      auto c = create_context();
+      const GL& gl = c->gl();
+      GLint draw = 1, attach = 1, units = 16;
+      gl.glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw);
+      gl.glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &attach);
+      gl.glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+      max_draw_buffers_ = std::min(draw, attach);
+      if (const char* force = std::getenv("RILL_GL_MAX_DRAW_BUFFERS"))  // to test pass splitting
+        max_draw_buffers_ = std::clamp(std::atoi(force), 1, max_draw_buffers_);
+      max_units_ = units;
+      gl.glGenFramebuffers(1, &fbo_);
+      gl.glGenVertexArrays(1, &vao_);
+      gl.glGenQueries(1, &query_);
+      gl.glDisable(GL_DITHER);
+      gl.glDisable(GL_BLEND);
+      gl.glDisable(GL_DEPTH_TEST);
+      check(gl, "setting up the context");
+      context_ = std::move(c);
+    } catch (const Error& e) {
+      init_error_ = e.what();
+      throw;
+    }
+    return *context_;
+  }
+
+  std::unique_ptr<GLContext> context_;  // kept until exit: textures of live streams refer to it
+  std::string init_error_;
+  int max_draw_buffers_ = 1, max_units_ = 16;
+  GLuint fbo_ = 0, vao_ = 0, query_ = 0;
+};
+
+Texture::~Texture() {
+  if (owner && tex) owner->release(tex);
+}
+
+GLSLKernel::~GLSLKernel() {
+  std::lock_guard<std::mutex> lock(be_.mutex_);
+  const GL& gl = be_.current();
+  for (Pass& p : passes_) gl.glDeleteProgram(p.program);
+}
+
+int64_t GLSLKernel::run(const LaunchArgs& a) {
+  if (a.count == 0) return 0;
+  if (a.count > kMaxRow * kMaxRow) throw Error("GLSL backend: streams are limited to 4096 x 4096 elements");
+  std::lock_guard<std::mutex> lock(be_.mutex_);
+  const GL& gl = be_.current();
+  const int units = static_cast<int>(a.inputs.size() + a.outputs.size() + a.arrays.size());
+  if (units > be_.max_texture_units())
+    throw Error("GLSL backend: kernel '" + fn_.name + "' reads " + std::to_string(units) +
+                " textures but the context has " + std::to_string(be_.max_texture_units()) + " texture units");
+
+  // Outputs: their textures, and a copy of their current contents (the previous values).
+  std::vector<Texture*> out_tex;
+  std::vector<GLuint> prev;
+  for (auto* s : a.outputs) {
+    Texture& t = be_.to_device(gl, *s);
+    out_tex.push_back(&t);
+    GLuint copy = be_.new_texture(gl, t.fmt, t.shape);
+    gl.glCopyImageSubData(t.tex, GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0, 0, 0, 0, t.shape.row, t.shape.rows, 1);
+    prev.push_back(copy);
+  }
+  // Inputs: a stream that is also an output is read from its copy.
+  std::vector<GLuint> in_tex;
+  for (auto* s : a.inputs) {
+    auto it = std::find(a.outputs.begin(), a.outputs.end(), s);
+    in_tex.push_back(it != a.outputs.end() ? prev[static_cast<size_t>(it - a.outputs.begin())] : be_.to_device(gl, *s).tex);
+  }
+  std::vector<GLuint> arr_tex;
+  std::vector<GLint> shapes;
+  for (auto* arr : a.arrays) {
+    arr_tex.push_back(be_.to_device(gl, *arr).tex);
+    shapes.insert(shapes.end(), {static_cast<GLint>(arr->shape[0]), static_cast<GLint>(arr->shape[1]),
+                                 static_cast<GLint>(arr->shape[2])});
+  }
+  std::vector<GLuint> words;
+  for (auto* u : a.uniforms) words.insert(words.end(), u->bits.begin(), u->bits.end());
+  be_.check(gl, "preparing a launch");
+
+  const Shape shape = out_tex.empty() ? shape_of(a.count) : out_tex[0]->shape;
+  GLuint written = 0;
+  gl.glBindFramebuffer(GL_FRAMEBUFFER, be_.fbo());
+  gl.glBindVertexArray(be_.vao());
+  gl.glViewport(0, 0, shape.row, shape.rows);
+  for (size_t pi = 0; pi < passes_.size(); ++pi) {
+    const Pass& p = passes_[pi];
+    std::vector<GLenum> bufs;
+    for (size_t k = 0; k < p.outputs.size(); ++k) {
+      gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k), GL_TEXTURE_2D,
+                                out_tex[static_cast<size_t>(p.outputs[k])]->tex, 0);
+      bufs.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k));
+    }
+    gl.glDrawBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
+    if (gl.glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw Error("GLSL backend: the output textures of kernel '" + fn_.name + "' do not form a complete framebuffer");
+    gl.glUseProgram(p.program);
+    GLint unit = 0;
+    auto bind = [&](const std::string& name, GLuint tex) {
+      GLint loc = gl.glGetUniformLocation(p.program, name.c_str());
+      gl.glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+      gl.glBindTexture(GL_TEXTURE_2D, tex);
+      if (loc >= 0) gl.glUniform1i(loc, unit);
+      ++unit;
+    };
+    for (size_t i = 0; i < in_tex.size(); ++i) bind("rill_in" + std::to_string(i), in_tex[i]);
+    for (size_t i = 0; i < prev.size(); ++i) bind("rill_prev" + std::to_string(i), prev[i]);
+    for (size_t i = 0; i < arr_tex.size(); ++i) bind("rill_arr" + std::to_string(i), arr_tex[i]);
+    auto set_int = [&](const char* name, int64_t v) {
+      GLint loc = gl.glGetUniformLocation(p.program, name);
+      if (loc >= 0) gl.glUniform1i(loc, static_cast<GLint>(v));
+    };
+    set_int("rill_count", a.count);
+    set_int("rill_row", shape.row);
+    set_int("rill_width", a.width);
+    if (!words.empty()) {
+      GLint loc = gl.glGetUniformLocation(p.program, "rill_u");
+      if (loc >= 0) gl.glUniform1uiv(loc, static_cast<GLsizei>(words.size()), words.data());
+    }
+    if (!shapes.empty()) {
+      GLint loc = gl.glGetUniformLocation(p.program, "rill_shapes");
+      if (loc >= 0) gl.glUniform1iv(loc, static_cast<GLsizei>(shapes.size()), shapes.data());
+    }
+    if (pi == 0) gl.glBeginQuery(GL_SAMPLES_PASSED, be_.query());
+    gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (pi == 0) {
+      gl.glEndQuery(GL_SAMPLES_PASSED);
+      gl.glGetQueryObjectuiv(be_.query(), GL_QUERY_RESULT, &written);
+    }
+    for (size_t k = 0; k < p.outputs.size(); ++k)
+      gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k), GL_TEXTURE_2D, 0, 0);
+  }
+  gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl.glDeleteTextures(static_cast<GLsizei>(prev.size()), prev.data());
+  be_.check(gl, "running a kernel");
+  for (auto* s : a.outputs) {
+    s->host_valid = false;
+    s->device_valid = true;
+  }
+  return written;
+}
+
+}  // namespace
+
+std::unique_ptr<Backend> make_backend() { return std::make_unique<GLSLBackend>(); }
+
+}  // namespace rill::glsl

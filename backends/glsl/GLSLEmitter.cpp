@@ -1,0 +1,228 @@
+// Emits a kernel as a GLSL 4.30 fragment shader (the thesis's stream model).
+//
+// One fragment per stream element: the element index comes from gl_FragCoord over a
+// texture laid out in rows of `rill_row` texels. Inputs, the outputs' previous values and
+// arrays are textures read with texelFetch; outputs are render targets; RILL_DISCARD is
+// `discard`, and the occlusion query counts what was written.
+//
+// The body is printed by the shared C-family printer (scalarized, like the C and OpenCL
+// dialects); GLSL gets its own helper definitions because it has no casts or typedefs.
+// In strict mode every float variable is `precise`, which forbids the compiler from fusing
+// or reassociating the operations that compute it.
+#include "GLSLEmitter.h"
+
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+#include "../codegen/CFamilyPrinter.h"
+
+namespace rill::glsl {
+
+using namespace ir;
+
+namespace {
+
+const char* kHelpers = R"(
+int rill_add_i(int a, int b) { return int(uint(a) + uint(b)); }
+int rill_sub_i(int a, int b) { return int(uint(a) - uint(b)); }
+int rill_mul_i(int a, int b) { return int(uint(a) * uint(b)); }
+int rill_neg_i(int a) { return int(0u - uint(a)); }
+// Truncating division computed on magnitudes (GLSL leaves negative operands open).
+int rill_div_i(int a, int b) {
+  if (b == 0) return 0;
+  uint q = (a < 0 ? 0u - uint(a) : uint(a)) / (b < 0 ? 0u - uint(b) : uint(b));
+  return ((a < 0) != (b < 0)) ? int(0u - q) : int(q);
+}
+int rill_mod_i(int a, int b) {
+  if (b == 0) return 0;
+  return rill_sub_i(a, rill_mul_i(b, rill_div_i(a, b)));
+}
+int rill_min_i(int a, int b) { return b < a ? b : a; }
+int rill_max_i(int a, int b) { return a < b ? b : a; }
+int rill_abs_i(int a) { return a < 0 ? rill_neg_i(a) : a; }
+int rill_sign_i(int a) { return a > 0 ? 1 : (a < 0 ? -1 : 0); }
+int rill_shl(int a, int b) { return int(uint(a) << uint(b & 31)); }
+int rill_shr(int a, int b) { return a >> (b & 31); }
+
+float rill_min_f(float a, float b) { return b < a ? b : a; }
+float rill_max_f(float a, float b) { return a < b ? b : a; }
+float rill_sign_f(float x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+float rill_abs_f(float x) { return abs(x); }
+float rill_floor(float x) { return floor(x); }
+float rill_ceil(float x) { return ceil(x); }
+float rill_fract(float x) { RILL_PRECISE float f = floor(x); RILL_PRECISE float r = x - f; return r; }
+float rill_mod_f(float a, float b) {
+  RILL_PRECISE float q = a / b;
+  RILL_PRECISE float f = floor(q);
+  RILL_PRECISE float m = b * f;
+  RILL_PRECISE float r = a - m;
+  return r;
+}
+float rill_sqrt(float x) { return sqrt(x); }
+float rill_rsqrt(float x) { RILL_PRECISE float s = sqrt(x); RILL_PRECISE float r = 1.0 / s; return r; }
+float rill_exp(float x) { return exp(x); }
+float rill_log(float x) { return log(x); }
+float rill_exp2(float x) { return exp2(x); }
+float rill_log2(float x) { return log2(x); }
+float rill_sin(float x) { return sin(x); }
+float rill_cos(float x) { return cos(x); }
+float rill_tan(float x) { return tan(x); }
+float rill_atan(float x) { return atan(x); }
+float rill_pow(float x, float y) { return pow(x, y); }
+float rill_atan2(float y, float x) { return atan(y, x); }
+float rill_i2f(int i) { return float(i); }
+int rill_f2i(float x) {
+  if (isnan(x)) return 0;
+  if (x >= 2147483648.0) return 2147483647;
+  if (x < -2147483648.0) return int(0x80000000u);
+  return int(x);
+}
+int rill_fbits(float x) { return floatBitsToInt(x); }
+float rill_ibits(int i) { return intBitsToFloat(i); }
+int rill_clamp_index(int i, int n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
+)";
+
+const char kComp[] = "xyzw";
+
+class GLSLDialect : public codegen::Dialect {
+ public:
+  explicit GLSLDialect(Accuracy a) : strict_(a != Accuracy::Fast) {}
+
+  bool scalarize() const override { return true; }
+  std::string scalar_type(ScalarKind k) const override {
+    return k == ScalarKind::Float ? "float" : k == ScalarKind::Int ? "int" : "bool";
+  }
+  std::string vector_type(Type t) const override { return scalar_type(t.kind); }
+  std::string literal(ScalarKind k, uint32_t bits) const override {
+    char buf[48];
+    switch (k) {
+      case ScalarKind::Int:
+        if (bits == 0x80000000u) return "int(0x80000000u)";
+        return std::to_string(static_cast<int32_t>(bits));
+      case ScalarKind::Bool: return bits ? "true" : "false";
+      case ScalarKind::Float: {
+        float v = std::bit_cast<float>(bits);
+        // Special and negative-zero values by their bits; others as the shortest decimal
+        // that reads back to the same float.
+        if (std::isnan(v) || std::isinf(v) || bits == 0x80000000u) {
+          std::snprintf(buf, sizeof buf, "uintBitsToFloat(0x%08xu)", bits);
+          return buf;
+        }
+        auto r = std::to_chars(buf, buf + sizeof buf, v);
+        std::string s(buf, r.ptr);
+        if (s.find_first_of(".e") == std::string::npos) s += ".0";
+        return s;
+      }
+    }
+    return "?";
+  }
+  std::string loop_header() const override { return "while (true)"; }
+  std::string discard() const override { return "discard;"; }
+  std::string float_qualifier() const override { return strict_ ? "precise " : ""; }
+
+  std::string initial_value(const Function& f, VarId v, int c) const override {
+    const Variable& var = f.var(v);
+    std::string comp = std::string(".") + kComp[c];
+    switch (var.role) {
+      case VarRole::Input: return "rill_in" + std::to_string(var.slot) + "_v" + comp;
+      case VarRole::Output: return "rill_prev" + std::to_string(var.slot) + "_v" + comp;
+      case VarRole::Uniform: return "u" + std::to_string(var.slot) + "_" + std::to_string(c);
+      default: return literal(var.type.kind, 0);
+    }
+  }
+
+  std::string gather(const Function& f, const Stmt& s, const std::vector<std::string>& index,
+                     const std::vector<std::string>& dst) const override {
+    std::string id = std::to_string(s.array);
+    auto dim = [&](int d) { return "rill_shapes[" + std::to_string(s.array * 3 + d) + "]"; };
+    std::string lin = "rill_clamp_index(" + index[0] + ", " + dim(0) + ")";
+    if (index.size() > 1) lin += " + " + dim(0) + " * rill_clamp_index(" + index[1] + ", " + dim(1) + ")";
+    if (index.size() > 2) lin += " + " + dim(0) + " * " + dim(1) + " * rill_clamp_index(" + index[2] + ", " + dim(2) + ")";
+    const char* vec = f.arrays[static_cast<size_t>(s.array)].elem.is_float() ? "vec4" : "ivec4";
+    std::string out = "{\n  int g = " + lin + ";\n  " + vec + " e = texelFetch(rill_arr" + id +
+                      ", ivec2(g % rill_row, g / rill_row), 0);\n";
+    for (size_t c = 0; c < dst.size(); ++c) out += "  " + dst[c] + " = e." + kComp[c] + ";\n";
+    return out + "}\n";
+  }
+
+  std::string element_index() const override { return "rill_i"; }
+  std::string element_coord(int c) const override {
+    return c == 0 ? "(rill_i % rill_width)" : "(rill_i / rill_width)";
+  }
+
+ private:
+  bool strict_;
+};
+
+std::string sampler(ScalarKind k) { return k == ScalarKind::Float ? "sampler2D" : "isampler2D"; }
+std::string vec4_of(ScalarKind k) { return k == ScalarKind::Float ? "vec4" : "ivec4"; }
+
+}  // namespace
+
+std::string vertex_shader() {
+  // A triangle covering the viewport, from gl_VertexID alone (no vertex buffers).
+  return "#version 430 core\n"
+         "void main() {\n"
+         "  vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);\n"
+         "  gl_Position = vec4(p, 0.0, 1.0);\n"
+         "}\n";
+}
+
+std::string emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs) {
+  GLSLDialect d(accuracy);
+  codegen::CFamilyPrinter p(f, d);
+  std::string src = "#version 430 core\n// Generated by Rill from kernel '" + f.name + "' (" + accuracy_name(accuracy) + ").\n";
+  src += accuracy == Accuracy::Fast ? "#define RILL_PRECISE\n" : "#define RILL_PRECISE precise\n";
+  for (size_t i = 0; i < f.inputs.size(); ++i)
+    src += "uniform " + sampler(f.var(f.inputs[i]).type.kind) + " rill_in" + std::to_string(i) + ";\n";
+  for (size_t i = 0; i < f.outputs.size(); ++i)
+    src += "uniform " + sampler(f.var(f.outputs[i]).type.kind) + " rill_prev" + std::to_string(i) + ";\n";
+  for (size_t i = 0; i < f.arrays.size(); ++i)
+    src += "uniform " + sampler(f.arrays[i].elem.kind) + " rill_arr" + std::to_string(i) + ";\n";
+  if (!f.uniforms.empty()) src += "uniform uint rill_u[" + std::to_string(f.uniforms.size() * 4) + "];\n";
+  if (!f.arrays.empty()) src += "uniform int rill_shapes[" + std::to_string(f.arrays.size() * 3) + "];\n";
+  src += "uniform int rill_count;\nuniform int rill_row;\nuniform int rill_width;\n";
+  for (size_t k = 0; k < outputs.size(); ++k) {
+    int o = outputs[k];
+    src += "layout(location = " + std::to_string(k) + ") out " + vec4_of(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) +
+           " rill_out" + std::to_string(o) + ";\n";
+  }
+  src += kHelpers;
+  src += "\nvoid main() {\n";
+  src += "  ivec2 rill_pos = ivec2(gl_FragCoord.xy);\n";
+  src += "  int rill_i = rill_pos.y * rill_row + rill_pos.x;\n";
+  src += "  if (rill_i >= rill_count) discard;  // padding after the last element\n";
+  for (size_t i = 0; i < f.inputs.size(); ++i)
+    src += "  " + vec4_of(f.var(f.inputs[i]).type.kind) + " rill_in" + std::to_string(i) + "_v = texelFetch(rill_in" +
+           std::to_string(i) + ", rill_pos, 0);\n";
+  for (size_t i = 0; i < f.outputs.size(); ++i)
+    src += "  " + vec4_of(f.var(f.outputs[i]).type.kind) + " rill_prev" + std::to_string(i) + "_v = texelFetch(rill_prev" +
+           std::to_string(i) + ", rill_pos, 0);\n";
+  for (size_t i = 0; i < f.uniforms.size(); ++i) {
+    const Variable& v = f.var(f.uniforms[i]);
+    for (int c = 0; c < v.type.width; ++c) {
+      std::string word = "rill_u[" + std::to_string(i * 4 + static_cast<size_t>(c)) + "]";
+      std::string value = v.type.is_float() ? "uintBitsToFloat(" + word + ")"
+                          : v.type.is_int() ? "int(" + word + ")"
+                                            : "(" + word + " != 0u)";
+      src += "  " + d.float_qualifier() + d.scalar_type(v.type.kind) + " u" + std::to_string(i) + "_" + std::to_string(c) +
+             " = " + value + ";\n";
+    }
+  }
+  src += p.declarations(1);
+  src += p.body(1);
+  for (int o : outputs) {
+    VarId v = f.outputs[static_cast<size_t>(o)];
+    const Variable& var = f.var(v);
+    std::string parts;
+    for (int c = 0; c < 4; ++c)
+      parts += (c ? ", " : "") + (c < var.type.width ? p.component(v, c) : d.literal(var.type.kind, 0));
+    src += "  rill_out" + std::to_string(o) + " = " + vec4_of(var.type.kind) + "(" + parts + ");\n";
+  }
+  src += "}\n";
+  return src;
+}
+
+}  // namespace rill::glsl
