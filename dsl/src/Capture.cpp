@@ -39,8 +39,10 @@ struct Builder {
   std::map<const ArrayState*, int> array_ids;
   std::vector<std::shared_ptr<ArrayState>> arrays;
 
+  ir::Block* root = nullptr;  // where top-level statements go (fn->body unless extending)
+
   ir::Block& current() {
-    if (open.empty()) return fn->body;
+    if (open.empty()) return root ? *root : fn->body;
     Frame& f = open.back();
     switch (f.section) {
       case Section::Then: return f.stmt.then_body;
@@ -397,6 +399,34 @@ ProgramScope::~ProgramScope() {
     delete t_builders.back();
     t_builders.pop_back();
   }
+}
+
+ExtendScope::ExtendScope(ir::Function& f) {
+  auto* b = new Builder;
+  b->serial = g_next_serial++;
+  b->fn = std::shared_ptr<ir::Function>(&f, [](ir::Function*) {});  // not owned
+  b->root = &block_;
+  serial_ = b->serial;
+  t_builders.push_back(b);
+}
+
+ExtendScope::~ExtendScope() {
+  delete t_builders.back();
+  t_builders.pop_back();
+}
+
+Ref ExtendScope::var(ir::VarId v) const {
+  Ref r;
+  r.kind = Ref::Kind::Var;
+  r.program = serial_;
+  r.var = v;
+  return r;
+}
+
+ir::Block ExtendScope::take() {
+  if (!t_builders.back()->open.empty())
+    throw Error("internal: a control-flow construct is left open while extending a function");
+  return std::move(block_);
 }
 
 CapturedProgram ProgramScope::finish() {

@@ -97,4 +97,22 @@ class ProgramScope {
   bool finished_ = false;
 };
 
+// Records DSL code into a block of an existing function: passes use it to write IR with the
+// DSL itself (Rill's own math routines are ordinary DSL code, see passes/LowerMath.cpp).
+class ExtendScope {
+ public:
+  explicit ExtendScope(ir::Function& f);
+  ~ExtendScope();
+  ExtendScope(const ExtendScope&) = delete;
+  ExtendScope& operator=(const ExtendScope&) = delete;
+  // A reference to an existing variable of f, usable as a DSL value.
+  Ref var(ir::VarId v) const;
+  // The statements recorded so far.
+  ir::Block take();
+
+ private:
+  uint64_t serial_ = 0;
+  ir::Block block_;
+};
+
 }  // namespace rill::detail

@@ -22,6 +22,7 @@ std::vector<int> count_definitions(const Function& f) {
 
 Function optimize(const Function& input, const PassOptions& p, Accuracy accuracy) {
   Function f = input;
+  if (accuracy == Accuracy::Strict) lower_math(f);
   // A program is small and each pass is linear, so running to a fixed point is cheap; the
   // bound only guards against a pass that keeps reporting changes.
   for (int round = 0; round < 32; ++round) {

@@ -13,7 +13,12 @@
 //   lower_continue           `continue` in for / do-until loops becomes a guard flag, so that
 //                            every emitter can print loops as `while (true)` (not optional)
 //
-// optimize() runs the enabled passes to a fixed point, then lower_continue.
+//   lower_math               in strict mode, exp/log/sin/pow/... become Rill's own routines
+//                            built from exact operations (StrictMath.h), so every backend
+//                            computes the same bits (not optional in strict mode)
+//
+// optimize() runs lower_math (strict), the enabled passes to a fixed point, then
+// lower_continue.
 #pragma once
 
 #include <optional>
@@ -29,6 +34,8 @@ bool copy_propagate(ir::Function& f);
 bool eliminate_common_subexpressions(ir::Function& f);
 bool eliminate_dead_code(ir::Function& f);
 bool lower_continue(ir::Function& f);
+// Strict mode only: transcendental ops become Rill's own routines (StrictMath.h).
+bool lower_math(ir::Function& f);
 
 ir::Function optimize(const ir::Function& f, const PassOptions& passes, Accuracy accuracy);
 

@@ -1,0 +1,40 @@
+// Rill's own math routines: transcendental functions built only from +, -, *, /, floor,
+// comparisons, selects and bit operations, so every backend computes the same bits.
+//
+// In the `strict` accuracy mode the compiler replaces exp, log, sin, ... by these routines
+// (passes::lower_math); `fast` uses each backend's built-ins instead. They are ordinary DSL
+// code, so a kernel can also call them directly (rill::strict::sin(x)) to get portable
+// results in any mode. Their measured error against a double-precision reference is in
+// docs/accuracy.md.
+//
+// Special values follow C99 Annex F (exp(-inf) = 0, log(0) = -inf, log(-1) = NaN,
+// pow(x, 0) = 1, atan2(+0, -0) = pi, sin(inf) = NaN, ...). sin, cos and tan reduce their
+// argument with a three-part pi/4 (Cody and Waite); it is accurate while |x| < 8192, beyond
+// which the error grows with |x|.
+#pragma once
+
+#include "rill/Math.h"
+
+namespace rill::strict {
+
+Float exp(const Float& x);
+Float exp2(const Float& x);
+Float log(const Float& x);
+Float log2(const Float& x);
+Float pow(const Float& x, const Float& y);
+Float sin(const Float& x);
+Float cos(const Float& x);
+Float tan(const Float& x);
+Float atan(const Float& x);
+Float atan2(const Float& y, const Float& x);
+
+// Exact classification by bit pattern (comparisons with NaN are not reliable in every
+// shading language).
+Bool is_nan(const Float& x);
+Bool is_inf(const Float& x);
+Bool sign_bit(const Float& x);
+Float copy_sign(const Float& magnitude, const Float& sign);
+// x * 2^n for n in [-252, 254], rounded once.
+Float scale_by_power_of_two(const Float& x, const Int& n);
+
+}  // namespace rill::strict
