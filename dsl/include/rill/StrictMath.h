@@ -9,8 +9,8 @@
 //
 // Special values follow C99 Annex F (exp(-inf) = 0, log(0) = -inf, log(-1) = NaN,
 // pow(x, 0) = 1, atan2(+0, -0) = pi, sin(inf) = NaN, ...). sin, cos and tan reduce their
-// argument with a three-part pi/4 (Cody and Waite); it is accurate while |x| < 8192, beyond
-// which the error grows with |x|.
+// argument with a four-part pi/4 (Cody and Waite), exact while |x| < 6434; beyond that the
+// error grows with |x| (there is no Payne-Hanek reduction).
 #pragma once
 
 #include "rill/Math.h"

@@ -24,10 +24,12 @@ constexpr float kLog2e = 1.44269504088896340736f;
 // ln 2 = kLn2Hi + kLn2Lo; kLn2Hi has 15 significant bits, so k * kLn2Hi is exact for |k| < 512.
 constexpr float kLn2Hi = 0.693145751953125f;
 constexpr float kLn2Lo = 1.42860682030941723212e-6f;
-// pi/4 = kPio4A + kPio4B + kPio4C, each with few enough bits for exact products j * part.
-constexpr float kPio4A = 0.78515625f;
-constexpr float kPio4B = 2.4187564849853515625e-4f;
-constexpr float kPio4C = 3.77489497744594108e-8f;
+// pi/4 = kPio4A + kPio4B + kPio4C + kPio4D (to 4e-20): the first three have 11 significant
+// bits, so j * part is exact for j < 2^13 (|x| < 6434); the last is a full float.
+constexpr float kPio4A = 0x1.92p-1f;
+constexpr float kPio4B = 0x1.fb4p-13f;
+constexpr float kPio4C = 0x1.444p-25f;
+constexpr float kPio4D = 0x1.68c234p-40f;
 constexpr float kFourOverPi = 1.27323954473516268615f;
 // pi/2 and pi/4 as a float plus its remainder, so that adding a small value rounds once.
 constexpr float kPio2Hi = 1.57079637050628662109f;
@@ -79,7 +81,7 @@ Reduced reduce_pi_over_4(const Float& ax) {
   Int j = to_int(floor(ax * kFourOverPi));
   j = (j + 1) & ~Int(1);
   Float jf = to_float(j);
-  Float r = ((ax - jf * kPio4A) - jf * kPio4B) - jf * kPio4C;
+  Float r = (((ax - jf * kPio4A) - jf * kPio4B) - jf * kPio4C) - jf * kPio4D;
   return {r, (j >> 1) & 3};
 }
 
@@ -169,15 +171,76 @@ Float log2(const Float& x) {
   return log_specials(x, r);
 }
 
+namespace {
+// Error-free transformations (Dekker, Knuth) in plain binary32 arithmetic, no FMA needed:
+// a value is carried as an unevaluated sum hi + lo of two floats.
+struct Pair {
+  Float hi, lo;
+};
+Pair two_sum(const Float& a, const Float& b) {
+  Float s = a + b;
+  Float bb = s - a;
+  return {s, (a - (s - bb)) + (b - bb)};
+}
+Pair split(const Float& a) {  // Veltkamp: a = hi + lo with 12 significant bits each
+  Float c = a * 4097.0f;
+  Float hi = c - (c - a);
+  return {hi, a - hi};
+}
+Pair two_product(const Float& a, const Float& b) {
+  Float p = a * b;
+  Pair as = split(a), bs = split(b);
+  Float err = (((as.hi * bs.hi - p) + as.hi * bs.lo) + as.lo * bs.hi) + as.lo * bs.lo;
+  return {p, err};
+}
+
+// log2(x) for positive finite x, to about 2^-40 relative: pow needs it because the error
+// of y * log2(x) is multiplied by |y log2 x| in the result.
+Pair log2_extended(const Float& x) {
+  Split sp = split_exponent(x);
+  const Float& m = sp.m;
+  Float u = m - 1.0f;  // exact
+  Pair v = two_sum(m, Float(1.0f));
+  Float s = u / v.hi;
+  Pair sv = two_product(s, v.hi);
+  Float s_lo = ((u - sv.hi) - sv.lo - s * v.lo) / v.hi;
+  Float z = s * s;
+  Float tail = s * z * horner(z, {2.0f / 3, 2.0f / 5, 2.0f / 7, 2.0f / 9});
+  Pair ln = two_sum(2.0f * s, tail + 2.0f * s_lo);
+  // times log2(e) = kLog2Hi + kLog2Lo
+  const float kLog2Hi = 1.44269502162933349609f, kLog2Lo = 1.92596299112661746887e-8f;
+  Pair p = two_product(ln.hi, Float(kLog2Hi));
+  Float p_lo = p.lo + (ln.hi * kLog2Lo + ln.lo * kLog2Hi);
+  Pair l = two_sum(sp.e, p.hi);
+  return {l.hi, l.lo + p_lo};
+}
+}  // namespace
+
 Float pow(const Float& x, const Float& y) {
   Float ax = abs(x);
-  Float r = exp2(y * log2(ax));
+  // |y| beyond 2^60 overflows or underflows for every x != 1 just as well, and keeps the
+  // splitting below finite.
+  Float yc = clamp(y, -1.152921504606846976e18f, 1.152921504606846976e18f);
+  Pair l = log2_extended(ax);
+  Pair t = two_product(yc, l.hi);
+  Float t_lo = t.lo + yc * l.lo;
+  // 2^(t.hi + t_lo), with the reduction done on the pair.
+  Float th = clamp(t.hi, -151.0f, 129.0f);
+  Float n = floor(th + 0.5f);
+  Float f = (th - n) + select(th == t.hi, t_lo, Float(0.0f));
+  Float g = f * 0.693147180559945309417f;
+  Float p = horner(g, {1.0f, 1.0f, 1.0f / 2, 1.0f / 6, 1.0f / 24, 1.0f / 120, 1.0f / 720, 1.0f / 5040});
+  Float r = scale_by_power_of_two(p, to_int(n));
+  // Zero and infinite bases: log2 is -inf or +inf there.
+  Bool x_zero = (as_int(x) & kAbsMask) == 0;
+  r = select(x_zero, select(y < 0.0f, inf_value(), Float(0.0f)), r);
+  r = select(is_inf(x), select(y < 0.0f, Float(0.0f), inf_value()), r);
   // Negative bases: defined for integer y, odd ones keep the sign.
   Bool y_int = floor(y) == y;
   Bool y_odd = y_int && abs(y) < 16777216.0f && (to_int(y) & 1) == 1;
   Bool x_neg = sign_bit(x);
   r = select(x_neg && y_odd, -r, r);
-  r = select(x_neg && !y_int && !is_inf(y) && (as_int(x) & kAbsMask) != 0 && !is_inf(x), nan_value(), r);
+  r = select(x_neg && !y_int && !x_zero && !is_inf(x), nan_value(), r);
   // |x| = 1 with y = +-inf gives 1 (C99), so does x = 1 with any y and any x with y = 0.
   r = select(ax == 1.0f && is_inf(y), Float(1.0f), r);
   r = select(is_nan(x) || is_nan(y), x + y, r);
