@@ -1,0 +1,137 @@
+#include "rill/ir/Interpreter.h"
+
+#include "rill/passes/Passes.h"
+
+namespace rill::ir {
+
+namespace {
+
+enum class Flow { Normal, Break, Continue, Discard };
+
+class Machine {
+ public:
+  Machine(const Function& f, const InterpreterLaunch& l) : f_(f), l_(l), vals_(f.vars.size()) {}
+
+  bool element(int64_t i) {
+    i_ = i;
+    for (VarId v = 0; v < f_.vars.size(); ++v) {
+      const Variable& var = f_.vars[v];
+      Constant c;
+      c.type = var.type;
+      int w = var.type.width;
+      for (int k = 0; k < w; ++k) {
+        uint32_t bits = 0;
+        if (var.role == VarRole::Input) bits = l_.inputs[static_cast<size_t>(var.slot)][i * w + k];
+        else if (var.role == VarRole::Output) bits = l_.outputs[static_cast<size_t>(var.slot)][i * w + k];
+        else if (var.role == VarRole::Uniform) bits = l_.uniforms[static_cast<size_t>(var.slot)][static_cast<size_t>(k)];
+        c.bits[static_cast<size_t>(k)] = bits;
+      }
+      vals_[v] = c;
+    }
+    if (block(f_.body) == Flow::Discard) return false;
+    for (size_t o = 0; o < f_.outputs.size(); ++o) {
+      const Constant& c = vals_[f_.outputs[o]];
+      int w = c.type.width;
+      for (int k = 0; k < w; ++k) l_.outputs[o][i * w + k] = c.bits[static_cast<size_t>(k)];
+    }
+    return true;
+  }
+
+ private:
+  Constant read(const Operand& o) const {
+    if (o.is_const()) return o.value;
+    Constant c;
+    c.type = o.type;
+    for (int k = 0; k < o.width(); ++k) c.bits[static_cast<size_t>(k)] = vals_[o.var].bits[o.swizzle[static_cast<size_t>(k)]];
+    return c;
+  }
+
+  Flow block(const Block& b) {
+    for (const Stmt& s : b) {
+      Flow fl = stmt(s);
+      if (fl != Flow::Normal) return fl;
+    }
+    return Flow::Normal;
+  }
+
+  Flow loop(const Stmt& s) {
+    for (;;) {
+      if (s.loop != LoopKind::DoUntil) {
+        block(s.cond_body);
+        if (!read(s.cond).b(0)) return Flow::Normal;
+      }
+      Flow fl = block(s.body);
+      if (fl == Flow::Discard) return fl;
+      if (fl == Flow::Break) return Flow::Normal;
+      if (fl == Flow::Continue && s.loop == LoopKind::While) continue;
+      // For and do-until: continue still runs the step / the condition.
+      block(s.step);
+      if (s.loop == LoopKind::DoUntil) {
+        block(s.cond_body);
+        if (read(s.cond).b(0)) return Flow::Normal;
+      }
+    }
+  }
+
+  Flow stmt(const Stmt& s) {
+    switch (s.kind) {
+      case StmtKind::Assign: assign(s); return Flow::Normal;
+      case StmtKind::If: return block(read(s.cond).b(0) ? s.then_body : s.else_body);
+      case StmtKind::Loop: return loop(s);
+      case StmtKind::Break: return Flow::Break;
+      case StmtKind::Continue: return Flow::Continue;
+      case StmtKind::Discard: return Flow::Discard;
+    }
+    return Flow::Normal;
+  }
+
+  static int64_t clamp_index(int32_t i, int64_t n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
+
+  void assign(const Stmt& s) {
+    Constant& dst = vals_[s.dst];
+    const int width = s.mask.full() ? dst.type.width : s.mask.count;
+    Constant r;
+    r.type = dst.type.with_width(width);
+    if (s.op == Op::Gather) {
+      const InterpreterArray& a = l_.arrays.at(static_cast<size_t>(s.array));
+      int64_t idx = clamp_index(read(s.args[0]).i(0), a.shape[0]);
+      if (s.args.size() > 1) idx += a.shape[0] * clamp_index(read(s.args[1]).i(0), a.shape[1]);
+      if (s.args.size() > 2) idx += a.shape[0] * a.shape[1] * clamp_index(read(s.args[2]).i(0), a.shape[2]);
+      int ew = f_.arrays[static_cast<size_t>(s.array)].elem.width;
+      for (int k = 0; k < width; ++k) r.bits[static_cast<size_t>(k)] = a.data[idx * ew + k];
+    } else if (s.op == Op::ElementIndex) {
+      r.bits[0] = static_cast<uint32_t>(static_cast<int32_t>(i_));
+    } else if (s.op == Op::ElementCoord) {
+      r.bits[0] = static_cast<uint32_t>(static_cast<int32_t>(i_ % l_.width));
+      r.bits[1] = static_cast<uint32_t>(static_cast<int32_t>(i_ / l_.width));
+    } else {
+      std::vector<Constant> args;
+      for (const Operand& a : s.args) args.push_back(read(a));
+      auto folded = passes::fold(s.op, r.type, args);
+      if (!folded)
+        throw Error(std::string("interpreter: cannot evaluate '") + op_name(s.op) +
+                    "' exactly (lower transcendental operations first)");
+      r = *folded;
+    }
+    for (int k = 0; k < width; ++k) {
+      int c = s.mask.full() ? k : s.mask.comps[static_cast<size_t>(k)];
+      dst.bits[static_cast<size_t>(c)] = r.bits[static_cast<size_t>(k)];
+    }
+  }
+
+  const Function& f_;
+  const InterpreterLaunch& l_;
+  std::vector<Constant> vals_;
+  int64_t i_ = 0;
+};
+
+}  // namespace
+
+int64_t interpret(const Function& f, const InterpreterLaunch& launch) {
+  Machine m(f, launch);
+  int64_t written = 0;
+  for (int64_t i = 0; i < launch.count; ++i) written += m.element(i) ? 1 : 0;
+  return written;
+}
+
+}  // namespace rill::ir
