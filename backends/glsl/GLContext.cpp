@@ -6,6 +6,7 @@
 #include <EGL/eglext.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "rill/Error.h"
@@ -119,11 +120,16 @@ class EGLDeviceContext : public GLContext {
     }
     if (display_ == EGL_NO_DISPLAY) throw Error("GLSL backend: no EGL device could be initialized");
     if (!bind_api(EGL_OPENGL_API)) throw Error("GLSL backend: EGL cannot bind the OpenGL API");
-    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-    EGLConfig config;
+    // Device displays have no windows, and EGL_SURFACE_TYPE defaults to EGL_WINDOW_BIT:
+    // ask for pbuffer configs (we render to framebuffer objects; no surface is made).
+    const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                     EGL_NONE};
+    EGLConfig config = nullptr;
     EGLint count = 0;
     if (!choose(display_, config_attribs, &config, 1, &count) || count == 0)
-      throw Error("GLSL backend: EGL has no OpenGL config");
+      config = nullptr;  // EGL_KHR_no_config_context: a context without a config
+    if (!config && !has_extension(display_, "EGL_KHR_no_config_context"))
+      throw Error("GLSL backend: EGL has no OpenGL pbuffer config");
     const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     ctx_ = create(display_, config, EGL_NO_CONTEXT, ctx_attribs);
@@ -132,6 +138,12 @@ class EGLDeviceContext : public GLContext {
     load_functions(gl_, reinterpret_cast<ProcLoader>(get_proc_), "EGL");
     describe(*this, gl_);
   }
+  bool has_extension(EGLDisplay d, const char* name) {
+    auto query = reinterpret_cast<PFNEGLQUERYSTRINGPROC>(get_proc_("eglQueryString"));
+    const char* ext = query ? query(d, EGL_EXTENSIONS) : nullptr;
+    return ext && std::strstr(ext, name) != nullptr;
+  }
+
   void make_current() override {
     if (!make_current_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
       throw Error("GLSL backend: eglMakeCurrent failed (surfaceless contexts unsupported?)");
