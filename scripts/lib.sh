@@ -1,0 +1,80 @@
+# Shared by scripts/demo, scripts/test and .ci/run. Source it; do not run it.
+#
+# Environment knobs:
+#   RILL_BUILD_DIR     build directory (default: build/ in the repository)
+#   RILL_BUILD_TYPE    CMake build type (default: RelWithDebInfo)
+#   RILL_SKIP_DEPS=1   do not check or install Debian packages
+#   RILL_JOBS          parallel jobs (default: nproc)
+
+RILL_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+RILL_BUILD_DIR=${RILL_BUILD_DIR:-$RILL_ROOT/build}
+RILL_BUILD_TYPE=${RILL_BUILD_TYPE:-RelWithDebInfo}
+RILL_JOBS=${RILL_JOBS:-$(nproc 2>/dev/null || echo 2)}
+RILL_CMAKE_MIN=3.25
+
+rill_say() { printf '\033[1m==> %s\033[0m\n' "$*" >&2; }
+rill_die() {
+  printf 'error: %s\n' "$*" >&2
+  exit 1
+}
+
+# The packages listed in scripts/packages.txt.
+rill_packages() {
+  sed -e 's/#.*//' -e 's/[[:space:]]//g' "$RILL_ROOT/scripts/packages.txt" | grep -v '^$'
+}
+
+rill_package_installed() {
+  dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'ok installed'
+}
+
+# Installs whichever packages of scripts/packages.txt are missing (apt-get update first
+# only when something is missing). Does nothing when all are there.
+rill_install_packages() {
+  if [[ ${RILL_SKIP_DEPS:-0} == 1 ]]; then
+    rill_say "RILL_SKIP_DEPS=1: not checking packages"
+    return 0
+  fi
+  if ! command -v dpkg-query >/dev/null 2>&1; then
+    rill_say "not a Debian/Ubuntu system: install the equivalents of scripts/packages.txt yourself"
+    return 0
+  fi
+  local missing=() p
+  while read -r p; do
+    rill_package_installed "$p" || missing+=("$p")
+  done < <(rill_packages)
+  if ((${#missing[@]} == 0)); then
+    rill_say "all required packages are installed"
+    return 0
+  fi
+  rill_say "installing missing packages: ${missing[*]}"
+  local sudo=()
+  if ((EUID != 0)); then
+    command -v sudo >/dev/null 2>&1 ||
+      rill_die "not root and no sudo; install these packages first: ${missing[*]}"
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q ||
+    rill_die "apt-get update failed"
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+    "${missing[@]}" || rill_die "apt-get install failed for: ${missing[*]}"
+}
+
+rill_check_cmake() {
+  command -v cmake >/dev/null 2>&1 || rill_die "cmake not found"
+  local have
+  have=$(cmake --version | sed -n 's/^cmake version \([0-9][0-9.]*\).*/\1/p')
+  if [[ $(printf '%s\n%s\n' "$RILL_CMAKE_MIN" "$have" | sort -V | head -n1) != "$RILL_CMAKE_MIN" ]]; then
+    rill_die "CMake $have is too old; Rill needs $RILL_CMAKE_MIN or newer (Debian 12 and Ubuntu 24.04 have it; elsewhere try 'pip install cmake')"
+  fi
+}
+
+# Configures (first time, or when options change) and builds into $RILL_BUILD_DIR.
+# Extra arguments are passed to cmake's configure step (e.g. -DRILL_SANITIZE=ON).
+rill_build() {
+  rill_check_cmake
+  rill_say "configuring $RILL_BUILD_DIR ($RILL_BUILD_TYPE)"
+  cmake -S "$RILL_ROOT" -B "$RILL_BUILD_DIR" -DCMAKE_BUILD_TYPE="$RILL_BUILD_TYPE" "$@" ||
+    rill_die "CMake configure failed"
+  rill_say "building with $RILL_JOBS jobs"
+  cmake --build "$RILL_BUILD_DIR" --parallel "$RILL_JOBS" || rill_die "build failed"
+}
