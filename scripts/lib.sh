@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Shared by scripts/demo, scripts/test and .ci/run. Source it; do not run it.
 #
 # Environment knobs:
@@ -70,11 +71,17 @@ rill_check_cmake() {
 
 # Configures (first time, or when options change) and builds into $RILL_BUILD_DIR.
 # Extra arguments are passed to cmake's configure step (e.g. -DRILL_SANITIZE=ON).
+# RILL_BUILD_TARGETS (space-separated) limits the build to those targets; default: all.
 rill_build() {
   rill_check_cmake
   rill_say "configuring $RILL_BUILD_DIR ($RILL_BUILD_TYPE)"
   cmake -S "$RILL_ROOT" -B "$RILL_BUILD_DIR" -DCMAKE_BUILD_TYPE="$RILL_BUILD_TYPE" "$@" ||
     rill_die "CMake configure failed"
-  rill_say "building with $RILL_JOBS jobs"
-  cmake --build "$RILL_BUILD_DIR" --parallel "$RILL_JOBS" || rill_die "build failed"
+  local targets=()
+  if [[ -n ${RILL_BUILD_TARGETS:-} ]]; then
+    read -r -a targets <<<"$RILL_BUILD_TARGETS"
+    targets=(--target "${targets[@]}")
+  fi
+  rill_say "building ${RILL_BUILD_TARGETS:-everything} with $RILL_JOBS jobs"
+  cmake --build "$RILL_BUILD_DIR" --parallel "$RILL_JOBS" "${targets[@]}" || rill_die "build failed"
 }
