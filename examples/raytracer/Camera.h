@@ -1,0 +1,37 @@
+// The camera of design.md section 4, exactly: every quantity in float32, in the documented
+// order, so that another renderer can cast the same rays.
+//
+//   forward = normalize(look_at - eye); right = normalize(cross(forward, up));
+//   true_up = cross(right, forward); a = W / H;
+//   t = tan(fov_y * 0.5f * 0.0174532924f)  (argument in float32, tangent in double, rounded once)
+//   sx = ((i + 0.5) / W * 2 - 1) * t * a;  sy = (1 - (j + 0.5) / H * 2) * t;
+//   dir = normalize(forward + sx * right + sy * true_up);  origin = eye
+//
+// normalize(v) is v / sqrt(dot(v, v)) with dot(a, b) = (a.x*b.x + a.y*b.y) + a.z*b.z, as in
+// the DSL. The host part (frame, t, a) is computed here once; the per-pixel part runs in the
+// kernel (Tracer.cpp) and, for tests, in camera_ray() below.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "Scene.h"
+
+namespace rt {
+
+struct CameraFrame {
+  glm::vec3 eye, forward, right, up;
+  float tan_half = 0;  // t
+  float aspect = 0;    // a = W / H
+  float width = 0, height = 0;
+};
+
+// float32 helpers with the DSL's evaluation order.
+float dot3(const glm::vec3& a, const glm::vec3& b);
+glm::vec3 cross3(const glm::vec3& a, const glm::vec3& b);
+glm::vec3 normalize3(const glm::vec3& v);
+
+CameraFrame camera_frame(const Camera& c, int width, int height);
+// The ray through pixel (i, j) at sub-pixel offset (ox, oy) (0.5, 0.5 = the centre).
+glm::vec3 camera_ray(const CameraFrame& f, int i, int j, float ox = 0.5f, float oy = 0.5f);
+
+}  // namespace rt

@@ -1,0 +1,162 @@
+#include "Grid.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace rt {
+
+namespace {
+
+bool finite3(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+bool triangle_box_overlap(const glm::dvec3& c, const glm::dvec3& h, const glm::dvec3 tri[3]) {
+  const glm::dvec3 v[3] = {tri[0] - c, tri[1] - c, tri[2] - c};
+  // 1. The box's own axes: the triangle's bounding box against the box.
+  for (int a = 0; a < 3; ++a) {
+    double mn = std::min({v[0][a], v[1][a], v[2][a]}), mx = std::max({v[0][a], v[1][a], v[2][a]});
+    if (mn > h[a] || mx < -h[a]) return false;
+  }
+  const glm::dvec3 e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+  // 2. The triangle's plane against the box.
+  const glm::dvec3 n = glm::cross(e[0], e[1]);
+  const double r = h.x * std::fabs(n.x) + h.y * std::fabs(n.y) + h.z * std::fabs(n.z);
+  if (std::fabs(glm::dot(n, v[0])) > r) return false;
+  // 3. The nine cross products of the edges with the box axes.
+  for (int i = 0; i < 3; ++i)
+    for (int a = 0; a < 3; ++a) {
+      glm::dvec3 unit(0.0);
+      unit[a] = 1.0;
+      const glm::dvec3 axis = glm::cross(unit, e[i]);
+      const double p0 = glm::dot(axis, v[0]), p1 = glm::dot(axis, v[1]), p2 = glm::dot(axis, v[2]);
+      const double rad =
+          h.x * std::fabs(axis.x) + h.y * std::fabs(axis.y) + h.z * std::fabs(axis.z);
+      if (std::min({p0, p1, p2}) > rad || std::max({p0, p1, p2}) < -rad) return false;
+    }
+  return true;
+}
+
+bool triangle_usable(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  if (!finite3(a) || !finite3(b) || !finite3(c)) return false;
+  // The kernel intersects with float edges e1 = b - a, e2 = c - a: they must not be parallel.
+  const glm::vec3 e1 = b - a, e2 = c - a;
+  const glm::dvec3 n = glm::cross(glm::dvec3(e1), glm::dvec3(e2));
+  return n.x != 0.0 || n.y != 0.0 || n.z != 0.0;
+}
+
+glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n) {
+  const double mx = std::max({extent.x, extent.y, extent.z});
+  if (n == 0 || !(mx > 0)) return glm::ivec3(1);
+  glm::dvec3 d = glm::max(extent, glm::dvec3(mx / 256.0));
+  double k = std::cbrt(kGridDensity * static_cast<double>(n) / (d.x * d.y * d.z));
+  glm::ivec3 r;
+  for (int a = 0; a < 3; ++a) r[a] = static_cast<int>(std::clamp(std::lround(d[a] * k), 1l, 256l));
+  while (int64_t{r.x} * r.y * r.z > (int64_t{1} << 22))
+    for (int a = 0; a < 3; ++a) r[a] = std::max(1, r[a] * 7 / 8);
+  return r;
+}
+
+Grid build_grid(const Scene& s, int resolution) {
+  const auto start = std::chrono::steady_clock::now();
+  Grid g;
+  const size_t n = s.triangle_count();
+  std::vector<uint8_t> usable(n);
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (size_t t = 0; t < n; ++t) {
+    const glm::vec3* p = &s.positions[3 * t];
+    if (!finite3(p[0]) || !finite3(p[1]) || !finite3(p[2])) {
+      ++g.non_finite;
+      continue;
+    }
+    if (!triangle_usable(p[0], p[1], p[2])) {
+      ++g.degenerate;
+      continue;
+    }
+    usable[t] = 1;
+    ++g.usable;
+    for (int k = 0; k < 3; ++k) {
+      lo = glm::min(lo, glm::dvec3(p[k]));
+      hi = glm::max(hi, glm::dvec3(p[k]));
+    }
+  }
+  if (g.usable == 0) {
+    g.voxels.assign(1, glm::ivec2(0));
+    g.build_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return g;
+  }
+  // Pad the box: flat scenes get some thickness, and no triangle lies on its faces.
+  const glm::dvec3 ext = hi - lo;
+  const double mx = std::max({ext.x, ext.y, ext.z});
+  const double mag = std::max({std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x),
+                               std::fabs(hi.y), std::fabs(hi.z)});
+  const double pad = 1e-4 * mx + 1e-6 * mag + 1e-30;
+  lo -= glm::dvec3(pad);
+  hi += glm::dvec3(pad);
+  g.res = resolution > 0 ? glm::ivec3(resolution) : auto_grid_resolution(hi - lo, g.usable);
+  g.lo = glm::vec3(lo);
+  for (int a = 0; a < 3; ++a) {
+    // The float cell size must cover the padded box: round up.
+    float c = static_cast<float>((hi[a] - static_cast<double>(g.lo[a])) / g.res[a]);
+    while (static_cast<double>(g.lo[a]) + static_cast<double>(c) * g.res[a] < hi[a])
+      c = std::nextafter(c, INFINITY);
+    g.cell[a] = c;
+    g.hi[a] = static_cast<float>(static_cast<double>(g.lo[a]) + static_cast<double>(c) * g.res[a]);
+  }
+
+  const glm::dvec3 glo(g.lo), cell(g.cell);
+  const glm::dvec3 margin = cell * 1e-4 + glm::dvec3(4e-7 * mag);
+  const int64_t nv = g.voxel_count();
+  std::vector<int32_t> count(static_cast<size_t>(nv), 0);
+  // Pass 1 counts, pass 2 fills; triangles are visited in id order, so each voxel's list is
+  // ascending.
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<int32_t> fill;
+    if (pass == 1) {
+      g.voxels.resize(static_cast<size_t>(nv));
+      int64_t total = 0;
+      for (int64_t v = 0; v < nv; ++v) {
+        g.voxels[static_cast<size_t>(v)] =
+            glm::ivec2(static_cast<int32_t>(total), count[static_cast<size_t>(v)]);
+        total += count[static_cast<size_t>(v)];
+      }
+      if (total > (int64_t{1} << 30)) throw SceneError("grid too large: reduce --grid");
+      g.elements.resize(static_cast<size_t>(total));
+      fill.assign(static_cast<size_t>(nv), 0);
+    }
+    for (size_t t = 0; t < n; ++t) {
+      if (!usable[t]) continue;
+      const glm::dvec3 tri[3] = {glm::dvec3(s.positions[3 * t]), glm::dvec3(s.positions[3 * t + 1]),
+                                 glm::dvec3(s.positions[3 * t + 2])};
+      glm::ivec3 a, b;
+      for (int k = 0; k < 3; ++k) {
+        double mn = std::min({tri[0][k], tri[1][k], tri[2][k]}) - margin[k];
+        double mxk = std::max({tri[0][k], tri[1][k], tri[2][k]}) + margin[k];
+        a[k] = std::clamp(static_cast<int>(std::floor((mn - glo[k]) / cell[k])), 0, g.res[k] - 1);
+        b[k] = std::clamp(static_cast<int>(std::floor((mxk - glo[k]) / cell[k])), 0, g.res[k] - 1);
+      }
+      const glm::dvec3 half = cell * 0.5 + margin;
+      for (int z = a.z; z <= b.z; ++z)
+        for (int y = a.y; y <= b.y; ++y)
+          for (int x = a.x; x <= b.x; ++x) {
+            glm::dvec3 c = glo + (glm::dvec3(x, y, z) + 0.5) * cell;
+            if (!triangle_box_overlap(c, half, tri)) continue;
+            const size_t v = static_cast<size_t>(x + int64_t{g.res.x} * (y + int64_t{g.res.y} * z));
+            if (pass == 0) {
+              ++count[v];
+            } else {
+              g.elements[static_cast<size_t>(g.voxels[v].x + fill[v]++)] = static_cast<int32_t>(t);
+            }
+          }
+    }
+  }
+  g.build_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return g;
+}
+
+}  // namespace rt

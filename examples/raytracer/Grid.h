@@ -1,0 +1,57 @@
+// The uniform grid (thesis section 5.1), built on the CPU.
+//
+// The scene's bounding box (padded slightly) is cut into res.x * res.y * res.z voxels. A
+// triangle is referenced in every voxel it overlaps, decided by an exact separating-axis
+// triangle-box test (Akenine-Moller: the 3 box axes, the triangle normal and the 9 edge x
+// axis cross products) in double precision, on voxels enlarged by a tiny margin (1e-4 of a
+// voxel) so that the float 3D-DDA never misses a triangle lying on a voxel face.
+//
+// Storage, as in the thesis: a voxel index (per voxel: start and count in the element
+// list), the element list (triangle ids, ascending within a voxel) and the triangle data
+// (in Tracer.cpp). Voxel (x, y, z) has index x + res.x * (y + res.y * z).
+//
+// Resolution: --grid N gives N^3 voxels. "auto" chooses cells of equal size, about
+// kDensity = 4 voxels per triangle: with the box extents d and n triangles,
+// res_a = round(d_a * cbrt(kDensity * n / (d_x d_y d_z))), each clamped to 1..256 and the
+// total to 2^22 voxels (flat extents are taken as 1/256 of the largest).
+//
+// Triangles with a non-finite vertex or zero area (in double precision) are left out of the
+// grid: they are never hit, but keep their primitive ids.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "Scene.h"
+
+namespace rt {
+
+constexpr double kGridDensity = 4.0;
+
+struct Grid {
+  glm::vec3 lo{0.0f}, hi{0.0f};  // hi = lo + res * cell (float32)
+  glm::vec3 cell{1.0f};
+  glm::ivec3 res{1};
+  std::vector<glm::ivec2> voxels;  // (start, count) into elements
+  std::vector<int32_t> elements;
+  size_t usable = 0;      // triangles in the grid
+  size_t degenerate = 0;  // zero area: left out
+  size_t non_finite = 0;  // a NaN or infinite vertex: left out
+  double build_ms = 0;
+  bool empty() const { return usable == 0; }
+  int64_t voxel_count() const { return int64_t{res.x} * res.y * res.z; }
+};
+
+// True if the triangle overlaps the box (centre c, half sizes h), touching included.
+bool triangle_box_overlap(const glm::dvec3& c, const glm::dvec3& h, const glm::dvec3 tri[3]);
+// Non-finite or zero-area triangles are not traced.
+bool triangle_usable(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
+// The automatic resolution for n triangles in a box of extent d.
+glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n);
+
+// resolution: voxels per axis, 0 = auto.
+Grid build_grid(const Scene& s, int resolution = 0);
+
+}  // namespace rt

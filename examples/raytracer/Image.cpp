@@ -1,0 +1,79 @@
+#include "Image.h"
+
+#include <png.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace rt {
+
+unsigned char to_srgb8(float v) {
+  if (!(v > 0.0f)) return 0;  // also NaN
+  if (v >= 1.0f) return 255;
+  double s =
+      v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(static_cast<double>(v), 1.0 / 2.4) - 0.055;
+  return static_cast<unsigned char>(std::lround(s * 255.0));
+}
+
+void write_png(const std::string& path, int w, int h, const std::vector<glm::vec3>& rgb) {
+  std::vector<unsigned char> px(rgb.size() * 3);
+  for (size_t i = 0; i < rgb.size(); ++i)
+    for (int c = 0; c < 3; ++c) px[i * 3 + static_cast<size_t>(c)] = to_srgb8(rgb[i][c]);
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(w);
+  image.height = static_cast<png_uint_32>(h);
+  image.format = PNG_FORMAT_RGB;
+  if (!png_image_write_to_file(&image, path.c_str(), 0, px.data(), 0, nullptr))
+    throw std::runtime_error("cannot write " + path + ": " + image.message);
+}
+
+namespace {
+
+void write_pfm_raw(const std::string& path, int w, int h, int channels, const float* data) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  std::fprintf(f, "%s\n%d %d\n-1.0\n", channels == 3 ? "PF" : "Pf", w, h);
+  const size_t row = static_cast<size_t>(w) * static_cast<size_t>(channels);
+  bool ok = true;
+  for (int y = h - 1; y >= 0; --y)
+    ok = ok && std::fwrite(data + static_cast<size_t>(y) * row, sizeof(float), row, f) == row;
+  ok = std::fclose(f) == 0 && ok;
+  if (!ok) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace
+
+void write_pfm(const std::string& path, int w, int h, const std::vector<glm::vec3>& rgb) {
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+  write_pfm_raw(path, w, h, 3, reinterpret_cast<const float*>(rgb.data()));
+}
+
+void write_pfm(const std::string& path, int w, int h, const std::vector<float>& grey) {
+  write_pfm_raw(path, w, h, 1, grey.data());
+}
+
+std::vector<float> read_pfm(const std::string& path, int& w, int& h, int& channels) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::string magic;
+  double scale = 0;
+  in >> magic >> w >> h >> scale;
+  in.get();
+  if (!in || (magic != "PF" && magic != "Pf") || w < 1 || h < 1 || scale >= 0)
+    throw std::runtime_error(path + ": not a little-endian PFM file");
+  channels = magic == "PF" ? 3 : 1;
+  const size_t row = static_cast<size_t>(w) * static_cast<size_t>(channels);
+  std::vector<float> data(row * static_cast<size_t>(h));
+  for (int y = h - 1; y >= 0; --y)
+    if (!in.read(reinterpret_cast<char*>(data.data() + static_cast<size_t>(y) * row),
+                 static_cast<std::streamsize>(row * sizeof(float))))
+      throw std::runtime_error(path + ": truncated PFM file");
+  return data;
+}
+
+}  // namespace rt

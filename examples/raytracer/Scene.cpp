@@ -1,0 +1,369 @@
+// Scene basics, the OBJ + MTL loader and the SCENE argument of rill-trace.
+#include "Scene.h"
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace rt {
+
+namespace {
+
+bool finite3(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+std::string vec_str(const glm::vec3& v) {
+  std::ostringstream o;
+  o << "[" << v.x << ", " << v.y << ", " << v.z << "]";
+  return o.str();
+}
+
+std::string first_line(const std::string& s) {
+  std::string t = s.substr(0, s.find('\n'));
+  while (!t.empty() && (t.back() == '\r' || t.back() == ' ')) t.pop_back();
+  return t;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+glm::vec3 rotate(const glm::vec3& p, const glm::vec3& deg) {
+  glm::vec3 r = p;
+  const double k = 3.14159265358979323846 / 180.0;
+  if (deg.x != 0.0f) {
+    double c = std::cos(deg.x * k), s = std::sin(deg.x * k);
+    r = glm::vec3(r.x, static_cast<float>(c * r.y - s * r.z),
+                  static_cast<float>(s * r.y + c * r.z));
+  }
+  if (deg.y != 0.0f) {
+    double c = std::cos(deg.y * k), s = std::sin(deg.y * k);
+    r = glm::vec3(static_cast<float>(c * r.x + s * r.z), r.y,
+                  static_cast<float>(-s * r.x + c * r.z));
+  }
+  if (deg.z != 0.0f) {
+    double c = std::cos(deg.z * k), s = std::sin(deg.z * k);
+    r = glm::vec3(static_cast<float>(c * r.x - s * r.y), static_cast<float>(s * r.x + c * r.y),
+                  r.z);
+  }
+  return r;
+}
+
+}  // namespace
+
+// ---- Scene ---------------------------------------------------------------------------------
+
+int Scene::add_material(const Material& m) {
+  materials.push_back(m);
+  return static_cast<int>(materials.size()) - 1;
+}
+
+void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, int mat,
+                         const glm::vec3* n, const glm::vec3* col) {
+  const size_t before = positions.size();
+  positions.insert(positions.end(), {a, b, c});
+  material.push_back(mat);
+  if (n != nullptr && normals.empty()) {
+    // First triangle with normals: earlier ones get their geometric normals.
+    for (size_t i = 0; i < before; i += 3) {
+      glm::vec3 g = glm::cross(positions[i + 1] - positions[i], positions[i + 2] - positions[i]);
+      normals.insert(normals.end(), {g, g, g});
+    }
+  }
+  if (!normals.empty()) {
+    if (n != nullptr) {
+      normals.insert(normals.end(), {n[0], n[1], n[2]});
+    } else {
+      glm::vec3 g = glm::cross(b - a, c - a);
+      normals.insert(normals.end(), {g, g, g});
+    }
+  }
+  if (col != nullptr && colors.empty()) colors.assign(before, glm::vec3(1.0f));
+  if (!colors.empty()) {
+    if (col != nullptr)
+      colors.insert(colors.end(), {col[0], col[1], col[2]});
+    else
+      colors.insert(colors.end(), 3, glm::vec3(1.0f));
+  }
+}
+
+void Scene::append(const Scene& o) {
+  const int base = static_cast<int>(materials.size());
+  materials.insert(materials.end(), o.materials.begin(), o.materials.end());
+  for (size_t t = 0; t < o.triangle_count(); ++t) {
+    const glm::vec3* n = o.normals.empty() ? nullptr : &o.normals[3 * t];
+    const glm::vec3* c = o.colors.empty() ? nullptr : &o.colors[3 * t];
+    add_triangle(o.positions[3 * t], o.positions[3 * t + 1], o.positions[3 * t + 2],
+                 base + o.material[t], n, c);
+  }
+}
+
+void Scene::validate() const {
+  const size_t n = triangle_count();
+  if (positions.size() != 3 * n) throw SceneError("internal: positions and materials disagree");
+  if (!normals.empty() && normals.size() != 3 * n)
+    throw SceneError("internal: normals and positions disagree");
+  if (!colors.empty() && colors.size() != 3 * n)
+    throw SceneError("internal: colors and positions disagree");
+  if (n > (size_t{1} << 26))
+    throw SceneError("scene has " + std::to_string(n) +
+                     " triangles; at most 67108864 are supported");
+  for (int32_t m : material)
+    if (m < 0 || static_cast<size_t>(m) >= materials.size())
+      throw SceneError("internal: triangle with material index " + std::to_string(m));
+  for (const Material& m : materials) {
+    const std::string where = "material '" + m.name + "': ";
+    if (!finite3(m.diffuse) || !finite3(m.specular) || !std::isfinite(m.shininess) ||
+        !std::isfinite(m.reflect) || !std::isfinite(m.transmit) || !std::isfinite(m.ior))
+      throw SceneError(where + "values must be finite numbers");
+    if (m.reflect < 0 || m.transmit < 0 || m.reflect + m.transmit > 1.0f)
+      throw SceneError(where + "reflect and transmit must be >= 0 with reflect + transmit <= 1");
+    if (m.shininess < 0 || m.shininess > 1e4f)
+      throw SceneError(where + "shininess must be in [0, 10000]");
+    if (!(m.ior > 0.0f) || m.ior > 100.0f) throw SceneError(where + "ior must be in (0, 100]");
+  }
+  for (const Light& l : lights)
+    if (!finite3(l.position) || !finite3(l.color))
+      throw SceneError("light at " + vec_str(l.position) + ": values must be finite numbers");
+  if (!finite3(background)) throw SceneError("background must be finite");
+  if (!finite3(camera.eye) || !finite3(camera.look_at) || !finite3(camera.up) ||
+      !std::isfinite(camera.fov_y))
+    throw SceneError("camera: values must be finite numbers");
+  if (!(camera.fov_y > 0.0f && camera.fov_y < 180.0f))
+    throw SceneError("camera: fov_y must be between 0 and 180 degrees");
+  if (camera.eye == camera.look_at) throw SceneError("camera: eye and look_at are the same point");
+  {
+    glm::dvec3 f = glm::dvec3(camera.look_at) - glm::dvec3(camera.eye);
+    glm::dvec3 u = glm::dvec3(camera.up);
+    glm::dvec3 c = glm::cross(f, u);
+    if (glm::length(c) <= 1e-6 * glm::length(f) * glm::length(u))
+      throw SceneError("camera: up " + vec_str(camera.up) + " is parallel to the view direction");
+  }
+  if (width < 1 || height < 1 || width > 16384 || height > 16384 ||
+      static_cast<int64_t>(width) * height > (int64_t{1} << 25))
+    throw SceneError("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     " is out of range (1..16384 per side, at most 33554432 pixels)");
+  if (!std::isfinite(options.ambient) || options.ambient < 0 || options.ambient > 1)
+    throw SceneError("options: ambient must be in [0, 1]");
+  if (options.max_depth < 0 || options.max_depth > 64)
+    throw SceneError("options: max_depth must be in [0, 64]");
+  if (options.spp < 1 || options.spp > 4096) throw SceneError("options: spp must be in [1, 4096]");
+  if (options.grid < 0 || options.grid > 512)
+    throw SceneError("options: grid must be 'auto' (0) or 1..512 cells per axis");
+}
+
+bool scene_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi) {
+  bool any = false;
+  lo = glm::vec3(INFINITY);
+  hi = glm::vec3(-INFINITY);
+  for (size_t t = 0; t < s.triangle_count(); ++t) {
+    const glm::vec3* p = &s.positions[3 * t];
+    if (!finite3(p[0]) || !finite3(p[1]) || !finite3(p[2])) continue;
+    for (int k = 0; k < 3; ++k) {
+      lo = glm::min(lo, p[k]);
+      hi = glm::max(hi, p[k]);
+    }
+    any = true;
+  }
+  return any;
+}
+
+Camera default_camera(const Scene& s) {
+  Camera c;
+  glm::vec3 lo, hi;
+  if (!scene_bounds(s, lo, hi)) return c;
+  glm::dvec3 center = (glm::dvec3(lo) + glm::dvec3(hi)) * 0.5;
+  double radius = glm::length(glm::dvec3(hi) - glm::dvec3(lo)) * 0.5;
+  if (!(radius > 0)) radius = 1;
+  const double half = c.fov_y * 0.5 * 3.14159265358979323846 / 180.0;
+  const double dist = radius / std::sin(half) * 1.05;
+  glm::dvec3 dir = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
+  c.look_at = glm::vec3(center);
+  c.eye = glm::vec3(center + dir * dist);
+  return c;
+}
+
+// ---- Transform -----------------------------------------------------------------------------
+
+glm::vec3 Transform::apply_point(const glm::vec3& p) const {
+  return rotate(p * scale, rotate_deg) + translate;
+}
+
+glm::vec3 Transform::apply_normal(const glm::vec3& n) const {
+  return rotate(n / scale, rotate_deg);
+}
+
+bool Transform::identity() const {
+  return scale == glm::vec3(1.0f) && rotate_deg == glm::vec3(0.0f) && translate == glm::vec3(0.0f);
+}
+
+// ---- OBJ + MTL -----------------------------------------------------------------------------
+
+namespace {
+
+Material from_mtl(const tinyobj::material_t& m) {
+  Material r;
+  r.name = m.name;
+  r.diffuse = glm::vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
+  r.specular = glm::vec3(m.specular[0], m.specular[1], m.specular[2]);
+  r.shininess = std::clamp(m.shininess, 0.0f, 10000.0f);
+  r.ior = (m.ior > 0.0f && m.ior <= 100.0f) ? m.ior : 1.5f;
+  // illum 3 and 5: ray-traced reflection (strength = max Ks); 4, 6, 7, 9: glass; d < 1 also
+  // means transparency (transmit = 1 - d).
+  const float ks = std::max({r.specular.x, r.specular.y, r.specular.z});
+  if (m.illum == 3 || m.illum == 5 || m.illum == 6 || m.illum == 7)
+    r.reflect = std::clamp(ks, 0.0f, 1.0f);
+  float transmit = std::clamp(1.0f - m.dissolve, 0.0f, 1.0f);
+  if (!(transmit >= 0.0f)) transmit = 0.0f;  // NaN
+  r.transmit = transmit;
+  if (r.reflect + r.transmit > 1.0f) r.reflect = 1.0f - r.transmit;
+  if (!std::isfinite(r.reflect)) r.reflect = 0;
+  return r;
+}
+
+}  // namespace
+
+Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
+  namespace fs = std::filesystem;
+  {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw SceneError(path + ": no such file");
+    if (fs::is_directory(path, ec)) throw SceneError(path + ": is a directory, not an OBJ file");
+    std::ifstream probe(path);
+    if (!probe) throw SceneError(path + ": cannot open for reading");
+  }
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> mtls;
+  std::string warn, err;
+  std::string base = fs::path(path).parent_path().string();
+  if (!base.empty()) base += "/";
+  // triangulate = false: we fan polygons ourselves (tinyobjloader's triangulation does not).
+  bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtls, &warn, &err, path.c_str(), base.c_str(),
+                             /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  if (!ok) throw SceneError(path + ": " + (err.empty() ? "cannot parse" : first_line(err)));
+
+  Scene s;
+  s.name = fs::path(path).stem().string();
+  const size_t nv = attrib.vertices.size() / 3;
+  const size_t nn = attrib.normals.size() / 3;
+  const bool has_colors = attrib.colors.size() == attrib.vertices.size() && !attrib.colors.empty();
+
+  std::vector<int> mat_index(mtls.size());
+  int fallback = -1;
+  if (opt.override_material != nullptr) {
+    fallback = s.add_material(*opt.override_material);
+  } else {
+    for (size_t i = 0; i < mtls.size(); ++i) mat_index[i] = s.add_material(from_mtl(mtls[i]));
+  }
+  auto default_mat = [&] {
+    if (fallback < 0) {
+      Material grey;
+      grey.name = "default";
+      fallback = s.add_material(grey);
+    }
+    return fallback;
+  };
+
+  auto vertex = [&](const tinyobj::index_t& ix, size_t face, const std::string& shape) {
+    if (ix.vertex_index < 0 || static_cast<size_t>(ix.vertex_index) >= nv)
+      throw SceneError(path + ": shape '" + shape + "' face " + std::to_string(face + 1) +
+                       " refers to vertex " + std::to_string(ix.vertex_index + 1) +
+                       ", but the file has " + std::to_string(nv) + " vertices");
+    if (ix.normal_index >= 0 && static_cast<size_t>(ix.normal_index) >= nn)
+      throw SceneError(path + ": shape '" + shape + "' face " + std::to_string(face + 1) +
+                       " refers to normal " + std::to_string(ix.normal_index + 1) +
+                       ", but the file has " + std::to_string(nn) + " normals");
+    if (ix.normal_index < -1)
+      throw SceneError(path + ": shape '" + shape + "' face " + std::to_string(face + 1) +
+                       " has an invalid normal index");
+  };
+
+  for (const tinyobj::shape_t& sh : shapes) {
+    size_t offset = 0;
+    const auto& mesh = sh.mesh;
+    for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+      const size_t fv = mesh.num_face_vertices[f];
+      if (offset + fv > mesh.indices.size()) throw SceneError(path + ": truncated face list");
+      for (size_t k = 0; k < fv; ++k) vertex(mesh.indices[offset + k], f, sh.name);
+      int mat;
+      if (opt.override_material != nullptr) {
+        mat = fallback;
+      } else {
+        int id = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+        mat = (id >= 0 && static_cast<size_t>(id) < mtls.size())
+                  ? mat_index[static_cast<size_t>(id)]
+                  : default_mat();
+      }
+      auto pos = [&](size_t k) {
+        int vi = mesh.indices[offset + k].vertex_index;
+        glm::vec3 p(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1],
+                    attrib.vertices[3 * vi + 2]);
+        return opt.transform.apply_point(p);
+      };
+      auto col = [&](size_t k) {
+        int vi = mesh.indices[offset + k].vertex_index;
+        return glm::vec3(attrib.colors[3 * vi], attrib.colors[3 * vi + 1],
+                         attrib.colors[3 * vi + 2]);
+      };
+      bool all_normals = true;
+      for (size_t k = 0; k < fv; ++k)
+        all_normals = all_normals && mesh.indices[offset + k].normal_index >= 0;
+      auto nrm = [&](size_t k) {
+        int ni = mesh.indices[offset + k].normal_index;
+        glm::vec3 n(attrib.normals[3 * ni], attrib.normals[3 * ni + 1], attrib.normals[3 * ni + 2]);
+        return opt.transform.apply_normal(n);
+      };
+      // Fan: (v0, vk, vk+1).
+      for (size_t k = 1; k + 1 < fv; ++k) {
+        glm::vec3 n[3], c[3];
+        if (all_normals) {
+          n[0] = nrm(0);
+          n[1] = nrm(k);
+          n[2] = nrm(k + 1);
+        }
+        if (has_colors) {
+          c[0] = col(0);
+          c[1] = col(k);
+          c[2] = col(k + 1);
+        }
+        s.add_triangle(pos(0), pos(k), pos(k + 1), mat, all_normals ? n : nullptr,
+                       has_colors ? c : nullptr);
+      }
+      offset += fv;
+    }
+  }
+  if (s.materials.empty()) default_mat();
+  return s;
+}
+
+// ---- SCENE argument ------------------------------------------------------------------------
+
+Scene load_scene(const std::string& spec) {
+  namespace fs = std::filesystem;
+  if (spec.rfind("builtin:", 0) == 0) return builtin_scene(spec.substr(8));
+  const std::string ext = lower(fs::path(spec).extension().string());
+  std::error_code ec;
+  if (!fs::exists(spec, ec)) {
+    for (const std::string& n : builtin_scene_names())
+      if (n == spec) return builtin_scene(spec);
+    throw SceneError(spec + ": no such file (built-in scenes are named builtin:NAME)");
+  }
+  if (ext == ".json") return load_json(spec);
+  if (ext == ".obj") {
+    Scene s = load_obj(spec);
+    s.camera = default_camera(s);
+    s.has_camera = true;
+    s.lights.push_back(Light{s.camera.eye, glm::vec3(1.0f)});
+    return s;
+  }
+  throw SceneError(spec + ": unknown scene type '" + ext + "' (expected .json or .obj)");
+}
+
+}  // namespace rt

@@ -1,0 +1,140 @@
+// Scenes for the ray tracer: triangles, materials, point lights, a pinhole camera and options.
+//
+// A Scene is a flat triangle soup. Triangles keep the order in which they were added (file
+// order: shape by shape, face by face, polygons fanned as (v0, vk, vk+1)); that index is the
+// primitive id of the AOV outputs.
+//
+// Scenes come from OBJ + MTL files (load_obj), JSON scene files (load_json, format in
+// docs/raytracer.md), or the built-in generators (builtin_scene).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rt {
+
+// Any problem with a scene, a file or an option: the message is one line for the user.
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Material {
+  std::string name = "default";
+  glm::vec3 diffuse{0.8f};   // Kd
+  glm::vec3 specular{0.0f};  // Ks (Phong highlight)
+  float shininess = 32.0f;   // Ns (Phong exponent)
+  float reflect = 0.0f;      // mirror reflection coefficient r of thesis eq. 5.1
+  float transmit = 0.0f;     // fraction refracted (glass); split by Fresnel (Schlick)
+  float ior = 1.5f;          // index of refraction (Ni)
+};
+
+struct Light {
+  glm::vec3 position{0.0f};
+  glm::vec3 color{1.0f};
+};
+
+// Pinhole camera (design.md section 4): vertical field of view in degrees.
+struct Camera {
+  glm::vec3 eye{0.0f, 0.0f, 5.0f};
+  glm::vec3 look_at{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y = 45.0f;
+};
+
+struct SceneOptions {
+  bool shadows = true;         // hard shadows from every light
+  float ambient = 0.1f;        // ambient term: ambient * Kd
+  int max_depth = 5;           // reflection / refraction bounces after the primary ray
+  int grid = 0;                // grid cells per axis; 0 = automatic (see Grid.h)
+  int spp = 1;                 // samples per pixel
+  bool smooth_normals = true;  // interpolate vertex normals where the mesh has them
+};
+
+struct Scene {
+  std::string name;
+  Camera camera;
+  bool has_camera = false;  // false: frame the geometry (default_camera)
+  int width = 512, height = 512;
+
+  // Three vertices per triangle, in primitive-id order.
+  std::vector<glm::vec3> positions;
+  // Three vertex normals per triangle, or empty. A triangle without normals in a mesh that
+  // has some gets its geometric normal at all three vertices.
+  std::vector<glm::vec3> normals;
+  // Three vertex colours per triangle (multiplying Kd), or empty.
+  std::vector<glm::vec3> colors;
+  std::vector<int32_t> material;  // per triangle, index into materials
+  std::vector<Material> materials;
+
+  std::vector<Light> lights;
+  glm::vec3 background{0.1f, 0.1f, 0.15f};
+  SceneOptions options;
+
+  size_t triangle_count() const { return material.size(); }
+  int add_material(const Material& m);  // returns its index
+  // Appends a triangle with material index mat (and optional per-vertex normals/colours).
+  void add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, int mat,
+                    const glm::vec3* n = nullptr, const glm::vec3* col = nullptr);
+  // Appends all of other's triangles and materials (lights and camera are not taken).
+  void append(const Scene& other);
+  // Checks invariants (sizes, finite materials and lights, camera, image size); throws
+  // SceneError. Triangles with non-finite vertices are allowed: they are never hit.
+  void validate() const;
+};
+
+// Bounding box of the finite triangles; returns false if there are none.
+bool scene_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi);
+
+// A camera framing the scene's bounding box (looking along -z from in front, slightly above),
+// and a light at the eye. Used for an OBJ rendered without a scene file.
+Camera default_camera(const Scene& s);
+
+// Placement of a mesh: scale, then rotate about x, y, z (degrees), then translate.
+struct Transform {
+  glm::vec3 scale{1.0f};
+  glm::vec3 rotate_deg{0.0f};
+  glm::vec3 translate{0.0f};
+  glm::vec3 apply_point(const glm::vec3& p) const;
+  glm::vec3 apply_normal(const glm::vec3& n) const;  // not normalized
+  bool identity() const;
+};
+
+// OBJ + MTL. Polygons are fanned (v0, vk, vk+1). Materials come from the MTL files the OBJ
+// names (Kd, Ks, Ns, Ni, d, illum: see docs/raytracer.md); faces without one get
+// `fallback` (or a default grey). If `override_material` is set, every face gets it.
+struct ObjLoadOptions {
+  Transform transform;
+  const Material* override_material = nullptr;
+};
+Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
+
+// A JSON scene file (design.md section 5, extended in docs/raytracer.md).
+Scene load_json(const std::string& path);
+Scene parse_json_scene(const std::string& text, const std::string& base_dir,
+                       const std::string& name = "scene");
+
+// SCENE argument of rill-trace: "builtin:NAME", a .json file or a .obj file.
+Scene load_scene(const std::string& spec);
+
+// Built-in scenes: "thesis-a" (3 boxes, 36 triangles), "thesis-b" (cubes in a room, 2064),
+// "thesis-c" (high- and low-polygon objects with a tessellated Utah teapot, 61562),
+// "cornell" (Cornell box), "glass" (glass and mirrors), "empty".
+std::vector<std::string> builtin_scene_names();
+Scene builtin_scene(const std::string& name);
+
+// Shapes the built-in scenes and JSON files are made of (appended to `s` with material mat).
+void add_box(Scene& s, const glm::vec3& lo, const glm::vec3& hi, int mat, const Transform& t = {},
+             bool inward = false);
+void add_quad(Scene& s, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+              const glm::vec3& d, int mat);
+void add_sphere(Scene& s, const glm::vec3& center, float radius, int slices, int stacks, int mat,
+                bool smooth = true);
+// The Utah teapot (32 Bezier patches), each patch cut into n x n quads (2 triangles each):
+// 64 n^2 triangles. Base on y = 0, spout along +x, height about 3.15 * scale.
+void add_teapot(Scene& s, int n, int mat, const Transform& t = {}, bool smooth = true);
+
+}  // namespace rt

@@ -1,0 +1,727 @@
+// The ray tracing kernel, written once in the DSL (see Tracer.h for the outline).
+#include "Tracer.h"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace rt {
+
+using namespace rill;
+
+namespace {
+
+constexpr float kBig = 3.0e38f;        // "no limit" for ray extents (finite on every backend)
+constexpr float kMinWeight = 1.0e-3f;  // secondary rays below this weight are not traced
+
+bool any_positive(const glm::vec3& v) {
+  return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f;
+}
+
+// Arrays must have at least one element: empty data gets one dummy element.
+template <class V>
+std::vector<typename V::host_type> padded(std::vector<typename V::host_type> v) {
+  if (v.empty()) v.emplace_back();
+  return v;
+}
+
+}  // namespace
+
+std::string Features::str() const {
+  std::string s;
+  auto add = [&](bool on, const char* name) {
+    if (on) s += (s.empty() ? "" : " ") + std::string(name);
+  };
+  add(geometry, "geometry");
+  add(lights, "lights");
+  add(shadows, "shadows");
+  add(specular, "specular");
+  add(reflection, "reflection");
+  add(refraction, "refraction");
+  add(vertex_normals, "vertex-normals");
+  add(vertex_colors, "vertex-colors");
+  if (stack > 0) s += " stack=" + std::to_string(stack);
+  return s.empty() ? "none" : s;
+}
+
+Features scene_features(const Scene& s) {
+  Features f;
+  std::vector<bool> used(s.materials.size());
+  for (size_t t = 0; t < s.triangle_count(); ++t)
+    if (triangle_usable(s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2])) {
+      f.geometry = true;
+      used[static_cast<size_t>(s.material[t])] = true;
+    }
+  f.lights = !s.lights.empty() && f.geometry;
+  f.shadows = f.lights && s.options.shadows;
+  for (size_t m = 0; m < s.materials.size(); ++m) {
+    if (!used[m]) continue;
+    const Material& mat = s.materials[m];
+    f.specular = f.specular || (f.lights && any_positive(mat.specular));
+    f.reflection = f.reflection || mat.reflect > 0.0f;
+    f.refraction = f.refraction || mat.transmit > 0.0f;
+  }
+  // Refraction always needs the reflection code too (Fresnel, total internal reflection).
+  if (f.refraction) {
+    f.reflection = true;
+    f.stack = kRayStack;
+  }
+  f.vertex_normals = f.geometry && !s.normals.empty() && s.options.smooth_normals;
+  f.vertex_colors = f.geometry && !s.colors.empty();
+  return f;
+}
+
+glm::vec2 sample_offset(int k) {
+  if (k == 0) return glm::vec2(0.5f);
+  // Halton (2, 3): a low-discrepancy sequence, the same on every machine.
+  auto halton = [](int i, int b) {
+    double f = 1.0, r = 0.0;
+    for (; i > 0; i /= b) {
+      f /= b;
+      r += f * (i % b);
+    }
+    return static_cast<float>(r);
+  };
+  return glm::vec2(halton(k, 2), halton(k, 3));
+}
+
+// ---- scene data and uniforms ---------------------------------------------------------------
+
+struct Tracer::Impl {
+  Scene scene;  // materials, lights, options (the triangles live in the arrays)
+  Grid grid;
+  Features F;
+
+  // Grid (thesis section 5.3): voxel index, element list; triangle data.
+  Array<Int2> voxels{1, "voxels"};
+  Array<Int> elements{1, "elements"};
+  Array<Float3> tri_v0{1, "tri_v0"}, tri_e1{1, "tri_e1"}, tri_e2{1, "tri_e2"}, tri_ng{1, "tri_ng"};
+  Array<Float3> tri_n0{1, "tri_n0"}, tri_n1{1, "tri_n1"}, tri_n2{1, "tri_n2"};
+  Array<Float3> tri_c0{1, "tri_c0"}, tri_c1{1, "tri_c1"}, tri_c2{1, "tri_c2"};
+  Array<Int> tri_mat{1, "tri_mat"};
+  Array<Float3> mat_kd{1, "mat_kd"}, mat_ks{1, "mat_ks"};
+  Array<Float4> mat_p{1, "mat_p"};  // shininess, reflect, transmit, ior
+  Array<Float3> light_pos{1, "light_pos"}, light_col{1, "light_col"};
+
+  // Camera (Camera.h) and image.
+  Uniform<Float3> eye{glm::vec3(0.0f), "eye"}, forward{glm::vec3(0.0f), "forward"},
+      right{glm::vec3(0.0f), "right"}, up{glm::vec3(0.0f), "true_up"};
+  Uniform<Float> tan_half{0.0f, "tan_half"}, aspect{1.0f, "aspect"};
+  Uniform<Float2> size{glm::vec2(1.0f), "size"}, offset{glm::vec2(0.5f), "sample_offset"};
+  // Grid.
+  Uniform<Float3> grid_lo{glm::vec3(0.0f), "grid_lo"}, grid_hi{glm::vec3(0.0f), "grid_hi"},
+      grid_cell{glm::vec3(1.0f), "grid_cell"};
+  Uniform<Int3> grid_res{glm::ivec3(1), "grid_res"};
+  Uniform<Int> max_steps{3, "max_voxel_steps"};
+  // Shading.
+  Uniform<Int> max_depth{5, "max_depth"}, max_iter{64, "max_iterations"}, nlights{0, "light_count"};
+  Uniform<Float> ambient{0.1f, "ambient"}, eps{1e-4f, "ray_epsilon"};
+  Uniform<Float3> background{glm::vec3(0.0f), "background"};
+
+  Program trace_program, intersect_program;
+  std::map<std::string, Kernel> kernels;  // backend/accuracy -> compiled tracer
+
+  void upload();
+  void intersect(const Float3& o, const Float3& d, const Float& tmax, const Bool* any_hit,
+                 Bool& hit, Float& best_t, Int& best_id, Float& best_u, Float& best_v) const;
+  Program capture_tracer() const;
+  Program capture_intersector() const;
+  Kernel& kernel(const std::string& backend, Accuracy a);
+};
+
+void Tracer::Impl::upload() {
+  const size_t n = scene.triangle_count();
+  std::vector<glm::vec3> v0(n), e1(n), e2(n), ng(n);
+  for (size_t t = 0; t < n; ++t) {
+    const glm::vec3* p = &scene.positions[3 * t];
+    v0[t] = p[0];
+    e1[t] = p[1] - p[0];
+    e2[t] = p[2] - p[0];
+    glm::dvec3 c = glm::cross(glm::dvec3(e1[t]), glm::dvec3(e2[t]));
+    double l = glm::length(c);
+    ng[t] = (std::isfinite(l) && l > 0) ? glm::vec3(c / l) : glm::vec3(0.0f, 1.0f, 0.0f);
+  }
+  auto up3 = [](Array<Float3>& a, std::vector<glm::vec3> v) {
+    v = padded<Float3>(std::move(v));
+    a.resize(static_cast<int64_t>(v.size()));
+    a.upload(v);
+  };
+  up3(tri_v0, v0);
+  up3(tri_e1, e1);
+  up3(tri_e2, e2);
+  up3(tri_ng, ng);
+  if (F.vertex_normals) {
+    std::vector<glm::vec3> n0(n), n1(n), n2(n);
+    for (size_t t = 0; t < n; ++t) {
+      n0[t] = scene.normals[3 * t];
+      n1[t] = scene.normals[3 * t + 1];
+      n2[t] = scene.normals[3 * t + 2];
+    }
+    up3(tri_n0, n0);
+    up3(tri_n1, n1);
+    up3(tri_n2, n2);
+  }
+  if (F.vertex_colors) {
+    std::vector<glm::vec3> c0(n), c1(n), c2(n);
+    for (size_t t = 0; t < n; ++t) {
+      c0[t] = scene.colors[3 * t];
+      c1[t] = scene.colors[3 * t + 1];
+      c2[t] = scene.colors[3 * t + 2];
+    }
+    up3(tri_c0, c0);
+    up3(tri_c1, c1);
+    up3(tri_c2, c2);
+  }
+  {
+    auto m = padded<Int>(std::vector<int32_t>(scene.material));
+    tri_mat.resize(static_cast<int64_t>(m.size()));
+    tri_mat.upload(m);
+  }
+  std::vector<glm::vec3> kd, ks;
+  std::vector<glm::vec4> mp;
+  for (const Material& m : scene.materials) {
+    kd.push_back(m.diffuse);
+    ks.push_back(m.specular);
+    mp.emplace_back(m.shininess, m.reflect, m.transmit, m.ior);
+  }
+  up3(mat_kd, kd);
+  up3(mat_ks, ks);
+  mp = padded<Float4>(mp);
+  mat_p.resize(static_cast<int64_t>(mp.size()));
+  mat_p.upload(mp);
+  std::vector<glm::vec3> lp, lc;
+  for (const Light& l : scene.lights) {
+    lp.push_back(l.position);
+    lc.push_back(l.color);
+  }
+  up3(light_pos, lp);
+  up3(light_col, lc);
+  nlights.set(static_cast<int32_t>(scene.lights.size()));
+
+  auto vox = padded<Int2>(grid.voxels);
+  voxels.resize(static_cast<int64_t>(vox.size()));
+  voxels.upload(vox);
+  auto el = padded<Int>(grid.elements);
+  elements.resize(static_cast<int64_t>(el.size()));
+  elements.upload(el);
+  grid_lo.set(grid.lo);
+  grid_hi.set(grid.hi);
+  grid_cell.set(grid.cell);
+  grid_res.set(grid.res);
+  max_steps.set(grid.res.x + grid.res.y + grid.res.z + 3);
+
+  // Secondary rays start a little off the surface: 2e-5 of the scene's size (and at least
+  // a few ulps of its coordinates).
+  glm::vec3 lo, hi;
+  float e = 1e-4f;
+  if (scene_bounds(scene, lo, hi)) {
+    double diag = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
+    double mag = std::max(glm::length(glm::dvec3(lo)), glm::length(glm::dvec3(hi)));
+    e = static_cast<float>(std::max(2e-5 * diag, 1e-6 * mag));
+    if (!(e > 0)) e = 1e-4f;
+  }
+  eps.set(e);
+  ambient.set(scene.options.ambient);
+  background.set(scene.background);
+}
+
+// The intersector: the grid's bounding box, then a 3D-DDA from voxel to voxel, testing the
+// triangles listed in each (Moller-Trumbore). The closest hit wins (ties: the smaller id, so
+// the result does not depend on the order of the lists); a hit counts once its distance is
+// within the current voxel. With *any_hit true, the first hit before tmax ends the search.
+void Tracer::Impl::intersect(const Float3& o, const Float3& d, const Float& tmax,
+                             const Bool* any_hit, Bool& hit, Float& best_t, Int& best_id,
+                             Float& best_u, Float& best_v) const {
+  hit = false;
+  best_t = tmax;
+  best_id = -1;
+  if (!F.geometry) return;
+
+  Bool3 dz = d == Float3(0.0f);
+  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
+  Float3 t0 = (grid_lo - o) * inv;
+  Float3 t1 = (grid_hi - o) * inv;
+  Float3 tn = select(dz, Float3(-kBig), min(t0, t1));
+  Float3 tf = select(dz, Float3(kBig), max(t0, t1));
+  Bool outside = any(dz && ((o < grid_lo) || (o > grid_hi)));
+  Float t_enter = max(max(tn.x(), tn.y()), max(tn.z(), 0.0f));
+  Float t_exit = min(min(tf.x(), tf.y()), min(tf.z(), tmax));
+
+  RILL_IF(!outside && t_enter <= t_exit) {
+    // Initialization (thesis 5.1.2): the voxel where the ray enters, the distances to the
+    // next voxel boundary on each axis (tmx) and between boundaries (tdl).
+    Float3 p = o + t_enter * d;
+    Float3 vf = clamp(floor((p - grid_lo) / grid_cell), 0.0f, to_float(grid_res) - 1.0f);
+    Int3 vox = to_int(vf);
+    Bool3 pos = d > 0.0f;
+    Int3 step = select(pos, Int3(1), select(d < 0.0f, Int3(-1), Int3(0)));
+    Float3 bound = grid_lo + (vf + select(pos, Float3(1.0f), Float3(0.0f))) * grid_cell;
+    Float3 tmx = select(dz, Float3(kBig), (bound - o) * inv);
+    Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
+    Int steps = 0;
+    Bool done = false;
+    RILL_DO {
+      Int2 range = voxels[vox.x() + grid_res.x() * (vox.y() + grid_res.y() * vox.z())];
+      Float t_leave = min(min(tmx.x(), tmx.y()), tmx.z());
+      RILL_FOR(Int k = 0, k < range.y(), k += 1) {
+        Int tri = elements[range.x() + k];
+        Float3 v0 = tri_v0[tri], e1 = tri_e1[tri], e2 = tri_e2[tri];
+        Float3 pv = cross(d, e2);
+        Float det = dot(e1, pv);
+        Float3 tv = o - v0;
+        Float3 qv = cross(tv, e1);
+        Bool ok = det != 0.0f;
+        Float inv_det = 1.0f / select(ok, det, 1.0f);
+        Float u = dot(tv, pv) * inv_det;
+        Float v = dot(d, qv) * inv_det;
+        Float t = dot(e2, qv) * inv_det;
+        ok = ok && u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f;
+        RILL_IF(ok && (t < best_t || (t == best_t && tri < best_id))) {
+          best_t = t;
+          best_id = tri;
+          best_u = u;
+          best_v = v;
+        }
+        RILL_ENDIF;
+      }
+      RILL_ENDFOR;
+      if (any_hit != nullptr)
+        done = best_id >= 0 && (best_t <= t_leave || *any_hit);
+      else
+        done = best_id >= 0 && best_t <= t_leave;
+      done = done || t_leave >= t_exit;  // the ray ends inside this voxel
+      // Incremental traversal: step along the axis whose boundary is nearest.
+      Bool ax = tmx.x() <= tmx.y() && tmx.x() <= tmx.z();
+      Bool ay = !ax && tmx.y() <= tmx.z();
+      Bool az = !ax && !ay;
+      Bool3 m(ax, ay, az);
+      vox = vox + select(m, step, Int3(0));
+      tmx = select(m, tmx + tdl, tmx);
+      steps += 1;
+      done = done || any(vox < 0) || any(vox >= grid_res) || steps > max_steps;
+    }
+    RILL_UNTIL(done);
+    hit = best_id >= 0;
+  }
+  RILL_ENDIF;
+}
+
+Program Tracer::Impl::capture_tracer() const {
+  return rill::program("rill_trace", [&] {
+    Output<Float3> out_color("color");
+    Output<Float> out_depth("depth");
+    Output<Int> out_prim("prim");
+    Output<Float3> out_normal("normal");
+    Output<Int> out_rays("rays");
+
+    const Float inf = as_float(Int(0x7f800000));
+    out_depth = inf;
+    out_prim = -1;
+    out_normal = Float3(0.0f);
+
+    // The camera ray (design.md section 4, float32, in this order).
+    Int2 pix = element_coord();
+    Float sx = ((to_float(pix.x()) + offset.x()) / size.x() * 2.0f - 1.0f) * tan_half * aspect;
+    Float sy = (1.0f - (to_float(pix.y()) + offset.y()) / size.y() * 2.0f) * tan_half;
+    Float3 ro = eye;
+    Float3 rd = normalize(forward + sx * right + sy * up);
+    Float ray_tmax = kBig;
+    Bool ray_active = true;
+
+    Float3 color(0.0f);
+    Float weight = 1.0f;  // eq. 5.1: the product of the reflection coefficients so far
+    Int depth = 0;
+    Int mode = 0;  // 0: camera or secondary ray, 1: shadow ray towards light li
+    Int li = 0;
+    Int rays = 0, iter = 0;
+    Bool finished = false;
+
+    // The surface being shaded.
+    Float3 P(0.0f), nf(0.0f), ngf(0.0f), kd(0.0f), ks(0.0f), local(0.0f), V(0.0f);
+    Float shin = 0.0f, refl = 0.0f, trans = 0.0f, ior = 1.0f;
+    Bool entering = true;
+
+    // The ray stack (refraction: the reflected branch waits here).
+    std::vector<Float3> st_o, st_d;
+    std::vector<Float> st_w;
+    std::vector<Int> st_depth;
+    for (int s = 0; s < F.stack; ++s) {
+      st_o.emplace_back(0.0f);
+      st_d.emplace_back(0.0f);
+      st_w.emplace_back(0.0f);
+      st_depth.emplace_back(0);
+    }
+    Int sp = 0;
+
+    // Phong from light l at the current surface.
+    auto phong = [&](const Int& l) {
+      Float3 L = normalize(light_pos[l] - P);
+      Float ndl = dot(nf, L);
+      Float3 c = kd * max(ndl, 0.0f);
+      if (F.specular) {
+        Float3 R = reflect(-L, nf);
+        Float rv = max(dot(R, V), 0.0f);
+        c = c + select(ndl > 0.0f, ks * pow(rv, shin), Float3(0.0f));
+      }
+      return Float3(c * light_col[l]);
+    };
+    auto setup_shadow_ray = [&](const Int& l) {
+      Float3 so = P + ngf * eps;
+      Float3 L = light_pos[l] - so;
+      Float dist = length(L);
+      ro = so;
+      rd = L / dist;
+      ray_tmax = dist;
+      ray_active = dist > 0.0f && dot(nf, rd) > 0.0f;
+    };
+
+    RILL_DO {
+      Bool hit = false;
+      Float ht = 0.0f, hu = 0.0f, hv = 0.0f;
+      Int hid = -1;
+      if (F.geometry) {
+        RILL_IF(ray_active) {
+          Bool any_hit = mode == 1;
+          intersect(ro, rd, ray_tmax, F.shadows ? &any_hit : nullptr, hit, ht, hid, hu, hv);
+          rays += 1;
+        }
+        RILL_ENDIF;
+      } else {
+        rays += 1;
+      }
+      Bool shade_done = false, path_done = false;
+      Int cur_mode = mode;  // the branches below may change mode for the next iteration
+
+      RILL_IF(cur_mode == 0) {
+        RILL_IF(hit) {
+          // The surface: position, normals, material.
+          P = ro + ht * rd;
+          Float3 ng = tri_ng[hid];
+          Float3 ns = ng;
+          if (F.vertex_normals) {
+            Float w = 1.0f - hu - hv;
+            Float3 nn = tri_n0[hid] * w + tri_n1[hid] * hu + tri_n2[hid] * hv;
+            Float nl = length(nn);
+            ns = select(nl > 0.0f, nn / select(nl > 0.0f, nl, 1.0f), ng);
+            ng = select(dot(ng, ns) < 0.0f, -ng, ng);  // the vertex normals tell outside
+          }
+          entering = dot(ng, rd) < 0.0f;
+          nf = select(entering, ns, -ns);
+          ngf = select(entering, ng, -ng);
+          V = -rd;
+          Int m = tri_mat[hid];
+          kd = mat_kd[m];
+          if (F.vertex_colors) {
+            Float w = 1.0f - hu - hv;
+            kd = kd * (tri_c0[hid] * w + tri_c1[hid] * hu + tri_c2[hid] * hv);
+          }
+          if (F.specular) ks = mat_ks[m];
+          Float4 mp = mat_p[m];
+          shin = mp.x();
+          refl = mp.y();
+          trans = mp.z();
+          ior = mp.w();
+          local = ambient * kd;
+          RILL_IF(depth == 0) {  // AOVs of the camera ray
+            out_depth = ht;
+            out_prim = hid;
+            out_normal = ns;
+          }
+          RILL_ENDIF;
+          if (F.shadows) {
+            mode = 1;
+            li = 0;
+            setup_shadow_ray(li);
+          } else if (F.lights) {
+            RILL_FOR(Int l = 0, l < nlights, l += 1) {
+              local += phong(l);
+            }
+            RILL_ENDFOR;
+            shade_done = true;
+          } else {
+            // No lights: a headlight at the eye, without shadows.
+            local += kd * max(dot(nf, V), 0.0f);
+            shade_done = true;
+          }
+        }
+        RILL_ELSE {
+          color += weight * background;
+          path_done = true;
+        }
+        RILL_ENDIF;
+      }
+      RILL_ENDIF;
+      if (F.shadows) {
+        RILL_IF(cur_mode == 1) {  // a shadow ray came back
+          RILL_IF(ray_active && !hit) {
+            local += phong(li);
+          }
+          RILL_ENDIF;
+          li += 1;
+          RILL_IF(li < nlights) {
+            setup_shadow_ray(li);
+          }
+          RILL_ELSE {
+            mode = 0;
+            shade_done = true;
+          }
+          RILL_ENDIF;
+        }
+        RILL_ENDIF;
+      }
+
+      RILL_IF(shade_done) {
+        // Eq. 5.1: this surface contributes M_j (1 - r_j) times the product of the earlier
+        // coefficients; with glass, 1 - reflect - transmit.
+        color += weight * (1.0f - refl - trans) * local;
+        if (!F.reflection) {
+          path_done = true;
+        } else {
+          RILL_IF(depth >= max_depth) {
+            path_done = true;
+          }
+          RILL_ELSE {
+            // The ray registers (ro, rd) held shadow rays since the hit: use V.
+            const Float3 inc = -V;
+            Float3 rdir = reflect(inc, nf);
+            Float wr = weight * refl;
+            Float wt = 0.0f;
+            Float3 tdir(0.0f);
+            if (F.refraction) {
+              // Refraction with Schlick's Fresnel term; total internal reflection
+              // sends everything to the reflected ray.
+              Float eta = select(entering, 1.0f / ior, ior);
+              Float cosi = dot(V, nf);
+              Float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
+              Bool tir = k < 0.0f;
+              Float sk = sqrt(max(k, 0.0f));
+              tdir = eta * inc + (eta * cosi - sk) * nf;
+              Float r0 = (ior - 1.0f) / (ior + 1.0f);
+              r0 = r0 * r0;
+              Float c = 1.0f - select(entering, cosi, sk);
+              Float c2 = c * c;
+              Float fres = select(tir, 1.0f, r0 + (1.0f - r0) * (c2 * c2 * c));
+              wr = weight * (refl + trans * fres);
+              wt = weight * trans * (1.0f - fres);
+            }
+            Bool go_r = wr > kMinWeight;
+            Bool go_t = wt > kMinWeight;
+            if (F.stack > 0) {
+              RILL_IF(go_r && go_t && sp < F.stack) {  // both: the reflection waits
+                for (int s = 0; s < F.stack; ++s) {
+                  RILL_IF(sp == s) {
+                    st_o[static_cast<size_t>(s)] = P + ngf * eps;
+                    st_d[static_cast<size_t>(s)] = rdir;
+                    st_w[static_cast<size_t>(s)] = wr;
+                    st_depth[static_cast<size_t>(s)] = depth + 1;
+                  }
+                  RILL_ENDIF;
+                }
+                sp += 1;
+              }
+              RILL_ENDIF;
+            }
+            RILL_IF(go_t) {
+              ro = P - ngf * eps;
+              rd = tdir;
+              weight = wt;
+            }
+            RILL_ELSE_IF(go_r) {
+              ro = P + ngf * eps;
+              rd = rdir;
+              weight = wr;
+            }
+            RILL_ELSE {
+              path_done = true;
+            }
+            RILL_ENDIF;
+            depth += 1;
+            ray_active = true;
+            ray_tmax = kBig;
+          }
+          RILL_ENDIF;
+        }
+      }
+      RILL_ENDIF;
+
+      RILL_IF(path_done) {
+        if (F.stack > 0) {
+          RILL_IF(sp > 0) {
+            for (int s = 0; s < F.stack; ++s) {
+              RILL_IF(sp == s + 1) {
+                ro = st_o[static_cast<size_t>(s)];
+                rd = st_d[static_cast<size_t>(s)];
+                weight = st_w[static_cast<size_t>(s)];
+                depth = st_depth[static_cast<size_t>(s)];
+              }
+              RILL_ENDIF;
+            }
+            sp -= 1;
+            ray_active = true;
+            ray_tmax = kBig;
+          }
+          RILL_ELSE {
+            finished = true;
+          }
+          RILL_ENDIF;
+        } else {
+          finished = true;
+        }
+      }
+      RILL_ENDIF;
+      iter += 1;
+      finished = finished || iter >= max_iter;
+    }
+    RILL_UNTIL(finished);
+
+    out_color = color;
+    out_rays = rays;
+  });
+}
+
+Program Tracer::Impl::capture_intersector() const {
+  return rill::program("rill_intersect", [&] {
+    Input<Float3> o("origin");
+    Input<Float3> d("direction");
+    Output<Int> prim("prim");
+    Output<Float> dist("dist");
+    Bool hit = false;
+    Float t = 0.0f, u = 0.0f, v = 0.0f;
+    Int id = -1;
+    intersect(o, d, Float(kBig), nullptr, hit, t, id, u, v);
+    prim = select(hit, id, -1);
+    dist = select(hit, t, as_float(Int(0x7f800000)));
+  });
+}
+
+Kernel& Tracer::Impl::kernel(const std::string& backend_name, Accuracy a) {
+  const std::string key = backend_name + "/" + accuracy_name(a);
+  auto it = kernels.find(key);
+  if (it != kernels.end()) return it->second;
+  Backend& be = backend(backend_name);
+  if (std::string why = be.unavailable_reason(); !why.empty())
+    throw std::runtime_error("backend " + backend_name + " cannot run here: " + why);
+  if (!be.supports(a))
+    throw std::runtime_error(std::string("backend ") + backend_name + " has no " +
+                             accuracy_name(a) + " accuracy mode");
+  CompileOptions opt;
+  opt.accuracy = a;
+  return kernels.emplace(key, compile(trace_program, backend_name, opt)).first->second;
+}
+
+// ---- Tracer --------------------------------------------------------------------------------
+
+Tracer::Tracer(const Scene& scene, const Grid& grid) : d_(std::make_unique<Impl>()) {
+  scene.validate();
+  d_->scene.materials = scene.materials;
+  d_->scene.lights = scene.lights;
+  d_->scene.options = scene.options;
+  d_->scene.background = scene.background;
+  d_->scene.positions = scene.positions;
+  d_->scene.normals = scene.normals;
+  d_->scene.colors = scene.colors;
+  d_->scene.material = scene.material;
+  d_->grid = grid;
+  d_->F = scene_features(scene);
+  d_->upload();
+  // The triangle data is in the arrays now; keep only what shading needs.
+  d_->scene.positions.clear();
+  d_->scene.normals.clear();
+  d_->scene.colors.clear();
+  d_->trace_program = d_->capture_tracer();
+}
+
+Tracer::~Tracer() = default;
+
+const Program& Tracer::program() const {
+  return d_->trace_program;
+}
+const Features& Tracer::features() const {
+  return d_->F;
+}
+
+std::string Tracer::source(const std::string& backend, Accuracy a) {
+  return d_->kernel(backend, a).source();
+}
+
+RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
+  Impl& I = *d_;
+  const Scene& sc = I.scene;
+  RenderResult r;
+  r.backend = rs.backend;
+  r.width = rs.width > 0 ? rs.width : 0;
+  r.height = rs.height > 0 ? rs.height : 0;
+  if (r.width == 0 || r.height == 0) throw std::runtime_error("render: image size not set");
+  const int depth = rs.max_depth >= 0 ? rs.max_depth : sc.options.max_depth;
+  const int spp = rs.spp > 0 ? rs.spp : sc.options.spp;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  Kernel& k = I.kernel(rs.backend, rs.accuracy);
+  r.compile_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
+
+  const CameraFrame f = camera_frame(camera, r.width, r.height);
+  I.eye.set(f.eye);
+  I.forward.set(f.forward);
+  I.right.set(f.right);
+  I.up.set(f.up);
+  I.tan_half.set(f.tan_half);
+  I.aspect.set(f.aspect);
+
+  I.max_depth.set(depth);
+  const int stack_factor = I.F.stack + 1;
+  const int64_t iters =
+      int64_t{depth + 1} * (static_cast<int64_t>(sc.lights.size()) + 1) * stack_factor * 2 + 8;
+  I.max_iter.set(static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
+  I.size.set(glm::vec2(static_cast<float>(r.width), static_cast<float>(r.height)));
+
+  Stream<Float3> color(r.width, r.height), normal(r.width, r.height);
+  Stream<Float> dist(r.width, r.height);
+  Stream<Int> prim(r.width, r.height), rays(r.width, r.height);
+  k.outputs(color, dist, prim, normal, rays);
+
+  const size_t npix = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
+  std::vector<glm::dvec3> sum(spp > 1 ? npix : 0, glm::dvec3(0.0));
+  const auto start = std::chrono::steady_clock::now();
+  for (int s = 0; s < spp; ++s) {
+    I.offset.set(sample_offset(s));
+    k.execute();
+    std::vector<int32_t> n = rays.download();
+    for (int32_t x : n) r.rays += x;
+    if (s == 0) {
+      r.color = color.download();
+      r.depth = dist.download();
+      r.prim = prim.download();
+      r.normal = normal.download();
+      if (spp > 1)
+        for (size_t p = 0; p < npix; ++p) sum[p] = glm::dvec3(r.color[p]);
+    } else {
+      std::vector<glm::vec3> c = color.download();
+      for (size_t p = 0; p < npix; ++p) sum[p] += glm::dvec3(c[p]);
+    }
+  }
+  if (spp > 1)
+    for (size_t p = 0; p < npix; ++p) r.color[p] = glm::vec3(sum[p] / static_cast<double>(spp));
+  r.trace_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+void Tracer::intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
+                       const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
+                       std::vector<float>& dist) {
+  Impl& I = *d_;
+  if (!I.intersect_program.valid()) I.intersect_program = I.capture_intersector();
+  Kernel k = compile(I.intersect_program, backend);
+  Stream<Float3> o(origins), d(dirs);
+  Stream<Int> p(static_cast<int64_t>(origins.size()));
+  Stream<Float> t(static_cast<int64_t>(origins.size()));
+  k.inputs(o, d).outputs(p, t);
+  k.execute();
+  prim = p.download();
+  dist = t.download();
+}
+
+}  // namespace rt

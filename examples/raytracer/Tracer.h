@@ -1,0 +1,97 @@
+// The ray tracer: one Rill program, written once, run on every backend.
+//
+// The kernel (Sh style, after Moreno-Fortuny and McCool) runs one instance per pixel: it
+// makes the camera ray (Camera.h), then a RILL_DO ... RILL_UNTIL loop traces one ray per
+// iteration through the uniform grid (3D-DDA, Amanatides & Woo) and reacts to what it hit:
+// a camera or secondary ray gets Phong shading and then one shadow ray per light; when the
+// lights are done, the local colour is weighted as in the thesis's eq. 5.1 and the path
+// continues with a reflected or refracted ray (a second branch goes on a small ray stack),
+// until the path ends, the stack is empty and the loop finishes.
+//
+// Only what the scene calls for is generated (host C++ at capture time, see Features):
+// a scene without reflective materials has no reflection code, one without lights no
+// shadow rays, one without glass no refraction code and no ray stack.
+#pragma once
+
+#include <rill/rill.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Camera.h"
+#include "Grid.h"
+#include "Scene.h"
+
+namespace rt {
+
+// What the kernel is generated with, decided on the host from the scene.
+struct Features {
+  bool geometry = false;        // any traceable triangle (else every ray misses)
+  bool lights = false;          // point lights (else a headlight at the eye, no shadows)
+  bool shadows = false;         // shadow rays (lights and options.shadows)
+  bool specular = false;        // any Ks > 0: Phong highlights
+  bool reflection = false;      // any reflect > 0
+  bool refraction = false;      // any transmit > 0 (Fresnel, total internal reflection)
+  bool vertex_normals = false;  // interpolated normals (mesh normals and smooth_normals)
+  bool vertex_colors = false;   // per-vertex colours multiply Kd
+  int stack = 0;                // ray stack entries (refraction: reflected branch)
+  std::string str() const;      // "geometry lights shadows ..." for logs and stats
+};
+Features scene_features(const Scene& s);
+
+constexpr int kRayStack = 3;
+
+struct RenderSettings {
+  std::string backend = "cpu";
+  rill::Accuracy accuracy = rill::Accuracy::Strict;
+  int width = 0, height = 0;  // 0: the scene's
+  int max_depth = -1;         // -1: the scene's
+  int spp = 0;                // 0: the scene's
+};
+
+struct RenderResult {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> color;   // linear, row 0 at the top; the mean over the samples
+  std::vector<float> depth;       // first-sample AOVs: hit distance (+inf: miss)
+  std::vector<int32_t> prim;      // primitive id (-1: miss)
+  std::vector<glm::vec3> normal;  // shading normal as stored (0 on a miss)
+  int64_t rays = 0;               // rays traced (camera, shadow, secondary), all samples
+  double compile_ms = 0;          // 0 when the compiled kernel came from a cache
+  bool from_cache = false;
+  double trace_ms = 0;
+  std::string backend;
+};
+
+class Tracer {
+ public:
+  // Uploads the scene and grid into Rill arrays and captures the program. The scene's
+  // options (shadows, smooth normals, ambient) are fixed here; camera, size, depth and
+  // samples can change per render.
+  Tracer(const Scene& scene, const Grid& grid);
+  ~Tracer();
+  Tracer(const Tracer&) = delete;
+  Tracer& operator=(const Tracer&) = delete;
+
+  const rill::Program& program() const;
+  const Features& features() const;
+  // Compiles (cached per backend and accuracy) and renders through the camera.
+  RenderResult render(const RenderSettings& settings, const Camera& camera);
+  // The generated source on a backend (compiles if needed).
+  std::string source(const std::string& backend, rill::Accuracy a = rill::Accuracy::Strict);
+
+  // Traces explicit rays (origin, direction) with the closest-hit intersector only, for
+  // tests: returns per ray the primitive id (-1: miss) and distance (+inf: miss).
+  void intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
+                 const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
+                 std::vector<float>& dist);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> d_;
+};
+
+// The sample offsets used for spp samples (sample 0 is the pixel centre).
+glm::vec2 sample_offset(int k);
+
+}  // namespace rt

@@ -1,0 +1,300 @@
+// rill-trace: the Rill ray tracer's command line.
+//
+//   rill-trace render SCENE [--backend cpu|opencl|glsl] [--accuracy strict|fast|double]
+//                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
+//                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
+//                           [--grid N|auto] [--strategy megakernel] [--stats-json FILE]
+//   rill-trace demo [--scene SCENE] [--size WxH] [--out-dir DIR]
+//   rill-trace info
+//
+// SCENE is a JSON scene file, an OBJ file (framed by a default camera, lit from the eye) or
+// builtin:NAME. Exit status: 0 on success, 1 on an error (one line on stderr), 2 on bad
+// options.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "Grid.h"
+#include "Image.h"
+#include "Scene.h"
+#include "Tracer.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+struct RenderOptions {
+  std::string scene;
+  std::string backend = "cpu";
+  std::string accuracy = "strict";
+  std::string size;
+  std::string out, pfm, depth, prim, normal, stats_json, source;
+  int max_depth = -1;
+  int spp = 0;
+  std::string grid = "";
+  std::string strategy = "megakernel";
+  bool quiet = false;
+};
+
+void parse_size(const std::string& s, int& w, int& h) {
+  char x = 0;
+  long a = 0, b = 0;
+  char tail[2];
+  if (std::sscanf(s.c_str(), "%ld%c%ld%1s", &a, &x, &b, tail) != 3 || (x != 'x' && x != 'X'))
+    throw rt::SceneError("--size expects WxH, e.g. 512x512 (got '" + s + "')");
+  if (a < 1 || b < 1 || a > 16384 || b > 16384 || a * b > (1l << 25))
+    throw rt::SceneError("--size " + s +
+                         " is out of range (1..16384 per side, at most 33554432 pixels)");
+  w = static_cast<int>(a);
+  h = static_cast<int>(b);
+}
+
+int parse_grid(const std::string& s) {
+  if (s.empty() || s == "auto") return 0;
+  char* end = nullptr;
+  long v = std::strtol(s.c_str(), &end, 10);
+  if (end == s.c_str() || *end != '\0' || v < 1 || v > 512)
+    throw rt::SceneError("--grid expects 'auto' or a number of voxels per axis in 1..512 (got '" +
+                         s + "')");
+  return static_cast<int>(v);
+}
+
+std::vector<float> to_float(const std::vector<int32_t>& v) {
+  std::vector<float> f(v.size());
+  for (size_t i = 0; i < v.size(); ++i) f[i] = static_cast<float>(v[i]);
+  return f;
+}
+
+int render(const RenderOptions& o) {
+  if (o.strategy != "megakernel")
+    throw rt::SceneError("--strategy " + o.strategy + ": only 'megakernel' is implemented so far");
+  const rill::Accuracy acc = rill::parse_accuracy(o.accuracy);
+  const auto t_load = Clock::now();
+  rt::Scene scene = rt::load_scene(o.scene);
+  if (!o.size.empty()) parse_size(o.size, scene.width, scene.height);
+  if (o.max_depth >= 0) scene.options.max_depth = o.max_depth;
+  if (o.spp > 0) scene.options.spp = o.spp;
+  if (!o.grid.empty()) scene.options.grid = parse_grid(o.grid);
+  if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
+  if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
+  scene.validate();
+  const double load_ms = ms_since(t_load);
+
+  rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+
+  const auto t_setup = Clock::now();
+  rt::Tracer tracer(scene, grid);
+  const double setup_ms = ms_since(t_setup);
+
+  rt::RenderSettings rs;
+  rs.backend = o.backend;
+  rs.accuracy = acc;
+  rs.width = scene.width;
+  rs.height = scene.height;
+  rt::CameraFrame cam = rt::camera_frame(scene.camera, scene.width, scene.height);
+  (void)cam;
+  const auto t_render = Clock::now();
+  rt::RenderResult r = tracer.render(rs, scene.camera);
+  const double render_ms = ms_since(t_render);
+  const double compile_ms = setup_ms + (render_ms - r.trace_ms);
+
+  std::vector<std::string> written;
+  std::string out = o.out;
+  if (out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
+    out = (scene.name.empty() ? std::string("render") : scene.name) + ".png";
+  if (!out.empty()) rt::write_png(out, r.width, r.height, r.color), written.push_back(out);
+  if (!o.pfm.empty()) rt::write_pfm(o.pfm, r.width, r.height, r.color), written.push_back(o.pfm);
+  if (!o.depth.empty())
+    rt::write_pfm(o.depth, r.width, r.height, r.depth), written.push_back(o.depth);
+  if (!o.prim.empty())
+    rt::write_pfm(o.prim, r.width, r.height, to_float(r.prim)), written.push_back(o.prim);
+  if (!o.normal.empty())
+    rt::write_pfm(o.normal, r.width, r.height, r.normal), written.push_back(o.normal);
+  if (!o.source.empty()) {
+    std::ofstream f(o.source);
+    f << tracer.source(o.backend, acc);
+    if (!f) throw rt::SceneError("cannot write " + o.source);
+  }
+
+  const double rays_per_s =
+      r.trace_ms > 0 ? static_cast<double>(r.rays) / (r.trace_ms * 1e-3) : 0.0;
+  if (!o.stats_json.empty()) {
+    nlohmann::json j;
+    j["scene"] = o.scene;
+    j["triangles"] = scene.triangle_count();
+    j["width"] = r.width;
+    j["height"] = r.height;
+    j["backend"] = o.backend;
+    j["accuracy"] = o.accuracy;
+    j["strategy"] = o.strategy;
+    j["spp"] = scene.options.spp;
+    j["max_depth"] = scene.options.max_depth;
+    j["features"] = tracer.features().str();
+    j["grid"] = {{"resolution", {grid.res.x, grid.res.y, grid.res.z}},
+                 {"references", grid.elements.size()},
+                 {"triangles", grid.usable},
+                 {"degenerate", grid.degenerate},
+                 {"non_finite", grid.non_finite}};
+    j["rays"] = r.rays;
+    j["rays_per_second"] = rays_per_s;
+    j["compiled_from_cache"] = r.from_cache;
+    j["time_ms"] = {{"load", load_ms},
+                    {"grid_build", grid.build_ms},
+                    {"compile", compile_ms},
+                    {"trace", r.trace_ms},
+                    {"total", load_ms + grid.build_ms + compile_ms + r.trace_ms}};
+    std::ofstream f(o.stats_json);
+    f << j.dump(2) << "\n";
+    if (!f) throw rt::SceneError("cannot write " + o.stats_json);
+  }
+  if (!o.quiet) {
+    for (const auto& w : written) std::printf("wrote %s\n", w.c_str());
+    if (grid.degenerate + grid.non_finite > 0)
+      std::printf("note: %zu degenerate and %zu non-finite triangles are never hit\n",
+                  grid.degenerate, grid.non_finite);
+  }
+  std::printf(
+      "rill-trace: %s, %zu triangles, %dx%d, %s %s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
+      "load %.1f ms, grid build %.1f ms, compile %.1f ms%s, trace %.1f ms\n",
+      scene.name.c_str(), scene.triangle_count(), r.width, r.height, o.backend.c_str(),
+      o.accuracy.c_str(), grid.res.x, grid.res.y, grid.res.z, rays_per_s * 1e-6,
+      static_cast<long long>(r.rays), load_ms, grid.build_ms, compile_ms,
+      r.from_cache ? " (cached)" : "", r.trace_ms);
+  return 0;
+}
+
+int demo(const std::string& scene_spec, const std::string& size, const std::string& out_dir) {
+  rt::Scene scene = rt::load_scene(scene_spec);
+  if (!size.empty()) parse_size(size, scene.width, scene.height);
+  scene.validate();
+  rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+  rt::Tracer tracer(scene, grid);
+  std::printf("rill-trace demo: %s, %zu triangles, %dx%d, grid %dx%dx%d, kernel features: %s\n",
+              scene.name.c_str(), scene.triangle_count(), scene.width, scene.height, grid.res.x,
+              grid.res.y, grid.res.z, tracer.features().str().c_str());
+  std::filesystem::create_directories(out_dir.empty() ? "." : out_dir);
+  std::vector<std::pair<std::string, rt::RenderResult>> results;
+  for (rill::Backend* b : rill::backends()) {
+    if (std::string why = b->unavailable_reason(); !why.empty()) {
+      std::printf("  %-7s unavailable: %s\n", b->name().c_str(), why.c_str());
+      continue;
+    }
+    rt::RenderSettings rs;
+    rs.backend = b->name();
+    rs.width = scene.width;
+    rs.height = scene.height;
+    const auto t = Clock::now();
+    rt::RenderResult r = tracer.render(rs, scene.camera);
+    const double total = ms_since(t);
+    std::string png = (std::filesystem::path(out_dir.empty() ? "." : out_dir) /
+                       ("demo-" + scene.name + "-" + b->name() + ".png"))
+                          .string();
+    rt::write_png(png, r.width, r.height, r.color);
+    std::printf("  %-7s compile %8.1f ms%s  trace %8.1f ms  %7.3f Mrays/s  -> %s\n",
+                b->name().c_str(), total - r.trace_ms, r.from_cache ? " (cached)" : "         ",
+                r.trace_ms, r.trace_ms > 0 ? static_cast<double>(r.rays) / (r.trace_ms * 1e3) : 0.0,
+                png.c_str());
+    results.emplace_back(b->name(), std::move(r));
+  }
+  if (results.empty()) throw rt::SceneError("no backend can run here");
+  bool all_same = true;
+  for (size_t i = 1; i < results.size(); ++i) {
+    const auto& a = results[0].second;
+    const auto& b = results[i].second;
+    size_t diff = 0;
+    for (size_t p = 0; p < a.color.size(); ++p)
+      if (std::memcmp(&a.color[p], &b.color[p], sizeof(glm::vec3)) != 0 || a.prim[p] != b.prim[p])
+        ++diff;
+    std::printf(
+        "  %s vs %s: %s\n", results[0].first.c_str(), results[i].first.c_str(),
+        diff == 0 ? "bitwise identical" : (std::to_string(diff) + " pixels differ").c_str());
+    all_same = all_same && diff == 0;
+  }
+  if (results.size() > 1)
+    std::printf("rill-trace demo: the images are %s\n",
+                all_same ? "identical on every backend" : "NOT identical");
+  return 0;
+}
+
+int info() {
+  std::printf("backends:\n");
+  for (rill::Backend* b : rill::backends()) {
+    std::string why = b->unavailable_reason();
+    std::printf("  %-7s %s  %s\n", b->name().c_str(), why.empty() ? "ok         " : "unavailable",
+                why.empty() ? b->description().c_str() : why.c_str());
+    if (why.empty())
+      std::printf("          accuracy: strict fast%s\n",
+                  b->supports(rill::Accuracy::Double) ? " double" : "");
+  }
+  std::printf("built-in scenes (builtin:NAME):");
+  for (const auto& n : rt::builtin_scene_names()) std::printf(" %s", n.c_str());
+  std::printf("\n");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"rill-trace: the Rill ray tracer (one DSL kernel, every backend)"};
+  app.require_subcommand(1);
+  RenderOptions ro;
+  CLI::App* r = app.add_subcommand("render", "render a scene");
+  r->add_option("scene", ro.scene, "JSON scene, OBJ file or builtin:NAME")->required();
+  r->add_option("--backend", ro.backend, "cpu, opencl or glsl")->default_str("cpu");
+  r->add_option("--accuracy", ro.accuracy, "strict, fast or double")->default_str("strict");
+  r->add_option("--size", ro.size, "image size WxH (default: the scene's)");
+  r->add_option("--out", ro.out, "PNG output (sRGB)");
+  r->add_option("--pfm", ro.pfm, "linear colour as PFM");
+  r->add_option("--depth", ro.depth, "hit distance AOV as PFM (+inf: miss)");
+  r->add_option("--prim", ro.prim, "primitive id AOV as PFM (-1: miss)");
+  r->add_option("--normal", ro.normal, "shading normal AOV as PFM");
+  r->add_option("--max-depth", ro.max_depth, "reflection/refraction bounces")
+      ->check(CLI::Range(0, 64));
+  r->add_option("--spp", ro.spp, "samples per pixel")->check(CLI::Range(1, 4096));
+  r->add_option("--grid", ro.grid, "voxels per axis, or auto");
+  r->add_option("--strategy", ro.strategy, "megakernel")->default_str("megakernel");
+  r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
+  r->add_option("--source", ro.source, "write the generated kernel source");
+  r->add_flag("--quiet", ro.quiet, "print only the stats line");
+
+  std::string demo_scene = "builtin:glass", demo_size, demo_out = ".";
+  CLI::App* d =
+      app.add_subcommand("demo", "render the flagship scene on every backend and compare");
+  d->add_option("--scene", demo_scene, "scene to render")->default_str("builtin:glass");
+  d->add_option("--size", demo_size, "image size WxH");
+  d->add_option("--out-dir", demo_out, "where the PNGs go");
+  CLI::App* in = app.add_subcommand("info", "list backends, devices and built-in scenes");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "rill-trace: %s (see --help)\n", e.what());
+    return 2;
+  }
+  try {
+    if (*r) return render(ro);
+    if (*d) return demo(demo_scene, demo_size, demo_out);
+    if (*in) return info();
+  } catch (const std::exception& e) {
+    std::string msg = e.what();
+    for (char& c : msg)
+      if (c == '\n') c = ' ';
+    std::fprintf(stderr, "rill-trace: %s\n", msg.c_str());
+    return 1;
+  }
+  return 0;
+}
