@@ -141,16 +141,18 @@ void add_teapot(Scene& s, int n, int m, const Transform& t, bool smooth) {
           teapot_eval(p, u < 0.5 ? u + 1e-4 : u - 1e-4, v, P2, N);
           if (glm::length(N) < 1e-12) N = glm::dvec3(0, 1, 0);
         }
+        // The patches' (u, v) orientation makes cross(Pu, Pv) point inwards: flip, and wind
+        // the triangles to match (counter-clockwise seen from outside).
         pos[i * (n + 1) + j] = t.apply_point(glm::vec3(P));
-        nrm[i * (n + 1) + j] = t.apply_normal(glm::vec3(glm::normalize(N)));
+        nrm[i * (n + 1) + j] = t.apply_normal(glm::vec3(-glm::normalize(N)));
       }
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
         int a = i * (n + 1) + j, b = (i + 1) * (n + 1) + j, c = (i + 1) * (n + 1) + j + 1,
             d = i * (n + 1) + j + 1;
-        glm::vec3 n1[3] = {nrm[a], nrm[b], nrm[c]}, n2[3] = {nrm[a], nrm[c], nrm[d]};
-        s.add_triangle(pos[a], pos[b], pos[c], m, smooth ? n1 : nullptr);
-        s.add_triangle(pos[a], pos[c], pos[d], m, smooth ? n2 : nullptr);
+        glm::vec3 n1[3] = {nrm[a], nrm[c], nrm[b]}, n2[3] = {nrm[a], nrm[d], nrm[c]};
+        s.add_triangle(pos[a], pos[c], pos[b], m, smooth ? n1 : nullptr);
+        s.add_triangle(pos[a], pos[d], pos[c], m, smooth ? n2 : nullptr);
       }
   }
 }

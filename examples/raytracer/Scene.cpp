@@ -67,16 +67,19 @@ int Scene::add_material(const Material& m) {
 void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, int mat,
                          const glm::vec3* n, const glm::vec3* col) {
   const size_t before = positions.size();
-  positions.insert(positions.end(), {a, b, c});
-  material.push_back(mat);
-  if (n != nullptr && normals.empty()) {
-    // First triangle with normals: earlier ones get their geometric normals.
+  // The first triangle with normals (colours) gives the earlier ones geometric normals
+  // (white).
+  const bool with_normals = n != nullptr || !normals.empty();
+  const bool with_colors = col != nullptr || !colors.empty();
+  if (with_normals && normals.empty())
     for (size_t i = 0; i < before; i += 3) {
       glm::vec3 g = glm::cross(positions[i + 1] - positions[i], positions[i + 2] - positions[i]);
       normals.insert(normals.end(), {g, g, g});
     }
-  }
-  if (!normals.empty()) {
+  if (with_colors && colors.empty()) colors.assign(before, glm::vec3(1.0f));
+  positions.insert(positions.end(), {a, b, c});
+  material.push_back(mat);
+  if (with_normals) {
     if (n != nullptr) {
       normals.insert(normals.end(), {n[0], n[1], n[2]});
     } else {
@@ -84,8 +87,7 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
       normals.insert(normals.end(), {g, g, g});
     }
   }
-  if (col != nullptr && colors.empty()) colors.assign(before, glm::vec3(1.0f));
-  if (!colors.empty()) {
+  if (with_colors) {
     if (col != nullptr)
       colors.insert(colors.end(), {col[0], col[1], col[2]});
     else

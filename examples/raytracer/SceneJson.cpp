@@ -194,7 +194,7 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     std::string msg = e.what();
     auto p = msg.find("parse error");
     fail(c, "invalid JSON: " + (p == std::string::npos ? msg : msg.substr(p)));

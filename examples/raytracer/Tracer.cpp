@@ -26,6 +26,15 @@ std::vector<typename V::host_type> padded(std::vector<typename V::host_type> v) 
   return v;
 }
 
+// Workaround for a GLSL backend bug (reported): an array gather computes the texel from
+// the launch's row length instead of the array's, so on GLSL a launch must cover at least
+// one full 4096-texel row. Small launches are padded with rows the caller ignores.
+constexpr int64_t kGlslRow = 4096;
+int64_t padded_rows(const std::string& backend, int64_t width, int64_t height) {
+  if (backend != "glsl" || width * height >= kGlslRow) return height;
+  return (kGlslRow + width - 1) / width;
+}
+
 }  // namespace
 
 std::string Features::str() const {
@@ -119,13 +128,16 @@ struct Tracer::Impl {
   Uniform<Float> ambient{0.1f, "ambient"}, eps{1e-4f, "ray_epsilon"};
   Uniform<Float3> background{glm::vec3(0.0f), "background"};
 
-  Program trace_program, intersect_program;
+  Program trace_program, intersect_program, camera_program;
   std::map<std::string, Kernel> kernels;  // backend/accuracy -> compiled tracer
 
   void upload();
   void intersect(const Float3& o, const Float3& d, const Float& tmax, const Bool* any_hit,
                  Bool& hit, Float& best_t, Int& best_id, Float& best_u, Float& best_v) const;
+  Float3 camera_ray(const Int2& pix) const;
+  void set_camera(const Camera& camera, int width, int height);
   Program capture_tracer() const;
+  Program capture_camera() const;
   Program capture_intersector() const;
   Kernel& kernel(const std::string& backend, Accuracy a);
 };
@@ -320,12 +332,8 @@ Program Tracer::Impl::capture_tracer() const {
     out_prim = -1;
     out_normal = Float3(0.0f);
 
-    // The camera ray (design.md section 4, float32, in this order).
-    Int2 pix = element_coord();
-    Float sx = ((to_float(pix.x()) + offset.x()) / size.x() * 2.0f - 1.0f) * tan_half * aspect;
-    Float sy = (1.0f - (to_float(pix.y()) + offset.y()) / size.y() * 2.0f) * tan_half;
     Float3 ro = eye;
-    Float3 rd = normalize(forward + sx * right + sy * up);
+    Float3 rd = camera_ray(element_coord());
     Float ray_tmax = kBig;
     Bool ray_active = true;
 
@@ -393,63 +401,73 @@ Program Tracer::Impl::capture_tracer() const {
       Bool shade_done = false, path_done = false;
       Int cur_mode = mode;  // the branches below may change mode for the next iteration
 
-      RILL_IF(cur_mode == 0) {
-        RILL_IF(hit) {
-          // The surface: position, normals, material.
-          P = ro + ht * rd;
-          Float3 ng = tri_ng[hid];
-          Float3 ns = ng;
-          if (F.vertex_normals) {
-            Float w = 1.0f - hu - hv;
-            Float3 nn = tri_n0[hid] * w + tri_n1[hid] * hu + tri_n2[hid] * hv;
-            Float nl = length(nn);
-            ns = select(nl > 0.0f, nn / select(nl > 0.0f, nl, 1.0f), ng);
-            ng = select(dot(ng, ns) < 0.0f, -ng, ng);  // the vertex normals tell outside
-          }
-          entering = dot(ng, rd) < 0.0f;
-          nf = select(entering, ns, -ns);
-          ngf = select(entering, ng, -ng);
-          V = -rd;
-          Int m = tri_mat[hid];
-          kd = mat_kd[m];
-          if (F.vertex_colors) {
-            Float w = 1.0f - hu - hv;
-            kd = kd * (tri_c0[hid] * w + tri_c1[hid] * hu + tri_c2[hid] * hv);
-          }
-          if (F.specular) ks = mat_ks[m];
-          Float4 mp = mat_p[m];
-          shin = mp.x();
-          refl = mp.y();
-          trans = mp.z();
-          ior = mp.w();
-          local = ambient * kd;
-          RILL_IF(depth == 0) {  // AOVs of the camera ray
-            out_depth = ht;
-            out_prim = hid;
-            out_normal = ns;
-          }
-          RILL_ENDIF;
-          if (F.shadows) {
-            mode = 1;
-            li = 0;
-            setup_shadow_ray(li);
-          } else if (F.lights) {
-            RILL_FOR(Int l = 0, l < nlights, l += 1) {
-              local += phong(l);
-            }
-            RILL_ENDFOR;
-            shade_done = true;
-          } else {
-            // No lights: a headlight at the eye, without shadows.
-            local += kd * max(dot(nf, V), 0.0f);
-            shade_done = true;
-          }
+      auto shade_hit = [&] {
+        // The surface: position, normals, material.
+        P = ro + ht * rd;
+        Float3 ng = tri_ng[hid];
+        Float3 ns = ng;
+        if (F.vertex_normals) {
+          Float w = 1.0f - hu - hv;
+          Float3 nn = tri_n0[hid] * w + tri_n1[hid] * hu + tri_n2[hid] * hv;
+          Float nl = length(nn);
+          ns = select(nl > 0.0f, nn / select(nl > 0.0f, nl, 1.0f), ng);
+          ng = select(dot(ng, ns) < 0.0f, -ng, ng);  // the vertex normals tell outside
         }
-        RILL_ELSE {
-          color += weight * background;
-          path_done = true;
+        entering = dot(ng, rd) < 0.0f;
+        nf = select(entering, ns, -ns);
+        ngf = select(entering, ng, -ng);
+        V = -rd;
+        Int m = tri_mat[hid];
+        kd = mat_kd[m];
+        if (F.vertex_colors) {
+          Float w = 1.0f - hu - hv;
+          kd = kd * (tri_c0[hid] * w + tri_c1[hid] * hu + tri_c2[hid] * hv);
+        }
+        if (F.specular) ks = mat_ks[m];
+        Float4 mp = mat_p[m];
+        shin = mp.x();
+        refl = mp.y();
+        trans = mp.z();
+        ior = mp.w();
+        local = ambient * kd;
+        RILL_IF(depth == 0) {  // AOVs of the camera ray
+          out_depth = ht;
+          out_prim = hid;
+          out_normal = ns;
         }
         RILL_ENDIF;
+        if (F.shadows) {
+          mode = 1;
+          li = 0;
+          setup_shadow_ray(li);
+        } else if (F.lights) {
+          RILL_FOR(Int l = 0, l < nlights, l += 1) {
+            local += phong(l);
+          }
+          RILL_ENDFOR;
+          shade_done = true;
+        } else {
+          // No lights: a headlight at the eye, without shadows.
+          local += kd * max(dot(nf, V), 0.0f);
+          shade_done = true;
+        }
+      };
+      auto miss = [&] {
+        color += weight * background;
+        path_done = true;
+      };
+      RILL_IF(cur_mode == 0) {
+        if (F.geometry) {
+          RILL_IF(hit) {
+            shade_hit();
+          }
+          RILL_ELSE {
+            miss();
+          }
+          RILL_ENDIF;
+        } else {
+          miss();
+        }
       }
       RILL_ENDIF;
       if (F.shadows) {
@@ -580,6 +598,31 @@ Program Tracer::Impl::capture_tracer() const {
   });
 }
 
+// The camera ray through pixel pix (design.md section 4, float32, in this order).
+Float3 Tracer::Impl::camera_ray(const Int2& pix) const {
+  Float sx = ((to_float(pix.x()) + offset.x()) / size.x() * 2.0f - 1.0f) * tan_half * aspect;
+  Float sy = (1.0f - (to_float(pix.y()) + offset.y()) / size.y() * 2.0f) * tan_half;
+  return normalize(forward + sx * right + sy * up);
+}
+
+void Tracer::Impl::set_camera(const Camera& camera, int width, int height) {
+  const CameraFrame f = camera_frame(camera, width, height);
+  eye.set(f.eye);
+  forward.set(f.forward);
+  right.set(f.right);
+  up.set(f.up);
+  tan_half.set(f.tan_half);
+  aspect.set(f.aspect);
+  size.set(glm::vec2(f.width, f.height));
+}
+
+Program Tracer::Impl::capture_camera() const {
+  return rill::program("rill_camera_rays", [&] {
+    Output<Float3> dir("direction");
+    dir = camera_ray(element_coord());
+  });
+}
+
 Program Tracer::Impl::capture_intersector() const {
   return rill::program("rill_intersect", [&] {
     Input<Float3> o("origin");
@@ -607,7 +650,16 @@ Kernel& Tracer::Impl::kernel(const std::string& backend_name, Accuracy a) {
                              accuracy_name(a) + " accuracy mode");
   CompileOptions opt;
   opt.accuracy = a;
-  return kernels.emplace(key, compile(trace_program, backend_name, opt)).first->second;
+  Kernel& k = kernels.emplace(key, compile(trace_program, backend_name, opt)).first->second;
+  // One launch over a single pixel, so that drivers that finish compiling at the first
+  // launch (PoCL, Mesa) do it here: render() then times the tracing alone.
+  const int64_t h = padded_rows(backend_name, 1, 1);
+  Stream<Float3> c(1, h), n(1, h);
+  Stream<Float> t(1, h);
+  Stream<Int> p(1, h), r(1, h);
+  k.outputs(c, t, p, n, r);
+  k.execute();
+  return k;
 }
 
 // ---- Tracer --------------------------------------------------------------------------------
@@ -662,43 +714,41 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
 
-  const CameraFrame f = camera_frame(camera, r.width, r.height);
-  I.eye.set(f.eye);
-  I.forward.set(f.forward);
-  I.right.set(f.right);
-  I.up.set(f.up);
-  I.tan_half.set(f.tan_half);
-  I.aspect.set(f.aspect);
+  I.set_camera(camera, r.width, r.height);
 
   I.max_depth.set(depth);
   const int stack_factor = I.F.stack + 1;
   const int64_t iters =
       int64_t{depth + 1} * (static_cast<int64_t>(sc.lights.size()) + 1) * stack_factor * 2 + 8;
   I.max_iter.set(static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
-  I.size.set(glm::vec2(static_cast<float>(r.width), static_cast<float>(r.height)));
 
-  Stream<Float3> color(r.width, r.height), normal(r.width, r.height);
-  Stream<Float> dist(r.width, r.height);
-  Stream<Int> prim(r.width, r.height), rays(r.width, r.height);
+  const int64_t rows = padded_rows(rs.backend, r.width, r.height);
+  Stream<Float3> color(r.width, rows), normal(r.width, rows);
+  Stream<Float> dist(r.width, rows);
+  Stream<Int> prim(r.width, rows), rays(r.width, rows);
   k.outputs(color, dist, prim, normal, rays);
 
   const size_t npix = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
+  auto crop = [npix](auto v) {
+    v.resize(npix);
+    return v;
+  };
   std::vector<glm::dvec3> sum(spp > 1 ? npix : 0, glm::dvec3(0.0));
   const auto start = std::chrono::steady_clock::now();
   for (int s = 0; s < spp; ++s) {
     I.offset.set(sample_offset(s));
     k.execute();
-    std::vector<int32_t> n = rays.download();
+    std::vector<int32_t> n = crop(rays.download());
     for (int32_t x : n) r.rays += x;
     if (s == 0) {
-      r.color = color.download();
-      r.depth = dist.download();
-      r.prim = prim.download();
-      r.normal = normal.download();
+      r.color = crop(color.download());
+      r.depth = crop(dist.download());
+      r.prim = crop(prim.download());
+      r.normal = crop(normal.download());
       if (spp > 1)
         for (size_t p = 0; p < npix; ++p) sum[p] = glm::dvec3(r.color[p]);
     } else {
-      std::vector<glm::vec3> c = color.download();
+      std::vector<glm::vec3> c = crop(color.download());
       for (size_t p = 0; p < npix; ++p) sum[p] += glm::dvec3(c[p]);
     }
   }
@@ -709,19 +759,46 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
   return r;
 }
 
+std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Camera& camera,
+                                           int width, int height, glm::vec2 offset) {
+  Impl& I = *d_;
+  if (!I.camera_program.valid()) I.camera_program = I.capture_camera();
+  I.set_camera(camera, width, height);
+  I.offset.set(offset);
+  Kernel k = compile(I.camera_program, backend);
+  Stream<Float3> dirs(width, padded_rows(backend, width, height));
+  k.outputs(dirs);
+  k.execute();
+  std::vector<glm::vec3> d = dirs.download();
+  d.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+  return d;
+}
+
 void Tracer::intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
                        const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
                        std::vector<float>& dist) {
   Impl& I = *d_;
   if (!I.intersect_program.valid()) I.intersect_program = I.capture_intersector();
   Kernel k = compile(I.intersect_program, backend);
-  Stream<Float3> o(origins), d(dirs);
-  Stream<Int> p(static_cast<int64_t>(origins.size()));
-  Stream<Float> t(static_cast<int64_t>(origins.size()));
+  if (origins.size() != dirs.size())
+    throw std::invalid_argument("intersect: origins and directions differ in size");
+  const size_t n = origins.size();
+  prim.clear();
+  dist.clear();
+  if (n == 0) return;
+  const size_t m = static_cast<size_t>(padded_rows(backend, static_cast<int64_t>(n), 1)) * n;
+  std::vector<glm::vec3> po(origins), pd(dirs);
+  po.resize(std::max<size_t>(m, 1), glm::vec3(0.0f));
+  pd.resize(std::max<size_t>(m, 1), glm::vec3(0.0f, 0.0f, 1.0f));
+  Stream<Float3> o(po), d(pd);
+  Stream<Int> p(static_cast<int64_t>(po.size()));
+  Stream<Float> t(static_cast<int64_t>(po.size()));
   k.inputs(o, d).outputs(p, t);
   k.execute();
   prim = p.download();
   dist = t.download();
+  prim.resize(n);
+  dist.resize(n);
 }
 
 }  // namespace rt

@@ -80,6 +80,9 @@ class Tracer {
   // The generated source on a backend (compiles if needed).
   std::string source(const std::string& backend, rill::Accuracy a = rill::Accuracy::Strict);
 
+  // The camera rays the tracer casts (the kernel's own ray generation), for tests.
+  std::vector<glm::vec3> camera_rays(const std::string& backend, const Camera& camera, int width,
+                                     int height, glm::vec2 offset = glm::vec2(0.5f));
   // Traces explicit rays (origin, direction) with the closest-hit intersector only, for
   // tests: returns per ray the primitive id (-1: miss) and distance (+inf: miss).
   void intersect(const std::string& backend, const std::vector<glm::vec3>& origins,

@@ -1,0 +1,278 @@
+// Bad input: every malformed, truncated or absurd input gives a clear SceneError or a
+// documented behaviour, never a crash or a hang. (Rendering such scenes is checked per
+// backend in RenderTest.cpp.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "Grid.h"
+#include "Scene.h"
+#include "TestUtil.h"
+
+namespace rt {
+namespace {
+
+using testing::TempDir;
+
+// The message of the SceneError that f throws (fails the test if it throws none).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no SceneError";
+  return {};
+}
+
+const char* kCube =
+    "mtllib cube.mtl\n"
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "vn 0 0 -1\nvn 0 0 1\n"
+    "o cube\nusemtl red\n"
+    "f 1//1 4//1 3//1 2//1\nf 5//2 6//2 7//2 8//2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+
+TEST(BadInput, MissingFiles) {
+  TempDir dir;
+  EXPECT_NE(error_of([&] { load_obj(dir.path("nope.obj")); }).find("no such file"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { load_json(dir.path("nope.json")); }).find("no such file"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { load_scene(dir.path("nope.json")); }).find("no such file"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { load_obj(dir.dir()); }).find("directory"), std::string::npos);
+  EXPECT_NE(error_of([&] { load_json(dir.dir()); }).find("directory"), std::string::npos);
+  std::string txt = dir.file("scene.txt", "hello");
+  EXPECT_NE(error_of([&] { load_scene(txt); }).find("unknown scene type"), std::string::npos);
+  // A JSON scene naming a missing OBJ.
+  std::string json = dir.file("s.json", R"({"meshes": [{"file": "missing.obj"}]})");
+  EXPECT_NE(error_of([&] { load_json(json); }).find("missing.obj: no such file"),
+            std::string::npos);
+}
+
+TEST(BadInput, ObjIndicesOutOfRange) {
+  TempDir dir;
+  EXPECT_NE(error_of([&] {
+              load_obj(dir.file("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"));
+            }).find("refers to vertex 4, but the file has 3 vertices"),
+            std::string::npos);
+  EXPECT_FALSE(error_of([&] {
+                 load_obj(dir.file("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -5 1 2\n"));
+               }).empty());
+  EXPECT_FALSE(error_of([&] {
+                 load_obj(dir.file("c.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"));
+               }).empty());
+  EXPECT_FALSE(error_of([&] {
+                 load_obj(
+                     dir.file("d.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//2 2//1 3//1\n"));
+               }).empty());
+  EXPECT_FALSE(error_of([&] { load_obj(dir.file("e.obj", "f 1 2 3\n")); }).empty());
+}
+
+TEST(BadInput, ObjOddButAccepted) {
+  TempDir dir;
+  // Faces with fewer than 3 vertices, lines, points, unknown statements: no triangles.
+  Scene s = load_obj(dir.file("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nl 1 2\np 1\nfoo bar\n"));
+  EXPECT_EQ(s.triangle_count(), 0u);
+  EXPECT_NO_THROW(s.validate());
+  // An empty file, or only comments: an empty scene.
+  EXPECT_EQ(load_obj(dir.file("b.obj", "")).triangle_count(), 0u);
+  EXPECT_EQ(load_obj(dir.file("c.obj", "# nothing\n\n")).triangle_count(), 0u);
+  // CRLF line ends.
+  EXPECT_EQ(
+      load_obj(dir.file("d.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n")).triangle_count(),
+      1u);
+}
+
+// Cut a valid OBJ (and its MTL) at every byte: each prefix loads or fails with SceneError,
+// and whatever loads can be gridded.
+TEST(BadInput, TruncatedObjAndMtl) {
+  TempDir dir;
+  const std::string mtl = "newmtl red\nKd 0.9 0.1 0.1\nKs 0.5 0.5 0.5\nNs 64\nd 0.5\nillum 7\n";
+  const std::string obj = kCube;
+  for (size_t n = 0; n <= obj.size(); ++n) {
+    dir.file("cube.mtl", mtl);
+    std::string p = dir.file("cube.obj", obj.substr(0, n));
+    try {
+      Scene s = load_obj(p);
+      s.validate();
+      Grid g = build_grid(s, 0);
+      EXPECT_LE(g.usable, s.triangle_count());
+    } catch (const SceneError&) {
+    }
+  }
+  for (size_t n = 0; n <= mtl.size(); ++n) {
+    dir.file("cube.mtl", mtl.substr(0, n));
+    std::string p = dir.file("cube.obj", obj);
+    Scene s = load_obj(p);
+    EXPECT_EQ(s.triangle_count(), 12u);
+    EXPECT_NO_THROW(s.validate()) << "MTL cut at " << n;
+  }
+}
+
+TEST(BadInput, MalformedMtlValues) {
+  TempDir dir;
+  dir.file("m.mtl", "newmtl x\nKd abc def\nNs -5\nNi 0\nd 7\nillum 99\nKs 1e39 1 1\nnewmtl\n");
+  std::string p = dir.file("m.obj", "mtllib m.mtl\nusemtl x\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  Scene s;
+  try {
+    s = load_obj(p);
+  } catch (const SceneError&) {
+    return;  // a clear error is fine too
+  }
+  // Loaded: the values were sanitized or validate() says what is wrong.
+  try {
+    s.validate();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("material"), std::string::npos);
+  }
+}
+
+TEST(BadInput, RandomBytesAsObjAndJson) {
+  TempDir dir;
+  std::mt19937 rng(7);
+  for (int k = 0; k < 40; ++k) {
+    std::string junk(static_cast<size_t>(rng() % 400), '\0');
+    for (char& c : junk) c = static_cast<char>(rng() % 256);
+    if (k % 2 == 0) {  // mostly-plausible tokens
+      const char* tok[] = {"v ", "f ", "vn ",  "vt ",   "1 ",      "-1 ", "/",
+                           "//", "\n", "nan ", "1e40 ", "usemtl ", "o "};
+      junk.clear();
+      for (int i = 0; i < 200; ++i) junk += tok[rng() % 13];
+    }
+    std::string p = dir.file("junk.obj", junk);
+    try {
+      Scene s = load_obj(p);
+      build_grid(s, 0);
+    } catch (const SceneError&) {
+    }
+    std::string j = dir.file("junk.json", junk);
+    EXPECT_THROW(load_json(j), SceneError);
+  }
+}
+
+TEST(BadInput, NonFiniteAndDegenerateTrianglesAreLeftOut) {
+  Scene s;
+  s.add_material(Material{});
+  const float nan = std::nanf(""), inf = INFINITY;
+  s.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);    // 0: fine
+  s.add_triangle({nan, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);  // 1: NaN
+  s.add_triangle({0, 0, 0}, {inf, 0, 0}, {0, 1, 0}, 0);  // 2: infinite
+  s.add_triangle({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, 0);    // 3: collinear
+  s.add_triangle({5, 5, 5}, {5, 5, 5}, {5, 5, 5}, 0);    // 4: a point
+  s.add_triangle({0, 0, 1}, {1, 0, 1}, {0, 1, 1}, 0);    // 5: fine
+  EXPECT_NO_THROW(s.validate());
+  Grid g = build_grid(s, 0);
+  EXPECT_EQ(g.usable, 2u);
+  EXPECT_EQ(g.non_finite, 2u);
+  EXPECT_EQ(g.degenerate, 2u);
+  for (int32_t t : g.elements) EXPECT_TRUE(t == 0 || t == 5) << t;
+  // The grid box ignores the bad ones.
+  EXPECT_LT(g.hi.x, 1.1f);
+  EXPECT_GT(g.lo.z, -0.1f);
+}
+
+TEST(BadInput, NanFromTheObjFile) {
+  TempDir dir;
+  Scene s =
+      load_obj(dir.file("n.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nv 1e39 0 0\nf 1 2 3\nf 4 2 3\n"));
+  EXPECT_EQ(s.triangle_count(), 2u);
+  EXPECT_NO_THROW(build_grid(s, 0));
+}
+
+TEST(BadInput, AbsurdSizesAndOptions) {
+  Scene s = builtin_scene("thesis-a");
+  auto bad = [&](auto change, const char* what) {
+    Scene c = s;
+    change(c);
+    EXPECT_FALSE(error_of([&] { c.validate(); }).empty()) << what;
+  };
+  bad([](Scene& c) { c.width = 0; }, "width 0");
+  bad([](Scene& c) { c.height = -3; }, "negative height");
+  bad([](Scene& c) { c.width = 100000; }, "huge width");
+  bad([](Scene& c) { c.width = c.height = 16000; }, "too many pixels");
+  bad([](Scene& c) { c.options.max_depth = 1000; }, "max_depth");
+  bad([](Scene& c) { c.options.spp = 0; }, "spp");
+  bad([](Scene& c) { c.options.grid = 100000; }, "grid");
+  bad([](Scene& c) { c.camera.fov_y = 0; }, "fov 0");
+  bad([](Scene& c) { c.camera.fov_y = 180; }, "fov 180");
+  bad([](Scene& c) { c.camera.fov_y = std::nanf(""); }, "fov NaN");
+  bad([](Scene& c) { c.camera.look_at = c.camera.eye; }, "eye == look_at");
+  bad([](Scene& c) { c.camera.up = c.camera.look_at - c.camera.eye; }, "up parallel");
+  bad([](Scene& c) { c.camera.eye.x = INFINITY; }, "eye inf");
+  bad([](Scene& c) { c.lights[0].color.y = std::nanf(""); }, "light NaN");
+  bad([](Scene& c) { c.materials[0].reflect = 0.7f, c.materials[0].transmit = 0.7f; },
+      "reflect+transmit");
+  bad([](Scene& c) { c.materials[0].ior = 0; }, "ior");
+  bad([](Scene& c) { c.background.z = -INFINITY; }, "background");
+}
+
+TEST(BadInput, MalformedJson) {
+  auto err = [](const std::string& text) {
+    return error_of([&] { parse_json_scene(text, ".", "t.json"); });
+  };
+  EXPECT_NE(err("").find("invalid JSON"), std::string::npos);
+  EXPECT_NE(err("{").find("invalid JSON"), std::string::npos);
+  EXPECT_NE(err("{\"camera\": {\"eye\": [0, 1,").find("invalid JSON"), std::string::npos);
+  EXPECT_NE(err("[]").find("must be an object"), std::string::npos);
+  EXPECT_NE(err("{\"camrea\": {}}").find("unknown key 'camrea'"), std::string::npos);
+  EXPECT_NE(err("{\"camera\": 5}").find("camera must be an object"), std::string::npos);
+  EXPECT_NE(err("{\"camera\": {\"eye\": [0, 1]}}").find("array of 3 numbers"), std::string::npos);
+  EXPECT_NE(err("{\"camera\": {\"eye\": [0, \"1\", 2]}}").find("must be a number"),
+            std::string::npos);
+  EXPECT_NE(err("{\"camera\": {\"fov_y\": 1e400}}").find("t.json"), std::string::npos);
+  EXPECT_NE(err("{\"camera\": {\"fov_y\": 200}}").find("fov_y"), std::string::npos);
+  EXPECT_NE(err("{\"image\": {\"width\": -5}}").find("image.width"), std::string::npos);
+  EXPECT_NE(err("{\"image\": {\"width\": 1.5}}").find("integer"), std::string::npos);
+  EXPECT_NE(err("{\"image\": {\"width\": 99999999999}}").find("image.width"), std::string::npos);
+  EXPECT_NE(err("{\"meshes\": {}}").find("meshes must be an array"), std::string::npos);
+  EXPECT_NE(err("{\"meshes\": [{}]}").find("needs \"file\""), std::string::npos);
+  EXPECT_NE(err("{\"meshes\": [{\"shape\": \"cone\"}]}").find("unknown"), std::string::npos);
+  EXPECT_NE(err("{\"meshes\": [{\"shape\": \"box\", \"material\": \"nope\"}]}").find("not defined"),
+            std::string::npos);
+  EXPECT_NE(err("{\"meshes\": [{\"shape\": \"sphere\", \"radius\": -1}]}").find("radius"),
+            std::string::npos);
+  EXPECT_NE(err("{\"meshes\": [{\"shape\": \"sphere\", \"slices\": 1000000}]}").find("slices"),
+            std::string::npos);
+  EXPECT_NE(
+      err("{\"meshes\": [{\"shape\": \"box\", \"transform\": {\"scale\": 0}}]}").find("scale"),
+      std::string::npos);
+  EXPECT_NE(err("{\"lights\": [{}]}").find("needs a position"), std::string::npos);
+  EXPECT_NE(err("{\"materials\": {\"m\": {\"reflect\": 0.8, \"transmit\": 0.8}}, "
+                "\"meshes\": [{\"shape\": \"box\", \"material\": \"m\"}]}")
+                .find("reflect"),
+            std::string::npos);
+  EXPECT_NE(err("{\"options\": {\"grid\": \"fine\"}}").find("options.grid"), std::string::npos);
+  EXPECT_NE(err("{\"options\": {\"max_depth\": 65}}").find("max_depth"), std::string::npos);
+  EXPECT_NE(err("{\"builtin\": \"nope\"}").find("unknown built-in"), std::string::npos);
+  // Deep nesting: an error, not a stack overflow.
+  std::string deep(100000, '[');
+  EXPECT_FALSE(err(deep).empty());
+  std::string deep_ok = "{\"x\": " + std::string(20000, '[') + std::string(20000, ']') + "}";
+  EXPECT_NE(err(deep_ok).find("unknown key"), std::string::npos);
+}
+
+TEST(BadInput, TruncatedJson) {
+  const std::string full = R"({"camera": {"eye": [0, 1, 5], "look_at": [0, 1, 0], "fov_y": 45},
+    "image": {"width": 16, "height": 16},
+    "materials": {"m": {"diffuse": [0.8, 0.2, 0.2], "reflect": 0.5}},
+    "meshes": [{"shape": "box", "material": "m"}],
+    "lights": [{"position": [2, 4, 3]}], "background": [0.1, 0.1, 0.15]})";
+  EXPECT_NO_THROW(parse_json_scene(full, ".", "full.json"));
+  for (size_t n = 0; n < full.size(); ++n)
+    EXPECT_THROW(parse_json_scene(full.substr(0, n), ".", "cut.json"), SceneError) << n;
+}
+
+TEST(BadInput, EmptyScene) {
+  Scene s = parse_json_scene("{}", ".", "empty.json");
+  EXPECT_EQ(s.triangle_count(), 0u);
+  EXPECT_NO_THROW(s.validate());
+  Grid g = build_grid(s, 0);
+  EXPECT_TRUE(g.empty());
+  EXPECT_EQ(g.voxels.size(), 1u);
+}
+
+}  // namespace
+}  // namespace rt

@@ -1,0 +1,83 @@
+// rill-trace on bad command lines and bad files: it exits (no crash, no hang) with a
+// non-zero status and one line on stderr.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "TestUtil.h"
+
+namespace rt {
+namespace {
+
+#ifdef RILL_TRACE_EXE
+
+struct Run {
+  int status = -1;  // exit status, or -1 if killed by a signal
+  std::string err;
+};
+
+Run run(const std::string& args, const testing::TempDir& dir) {
+  const std::string err = dir.path("stderr.txt");
+  // timeout: a hang fails the test instead of the whole suite.
+  std::string cmd = "cd '" + dir.dir() + "' && timeout 60 '" RILL_TRACE_EXE "' " + args +
+                    " > /dev/null 2> '" + err + "'";
+  int rc = std::system(cmd.c_str());
+  Run r;
+  if (WIFEXITED(rc)) r.status = WEXITSTATUS(rc);
+  std::ifstream f(err);
+  std::stringstream s;
+  s << f.rdbuf();
+  r.err = s.str();
+  return r;
+}
+
+void expect_clean_failure(const std::string& args, const std::string& needle = "") {
+  testing::TempDir dir;
+  dir.file("bad.json", "{\"camera\": {\"eye\": [0, 1,");
+  dir.file("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
+  dir.file("nan.json", "{\"camera\": {\"fov_y\": 0}}");
+  Run r = run(args, dir);
+  SCOPED_TRACE(args);
+  EXPECT_TRUE(r.status == 1 || r.status == 2) << "status " << r.status << ": " << r.err;
+  ASSERT_FALSE(r.err.empty());
+  EXPECT_EQ(r.err.rfind("rill-trace: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
+  if (!needle.empty()) {
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+  }
+}
+
+TEST(Cli, BadCommandLinesAndInputs) {
+  expect_clean_failure("");
+  expect_clean_failure("render");
+  expect_clean_failure("frobnicate");
+  expect_clean_failure("render builtin:thesis-a --frobnicate");
+  expect_clean_failure("render no-such-scene.json", "no such file");
+  expect_clean_failure("render builtin:nope", "unknown built-in");
+  expect_clean_failure("render bad.json", "invalid JSON");
+  expect_clean_failure("render bad.obj", "vertex 9");
+  expect_clean_failure("render nan.json", "fov_y");
+  expect_clean_failure("render builtin:thesis-a --size 0x10", "--size");
+  expect_clean_failure("render builtin:thesis-a --size 100000x100000", "--size");
+  expect_clean_failure("render builtin:thesis-a --size banana", "--size");
+  expect_clean_failure("render builtin:thesis-a --grid 0", "--grid");
+  expect_clean_failure("render builtin:thesis-a --grid 99999", "--grid");
+  expect_clean_failure("render builtin:thesis-a --spp 0");
+  expect_clean_failure("render builtin:thesis-a --max-depth -3");
+  expect_clean_failure("render builtin:thesis-a --accuracy sloppy --size 4x4");
+  expect_clean_failure("render builtin:thesis-a --backend nope --size 4x4", "nope");
+  expect_clean_failure("render builtin:thesis-a --strategy quantum --size 4x4", "strategy");
+  expect_clean_failure("render builtin:thesis-a --size 4x4 --out /no/such/dir/x.png", "x.png");
+}
+
+#else
+TEST(Cli, BadCommandLinesAndInputs) {
+  GTEST_SKIP() << "rill-trace is not built";
+}
+#endif
+
+}  // namespace
+}  // namespace rt

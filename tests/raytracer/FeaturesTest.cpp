@@ -1,0 +1,166 @@
+// Only what the scene calls for: the host decides at capture time which code the tracer
+// kernel contains. Checked on the captured IR (Program::ir()).
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "Grid.h"
+#include "Tracer.h"
+
+namespace rt {
+namespace {
+
+struct IrStats {
+  int statements = 0, loops = 0, pows = 0, gathers = 0;
+  std::set<std::string> arrays;
+};
+
+void walk(const rill::ir::Block& b, IrStats& s) {
+  for (const rill::ir::Stmt& st : b) {
+    if (st.kind == rill::ir::StmtKind::Assign) {
+      s.pows += st.op == rill::ir::Op::Pow;
+      s.gathers += st.op == rill::ir::Op::Gather;
+    }
+    walk(st.then_body, s);
+    walk(st.else_body, s);
+    walk(st.cond_body, s);
+    walk(st.body, s);
+    walk(st.step, s);
+  }
+}
+
+IrStats stats(const Scene& scene) {
+  Grid g = build_grid(scene, 4);
+  Tracer t(scene, g);
+  const rill::ir::Function& fn = t.program().ir();
+  IrStats s;
+  s.statements = rill::ir::count_statements(fn.body);
+  s.loops = rill::ir::count_loops(fn.body);
+  walk(fn.body, s);
+  for (const auto& a : fn.arrays) s.arrays.insert(a.name);
+  return s;
+}
+
+// A diffuse box on a floor, one light.
+Scene base() {
+  Scene s;
+  s.name = "features";
+  int m = s.add_material(Material{});
+  add_box(s, {-1, 0, -1}, {1, 1, 1}, m);
+  add_quad(s, {-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, m);
+  s.lights.push_back(Light{{2, 5, 3}, glm::vec3(1.0f)});
+  s.camera = Camera{{0, 2, 6}, {0, 0.5f, 0}, {0, 1, 0}, 45};
+  s.has_camera = true;
+  return s;
+}
+
+TEST(Features, DiffuseSceneHasNoReflectionRefractionOrHighlights) {
+  Scene s = base();
+  Features f = scene_features(s);
+  EXPECT_TRUE(f.geometry && f.lights && f.shadows);
+  EXPECT_FALSE(f.reflection || f.refraction || f.specular || f.vertex_normals || f.vertex_colors);
+  EXPECT_EQ(f.stack, 0);
+  IrStats d = stats(s);
+  // Loops: the tracer's RILL_DO, the 3D-DDA's RILL_DO, the voxel's triangle RILL_FOR.
+  EXPECT_EQ(d.loops, 3);
+  EXPECT_EQ(d.pows, 0);
+  EXPECT_EQ(d.arrays.count("mat_ks"), 0u);
+  EXPECT_EQ(d.arrays.count("tri_n0"), 0u);
+  EXPECT_EQ(d.arrays.count("light_pos"), 1u);
+
+  // A reflective material adds the reflection code (and only that).
+  Scene r = base();
+  r.materials[0].reflect = 0.5f;
+  IrStats dr = stats(r);
+  EXPECT_TRUE(scene_features(r).reflection);
+  EXPECT_FALSE(scene_features(r).refraction);
+  EXPECT_GT(dr.statements, d.statements);
+  EXPECT_EQ(dr.loops, 3);
+
+  // Glass adds refraction and the ray stack on top.
+  Scene g = base();
+  g.materials[0].transmit = 0.9f;
+  Features fg = scene_features(g);
+  EXPECT_TRUE(fg.refraction && fg.reflection);
+  EXPECT_EQ(fg.stack, kRayStack);
+  IrStats dg = stats(g);
+  EXPECT_GT(dg.statements, dr.statements);
+  EXPECT_EQ(dg.loops, 3);
+
+  // Highlights: a pow and the specular colours.
+  Scene h = base();
+  h.materials[0].specular = glm::vec3(0.5f);
+  IrStats dh = stats(h);
+  EXPECT_GT(dh.pows, 0);
+  EXPECT_EQ(dh.arrays.count("mat_ks"), 1u);
+}
+
+TEST(Features, NoLightsNoShadowRays) {
+  Scene s = base();
+  IrStats with = stats(s);
+  s.lights.clear();
+  Features f = scene_features(s);
+  EXPECT_FALSE(f.lights || f.shadows || f.specular);
+  IrStats without = stats(s);
+  EXPECT_EQ(without.arrays.count("light_pos"), 0u);
+  EXPECT_EQ(without.arrays.count("light_col"), 0u);
+  EXPECT_LT(without.statements, with.statements);
+  EXPECT_EQ(without.loops, 3);
+  // Specular materials make no highlight code without lights.
+  s.materials[0].specular = glm::vec3(1.0f);
+  EXPECT_EQ(stats(s).pows, 0);
+}
+
+TEST(Features, LightsWithoutShadowsLoopOverLights) {
+  Scene s = base();
+  s.options.shadows = false;
+  Features f = scene_features(s);
+  EXPECT_TRUE(f.lights);
+  EXPECT_FALSE(f.shadows);
+  IrStats d = stats(s);
+  EXPECT_EQ(d.loops, 4);  // + the RILL_FOR over the lights
+  EXPECT_EQ(d.arrays.count("light_pos"), 1u);
+}
+
+TEST(Features, VertexNormalsAndColors) {
+  Scene s = base();
+  glm::vec3 n[3] = {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}};
+  glm::vec3 c[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  s.add_triangle({0, 2, 0}, {1, 2, 0}, {0, 2, 1}, 0, n, c);
+  Features f = scene_features(s);
+  EXPECT_TRUE(f.vertex_normals && f.vertex_colors);
+  IrStats d = stats(s);
+  EXPECT_EQ(d.arrays.count("tri_n0"), 1u);
+  EXPECT_EQ(d.arrays.count("tri_c0"), 1u);
+  s.options.smooth_normals = false;
+  IrStats flat = stats(s);
+  EXPECT_EQ(flat.arrays.count("tri_n0"), 0u);
+  EXPECT_LT(flat.statements, d.statements);
+}
+
+TEST(Features, EmptySceneHasNoIntersector) {
+  Scene s = builtin_scene("empty");
+  Features f = scene_features(s);
+  EXPECT_FALSE(f.geometry);
+  IrStats d = stats(s);
+  EXPECT_EQ(d.loops, 1);  // the tracer's loop only
+  EXPECT_EQ(d.gathers, 0);
+  EXPECT_TRUE(d.arrays.empty());
+  // Only degenerate triangles: the same.
+  Scene z = builtin_scene("empty");
+  z.add_material(Material{});
+  z.add_triangle({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, 0);
+  EXPECT_FALSE(scene_features(z).geometry);
+  EXPECT_EQ(stats(z).loops, 1);
+}
+
+TEST(Features, UnusedMaterialsDoNotCount) {
+  Scene s = base();
+  Material glass;
+  glass.transmit = 1.0f;
+  s.add_material(glass);  // defined, used by no triangle
+  EXPECT_FALSE(scene_features(s).refraction);
+}
+
+}  // namespace
+}  // namespace rt

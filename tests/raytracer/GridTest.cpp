@@ -1,0 +1,186 @@
+// The uniform grid: the exact triangle-box test, the voxel lists, the resolution heuristic,
+// and (per backend) the kernel's 3D-DDA traversal against brute force on random rays.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "Grid.h"
+#include "TestUtil.h"
+#include "Tracer.h"
+
+namespace rt {
+namespace {
+
+glm::dvec3 rnd3(std::mt19937& r, double lo, double hi) {
+  std::uniform_real_distribution<double> u(lo, hi);
+  return glm::dvec3(u(r), u(r), u(r));
+}
+
+TEST(Grid, TriangleBoxOverlapCases) {
+  const glm::dvec3 c(0.0), h(1.0);
+  auto tri = [](glm::dvec3 a, glm::dvec3 b, glm::dvec3 d) {
+    return std::array<glm::dvec3, 3>{a, b, d};
+  };
+  auto overlap = [&](const std::array<glm::dvec3, 3>& t) {
+    return triangle_box_overlap(c, h, t.data());
+  };
+  EXPECT_TRUE(overlap(tri({-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0, 0.5, 0})));  // inside
+  EXPECT_TRUE(overlap(tri({-5, -5, 0}, {5, -5, 0}, {0, 5, 0})));  // box inside the triangle
+  EXPECT_TRUE(overlap(tri({1, -5, -5}, {1, 5, -5}, {1, 0, 5})));  // touching a face
+  EXPECT_FALSE(overlap(tri({1.01, -5, -5}, {1.01, 5, -5}, {1.01, 0, 5})));  // just off a face
+  EXPECT_FALSE(overlap(tri({2, 2, 2}, {3, 2, 2}, {2, 3, 2})));              // bounding boxes apart
+  // Bounding boxes overlap, the plane misses the box: separated by the normal.
+  EXPECT_FALSE(overlap(tri({3.1, 0, 0}, {0, 3.1, 0}, {0, 0, 3.1})));
+  EXPECT_TRUE(overlap(tri({3, 0, 0}, {0, 3, 0}, {0, 0, 3})));  // touching the corner
+  EXPECT_TRUE(overlap(tri({2.9, 0, 0}, {0, 2.9, 0}, {0, 0, 2.9})));
+  // Separated only by an edge x axis product: a thin sliver passing a box edge.
+  EXPECT_FALSE(overlap(tri({2.5, 0, -3}, {0, 2.5, -3}, {1.25, 1.25, 3})));
+  EXPECT_TRUE(overlap(tri({1.9, 0, -3}, {0, 1.9, -3}, {0.95, 0.95, 3})));
+}
+
+// Against sampling: if a sampled point of the triangle lies in the box, the test must say
+// overlap; if the test says no overlap, no sample may lie in the box.
+TEST(Grid, TriangleBoxOverlapAgreesWithSampling) {
+  std::mt19937 r(42);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int overlaps = 0;
+  for (int k = 0; k < 3000; ++k) {
+    glm::dvec3 t[3] = {rnd3(r, -2, 2), rnd3(r, -2, 2), rnd3(r, -2, 2)};
+    glm::dvec3 c = rnd3(r, -1, 1), h = rnd3(r, 0.05, 1.0);
+    bool ov = triangle_box_overlap(c, h, t);
+    overlaps += ov;
+    for (int s = 0; s < 200 && !ov; ++s) {
+      double a = u(r), b = u(r);
+      if (a + b > 1) a = 1 - a, b = 1 - b;
+      glm::dvec3 p = t[0] + a * (t[1] - t[0]) + b * (t[2] - t[0]);
+      glm::dvec3 q = glm::abs(p - c);
+      ASSERT_FALSE(q.x <= h.x && q.y <= h.y && q.z <= h.z) << "case " << k;
+    }
+  }
+  EXPECT_GT(overlaps, 300);
+}
+
+TEST(Grid, EveryTriangleIsInTheVoxelsItTouches) {
+  Scene s = builtin_scene("thesis-b");
+  for (int res : {0, 1, 7, 32}) {
+    SCOPED_TRACE(res);
+    Grid g = build_grid(s, res);
+    ASSERT_EQ(static_cast<int64_t>(g.voxels.size()), g.voxel_count());
+    for (const glm::ivec2& v : g.voxels) {
+      ASSERT_GE(v.x, 0);
+      ASSERT_LE(static_cast<size_t>(v.x + v.y), g.elements.size());
+      ASSERT_TRUE(std::is_sorted(g.elements.begin() + v.x, g.elements.begin() + v.x + v.y));
+    }
+    std::mt19937 r(1);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (size_t t = 0; t < s.triangle_count(); t += 3) {
+      for (int k = 0; k < 10; ++k) {
+        double a = u(r), b = u(r);
+        if (a + b > 1) a = 1 - a, b = 1 - b;
+        glm::dvec3 p0(s.positions[3 * t]), p1(s.positions[3 * t + 1]), p2(s.positions[3 * t + 2]);
+        glm::dvec3 p = p0 + a * (p1 - p0) + b * (p2 - p0);
+        glm::ivec3 v =
+            glm::clamp(glm::ivec3(glm::floor((p - glm::dvec3(g.lo)) / glm::dvec3(g.cell))),
+                       glm::ivec3(0), g.res - 1);
+        const glm::ivec2 range =
+            g.voxels[static_cast<size_t>(v.x + g.res.x * (v.y + g.res.y * v.z))];
+        ASSERT_TRUE(std::binary_search(g.elements.begin() + range.x,
+                                       g.elements.begin() + range.x + range.y,
+                                       static_cast<int32_t>(t)))
+            << "triangle " << t;
+      }
+    }
+  }
+}
+
+TEST(Grid, ResolutionHeuristic) {
+  // About kGridDensity voxels per triangle, in cubes.
+  glm::ivec3 r = auto_grid_resolution(glm::dvec3(10.0), 2000);
+  EXPECT_EQ(r, glm::ivec3(20));
+  r = auto_grid_resolution(glm::dvec3(20.0, 10.0, 5.0), 2000);
+  EXPECT_EQ(r.x, 2 * r.y);
+  EXPECT_EQ(r.y, 2 * r.z);
+  EXPECT_EQ(auto_grid_resolution(glm::dvec3(1.0), 1), glm::ivec3(2));
+  EXPECT_EQ(auto_grid_resolution(glm::dvec3(1.0), 0), glm::ivec3(1));
+  // Flat scenes and huge counts stay within the limits.
+  r = auto_grid_resolution(glm::dvec3(10.0, 0.0, 10.0), 1000);
+  EXPECT_GE(r.y, 1);
+  r = auto_grid_resolution(glm::dvec3(1.0), 100000000);
+  EXPECT_LE(int64_t{r.x} * r.y * r.z, int64_t{1} << 22);
+  EXPECT_EQ(build_grid(builtin_scene("thesis-a"), 9).res, glm::ivec3(9));
+}
+
+// ---- the kernel's traversal against brute force --------------------------------------------
+
+class GridTraversal : public ::testing::TestWithParam<std::string> {};
+
+// Closest hit by testing every triangle, with the kernel's float arithmetic and tie rule.
+void brute_force(const Scene& s, const glm::vec3& o, const glm::vec3& d, int32_t& id, float& t) {
+  id = -1;
+  t = INFINITY;
+  for (size_t k = 0; k < s.triangle_count(); ++k) {
+    const glm::vec3* p = &s.positions[3 * k];
+    if (!triangle_usable(p[0], p[1], p[2])) continue;
+    float tk;
+    if (testing::hit_triangle_f(o, d, p[0], p[1] - p[0], p[2] - p[0], tk) && tk < t) {
+      t = tk;
+      id = static_cast<int32_t>(k);
+    }
+  }
+}
+
+TEST_P(GridTraversal, FindsTheSameClosestHitAsBruteForce) {
+  RT_REQUIRE_BACKEND(GetParam());
+  for (const char* name : {"thesis-b", "glass"}) {
+    Scene s = builtin_scene(name);
+    glm::vec3 lo, hi;
+    ASSERT_TRUE(scene_bounds(s, lo, hi));
+    std::mt19937 r(99);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<glm::vec3> o, d;
+    const glm::vec3 ext = hi - lo;
+    for (int k = 0; k < 1500; ++k) {
+      // Origins inside and around the box; some directions along axes and diagonals.
+      glm::vec3 p = lo - 0.2f * ext + glm::vec3(u(r), u(r), u(r)) * 1.4f * ext;
+      glm::vec3 q = lo + glm::vec3(u(r), u(r), u(r)) * ext;
+      glm::vec3 dir = q - p;
+      if (k % 10 == 1) dir = glm::vec3(0.0f, 0.0f, (k & 2) ? 1.0f : -1.0f);
+      if (k % 10 == 2) dir = glm::vec3((k & 4) ? 1.0f : -1.0f, 0.0f, 0.0f);
+      if (k % 10 == 3) dir = glm::vec3(0.0f, -1.0f, 0.0f);
+      if (k % 10 == 4) dir = glm::vec3(1.0f, 1.0f, 0.0f);
+      float l = std::sqrt(testing::dotf(dir, dir));
+      if (!(l > 0)) continue;
+      o.push_back(p);
+      d.push_back(dir / l);
+    }
+    for (int res : {0, 1, 13}) {
+      SCOPED_TRACE(std::string(name) + " grid " + std::to_string(res));
+      Grid g = build_grid(s, res);
+      Tracer tracer(s, g);
+      std::vector<int32_t> prim;
+      std::vector<float> dist;
+      tracer.intersect(GetParam(), o, d, prim, dist);
+      int hits = 0, wrong = 0;
+      for (size_t k = 0; k < o.size(); ++k) {
+        int32_t id;
+        float t;
+        brute_force(s, o[k], d[k], id, t);
+        hits += id >= 0;
+        if (prim[k] != id || (id >= 0 && dist[k] != t)) {
+          if (++wrong <= 5)
+            ADD_FAILURE() << "ray " << k << ": grid " << prim[k] << " at " << dist[k]
+                          << ", brute force " << id << " at " << t;
+        }
+      }
+      EXPECT_EQ(wrong, 0);
+      EXPECT_GT(hits, static_cast<int>(o.size()) / 3);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, GridTraversal, ::testing::ValuesIn(testing::backend_names()),
+                         [](const auto& info) { return info.param; });
+
+}  // namespace
+}  // namespace rt

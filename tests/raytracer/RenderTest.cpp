@@ -1,0 +1,287 @@
+// Renders, per backend: camera rays bit for bit as design.md defines them, depth and
+// primitive-id AOVs against a brute-force double-precision reference, every output
+// bitwise identical to the CPU backend's (strict mode), and scenes with bad geometry.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "Camera.h"
+#include "Grid.h"
+#include "TestUtil.h"
+#include "Tracer.h"
+
+namespace rt {
+namespace {
+
+class Render : public ::testing::TestWithParam<std::string> {};
+
+// design.md section 4, written out again here, independently of Camera.cpp.
+glm::vec3 design_ray(const Camera& c, int W, int H, int i, int j) {
+  auto dot = [](glm::vec3 a, glm::vec3 b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; };
+  auto normalize = [&](glm::vec3 v) {
+    float l = std::sqrt(dot(v, v));
+    return glm::vec3(v.x / l, v.y / l, v.z / l);
+  };
+  auto cross = [](glm::vec3 a, glm::vec3 b) {
+    return glm::vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+  };
+  glm::vec3 forward = normalize(c.look_at - c.eye);
+  glm::vec3 right = normalize(cross(forward, c.up));
+  glm::vec3 true_up = cross(right, forward);
+  float a = static_cast<float>(W) / static_cast<float>(H);
+  float arg = c.fov_y * 0.5f * 0.0174532924f;
+  float t = static_cast<float>(std::tan(static_cast<double>(arg)));
+  float sx = ((static_cast<float>(i) + 0.5f) / static_cast<float>(W) * 2.0f - 1.0f) * t * a;
+  float sy = (1.0f - (static_cast<float>(j) + 0.5f) / static_cast<float>(H) * 2.0f) * t;
+  glm::vec3 d;
+  for (int k = 0; k < 3; ++k) d[k] = (forward[k] + sx * right[k]) + sy * true_up[k];
+  return normalize(d);
+}
+
+bool same_bits(const glm::vec3& a, const glm::vec3& b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+TEST(Camera, HostFrameMatchesTheFormula) {
+  Camera c{{1.5f, 2.25f, 7.0f}, {-0.3f, 0.7f, 0.1f}, {0.1f, 1.0f, 0.05f}, 53.7f};
+  CameraFrame f = camera_frame(c, 37, 23);
+  for (int j = 0; j < 23; ++j)
+    for (int i = 0; i < 37; ++i)
+      ASSERT_TRUE(same_bits(camera_ray(f, i, j), design_ray(c, 37, 23, i, j)));
+  // t is tan evaluated in double, rounded once.
+  EXPECT_EQ(f.tan_half,
+            static_cast<float>(std::tan(static_cast<double>(53.7f * 0.5f * 0.0174532924f))));
+}
+
+TEST_P(Render, CameraRaysBitForBit) {
+  RT_REQUIRE_BACKEND(GetParam());
+  Scene s = builtin_scene("thesis-a");
+  Grid g = build_grid(s, 2);
+  Tracer tracer(s, g);
+  const Camera cams[] = {
+      s.camera,
+      Camera{{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, {0.0f, 1.0f, 0.0f}, 90.0f},
+      Camera{{1.5f, 2.25f, 7.0f}, {-0.3f, 0.7f, 0.1f}, {0.1f, 1.0f, 0.05f}, 53.7f},
+      Camera{{-3e3f, 10.0f, 1e-3f}, {2.0f, -1.0f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1.0f},
+      Camera{{0.1f, 0.2f, 0.3f}, {0.3f, 0.2f, 0.1f}, {1.0f, 1.0f, 1.0f}, 170.0f},
+  };
+  const glm::ivec2 sizes[] = {{32, 32}, {37, 23}, {5, 64}, {64, 3}, {1, 1}};
+  int n = 0;
+  for (const Camera& c : cams)
+    for (const glm::ivec2& sz : sizes) {
+      std::vector<glm::vec3> got = tracer.camera_rays(GetParam(), c, sz.x, sz.y);
+      ASSERT_EQ(got.size(), static_cast<size_t>(sz.x * sz.y));
+      for (int j = 0; j < sz.y; ++j)
+        for (int i = 0; i < sz.x; ++i) {
+          glm::vec3 want = design_ray(c, sz.x, sz.y, i, j);
+          const glm::vec3& d = got[static_cast<size_t>(j * sz.x + i)];
+          ASSERT_TRUE(same_bits(d, want))
+              << "camera " << n << " size " << sz.x << "x" << sz.y << " pixel (" << i << ", " << j
+              << "): " << d.x << " " << d.y << " " << d.z << " vs " << want.x << " " << want.y
+              << " " << want.z;
+        }
+      ++n;
+    }
+}
+
+// The brute-force double-precision reference for the camera rays: closest hit over every
+// triangle. Pixels whose answer is fragile (the ray passes within 1e-5 of a triangle edge in
+// barycentric terms, or two surfaces lie within 1e-5 relative distance) are not compared.
+struct Reference {
+  std::vector<int32_t> prim;
+  std::vector<double> depth;
+  std::vector<uint8_t> fragile;
+};
+
+Reference reference(const Scene& s, int W, int H) {
+  Reference r;
+  CameraFrame f = camera_frame(s.camera, W, H);
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      glm::dvec3 o(f.eye), d(camera_ray(f, i, j));
+      double best = INFINITY, second = INFINITY;
+      int32_t id = -1;
+      bool fragile = false;
+      for (size_t k = 0; k < s.triangle_count(); ++k) {
+        const glm::vec3* p = &s.positions[3 * k];
+        if (!triangle_usable(p[0], p[1], p[2])) continue;
+        double t, margin;
+        if (!testing::hit_triangle_d(o, d, glm::dvec3(p[0]), glm::dvec3(p[1]), glm::dvec3(p[2]), t,
+                                     margin))
+          continue;
+        if (std::fabs(margin) < 1e-5) fragile = true;
+        if (margin < 0) continue;
+        if (t < best) {
+          second = best;
+          best = t;
+          id = static_cast<int32_t>(k);
+        } else if (t < second) {
+          second = t;
+        }
+      }
+      if (id >= 0 && second - best < 1e-5 * best) fragile = true;
+      r.prim.push_back(id);
+      r.depth.push_back(best);
+      r.fragile.push_back(fragile);
+    }
+  return r;
+}
+
+// An OBJ with polygons (fanned) and a smooth sphere, loaded from a file.
+Scene obj_scene(const testing::TempDir& dir) {
+  std::string obj =
+      "v -2 0 -2\nv 2 0 -2\nv 2.5 0 0\nv 2 0 2\nv -2 0 2\nv -2.5 0 0\n"  // a hexagon floor
+      "v -1 0 -1\nv 1 0 -1\nv 0 1.5 0\nv 1 0 1\nv -1 0 1\n"              // a pyramid
+      "o floor\nf 1 2 3 4 5 6\n"
+      "o pyramid\nf 7 8 9\nf 8 10 9\nf 10 11 9\nf 11 7 9\nf 7 11 10 8\n";
+  dir.file("scene.obj", obj);
+  std::string json = dir.file("scene.json", R"({
+    "camera": {"eye": [1.5, 2.5, 5], "look_at": [0, 0.5, 0], "fov_y": 40},
+    "image": {"width": 32, "height": 24},
+    "meshes": [{"file": "scene.obj"},
+               {"shape": "sphere", "center": [1.4, 0.6, 0.9], "radius": 0.6, "slices": 12, "stacks": 6,
+                "smooth": false}],
+    "lights": [{"position": [3, 5, 4]}]
+  })");
+  return load_json(json);
+}
+
+// Renders, and checks the AOVs against the reference.
+RenderResult render_checked(const Scene& s, const std::string& backend, int W, int H) {
+  Grid g = build_grid(s, s.options.grid);
+  Tracer tracer(s, g);
+  RenderSettings rs;
+  rs.backend = backend;
+  rs.width = W;
+  rs.height = H;
+  RenderResult r = tracer.render(rs, s.camera);
+  Reference ref = reference(s, W, H);
+  int compared = 0, hits = 0;
+  for (size_t p = 0; p < ref.prim.size(); ++p) {
+    EXPECT_TRUE(std::isfinite(r.color[p].x) && std::isfinite(r.color[p].y) &&
+                std::isfinite(r.color[p].z))
+        << "pixel " << p;
+    if (ref.fragile[p]) continue;
+    ++compared;
+    EXPECT_EQ(r.prim[p], ref.prim[p]) << s.name << " pixel " << p % W << ", " << p / W;
+    if (ref.prim[p] < 0) {
+      EXPECT_TRUE(std::isinf(r.depth[p]) && r.depth[p] > 0) << "pixel " << p;
+    } else {
+      ++hits;
+      EXPECT_NEAR(r.depth[p], ref.depth[p], 2e-5 * ref.depth[p]) << s.name << " pixel " << p;
+    }
+  }
+  EXPECT_GT(compared, static_cast<int>(ref.prim.size() * 8 / 10))
+      << s.name << ": too many fragile pixels";
+  EXPECT_GT(hits, 0) << s.name;
+  return r;
+}
+
+// Bitwise equality, flushing denormals on both sides (design.md: a backend may flush them).
+float flush(float x) {
+  return std::fpclassify(x) == FP_SUBNORMAL ? std::copysign(0.0f, x) : x;
+}
+bool same(float a, float b) {
+  return std::bit_cast<uint32_t>(flush(a)) == std::bit_cast<uint32_t>(flush(b));
+}
+
+void expect_identical(const RenderResult& a, const RenderResult& b, const std::string& what) {
+  ASSERT_EQ(a.color.size(), b.color.size());
+  int diff = 0;
+  for (size_t p = 0; p < a.color.size(); ++p) {
+    bool ok = a.prim[p] == b.prim[p] && same(a.depth[p], b.depth[p]);
+    for (int c = 0; c < 3; ++c)
+      ok = ok && same(a.color[p][c], b.color[p][c]) && same(a.normal[p][c], b.normal[p][c]);
+    if (!ok && ++diff <= 3)
+      ADD_FAILURE() << what << ": pixel " << p << " differs: colour " << a.color[p].x << " "
+                    << a.color[p].y << " " << a.color[p].z << " vs " << b.color[p].x << " "
+                    << b.color[p].y << " " << b.color[p].z << ", prim " << a.prim[p] << " vs "
+                    << b.prim[p];
+  }
+  EXPECT_EQ(diff, 0) << what;
+  EXPECT_EQ(a.rays, b.rays) << what;
+}
+
+TEST_P(Render, AovsMatchReferenceAndImagesMatchCpu) {
+  RT_REQUIRE_BACKEND(GetParam());
+  testing::TempDir dir;
+  std::vector<Scene> scenes = {builtin_scene("thesis-a"), builtin_scene("cornell"),
+                               builtin_scene("glass"), obj_scene(dir)};
+  const int W = 32, H = 24;
+  for (Scene& s : scenes) {
+    SCOPED_TRACE(s.name);
+    RenderResult r = render_checked(s, GetParam(), W, H);
+    if (GetParam() != "cpu") {
+      Grid g = build_grid(s, s.options.grid);
+      Tracer cpu(s, g);
+      RenderSettings rs;
+      rs.width = W;
+      rs.height = H;
+      expect_identical(cpu.render(rs, s.camera), r, s.name + ": cpu vs " + GetParam());
+    }
+  }
+}
+
+// Several samples per pixel, a small max depth and a forced grid size change nothing in how
+// the backends agree.
+TEST_P(Render, OptionsKeepBackendsIdentical) {
+  RT_REQUIRE_BACKEND(GetParam());
+  if (GetParam() == "cpu") GTEST_SKIP() << "compares other backends with cpu";
+  Scene s = builtin_scene("glass");
+  Grid g = build_grid(s, 9);
+  Tracer t(s, g);
+  RenderSettings rs;
+  rs.width = 16;
+  rs.height = 12;
+  rs.spp = 3;
+  rs.max_depth = 2;
+  RenderResult a = t.render(rs, s.camera);
+  rs.backend = GetParam();
+  RenderResult b = t.render(rs, s.camera);
+  expect_identical(a, b, "glass, spp 3, depth 2, grid 9");
+}
+
+TEST_P(Render, BadGeometryAndEmptyScenes) {
+  RT_REQUIRE_BACKEND(GetParam());
+  // NaN, infinite and degenerate triangles are never hit; the rest renders normally.
+  Scene s = builtin_scene("cornell");
+  const float nan = std::nanf("");
+  const size_t good = s.triangle_count();
+  s.add_triangle({nan, 0, 0}, {0.3f, 0.3f, 0.3f}, {0.2f, 0.4f, 0.2f}, 0);
+  s.add_triangle({0.1f, 0.1f, 0.1f}, {INFINITY, 0.2f, 0.2f}, {0.2f, 0.4f, 0.2f}, 0);
+  s.add_triangle({0.1f, 0.1f, 0.1f}, {0.2f, 0.2f, 0.2f}, {0.3f, 0.3f, 0.3f}, 0);
+  s.add_triangle({0.28f, 0.27f, 0.0f}, {0.28f, 0.27f, 0.0f}, {0.28f, 0.27f, 0.0f}, 0);
+  RenderResult r = render_checked(s, GetParam(), 24, 24);
+  for (int32_t p : r.prim) EXPECT_LT(p, static_cast<int32_t>(good));
+
+  // An empty scene (and one with only degenerate triangles): background, misses.
+  for (int k = 0; k < 2; ++k) {
+    Scene e = builtin_scene("empty");
+    e.background = glm::vec3(0.25f, 0.5f, 0.75f);
+    if (k == 1) {
+      e.add_material(Material{});
+      e.add_triangle({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, 0);
+      e.lights.push_back(Light{});
+    }
+    Grid g = build_grid(e, 0);
+    Tracer t(e, g);
+    RenderSettings rs;
+    rs.backend = GetParam();
+    rs.width = 8;
+    rs.height = 4;
+    RenderResult er = t.render(rs, e.camera);
+    for (size_t p = 0; p < er.color.size(); ++p) {
+      EXPECT_EQ(er.color[p], e.background);
+      EXPECT_EQ(er.prim[p], -1);
+      EXPECT_TRUE(std::isinf(er.depth[p]));
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, Render, ::testing::ValuesIn(testing::backend_names()),
+                         [](const auto& info) { return info.param; });
+
+}  // namespace
+}  // namespace rt

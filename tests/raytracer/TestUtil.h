@@ -1,0 +1,111 @@
+// Helpers shared by the ray tracer tests: temporary files, backends, small scenes, and an
+// independent float32 Moller-Trumbore that rounds exactly like the kernel.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <rill/rill.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "Scene.h"
+
+namespace rt::testing {
+
+// A fresh directory under the system's temporary directory, removed at the end of the test.
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> n{0};
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = "rill-rt-" + std::to_string(::getpid()) + "-" + std::to_string(n++);
+    if (info != nullptr) name += std::string("-") + info->name();
+    for (char& c : name)
+      if (c == '/') c = '_';
+    path_ = std::filesystem::temp_directory_path() / name;
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  std::string file(const std::string& name, const std::string& content) const {
+    std::string p = (path_ / name).string();
+    std::ofstream f(p, std::ios::binary);
+    f << content;
+    return p;
+  }
+  std::string path(const std::string& name) const { return (path_ / name).string(); }
+  std::string dir() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Skips the test when the backend cannot run here.
+inline bool backend_available(const std::string& name, std::string& why) {
+  for (rill::Backend* b : rill::backends())
+    if (b->name() == name) {
+      why = b->unavailable_reason();
+      return why.empty();
+    }
+  why = "not built";
+  return false;
+}
+#define RT_REQUIRE_BACKEND(name)                                             \
+  do {                                                                       \
+    std::string why_;                                                        \
+    if (!::rt::testing::backend_available(name, why_)) GTEST_SKIP() << why_; \
+  } while (0)
+
+inline std::vector<std::string> backend_names() {
+  std::vector<std::string> names;
+  for (rill::Backend* b : rill::backends()) names.push_back(b->name());
+  return names;
+}
+
+// float32 operations in the kernel's order (this file is compiled with -ffp-contract=off).
+inline float dotf(const glm::vec3& a, const glm::vec3& b) {
+  return (a.x * b.x + a.y * b.y) + a.z * b.z;
+}
+inline glm::vec3 crossf(const glm::vec3& a, const glm::vec3& b) {
+  return glm::vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+
+// Moller-Trumbore exactly as the kernel evaluates it, on the triangle data it gets.
+inline bool hit_triangle_f(const glm::vec3& o, const glm::vec3& d, const glm::vec3& v0,
+                           const glm::vec3& e1, const glm::vec3& e2, float& t) {
+  glm::vec3 pv = crossf(d, e2);
+  float det = dotf(e1, pv);
+  glm::vec3 tv = o - v0;
+  glm::vec3 qv = crossf(tv, e1);
+  if (det == 0.0f) return false;
+  float inv = 1.0f / det;
+  float u = dotf(tv, pv) * inv;
+  float v = dotf(d, qv) * inv;
+  t = dotf(e2, qv) * inv;
+  return u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f;
+}
+
+// Double-precision ray-triangle intersection for references: t, and the smallest
+// barycentric coordinate (negative: outside, by how much).
+inline bool hit_triangle_d(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a,
+                           const glm::dvec3& b, const glm::dvec3& c, double& t, double& margin) {
+  glm::dvec3 e1 = b - a, e2 = c - a;
+  glm::dvec3 pv = glm::cross(d, e2);
+  double det = glm::dot(e1, pv);
+  if (det == 0.0) return false;
+  glm::dvec3 tv = o - a;
+  double u = glm::dot(tv, pv) / det;
+  glm::dvec3 qv = glm::cross(tv, e1);
+  double v = glm::dot(d, qv) / det;
+  t = glm::dot(e2, qv) / det;
+  margin = std::min({u, v, 1.0 - u - v});
+  return t > 0.0;
+}
+
+}  // namespace rt::testing
