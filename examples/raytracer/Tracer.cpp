@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace rt {
@@ -129,7 +130,8 @@ struct Tracer::Impl {
   Uniform<Float3> background{glm::vec3(0.0f), "background"};
 
   Program trace_program, intersect_program, camera_program;
-  std::map<std::string, Kernel> kernels;  // backend/accuracy -> compiled tracer
+  std::map<std::string, Kernel> kernels;             // backend/accuracy -> compiled tracer
+  std::set<std::pair<std::string, int64_t>> warmed;  // kernels launched at a size before
 
   void upload();
   void intersect(const Float3& o, const Float3& d, const Float& tmax, const Bool* any_hit,
@@ -384,214 +386,218 @@ Program Tracer::Impl::capture_tracer() const {
       ray_active = dist > 0.0f && dot(nf, rd) > 0.0f;
     };
 
-    RILL_DO {
-      Bool hit = false;
-      Float ht = 0.0f, hu = 0.0f, hv = 0.0f;
-      Int hid = -1;
-      if (F.geometry) {
-        RILL_IF(ray_active) {
-          Bool any_hit = mode == 1;
-          intersect(ro, rd, ray_tmax, F.shadows ? &any_hit : nullptr, hit, ht, hid, hu, hv);
+    // max_iter = 0 skips all tracing: render() uses that for a warm-up launch.
+    RILL_IF(max_iter > 0) {
+      RILL_DO {
+        Bool hit = false;
+        Float ht = 0.0f, hu = 0.0f, hv = 0.0f;
+        Int hid = -1;
+        if (F.geometry) {
+          RILL_IF(ray_active) {
+            Bool any_hit = mode == 1;
+            intersect(ro, rd, ray_tmax, F.shadows ? &any_hit : nullptr, hit, ht, hid, hu, hv);
+            rays += 1;
+          }
+          RILL_ENDIF;
+        } else {
           rays += 1;
         }
-        RILL_ENDIF;
-      } else {
-        rays += 1;
-      }
-      Bool shade_done = false, path_done = false;
-      Int cur_mode = mode;  // the branches below may change mode for the next iteration
+        Bool shade_done = false, path_done = false;
+        Int cur_mode = mode;  // the branches below may change mode for the next iteration
 
-      auto shade_hit = [&] {
-        // The surface: position, normals, material.
-        P = ro + ht * rd;
-        Float3 ng = tri_ng[hid];
-        Float3 ns = ng;
-        if (F.vertex_normals) {
-          Float w = 1.0f - hu - hv;
-          Float3 nn = tri_n0[hid] * w + tri_n1[hid] * hu + tri_n2[hid] * hv;
-          Float nl = length(nn);
-          ns = select(nl > 0.0f, nn / select(nl > 0.0f, nl, 1.0f), ng);
-          ng = select(dot(ng, ns) < 0.0f, -ng, ng);  // the vertex normals tell outside
-        }
-        entering = dot(ng, rd) < 0.0f;
-        nf = select(entering, ns, -ns);
-        ngf = select(entering, ng, -ng);
-        V = -rd;
-        Int m = tri_mat[hid];
-        kd = mat_kd[m];
-        if (F.vertex_colors) {
-          Float w = 1.0f - hu - hv;
-          kd = kd * (tri_c0[hid] * w + tri_c1[hid] * hu + tri_c2[hid] * hv);
-        }
-        if (F.specular) ks = mat_ks[m];
-        Float4 mp = mat_p[m];
-        shin = mp.x();
-        refl = mp.y();
-        trans = mp.z();
-        ior = mp.w();
-        local = ambient * kd;
-        RILL_IF(depth == 0) {  // AOVs of the camera ray
-          out_depth = ht;
-          out_prim = hid;
-          out_normal = ns;
+        auto shade_hit = [&] {
+          // The surface: position, normals, material.
+          P = ro + ht * rd;
+          Float3 ng = tri_ng[hid];
+          Float3 ns = ng;
+          if (F.vertex_normals) {
+            Float w = 1.0f - hu - hv;
+            Float3 nn = tri_n0[hid] * w + tri_n1[hid] * hu + tri_n2[hid] * hv;
+            Float nl = length(nn);
+            ns = select(nl > 0.0f, nn / select(nl > 0.0f, nl, 1.0f), ng);
+            ng = select(dot(ng, ns) < 0.0f, -ng, ng);  // the vertex normals tell outside
+          }
+          entering = dot(ng, rd) < 0.0f;
+          nf = select(entering, ns, -ns);
+          ngf = select(entering, ng, -ng);
+          V = -rd;
+          Int m = tri_mat[hid];
+          kd = mat_kd[m];
+          if (F.vertex_colors) {
+            Float w = 1.0f - hu - hv;
+            kd = kd * (tri_c0[hid] * w + tri_c1[hid] * hu + tri_c2[hid] * hv);
+          }
+          if (F.specular) ks = mat_ks[m];
+          Float4 mp = mat_p[m];
+          shin = mp.x();
+          refl = mp.y();
+          trans = mp.z();
+          ior = mp.w();
+          local = ambient * kd;
+          RILL_IF(depth == 0) {  // AOVs of the camera ray
+            out_depth = ht;
+            out_prim = hid;
+            out_normal = ns;
+          }
+          RILL_ENDIF;
+          if (F.shadows) {
+            mode = 1;
+            li = 0;
+            setup_shadow_ray(li);
+          } else if (F.lights) {
+            RILL_FOR(Int l = 0, l < nlights, l += 1) {
+              local += phong(l);
+            }
+            RILL_ENDFOR;
+            shade_done = true;
+          } else {
+            // No lights: a headlight at the eye, without shadows.
+            local += kd * max(dot(nf, V), 0.0f);
+            shade_done = true;
+          }
+        };
+        auto miss = [&] {
+          color += weight * background;
+          path_done = true;
+        };
+        RILL_IF(cur_mode == 0) {
+          if (F.geometry) {
+            RILL_IF(hit) {
+              shade_hit();
+            }
+            RILL_ELSE {
+              miss();
+            }
+            RILL_ENDIF;
+          } else {
+            miss();
+          }
         }
         RILL_ENDIF;
         if (F.shadows) {
-          mode = 1;
-          li = 0;
-          setup_shadow_ray(li);
-        } else if (F.lights) {
-          RILL_FOR(Int l = 0, l < nlights, l += 1) {
-            local += phong(l);
-          }
-          RILL_ENDFOR;
-          shade_done = true;
-        } else {
-          // No lights: a headlight at the eye, without shadows.
-          local += kd * max(dot(nf, V), 0.0f);
-          shade_done = true;
-        }
-      };
-      auto miss = [&] {
-        color += weight * background;
-        path_done = true;
-      };
-      RILL_IF(cur_mode == 0) {
-        if (F.geometry) {
-          RILL_IF(hit) {
-            shade_hit();
-          }
-          RILL_ELSE {
-            miss();
-          }
-          RILL_ENDIF;
-        } else {
-          miss();
-        }
-      }
-      RILL_ENDIF;
-      if (F.shadows) {
-        RILL_IF(cur_mode == 1) {  // a shadow ray came back
-          RILL_IF(ray_active && !hit) {
-            local += phong(li);
-          }
-          RILL_ENDIF;
-          li += 1;
-          RILL_IF(li < nlights) {
-            setup_shadow_ray(li);
-          }
-          RILL_ELSE {
-            mode = 0;
-            shade_done = true;
-          }
-          RILL_ENDIF;
-        }
-        RILL_ENDIF;
-      }
-
-      RILL_IF(shade_done) {
-        // Eq. 5.1: this surface contributes M_j (1 - r_j) times the product of the earlier
-        // coefficients; with glass, 1 - reflect - transmit.
-        color += weight * (1.0f - refl - trans) * local;
-        if (!F.reflection) {
-          path_done = true;
-        } else {
-          RILL_IF(depth >= max_depth) {
-            path_done = true;
-          }
-          RILL_ELSE {
-            // The ray registers (ro, rd) held shadow rays since the hit: use V.
-            const Float3 inc = -V;
-            Float3 rdir = reflect(inc, nf);
-            Float wr = weight * refl;
-            Float wt = 0.0f;
-            Float3 tdir(0.0f);
-            if (F.refraction) {
-              // Refraction with Schlick's Fresnel term; total internal reflection
-              // sends everything to the reflected ray.
-              Float eta = select(entering, 1.0f / ior, ior);
-              Float cosi = dot(V, nf);
-              Float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
-              Bool tir = k < 0.0f;
-              Float sk = sqrt(max(k, 0.0f));
-              tdir = eta * inc + (eta * cosi - sk) * nf;
-              Float r0 = (ior - 1.0f) / (ior + 1.0f);
-              r0 = r0 * r0;
-              Float c = 1.0f - select(entering, cosi, sk);
-              Float c2 = c * c;
-              Float fres = select(tir, 1.0f, r0 + (1.0f - r0) * (c2 * c2 * c));
-              wr = weight * (refl + trans * fres);
-              wt = weight * trans * (1.0f - fres);
-            }
-            Bool go_r = wr > kMinWeight;
-            Bool go_t = wt > kMinWeight;
-            if (F.stack > 0) {
-              RILL_IF(go_r && go_t && sp < F.stack) {  // both: the reflection waits
-                for (int s = 0; s < F.stack; ++s) {
-                  RILL_IF(sp == s) {
-                    st_o[static_cast<size_t>(s)] = P + ngf * eps;
-                    st_d[static_cast<size_t>(s)] = rdir;
-                    st_w[static_cast<size_t>(s)] = wr;
-                    st_depth[static_cast<size_t>(s)] = depth + 1;
-                  }
-                  RILL_ENDIF;
-                }
-                sp += 1;
-              }
-              RILL_ENDIF;
-            }
-            RILL_IF(go_t) {
-              ro = P - ngf * eps;
-              rd = tdir;
-              weight = wt;
-            }
-            RILL_ELSE_IF(go_r) {
-              ro = P + ngf * eps;
-              rd = rdir;
-              weight = wr;
-            }
-            RILL_ELSE {
-              path_done = true;
+          RILL_IF(cur_mode == 1) {  // a shadow ray came back
+            RILL_IF(ray_active && !hit) {
+              local += phong(li);
             }
             RILL_ENDIF;
-            depth += 1;
-            ray_active = true;
-            ray_tmax = kBig;
+            li += 1;
+            RILL_IF(li < nlights) {
+              setup_shadow_ray(li);
+            }
+            RILL_ELSE {
+              mode = 0;
+              shade_done = true;
+            }
+            RILL_ENDIF;
           }
           RILL_ENDIF;
         }
-      }
-      RILL_ENDIF;
 
-      RILL_IF(path_done) {
-        if (F.stack > 0) {
-          RILL_IF(sp > 0) {
-            for (int s = 0; s < F.stack; ++s) {
-              RILL_IF(sp == s + 1) {
-                ro = st_o[static_cast<size_t>(s)];
-                rd = st_d[static_cast<size_t>(s)];
-                weight = st_w[static_cast<size_t>(s)];
-                depth = st_depth[static_cast<size_t>(s)];
+        RILL_IF(shade_done) {
+          // Eq. 5.1: this surface contributes M_j (1 - r_j) times the product of the earlier
+          // coefficients; with glass, 1 - reflect - transmit.
+          color += weight * (1.0f - refl - trans) * local;
+          if (!F.reflection) {
+            path_done = true;
+          } else {
+            RILL_IF(depth >= max_depth) {
+              path_done = true;
+            }
+            RILL_ELSE {
+              // The ray registers (ro, rd) held shadow rays since the hit: use V.
+              const Float3 inc = -V;
+              Float3 rdir = reflect(inc, nf);
+              Float wr = weight * refl;
+              Float wt = 0.0f;
+              Float3 tdir(0.0f);
+              if (F.refraction) {
+                // Refraction with Schlick's Fresnel term; total internal reflection
+                // sends everything to the reflected ray.
+                Float eta = select(entering, 1.0f / ior, ior);
+                Float cosi = dot(V, nf);
+                Float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
+                Bool tir = k < 0.0f;
+                Float sk = sqrt(max(k, 0.0f));
+                tdir = eta * inc + (eta * cosi - sk) * nf;
+                Float r0 = (ior - 1.0f) / (ior + 1.0f);
+                r0 = r0 * r0;
+                Float c = 1.0f - select(entering, cosi, sk);
+                Float c2 = c * c;
+                Float fres = select(tir, 1.0f, r0 + (1.0f - r0) * (c2 * c2 * c));
+                wr = weight * (refl + trans * fres);
+                wt = weight * trans * (1.0f - fres);
+              }
+              Bool go_r = wr > kMinWeight;
+              Bool go_t = wt > kMinWeight;
+              if (F.stack > 0) {
+                RILL_IF(go_r && go_t && sp < F.stack) {  // both: the reflection waits
+                  for (int s = 0; s < F.stack; ++s) {
+                    RILL_IF(sp == s) {
+                      st_o[static_cast<size_t>(s)] = P + ngf * eps;
+                      st_d[static_cast<size_t>(s)] = rdir;
+                      st_w[static_cast<size_t>(s)] = wr;
+                      st_depth[static_cast<size_t>(s)] = depth + 1;
+                    }
+                    RILL_ENDIF;
+                  }
+                  sp += 1;
+                }
+                RILL_ENDIF;
+              }
+              RILL_IF(go_t) {
+                ro = P - ngf * eps;
+                rd = tdir;
+                weight = wt;
+              }
+              RILL_ELSE_IF(go_r) {
+                ro = P + ngf * eps;
+                rd = rdir;
+                weight = wr;
+              }
+              RILL_ELSE {
+                path_done = true;
               }
               RILL_ENDIF;
+              depth += 1;
+              ray_active = true;
+              ray_tmax = kBig;
             }
-            sp -= 1;
-            ray_active = true;
-            ray_tmax = kBig;
+            RILL_ENDIF;
           }
-          RILL_ELSE {
+        }
+        RILL_ENDIF;
+
+        RILL_IF(path_done) {
+          if (F.stack > 0) {
+            RILL_IF(sp > 0) {
+              for (int s = 0; s < F.stack; ++s) {
+                RILL_IF(sp == s + 1) {
+                  ro = st_o[static_cast<size_t>(s)];
+                  rd = st_d[static_cast<size_t>(s)];
+                  weight = st_w[static_cast<size_t>(s)];
+                  depth = st_depth[static_cast<size_t>(s)];
+                }
+                RILL_ENDIF;
+              }
+              sp -= 1;
+              ray_active = true;
+              ray_tmax = kBig;
+            }
+            RILL_ELSE {
+              finished = true;
+            }
+            RILL_ENDIF;
+          } else {
             finished = true;
           }
-          RILL_ENDIF;
-        } else {
-          finished = true;
         }
+        RILL_ENDIF;
+        iter += 1;
+        finished = finished || iter >= max_iter;
       }
-      RILL_ENDIF;
-      iter += 1;
-      finished = finished || iter >= max_iter;
+      RILL_UNTIL(finished);
     }
-    RILL_UNTIL(finished);
+    RILL_ENDIF;
 
     out_color = color;
     out_rays = rays;
@@ -650,16 +656,7 @@ Kernel& Tracer::Impl::kernel(const std::string& backend_name, Accuracy a) {
                              accuracy_name(a) + " accuracy mode");
   CompileOptions opt;
   opt.accuracy = a;
-  Kernel& k = kernels.emplace(key, compile(trace_program, backend_name, opt)).first->second;
-  // One launch over a single pixel, so that drivers that finish compiling at the first
-  // launch (PoCL, Mesa) do it here: render() then times the tracing alone.
-  const int64_t h = padded_rows(backend_name, 1, 1);
-  Stream<Float3> c(1, h), n(1, h);
-  Stream<Float> t(1, h);
-  Stream<Int> p(1, h), r(1, h);
-  k.outputs(c, t, p, n, r);
-  k.execute();
-  return k;
+  return kernels.emplace(key, compile(trace_program, backend_name, opt)).first->second;
 }
 
 // ---- Tracer --------------------------------------------------------------------------------
@@ -710,8 +707,6 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
 
   const auto t0 = std::chrono::steady_clock::now();
   Kernel& k = I.kernel(rs.backend, rs.accuracy);
-  r.compile_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
 
   I.set_camera(camera, r.width, r.height);
@@ -720,13 +715,26 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
   const int stack_factor = I.F.stack + 1;
   const int64_t iters =
       int64_t{depth + 1} * (static_cast<int64_t>(sc.lights.size()) + 1) * stack_factor * 2 + 8;
-  I.max_iter.set(static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
 
   const int64_t rows = padded_rows(rs.backend, r.width, r.height);
   Stream<Float3> color(r.width, rows), normal(r.width, rows);
   Stream<Float> dist(r.width, rows);
   Stream<Int> prim(r.width, rows), rays(r.width, rows);
   k.outputs(color, dist, prim, normal, rays);
+  // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
+  // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
+  // below is tracing alone.
+  const auto warm_key =
+      std::make_pair(rs.backend + "/" + accuracy_name(rs.accuracy), r.width * rows);
+  if (!I.warmed.count(warm_key)) {
+    I.max_iter.set(0);
+    k.execute();
+    (void)rays.download();
+    I.warmed.insert(warm_key);
+  }
+  I.max_iter.set(static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
+  r.compile_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
   const size_t npix = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
   auto crop = [npix](auto v) {

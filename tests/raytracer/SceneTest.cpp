@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "Camera.h"
 #include "Scene.h"
@@ -242,6 +243,24 @@ TEST(Scene, JsonMeshWithoutMaterialUsesItsMtl) {
   Scene s = load_json(json);
   ASSERT_EQ(s.triangle_count(), 1u);
   EXPECT_EQ(s.materials[static_cast<size_t>(s.material[0])].diffuse, glm::vec3(0, 1, 0));
+}
+
+// The scene files the project ships all load and validate.
+TEST(Scene, ShippedScenesLoad) {
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(RILL_SCENES_DIR)) {
+    if (e.path().extension() != ".json") continue;
+    SCOPED_TRACE(e.path().string());
+    Scene s = load_scene(e.path().string());
+    EXPECT_NO_THROW(s.validate());
+    EXPECT_GT(s.triangle_count(), 0u);
+    ++n;
+  }
+  EXPECT_GE(n, 5);
+  // The Cornell box OBJ: 5 walls and 2 blocks of quads, fanned.
+  Scene c = load_obj(std::string(RILL_SCENES_DIR) + "/models/cornell.obj");
+  EXPECT_EQ(c.triangle_count(), 30u);
+  EXPECT_EQ(c.materials.size(), 3u);
 }
 
 }  // namespace
