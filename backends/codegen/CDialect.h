@@ -53,6 +53,9 @@ class CDialect : public Dialect {
         auto r = std::to_chars(buf, buf + sizeof buf, v);
         std::string s(buf, r.ptr);
         if (s.find_first_of(".e") == std::string::npos) s += ".0";
+        // In double mode the constant is widened first, so that operations on constants
+        // alone are evaluated in double like everything else.
+        if (accuracy_ == Accuracy::Double) return "((rill_real)" + s + "f)";
         return s + "f";
       }
     }

@@ -166,7 +166,11 @@ std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
   std::string sx = suffix(k);
   switch (s.op) {
     case Op::Copy: return a(0);
-    case Op::Neg: return k == ScalarKind::Int ? call("rill_neg_i", {a(0)}) : "(-" + a(0) + ")";
+    case Op::Neg: {
+      if (k == ScalarKind::Int) return call("rill_neg_i", {a(0)});
+      std::string x = a(0);
+      return x[0] == '-' ? "(-(" + x + "))" : "(-" + x + ")";  // never print "--"
+    }
     case Op::Add: return k == ScalarKind::Int ? call("rill_add_i", {a(0), a(1)}) : "(" + a(0) + " + " + a(1) + ")";
     case Op::Sub: return k == ScalarKind::Int ? call("rill_sub_i", {a(0), a(1)}) : "(" + a(0) + " - " + a(1) + ")";
     case Op::Mul: return k == ScalarKind::Int ? call("rill_mul_i", {a(0), a(1)}) : "(" + a(0) + " * " + a(1) + ")";

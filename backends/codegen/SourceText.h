@@ -21,4 +21,13 @@ inline std::string numbered(const std::string& source) {
   return out.str();
 }
 
+// Text safe inside a /* */ or // comment of generated code (a kernel's name, say).
+inline std::string comment_safe(std::string text) {
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\n' || text[i] == '\r') text[i] = ' ';
+    if (text[i] == '*' && i + 1 < text.size() && text[i + 1] == '/') text[i + 1] = '|';
+  }
+  return text;
+}
+
 }  // namespace rill::codegen

@@ -108,7 +108,7 @@ class GLSLBackend : public Backend {
   bool supports(Accuracy a) const override { return a != Accuracy::Double; }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::lock_guard<std::recursive_mutex> lock(mutex_);
     const GL& gl = current();
     if (o.accuracy == Accuracy::Double)
       throw Error("GLSL backend: accuracy mode 'double' is not supported (GLSL kernels compute in binary32)");
@@ -126,7 +126,7 @@ class GLSLBackend : public Backend {
   }
 
   void read_back(detail::Storage& s) override {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::lock_guard<std::recursive_mutex> lock(mutex_);
     const GL& gl = current();
     auto* t = static_cast<Texture*>(s.device.get());
     std::vector<uint32_t> padded(static_cast<size_t>(t->shape.row) * static_cast<size_t>(t->shape.rows) *
@@ -143,7 +143,8 @@ class GLSLBackend : public Backend {
 
   // --- used by GLSLKernel::run, under the lock --------------------------------------------
 
-  std::mutex mutex_;
+  // Recursive: replacing a stream's texture inside a launch releases the old one.
+  std::recursive_mutex mutex_;
 
   const GL& current() {
     GLContext& c = context_locked();
@@ -203,7 +204,7 @@ class GLSLBackend : public Backend {
   void release(GLuint tex) {
     // Called from Texture destructors, possibly after the backend is gone at exit.
     if (!context_) return;
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::lock_guard<std::recursive_mutex> lock(mutex_);
     const GL& gl = current();
     gl.glDeleteTextures(1, &tex);
   }
@@ -262,7 +263,7 @@ class GLSLBackend : public Backend {
   }
 
   GLContext& context() {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::lock_guard<std::recursive_mutex> lock(mutex_);
     return context_locked();
   }
 
@@ -306,7 +307,7 @@ Texture::~Texture() {
 }
 
 GLSLKernel::~GLSLKernel() {
-  std::lock_guard<std::mutex> lock(be_.mutex_);
+  std::lock_guard<std::recursive_mutex> lock(be_.mutex_);
   const GL& gl = be_.current();
   for (Pass& p : passes_) gl.glDeleteProgram(p.program);
 }
@@ -314,7 +315,7 @@ GLSLKernel::~GLSLKernel() {
 int64_t GLSLKernel::run(const LaunchArgs& a) {
   if (a.count == 0) return 0;
   if (a.count > kMaxRow * kMaxRow) throw Error("GLSL backend: streams are limited to 4096 x 4096 elements");
-  std::lock_guard<std::mutex> lock(be_.mutex_);
+  std::lock_guard<std::recursive_mutex> lock(be_.mutex_);
   const GL& gl = be_.current();
   const int units = static_cast<int>(a.inputs.size() + a.outputs.size() + a.arrays.size());
   if (units > be_.max_texture_units())

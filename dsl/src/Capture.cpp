@@ -274,6 +274,8 @@ void begin_if(const ir::Operand& cond, SourceLoc loc) {
 
 void begin_else(SourceLoc loc) {
   Builder& b = builder("RILL_ELSE", loc);
+  if (!b.open.empty() && is_if(b.open.back()) && b.open.back().section == Section::Else)
+    throw Error("a second RILL_ELSE for " + describe(b.open.back()), loc);
   Frame& f = expect(b, "RILL_ELSE", loc, is_if_then, "RILL_IF");
   f.section = Section::Else;
 }

@@ -182,7 +182,10 @@ const std::string& Kernel::source() const {
 
 std::string Kernel::ir() const {
   if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
-  return ir::print(shared_->optimized);
+  // Identical programs share one compiled kernel; show this program's own name.
+  ir::Function named = shared_->optimized;
+  named.name = program_.name();
+  return ir::print(named);
 }
 
 std::string Kernel::backend_name() const { return shared_ ? shared_->backend->name() : std::string(); }

@@ -315,12 +315,12 @@ TEST(Capture, ArraysAreRegisteredOncePerProgram) {
   EXPECT_EQ(p.captured().arrays[0].get(), table.state().get());
   EXPECT_EQ(count_ops(f, ir::Op::Gather), 4);
   std::string text = normalized(p.print());
-  EXPECT_LINE(text, "array1d float table");
-  EXPECT_LINE(text, "array3d int vol");
-  EXPECT_LINE(text, "array2d float3 grid");
-  EXPECT_LINE(text, "t# = gather table(i_0)");
-  EXPECT_LINE(text, "t# = gather vol(i_0, i_0, i_0)");
-  EXPECT_LINE(text, "t# = gather grid(i_0, i_0)");
+  EXPECT_LINE(text, "array1d float a0:table");
+  EXPECT_LINE(text, "array3d int a1:vol");
+  EXPECT_LINE(text, "array2d float3 a2:grid");
+  EXPECT_LINE(text, "t# = gather a0:table(i_0)");
+  EXPECT_LINE(text, "t# = gather a1:vol(i_0, i_0, i_0)");
+  EXPECT_LINE(text, "t# = gather a2:grid(i_0, i_0)");
   EXPECT_EQ(test::problems(f), "");
 }
 

@@ -13,7 +13,7 @@ namespace rill {
 namespace detail {
 template <class T, int N, class S>
 Value<T, N> lift(const S& s) {
-  if constexpr (std::is_arithmetic_v<S>) return Value<T, N>(static_cast<T>(s));
+  if constexpr (std::is_arithmetic_v<S>) return host_splat<T, N>(s);
   else return Value<T, N>(s);
 }
 }  // namespace detail
@@ -99,11 +99,11 @@ Value<T, N> select(const Value<bool, C>& c, const Value<T, N>& a, const Value<T,
 }
 template <class T, int N, int C, detail::HostScalarFor<T> S>
 Value<T, N> select(const Value<bool, C>& c, const Value<T, N>& a, S b) {
-  return select(c, a, Value<T, N>(static_cast<T>(b)));
+  return select(c, a, detail::host_splat<T, N>(b));
 }
 template <class T, int N, int C, detail::HostScalarFor<T> S>
 Value<T, N> select(const Value<bool, C>& c, S a, const Value<T, N>& b) {
-  return select(c, Value<T, N>(static_cast<T>(a)), b);
+  return select(c, detail::host_splat<T, N>(a), b);
 }
 // Sh's name for select.
 template <class C, class A, class B>
@@ -147,7 +147,7 @@ Value<float, N> refract(const Value<float, N>& i, const Value<float, N>& n, cons
   Float d = dot(n, i);
   Float k = 1.0f - eta * eta * (1.0f - d * d);
   Value<float, N> r = eta * i - (eta * d + sqrt(max(k, 0.0f))) * n;
-  return select(k < 0.0f, Value<float, N>(0.0f), r);
+  return select(k < 0.0f, detail::host_splat<float, N>(0.0f), r);
 }
 
 // Reductions of Bool vectors.

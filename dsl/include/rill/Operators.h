@@ -30,9 +30,14 @@ Value<R, N> unary(ir::Op op, const Value<T, N>& a) {
   return Value<R, N>(emit(op, type_of<R, N>(), {a.operand()}), AdoptTag{});
 }
 
+// A host scalar as a constant operand (no variable is created for it).
 template <class T, class S>
 Value<T, 1> host(S s) {
-  return Value<T, 1>(static_cast<T>(s));
+  return Value<T, 1>(Ref::constant(splat<T>(static_cast<T>(s), 1)), AdoptTag{});
+}
+template <class T, int N, class S>
+Value<T, N> host_splat(S s) {
+  return Value<T, N>(Ref::constant(splat<T>(static_cast<T>(s), N)), AdoptTag{});
 }
 
 }  // namespace detail

@@ -3,14 +3,17 @@
 //
 // In the `strict` accuracy mode the compiler replaces exp, log, sin, ... by these routines
 // (passes::lower_math); `fast` uses each backend's built-ins instead. They are ordinary DSL
-// code, so a kernel can also call them directly (rill::strict::sin(x)) to get portable
-// results in any mode. Their measured error against a double-precision reference is in
-// docs/accuracy.md.
+// code, so a kernel can also call them directly (rill::strict::sin(x)); their bits are
+// portable only in strict mode, since in fast mode the backend's compiler may reassociate
+// their arithmetic (and then their error bounds do not hold either). Their measured error
+// against a double-precision reference is in docs/accuracy.md.
 //
 // Special values follow C99 Annex F (exp(-inf) = 0, log(0) = -inf, log(-1) = NaN,
 // pow(x, 0) = 1, atan2(+0, -0) = pi, sin(inf) = NaN, ...). sin, cos and tan reduce their
 // argument with a four-part pi/4 (Cody and Waite), exact while |x| < 6434; beyond that the
-// error grows with |x| (there is no Payne-Hanek reduction).
+// error grows with |x| (there is no Payne-Hanek reduction), and beyond about 2^23, where
+// floats are farther apart than the period, results are only bounded (sin and cos in
+// [-1, 1], tan finite).
 #pragma once
 
 #include "rill/Math.h"

@@ -73,18 +73,16 @@ concept HostScalarFor =
 
 struct AdoptTag {};
 
-// Components contributed by a constructor argument: a host scalar gives 1, a Value<T,N> N.
+// Components contributed by a constructor argument: a host scalar gives 1; anything that is a
+// Value<T, N> (swizzles, inputs, outputs, uniforms included) gives N.
+template <class T, int N>
+constexpr int width_of(const Value<T, N>*) {
+  return N;
+}
+constexpr int width_of(...) { return 1; }
 template <class A>
 struct arg_width {
-  static constexpr int value = 1;
-};
-template <class T, int N>
-struct arg_width<Value<T, N>> {
-  static constexpr int value = N;
-};
-template <class T, int N>
-struct arg_width<Swizzle<T, N>> {
-  static constexpr int value = N;
+  static constexpr int value = width_of(static_cast<const A*>(nullptr));
 };
 
 }  // namespace detail
@@ -119,6 +117,22 @@ class Value {
     requires(N > 1)
   explicit Value(S v) : Value(static_cast<T>(v), broadcast) {}
 
+  // Broadcast of a DSL scalar: Float3(s) is (s, s, s).
+  template <int M>
+    requires(N > 1 && M == 1)
+  explicit Value(const Value<T, M>& s) {
+    ir::Operand o = s.operand();
+    if (o.is_const()) {
+      ir::Constant c = detail::splat<T>(T{}, N);
+      for (int i = 0; i < N; ++i) c.bits[static_cast<size_t>(i)] = o.value.bits[0];
+      init_from(detail::Ref::constant(c));
+      return;
+    }
+    o.type = type();
+    o.swizzle = {o.swizzle[0], o.swizzle[0], o.swizzle[0], o.swizzle[0]};
+    ref_ = detail::emit(ir::Op::Copy, type(), {o});
+  }
+
   // From a host vector of the matching size (a glm vector).
   template <class H>
     requires(N > 1 && std::is_same_v<H, host_type>)
@@ -150,7 +164,8 @@ class Value {
   template <detail::HostScalarFor<T> S>
     requires(N == 1)
   Value& operator=(S v) {
-    return *this = Value(v);
+    write(ir::Mask{}, ir::Operand::of_const(detail::splat<T>(static_cast<T>(v), 1)));
+    return *this;
   }
 
   // Swizzles: v(2, 0, 1) reads components in that order; assigning to it writes them.
@@ -321,9 +336,10 @@ class Swizzle : public Value<T, M> {
       return detail::Ref::constant(c);
     }
     ir::Operand o = parent.operand();
+    const auto from = o.swizzle;  // compose with a copy: the loop below overwrites o.swizzle
     o.type = detail::type_of<T, M>();
     int i = 0;
-    for (int s : idx) o.swizzle[static_cast<size_t>(i++)] = o.swizzle[static_cast<size_t>(s)];
+    for (int s : idx) o.swizzle[static_cast<size_t>(i++)] = from[static_cast<size_t>(s)];
     return detail::emit(ir::Op::Copy, detail::type_of<T, M>(), {o});
   }
 
@@ -333,6 +349,8 @@ class Swizzle : public Value<T, M> {
         if (mask_.comps[static_cast<size_t>(i)] == mask_.comps[static_cast<size_t>(j)])
           throw Error("write mask repeats component " +
                       std::to_string(mask_.comps[static_cast<size_t>(i)]));
+    if (parent_.kind == detail::Ref::Kind::Uniform)
+      throw Error("a uniform is read-only inside a kernel; set it on the host with set()");
     if (parent_.kind != detail::Ref::Kind::Var)
       throw Error("only a variable inside a program can be written through a swizzle");
     detail::assign(parent_, mask_, src);

@@ -15,16 +15,12 @@ uint64_t hash_bytes(std::string_view bytes, uint64_t h) {
 }
 
 uint64_t hash(const Function& f) {
-  // The printed form is complete (types, interface, body) and independent of pointers and
-  // process state, which is what makes the hash stable. The kernel's name is left out:
-  // renaming a kernel does not change what it computes. Bits of every constant are printed
-  // exactly (shortest round-trip form), so distinct constants give distinct text.
-  std::string text = print(f);
-  size_t nl = text.find('\n');
-  std::string_view sig(text);
-  std::string_view rest = sig.substr(nl);
-  size_t paren = text.find('(');
-  return hash_bytes(rest, hash_bytes(sig.substr(paren, nl - paren)));
+  // The printed form is complete (types, interface, body, every constant's exact bits) and
+  // independent of pointers and process state, which makes the hash stable. The kernel's
+  // name is left out: renaming a kernel does not change what it computes.
+  Function unnamed = f;
+  unnamed.name.clear();
+  return hash_bytes(print(unnamed));
 }
 
 std::string hex(uint64_t h) {

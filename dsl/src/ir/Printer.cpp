@@ -47,7 +47,7 @@ void print_stmt(std::ostringstream& os, const Function& f, const Stmt& s, int in
         for (int i = 0; i < s.mask.count; ++i) os << kComp[s.mask.comps[static_cast<size_t>(i)]];
       }
       os << " = " << op_name(s.op);
-      if (s.op == Op::Gather) os << ' ' << f.arrays.at(static_cast<size_t>(s.array)).name;
+      if (s.op == Op::Gather) os << " a" << s.array << ':' << f.arrays.at(static_cast<size_t>(s.array)).name;
       os << '(';
       for (size_t i = 0; i < s.args.size(); ++i) {
         if (i) os << ", ";
@@ -137,7 +137,7 @@ std::string print(const Function& f) {
   for (VarId u : f.uniforms)
     os << "  uniform " << f.var(u).type.str() << ' ' << f.var_name(u) << "\n";
   for (const ArrayDecl& a : f.arrays)
-    os << "  array" << a.dims << "d " << a.elem.str() << ' ' << a.name << "\n";
+    os << "  array" << a.dims << "d " << a.elem.str() << " a" << (&a - f.arrays.data()) << ':' << a.name << "\n";
   // Locals and temporaries with their types, so the text alone determines the program.
   for (VarId v = 0; v < f.vars.size(); ++v) {
     VarRole r = f.vars[v].role;

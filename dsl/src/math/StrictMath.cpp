@@ -78,11 +78,16 @@ struct Reduced {
   Int quadrant;
 };
 Reduced reduce_pi_over_4(const Float& ax) {
-  Int j = to_int(floor(ax * kFourOverPi));
-  j = (j + 1) & ~Int(1);
-  Float jf = to_float(j);
-  Float r = (((ax - jf * kPio4A) - jf * kPio4B) - jf * kPio4C) - jf * kPio4D;
-  return {r, (j >> 1) & 3};
+  // j stays a float (an integer value; converting to Int would saturate for huge |x|).
+  Float j = floor(ax * kFourOverPi);
+  j = 2.0f * floor((j + 1.0f) * 0.5f);  // the even neighbour
+  Float r = (((ax - j * kPio4A) - j * kPio4B) - j * kPio4C) - j * kPio4D;
+  // Beyond |x| ~ 2^23 floats are farther apart than the period and the reduction above is
+  // meaningless; clamping keeps sin and cos in [-1, 1] and tan finite there.
+  r = clamp(r, -0.9f, 0.9f);
+  Float half = j * 0.5f;
+  Float q = half - 4.0f * floor(half * 0.25f);  // (j / 2) mod 4, exact for integer j
+  return {r, to_int(q)};
 }
 
 // ln(m) for m in [sqrt(1/2), sqrt(2)], via s = (m - 1) / (m + 1) and 2 atanh(s).

@@ -33,7 +33,7 @@ Function optimize(const Function& input, const PassOptions& p, Accuracy accuracy
     if (p.dead_code) changed |= eliminate_dead_code(f);
     if (!changed) break;
   }
-  lower_continue(f);
+  if (lower_continue(f) && p.dead_code) eliminate_dead_code(f);  // drop unread skip flags
   verify_or_throw(f, "optimizer");
   return f;
 }

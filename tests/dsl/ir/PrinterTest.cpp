@@ -44,7 +44,7 @@ TEST(Printer, GoldenProgram) {
   const char* expected =
       R"(kernel golden(in float2 c_0, in int n_1) -> (out float y_2, out float3 rgb_3)
   uniform float gain_12
-  array1d float3 palette
+  array1d float3 a0:palette
   var float2 t4
   var int t5
   var bool t6
@@ -76,7 +76,7 @@ TEST(Printer, GoldenProgram) {
   } else {
     discard
   }
-  t15 = gather palette(t5)
+  t15 = gather a0:palette(t5)
   rgb_3 = copy(t15)
 )";
   EXPECT_EQ(p.print(), expected);
