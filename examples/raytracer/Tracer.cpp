@@ -3,37 +3,16 @@
 
 #include <chrono>
 #include <cmath>
-#include <map>
-#include <set>
 #include <sstream>
+
+#include "TracerImpl.h"
 
 namespace rt {
 
-using namespace rill;
-
 namespace {
-
-constexpr float kBig = 3.0e38f;        // "no limit" for ray extents (finite on every backend)
-constexpr float kMinWeight = 1.0e-3f;  // secondary rays below this weight are not traced
 
 bool any_positive(const glm::vec3& v) {
   return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f;
-}
-
-// Arrays must have at least one element: empty data gets one dummy element.
-template <class V>
-std::vector<typename V::host_type> padded(std::vector<typename V::host_type> v) {
-  if (v.empty()) v.emplace_back();
-  return v;
-}
-
-// Workaround for a GLSL backend bug (reported): an array gather computes the texel from
-// the launch's row length instead of the array's, so on GLSL a launch must cover at least
-// one full 4096-texel row. Small launches are padded with rows the caller ignores.
-constexpr int64_t kGlslRow = 4096;
-int64_t padded_rows(const std::string& backend, int64_t width, int64_t height) {
-  if (backend != "glsl" || width * height >= kGlslRow) return height;
-  return (kGlslRow + width - 1) / width;
 }
 
 }  // namespace
@@ -96,53 +75,13 @@ glm::vec2 sample_offset(int k) {
   return glm::vec2(halton(k, 2), halton(k, 3));
 }
 
+int64_t padded_rows(const std::string& backend, int64_t width, int64_t height) {
+  constexpr int64_t kGlslRow = 4096;
+  if (backend != "glsl" || width * height >= kGlslRow) return height;
+  return (kGlslRow + width - 1) / width;
+}
+
 // ---- scene data and uniforms ---------------------------------------------------------------
-
-struct Tracer::Impl {
-  Scene scene;  // materials, lights, options (the triangles live in the arrays)
-  Grid grid;
-  Features F;
-
-  // Grid (thesis section 5.3): voxel index, element list; triangle data.
-  Array<Int2> voxels{1, "voxels"};
-  Array<Int> elements{1, "elements"};
-  Array<Float3> tri_v0{1, "tri_v0"}, tri_e1{1, "tri_e1"}, tri_e2{1, "tri_e2"}, tri_ng{1, "tri_ng"};
-  Array<Float3> tri_n0{1, "tri_n0"}, tri_n1{1, "tri_n1"}, tri_n2{1, "tri_n2"};
-  Array<Float3> tri_c0{1, "tri_c0"}, tri_c1{1, "tri_c1"}, tri_c2{1, "tri_c2"};
-  Array<Int> tri_mat{1, "tri_mat"};
-  Array<Float3> mat_kd{1, "mat_kd"}, mat_ks{1, "mat_ks"};
-  Array<Float4> mat_p{1, "mat_p"};  // shininess, reflect, transmit, ior
-  Array<Float3> light_pos{1, "light_pos"}, light_col{1, "light_col"};
-
-  // Camera (Camera.h) and image.
-  Uniform<Float3> eye{glm::vec3(0.0f), "eye"}, forward{glm::vec3(0.0f), "forward"},
-      right{glm::vec3(0.0f), "right"}, up{glm::vec3(0.0f), "true_up"};
-  Uniform<Float> tan_half{0.0f, "tan_half"}, aspect{1.0f, "aspect"};
-  Uniform<Float2> size{glm::vec2(1.0f), "size"}, offset{glm::vec2(0.5f), "sample_offset"};
-  // Grid.
-  Uniform<Float3> grid_lo{glm::vec3(0.0f), "grid_lo"}, grid_hi{glm::vec3(0.0f), "grid_hi"},
-      grid_cell{glm::vec3(1.0f), "grid_cell"};
-  Uniform<Int3> grid_res{glm::ivec3(1), "grid_res"};
-  Uniform<Int> max_steps{3, "max_voxel_steps"};
-  // Shading.
-  Uniform<Int> max_depth{5, "max_depth"}, max_iter{64, "max_iterations"}, nlights{0, "light_count"};
-  Uniform<Float> ambient{0.1f, "ambient"}, eps{1e-4f, "ray_epsilon"};
-  Uniform<Float3> background{glm::vec3(0.0f), "background"};
-
-  Program trace_program, intersect_program, camera_program;
-  std::map<std::string, Kernel> kernels;             // backend/accuracy -> compiled tracer
-  std::set<std::pair<std::string, int64_t>> warmed;  // kernels launched at a size before
-
-  void upload();
-  void intersect(const Float3& o, const Float3& d, const Float& tmax, const Bool* any_hit,
-                 Bool& hit, Float& best_t, Int& best_id, Float& best_u, Float& best_v) const;
-  Float3 camera_ray(const Int2& pix) const;
-  void set_camera(const Camera& camera, int width, int height);
-  Program capture_tracer() const;
-  Program capture_camera() const;
-  Program capture_intersector() const;
-  Kernel& kernel(const std::string& backend, Accuracy a);
-};
 
 void Tracer::Impl::upload() {
   const size_t n = scene.triangle_count();
@@ -240,18 +179,10 @@ void Tracer::Impl::upload() {
   background.set(scene.background);
 }
 
-// The intersector: the grid's bounding box, then a 3D-DDA from voxel to voxel, testing the
-// triangles listed in each (Moller-Trumbore). The closest hit wins (ties: the smaller id, so
-// the result does not depend on the order of the lists); a hit counts once its distance is
-// within the current voxel. With *any_hit true, the first hit before tmax ends the search.
-void Tracer::Impl::intersect(const Float3& o, const Float3& d, const Float& tmax,
-                             const Bool* any_hit, Bool& hit, Float& best_t, Int& best_id,
-                             Float& best_u, Float& best_v) const {
-  hit = false;
-  best_t = tmax;
-  best_id = -1;
-  if (!F.geometry) return;
+// ---- the intersector ----------------------------------------------------------------------
 
+void Tracer::Impl::ray_box(const Float3& o, const Float3& d, const Float& tmax, Bool& inside,
+                           Float& t_enter, Float& t_exit) const {
   Bool3 dz = d == Float3(0.0f);
   Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
   Float3 t0 = (grid_lo - o) * inv;
@@ -259,67 +190,233 @@ void Tracer::Impl::intersect(const Float3& o, const Float3& d, const Float& tmax
   Float3 tn = select(dz, Float3(-kBig), min(t0, t1));
   Float3 tf = select(dz, Float3(kBig), max(t0, t1));
   Bool outside = any(dz && ((o < grid_lo) || (o > grid_hi)));
-  Float t_enter = max(max(tn.x(), tn.y()), max(tn.z(), 0.0f));
-  Float t_exit = min(min(tf.x(), tf.y()), min(tf.z(), tmax));
+  t_enter = max(max(tn.x(), tn.y()), max(tn.z(), 0.0f));
+  t_exit = min(min(tf.x(), tf.y()), min(tf.z(), tmax));
+  inside = !outside && t_enter <= t_exit;
+}
 
-  RILL_IF(!outside && t_enter <= t_exit) {
-    // Initialization (thesis 5.1.2): the voxel where the ray enters, the distances to the
-    // next voxel boundary on each axis (tmx) and between boundaries (tdl).
-    Float3 p = o + t_enter * d;
-    Float3 vf = clamp(floor((p - grid_lo) / grid_cell), 0.0f, to_float(grid_res) - 1.0f);
-    Int3 vox = to_int(vf);
-    Bool3 pos = d > 0.0f;
-    Int3 step = select(pos, Int3(1), select(d < 0.0f, Int3(-1), Int3(0)));
-    Float3 bound = grid_lo + (vf + select(pos, Float3(1.0f), Float3(0.0f))) * grid_cell;
-    Float3 tmx = select(dz, Float3(kBig), (bound - o) * inv);
-    Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
+void Tracer::Impl::dda_init(const Float3& o, const Float3& d, const Float& t_enter, Int3& vox,
+                            Float3& tmx) const {
+  Bool3 dz = d == Float3(0.0f);
+  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
+  Float3 p = o + t_enter * d;
+  Float3 vf = clamp(floor((p - grid_lo) / grid_cell), 0.0f, to_float(grid_res) - 1.0f);
+  vox = to_int(vf);
+  Float3 bound = grid_lo + (vf + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * grid_cell;
+  tmx = select(dz, Float3(kBig), (bound - o) * inv);
+}
+
+Int2 Tracer::Impl::voxel_range(const Int3& vox) const {
+  return voxels[vox.x() + grid_res.x() * (vox.y() + grid_res.y() * vox.z())];
+}
+
+void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& tri, Float& best_t,
+                                 Int& best_id, Float& best_u, Float& best_v) const {
+  Float3 v0 = tri_v0[tri], e1 = tri_e1[tri], e2 = tri_e2[tri];
+  Float3 pv = cross(d, e2);
+  Float det = dot(e1, pv);
+  Float3 tv = o - v0;
+  Float3 qv = cross(tv, e1);
+  Bool ok = det != 0.0f;
+  Float inv_det = 1.0f / select(ok, det, 1.0f);
+  Float u = dot(tv, pv) * inv_det;
+  Float v = dot(d, qv) * inv_det;
+  Float t = dot(e2, qv) * inv_det;
+  ok = ok && u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f;
+  RILL_IF(ok && (t < best_t || (t == best_t && tri < best_id))) {
+    best_t = t;
+    best_id = tri;
+    best_u = u;
+    best_v = v;
+  }
+  RILL_ENDIF;
+}
+
+void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float& best_t,
+                               const Int& best_id, const Bool& any_hit, Int3& vox, Float3& tmx,
+                               Int& steps, Bool& done) const {
+  Bool3 dz = d == Float3(0.0f);
+  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
+  Int3 step = select(d > 0.0f, Int3(1), select(d < 0.0f, Int3(-1), Int3(0)));
+  Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
+  Float t_leave = min(min(tmx.x(), tmx.y()), tmx.z());
+  done = best_id >= 0 && (best_t <= t_leave || any_hit);
+  done = done || t_leave >= t_exit;  // the ray ends inside this voxel
+  // Incremental traversal: step along the axis whose boundary is nearest.
+  Bool ax = tmx.x() <= tmx.y() && tmx.x() <= tmx.z();
+  Bool ay = !ax && tmx.y() <= tmx.z();
+  Bool az = !ax && !ay;
+  Bool3 m(ax, ay, az);
+  vox = vox + select(m, step, Int3(0));
+  tmx = select(m, tmx + tdl, tmx);
+  steps += 1;
+  done = done || any(vox < 0) || any(vox >= grid_res) || steps > max_steps;
+}
+
+// The grid's bounding box, then a 3D-DDA from voxel to voxel, testing the triangles listed
+// in each (Moller-Trumbore). The closest hit wins (ties: the smaller id, so the result does
+// not depend on the order of the lists); a hit counts once its distance is within the
+// current voxel. With *any_hit true, the first hit before tmax ends the search.
+void Tracer::Impl::intersect(const Float3& o, const Float3& d, const Float& tmax,
+                             const Bool* any_hit, Bool& hit, Float& best_t, Int& best_id,
+                             Float& best_u, Float& best_v) const {
+  hit = false;
+  best_t = tmax;
+  best_id = -1;
+  if (!F.geometry) return;
+  Bool inside = false;
+  Float t_enter = 0.0f, t_exit = 0.0f;
+  ray_box(o, d, tmax, inside, t_enter, t_exit);
+  RILL_IF(inside) {
+    Int3 vox(0);
+    Float3 tmx(0.0f);
+    dda_init(o, d, t_enter, vox, tmx);
+    const Bool no(false);
     Int steps = 0;
     Bool done = false;
     RILL_DO {
-      Int2 range = voxels[vox.x() + grid_res.x() * (vox.y() + grid_res.y() * vox.z())];
-      Float t_leave = min(min(tmx.x(), tmx.y()), tmx.z());
+      Int2 range = voxel_range(vox);
       RILL_FOR(Int k = 0, k < range.y(), k += 1) {
-        Int tri = elements[range.x() + k];
-        Float3 v0 = tri_v0[tri], e1 = tri_e1[tri], e2 = tri_e2[tri];
-        Float3 pv = cross(d, e2);
-        Float det = dot(e1, pv);
-        Float3 tv = o - v0;
-        Float3 qv = cross(tv, e1);
-        Bool ok = det != 0.0f;
-        Float inv_det = 1.0f / select(ok, det, 1.0f);
-        Float u = dot(tv, pv) * inv_det;
-        Float v = dot(d, qv) * inv_det;
-        Float t = dot(e2, qv) * inv_det;
-        ok = ok && u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f;
-        RILL_IF(ok && (t < best_t || (t == best_t && tri < best_id))) {
-          best_t = t;
-          best_id = tri;
-          best_u = u;
-          best_v = v;
-        }
-        RILL_ENDIF;
+        test_triangle(o, d, elements[range.x() + k], best_t, best_id, best_u, best_v);
       }
       RILL_ENDFOR;
-      if (any_hit != nullptr)
-        done = best_id >= 0 && (best_t <= t_leave || *any_hit);
-      else
-        done = best_id >= 0 && best_t <= t_leave;
-      done = done || t_leave >= t_exit;  // the ray ends inside this voxel
-      // Incremental traversal: step along the axis whose boundary is nearest.
-      Bool ax = tmx.x() <= tmx.y() && tmx.x() <= tmx.z();
-      Bool ay = !ax && tmx.y() <= tmx.z();
-      Bool az = !ax && !ay;
-      Bool3 m(ax, ay, az);
-      vox = vox + select(m, step, Int3(0));
-      tmx = select(m, tmx + tdl, tmx);
-      steps += 1;
-      done = done || any(vox < 0) || any(vox >= grid_res) || steps > max_steps;
+      leave_voxel(d, t_exit, best_t, best_id, any_hit != nullptr ? *any_hit : no, vox, tmx, steps,
+                  done);
     }
     RILL_UNTIL(done);
     hit = best_id >= 0;
   }
   RILL_ENDIF;
 }
+
+// ---- shading -------------------------------------------------------------------------------
+
+void Tracer::Impl::surface(const Float3& ro, const Float3& rd, const Float& ht, const Int& hid,
+                           const Float& hu, const Float& hv, Surface& s) const {
+  s.P = ro + ht * rd;
+  Float3 ng = tri_ng[hid];
+  Float3 ns = ng;
+  if (F.vertex_normals) {
+    Float w = 1.0f - hu - hv;
+    Float3 nn = tri_n0[hid] * w + tri_n1[hid] * hu + tri_n2[hid] * hv;
+    Float nl = length(nn);
+    ns = select(nl > 0.0f, nn / select(nl > 0.0f, nl, 1.0f), ng);
+    ng = select(dot(ng, ns) < 0.0f, -ng, ng);  // the vertex normals tell outside
+  }
+  s.ns = ns;
+  s.entering = dot(ng, rd) < 0.0f;
+  s.nf = select(s.entering, ns, -ns);
+  s.ngf = select(s.entering, ng, -ng);
+  s.V = -rd;
+  Int m = tri_mat[hid];
+  s.kd = mat_kd[m];
+  if (F.vertex_colors) {
+    Float w = 1.0f - hu - hv;
+    s.kd = s.kd * (tri_c0[hid] * w + tri_c1[hid] * hu + tri_c2[hid] * hv);
+  }
+  if (F.specular) s.ks = mat_ks[m];
+  Float4 mp = mat_p[m];
+  s.shin = mp.x();
+  s.refl = mp.y();
+  s.trans = mp.z();
+  s.ior = mp.w();
+}
+
+Float3 Tracer::Impl::phong(const Int& l, const Surface& s) const {
+  Float3 L = normalize(light_pos[l] - s.P);
+  Float ndl = dot(s.nf, L);
+  Float3 c = s.kd * max(ndl, 0.0f);
+  if (F.specular) {
+    Float3 R = reflect(-L, s.nf);
+    Float rv = max(dot(R, s.V), 0.0f);
+    c = c + select(ndl > 0.0f, s.ks * pow(rv, s.shin), Float3(0.0f));
+  }
+  return Float3(c * light_col[l]);
+}
+
+Float3 Tracer::Impl::unshadowed_light(const Surface& s) const {
+  Float3 sum(0.0f);
+  if (F.lights) {
+    RILL_FOR(Int l = 0, l < nlights, l += 1) {
+      sum += phong(l, s);
+    }
+    RILL_ENDFOR;
+  } else {
+    sum = s.kd * max(dot(s.nf, s.V), 0.0f);  // no lights: a headlight at the eye
+  }
+  return sum;
+}
+
+void Tracer::Impl::shadow_ray(const Int& l, const Surface& s, Float3& ro, Float3& rd, Float& tmax,
+                              Bool& active) const {
+  Float3 so = s.P + s.ngf * eps;
+  Float3 L = light_pos[l] - so;
+  Float dist = length(L);
+  ro = so;
+  rd = L / dist;
+  tmax = dist;
+  active = dist > 0.0f && dot(s.nf, rd) > 0.0f;
+}
+
+void Tracer::Impl::shade(const Surface& s, const Float3& local, Float3& color, Float& weight,
+                         Int& depth, Float3& ro, Float3& rd, Bool& go, Bool* has_second,
+                         Branch* second) const {
+  // Eq. 5.1: this surface contributes M_j (1 - r_j) times the product of the earlier
+  // coefficients; with glass, 1 - reflect - transmit.
+  color += weight * (1.0f - s.refl - s.trans) * local;
+  go = false;
+  if (has_second != nullptr) *has_second = false;
+  if (!F.reflection) return;
+  RILL_IF(depth < max_depth) {
+    const Float3 inc = -s.V;
+    Float3 rdir = reflect(inc, s.nf);
+    Float wr = weight * s.refl;
+    Float wt = 0.0f;
+    Float3 tdir(0.0f);
+    if (F.refraction) {
+      // Refraction with Schlick's Fresnel term; total internal reflection sends everything
+      // to the reflected ray.
+      Float eta = select(s.entering, 1.0f / s.ior, s.ior);
+      Float cosi = dot(s.V, s.nf);
+      Float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
+      Bool tir = k < 0.0f;
+      Float sk = sqrt(max(k, 0.0f));
+      tdir = eta * inc + (eta * cosi - sk) * s.nf;
+      Float r0 = (s.ior - 1.0f) / (s.ior + 1.0f);
+      r0 = r0 * r0;
+      Float c = 1.0f - select(s.entering, cosi, sk);
+      Float c2 = c * c;
+      Float fres = select(tir, 1.0f, r0 + (1.0f - r0) * (c2 * c2 * c));
+      wr = weight * (s.refl + s.trans * fres);
+      wt = weight * s.trans * (1.0f - fres);
+    }
+    Bool go_r = wr > kMinWeight;
+    Bool go_t = wt > kMinWeight;
+    if (second != nullptr) {  // both: the reflection is the second branch
+      *has_second = go_r && go_t;
+      second->o = s.P + s.ngf * eps;
+      second->d = rdir;
+      second->w = wr;
+    }
+    RILL_IF(go_t) {
+      ro = s.P - s.ngf * eps;
+      rd = tdir;
+      weight = wt;
+      go = true;
+    }
+    RILL_ELSE_IF(go_r) {
+      ro = s.P + s.ngf * eps;
+      rd = rdir;
+      weight = wr;
+      go = true;
+    }
+    RILL_ENDIF;
+    depth += 1;
+  }
+  RILL_ENDIF;
+}
+
+// ---- the single kernel ---------------------------------------------------------------------
 
 Program Tracer::Impl::capture_tracer() const {
   return rill::program("rill_trace", [&] {
@@ -346,11 +443,8 @@ Program Tracer::Impl::capture_tracer() const {
     Int li = 0;
     Int rays = 0, iter = 0;
     Bool finished = false;
-
-    // The surface being shaded.
-    Float3 P(0.0f), nf(0.0f), ngf(0.0f), kd(0.0f), ks(0.0f), local(0.0f), V(0.0f);
-    Float shin = 0.0f, refl = 0.0f, trans = 0.0f, ior = 1.0f;
-    Bool entering = true;
+    Surface surf;
+    Float3 local(0.0f);
 
     // The ray stack (refraction: the reflected branch waits here).
     std::vector<Float3> st_o, st_d;
@@ -363,28 +457,6 @@ Program Tracer::Impl::capture_tracer() const {
       st_depth.emplace_back(0);
     }
     Int sp = 0;
-
-    // Phong from light l at the current surface.
-    auto phong = [&](const Int& l) {
-      Float3 L = normalize(light_pos[l] - P);
-      Float ndl = dot(nf, L);
-      Float3 c = kd * max(ndl, 0.0f);
-      if (F.specular) {
-        Float3 R = reflect(-L, nf);
-        Float rv = max(dot(R, V), 0.0f);
-        c = c + select(ndl > 0.0f, ks * pow(rv, shin), Float3(0.0f));
-      }
-      return Float3(c * light_col[l]);
-    };
-    auto setup_shadow_ray = [&](const Int& l) {
-      Float3 so = P + ngf * eps;
-      Float3 L = light_pos[l] - so;
-      Float dist = length(L);
-      ro = so;
-      rd = L / dist;
-      ray_tmax = dist;
-      ray_active = dist > 0.0f && dot(nf, rd) > 0.0f;
-    };
 
     // max_iter = 0 skips all tracing: render() uses that for a warm-up launch.
     RILL_IF(max_iter > 0) {
@@ -406,53 +478,20 @@ Program Tracer::Impl::capture_tracer() const {
         Int cur_mode = mode;  // the branches below may change mode for the next iteration
 
         auto shade_hit = [&] {
-          // The surface: position, normals, material.
-          P = ro + ht * rd;
-          Float3 ng = tri_ng[hid];
-          Float3 ns = ng;
-          if (F.vertex_normals) {
-            Float w = 1.0f - hu - hv;
-            Float3 nn = tri_n0[hid] * w + tri_n1[hid] * hu + tri_n2[hid] * hv;
-            Float nl = length(nn);
-            ns = select(nl > 0.0f, nn / select(nl > 0.0f, nl, 1.0f), ng);
-            ng = select(dot(ng, ns) < 0.0f, -ng, ng);  // the vertex normals tell outside
-          }
-          entering = dot(ng, rd) < 0.0f;
-          nf = select(entering, ns, -ns);
-          ngf = select(entering, ng, -ng);
-          V = -rd;
-          Int m = tri_mat[hid];
-          kd = mat_kd[m];
-          if (F.vertex_colors) {
-            Float w = 1.0f - hu - hv;
-            kd = kd * (tri_c0[hid] * w + tri_c1[hid] * hu + tri_c2[hid] * hv);
-          }
-          if (F.specular) ks = mat_ks[m];
-          Float4 mp = mat_p[m];
-          shin = mp.x();
-          refl = mp.y();
-          trans = mp.z();
-          ior = mp.w();
-          local = ambient * kd;
+          surface(ro, rd, ht, hid, hu, hv, surf);
+          local = ambient * surf.kd;
           RILL_IF(depth == 0) {  // AOVs of the camera ray
             out_depth = ht;
             out_prim = hid;
-            out_normal = ns;
+            out_normal = surf.ns;
           }
           RILL_ENDIF;
           if (F.shadows) {
             mode = 1;
             li = 0;
-            setup_shadow_ray(li);
-          } else if (F.lights) {
-            RILL_FOR(Int l = 0, l < nlights, l += 1) {
-              local += phong(l);
-            }
-            RILL_ENDFOR;
-            shade_done = true;
+            shadow_ray(li, surf, ro, rd, ray_tmax, ray_active);
           } else {
-            // No lights: a headlight at the eye, without shadows.
-            local += kd * max(dot(nf, V), 0.0f);
+            local += unshadowed_light(surf);
             shade_done = true;
           }
         };
@@ -477,12 +516,12 @@ Program Tracer::Impl::capture_tracer() const {
         if (F.shadows) {
           RILL_IF(cur_mode == 1) {  // a shadow ray came back
             RILL_IF(ray_active && !hit) {
-              local += phong(li);
+              local += phong(li, surf);
             }
             RILL_ENDIF;
             li += 1;
             RILL_IF(li < nlights) {
-              setup_shadow_ray(li);
+              shadow_ray(li, surf, ro, rd, ray_tmax, ray_active);
             }
             RILL_ELSE {
               mode = 0;
@@ -494,76 +533,33 @@ Program Tracer::Impl::capture_tracer() const {
         }
 
         RILL_IF(shade_done) {
-          // Eq. 5.1: this surface contributes M_j (1 - r_j) times the product of the earlier
-          // coefficients; with glass, 1 - reflect - transmit.
-          color += weight * (1.0f - refl - trans) * local;
-          if (!F.reflection) {
-            path_done = true;
-          } else {
-            RILL_IF(depth >= max_depth) {
-              path_done = true;
-            }
-            RILL_ELSE {
-              // The ray registers (ro, rd) held shadow rays since the hit: use V.
-              const Float3 inc = -V;
-              Float3 rdir = reflect(inc, nf);
-              Float wr = weight * refl;
-              Float wt = 0.0f;
-              Float3 tdir(0.0f);
-              if (F.refraction) {
-                // Refraction with Schlick's Fresnel term; total internal reflection
-                // sends everything to the reflected ray.
-                Float eta = select(entering, 1.0f / ior, ior);
-                Float cosi = dot(V, nf);
-                Float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
-                Bool tir = k < 0.0f;
-                Float sk = sqrt(max(k, 0.0f));
-                tdir = eta * inc + (eta * cosi - sk) * nf;
-                Float r0 = (ior - 1.0f) / (ior + 1.0f);
-                r0 = r0 * r0;
-                Float c = 1.0f - select(entering, cosi, sk);
-                Float c2 = c * c;
-                Float fres = select(tir, 1.0f, r0 + (1.0f - r0) * (c2 * c2 * c));
-                wr = weight * (refl + trans * fres);
-                wt = weight * trans * (1.0f - fres);
-              }
-              Bool go_r = wr > kMinWeight;
-              Bool go_t = wt > kMinWeight;
-              if (F.stack > 0) {
-                RILL_IF(go_r && go_t && sp < F.stack) {  // both: the reflection waits
-                  for (int s = 0; s < F.stack; ++s) {
-                    RILL_IF(sp == s) {
-                      st_o[static_cast<size_t>(s)] = P + ngf * eps;
-                      st_d[static_cast<size_t>(s)] = rdir;
-                      st_w[static_cast<size_t>(s)] = wr;
-                      st_depth[static_cast<size_t>(s)] = depth + 1;
-                    }
-                    RILL_ENDIF;
-                  }
-                  sp += 1;
+          Bool go = false, second = false;
+          Branch b;
+          shade(surf, local, color, weight, depth, ro, rd, go, F.stack > 0 ? &second : nullptr,
+                F.stack > 0 ? &b : nullptr);
+          if (F.stack > 0) {
+            RILL_IF(second && sp < F.stack) {  // the reflection waits on the stack
+              for (int s = 0; s < F.stack; ++s) {
+                RILL_IF(sp == s) {
+                  st_o[static_cast<size_t>(s)] = b.o;
+                  st_d[static_cast<size_t>(s)] = b.d;
+                  st_w[static_cast<size_t>(s)] = b.w;
+                  st_depth[static_cast<size_t>(s)] = depth;
                 }
                 RILL_ENDIF;
               }
-              RILL_IF(go_t) {
-                ro = P - ngf * eps;
-                rd = tdir;
-                weight = wt;
-              }
-              RILL_ELSE_IF(go_r) {
-                ro = P + ngf * eps;
-                rd = rdir;
-                weight = wr;
-              }
-              RILL_ELSE {
-                path_done = true;
-              }
-              RILL_ENDIF;
-              depth += 1;
-              ray_active = true;
-              ray_tmax = kBig;
+              sp += 1;
             }
             RILL_ENDIF;
           }
+          RILL_IF(go) {
+            ray_active = true;
+            ray_tmax = kBig;
+          }
+          RILL_ELSE {
+            path_done = true;
+          }
+          RILL_ENDIF;
         }
         RILL_ENDIF;
 
@@ -704,6 +700,10 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
   if (r.width == 0 || r.height == 0) throw std::runtime_error("render: image size not set");
   const int depth = rs.max_depth >= 0 ? rs.max_depth : sc.options.max_depth;
   const int spp = rs.spp > 0 ? rs.spp : sc.options.spp;
+  if (rs.strategy == Strategy::Multipass) {
+    I.set_camera(camera, r.width, r.height);
+    return I.render_multipass(rs, r.width, r.height, depth, spp);
+  }
 
   const auto t0 = std::chrono::steady_clock::now();
   Kernel& k = I.kernel(rs.backend, rs.accuracy);
@@ -746,6 +746,7 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
   for (int s = 0; s < spp; ++s) {
     I.offset.set(sample_offset(s));
     k.execute();
+    ++r.launches;
     std::vector<int32_t> n = crop(rays.download());
     for (int32_t x : n) r.rays += x;
     if (s == 0) {

@@ -1,4 +1,5 @@
-// The ray tracer: one Rill program, written once, run on every backend.
+// The ray tracer: one Rill program, written once, run on every backend (and, as a second
+// strategy, the thesis's multipass kernels built from the same DSL functions).
 //
 // The kernel (Sh style, after Moreno-Fortuny and McCool) runs one instance per pixel: it
 // makes the camera ray (Camera.h), then a RILL_DO ... RILL_UNTIL loop traces one ray per
@@ -25,6 +26,8 @@
 
 namespace rt {
 
+struct Multipass;
+
 // What the kernel is generated with, decided on the host from the scene.
 struct Features {
   bool geometry = false;        // any traceable triangle (else every ray misses)
@@ -42,8 +45,14 @@ Features scene_features(const Scene& s);
 
 constexpr int kRayStack = 3;
 
+enum class Strategy {
+  Megakernel,  // one kernel per pixel with a RILL_DO loop (Sh)
+  Multipass,   // the thesis's kernel sequence with ray states (no refraction)
+};
+
 struct RenderSettings {
   std::string backend = "cpu";
+  Strategy strategy = Strategy::Megakernel;
   rill::Accuracy accuracy = rill::Accuracy::Strict;
   int width = 0, height = 0;  // 0: the scene's
   int max_depth = -1;         // -1: the scene's
@@ -60,6 +69,7 @@ struct RenderResult {
   double compile_ms = 0;          // 0 when the compiled kernel came from a cache
   bool from_cache = false;
   double trace_ms = 0;
+  int64_t launches = 0;  // kernel launches while tracing
   std::string backend;
 };
 
@@ -91,6 +101,7 @@ class Tracer {
 
  private:
   struct Impl;
+  friend struct Multipass;
   std::unique_ptr<Impl> d_;
 };
 

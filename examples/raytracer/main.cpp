@@ -3,7 +3,8 @@
 //   rill-trace render SCENE [--backend cpu|opencl|glsl] [--accuracy strict|fast|double]
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
-//                           [--grid N|auto] [--strategy megakernel] [--stats-json FILE]
+//                           [--grid N|auto] [--strategy megakernel|multipass]
+//                           [--stats-json FILE] [--source FILE] [--quiet]
 //   rill-trace demo [--scene SCENE] [--size WxH] [--out-dir DIR]
 //   rill-trace info
 //
@@ -76,8 +77,8 @@ std::vector<float> to_float(const std::vector<int32_t>& v) {
 }
 
 int render(const RenderOptions& o) {
-  if (o.strategy != "megakernel")
-    throw rt::SceneError("--strategy " + o.strategy + ": only 'megakernel' is implemented so far");
+  if (o.strategy != "megakernel" && o.strategy != "multipass")
+    throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
   const rill::Accuracy acc = rill::parse_accuracy(o.accuracy);
   const auto t_load = Clock::now();
   rt::Scene scene = rt::load_scene(o.scene);
@@ -99,6 +100,7 @@ int render(const RenderOptions& o) {
   rt::RenderSettings rs;
   rs.backend = o.backend;
   rs.accuracy = acc;
+  rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
   rs.width = scene.width;
   rs.height = scene.height;
   rt::CameraFrame cam = rt::camera_frame(scene.camera, scene.width, scene.height);
@@ -146,6 +148,7 @@ int render(const RenderOptions& o) {
                  {"degenerate", grid.degenerate},
                  {"non_finite", grid.non_finite}};
     j["rays"] = r.rays;
+    j["launches"] = r.launches;
     j["rays_per_second"] = rays_per_s;
     j["compiled_from_cache"] = r.from_cache;
     j["time_ms"] = {{"load", load_ms},
@@ -265,7 +268,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 64));
   r->add_option("--spp", ro.spp, "samples per pixel")->check(CLI::Range(1, 4096));
   r->add_option("--grid", ro.grid, "voxels per axis, or auto");
-  r->add_option("--strategy", ro.strategy, "megakernel")->default_str("megakernel");
+  r->add_option("--strategy", ro.strategy,
+                "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
+      ->default_str("megakernel");
   r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
   r->add_option("--source", ro.source, "write the generated kernel source");
   r->add_flag("--quiet", ro.quiet, "print only the stats line");
