@@ -1,0 +1,95 @@
+// The fast-mode contract: per operation and backend, the largest error (in ulps, see
+// docs/accuracy.md for the measure and the domains) a conforming result may have.
+//
+// Exact operations have bound 0 and correctly rounded ones 0.5 on every backend. The others
+// come from measurements with the suite (rill-conformance --accuracy fast, seeds 1 to 5,
+// --elements 16384: see docs/accuracy.md), about 1.5 times the largest error seen, rounded
+// up to a round number. "other" is for backends and drivers without a measurement here:
+// twice the largest measured bound, or the OpenCL relaxed-math / GLSL precision limit where
+// that is larger.
+#include <map>
+
+#include "Suite.h"
+
+namespace rill::conformance {
+
+namespace {
+
+struct Bound {
+  double cpu, opencl, glsl, other;
+};
+
+const std::map<std::string, Bound>& table() {
+  static const std::map<std::string, Bound> t = {
+      //                cpu   opencl  glsl   other
+      // exact operations: any correct implementation is exact
+      {"neg", {0, 0, 0, 0}},
+      {"abs", {0, 0, 0, 0}},
+      {"sign", {0, 0, 0, 0}},
+      {"floor", {0, 0, 0, 0}},
+      {"ceil", {0, 0, 0, 0}},
+      {"min", {0, 0, 0, 0}},
+      {"max", {0, 0, 0, 0}},
+      {"clamp", {0, 0, 0, 0}},
+      {"select", {0, 0, 0, 0}},
+      {"as_float", {0, 0, 0, 0}},
+      {"swizzle", {0, 0, 0, 0}},
+      {"write mask", {0, 0, 0, 0}},
+      // correctly rounded in IEEE arithmetic (0.5 ulp)
+      {"add", {0.5, 0.5, 0.5, 0.5}},
+      {"sub", {0.5, 0.5, 0.5, 0.5}},
+      {"mul", {0.5, 0.5, 0.5, 0.5}},
+      {"to_float", {0.5, 0.5, 0.5, 0.5}},
+      {"fract", {0.5, 0.5, 0.5, 1}},
+      {"sqrt", {0.5, 0.5, 0.5, 3}},
+      {"div", {0.5, 4, 0.5, 4}},
+      // 1 / sqrt(x): two roundings, up to 2 ulp
+      {"rsqrt", {2, 3.5, 2, 4}},
+      {"mod", {1, 1, 1, 2}},
+      // transcendental functions (GLSL: llvmpipe's own approximations)
+      {"exp", {1, 2, 128, 256}},
+      {"exp2", {1, 2, 8, 16}},
+      {"log", {1, 1, 4, 8}},
+      {"log2", {1, 1, 4, 8}},
+      {"pow", {1, 2, 1024, 2048}},
+      {"sin", {1, 3, 3, 8}},
+      {"cos", {1, 3, 3, 8}},
+      {"tan", {2, 6, 6, 12}},
+      {"atan", {2, 2, 1024, 4096}},
+      {"atan2", {3, 2, 1024, 4096}},
+      // geometry (in ulps of the terms' magnitude where the formula cancels)
+      {"dot", {3, 3, 3, 6}},
+      {"length", {2, 2, 2, 4}},
+      {"distance", {2.5, 2.5, 2.5, 5}},
+      {"normalize", {4, 5, 4, 8}},
+      {"cross", {2, 2, 2, 4}},
+      {"lerp", {3, 3, 3, 6}},
+      {"reflect", {4, 4, 4, 8}},
+      {"refract", {12, 12, 12, 24}},
+  };
+  return t;
+}
+
+}  // namespace
+
+double fast_bound(const std::string& op, const std::string& backend) {
+  auto it = table().find(op);
+  if (it == table().end()) return -1;
+  const Bound& b = it->second;
+  if (backend == "cpu") return b.cpu;
+  if (backend == "opencl") return b.opencl;
+  if (backend == "glsl") return b.glsl;
+  return b.other;
+}
+
+double double_bound(const std::string& op) {
+  // libm double functions (glibc, PoCL) are within a few double ulps: rounding that to float
+  // can land on the other side of a rounding boundary, one float ulp away, in rare cases.
+  static const char* const kTranscendental[] = {"exp", "exp2", "log", "log2", "pow",
+                                                "sin", "cos",  "tan", "atan", "atan2"};
+  for (const char* t : kTranscendental)
+    if (op == t) return 1;
+  return 0;
+}
+
+}  // namespace rill::conformance
