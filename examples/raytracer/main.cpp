@@ -103,8 +103,6 @@ int render(const RenderOptions& o) {
   rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
   rs.width = scene.width;
   rs.height = scene.height;
-  rt::CameraFrame cam = rt::camera_frame(scene.camera, scene.width, scene.height);
-  (void)cam;
   const auto t_render = Clock::now();
   rt::RenderResult r = tracer.render(rs, scene.camera);
   const double render_ms = ms_since(t_render);
@@ -162,17 +160,27 @@ int render(const RenderOptions& o) {
   }
   if (!o.quiet) {
     for (const auto& w : written) std::printf("wrote %s\n", w.c_str());
+    glm::vec3 lo, hi;
+    if (rt::scene_bounds(scene, lo, hi)) {
+      const float size = glm::length(hi - lo);
+      if (size < 1e-10f || size > 1e10f)
+        std::printf(
+            "note: the scene is %g units across; the intersection test's cubic terms underflow "
+            "(GLSL flushes them) or overflow outside about 1e-10..1e10\n",
+            static_cast<double>(size));
+    }
     if (grid.degenerate + grid.non_finite > 0)
       std::printf("note: %zu degenerate and %zu non-finite triangles are never hit\n",
                   grid.degenerate, grid.non_finite);
   }
   std::printf(
-      "rill-trace: %s, %zu triangles, %dx%d, %s %s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
-      "load %.1f ms, grid build %.1f ms, compile %.1f ms%s, trace %.1f ms\n",
+      "rill-trace: %s, %zu triangles, %dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
+      "load %.1f ms, grid build %.1f ms, compile %.1f ms%s, trace %.1f ms%s\n",
       scene.name.c_str(), scene.triangle_count(), r.width, r.height, o.backend.c_str(),
-      o.accuracy.c_str(), grid.res.x, grid.res.y, grid.res.z, rays_per_s * 1e-6,
-      static_cast<long long>(r.rays), load_ms, grid.build_ms, compile_ms,
-      r.from_cache ? " (cached)" : "", r.trace_ms);
+      o.accuracy.c_str(), o.strategy == "multipass" ? " multipass" : "", grid.res.x, grid.res.y,
+      grid.res.z, rays_per_s * 1e-6, static_cast<long long>(r.rays), load_ms, grid.build_ms,
+      compile_ms, r.from_cache ? " (cached)" : "", r.trace_ms,
+      o.strategy == "multipass" ? (" (" + std::to_string(r.launches) + " launches)").c_str() : "");
   return 0;
 }
 
