@@ -183,11 +183,33 @@ Camera default_camera(const Scene& s) {
   glm::dvec3 center = (glm::dvec3(lo) + glm::dvec3(hi)) * 0.5;
   double radius = glm::length(glm::dvec3(hi) - glm::dvec3(lo)) * 0.5;
   if (!(radius > 0)) radius = 1;
-  const double half = c.fov_y * 0.5 * 3.14159265358979323846 / 180.0;
-  const double dist = radius / std::sin(half) * 1.05;
-  glm::dvec3 dir = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
+  const double t = std::tan(c.fov_y * 0.5 * 3.14159265358979323846 / 180.0) * 0.95;
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
+  const glm::dvec3 right = glm::normalize(glm::cross(-dir, glm::dvec3(0, 1, 0)));
+  const glm::dvec3 up = glm::cross(right, -dir);
+  // The nearest eye (along dir) from which all 8 corners of the box are within 95% of the
+  // field of view (square images; wider ones see more).
+  auto fits = [&](double dist) {
+    const glm::dvec3 eye = center + dir * dist;
+    for (int k = 0; k < 8; ++k) {
+      glm::dvec3 p((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+      glm::dvec3 v = p - eye;
+      double z = glm::dot(v, -dir);
+      if (z <= 0 || std::fabs(glm::dot(v, right)) > t * z || std::fabs(glm::dot(v, up)) > t * z)
+        return false;
+    }
+    return true;
+  };
+  double far = radius / std::sin(std::atan(t)) * 1.05, near = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    double mid = 0.5 * (near + far);
+    if (fits(mid))
+      far = mid;
+    else
+      near = mid;
+  }
   c.look_at = glm::vec3(center);
-  c.eye = glm::vec3(center + dir * dist);
+  c.eye = glm::vec3(center + dir * far);
   return c;
 }
 
