@@ -50,6 +50,16 @@ class Dialect {
                              const std::vector<std::string>& dst) const = 0;
   virtual std::string element_index() const = 0;
   virtual std::string element_coord(int comp) const = 0;
+  // a OP b for one component of kind k (OP: < <= > >= == !=).
+  virtual std::string compare(ir::ScalarKind, const char* op, const std::string& a,
+                              const std::string& b) const {
+    return "(" + a + " " + op + " " + b + ")";
+  }
+  // c ? a : b for one component of kind k.
+  virtual std::string select(ir::ScalarKind, const std::string& c, const std::string& a,
+                             const std::string& b) const {
+    return "(" + c + " ? " + a + " : " + b + ")";
+  }
 };
 
 class CFamilyPrinter {

@@ -15,6 +15,7 @@
 #include "GLSLBackend.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -29,6 +30,11 @@ namespace rill::glsl {
 namespace {
 
 constexpr int64_t kMaxRow = 4096;
+
+// Set when the process exits: the GL library may already be torn down by the time static
+// objects holding kernels or textures are destroyed, so those then skip their GL calls.
+std::atomic<bool> g_exiting{false};
+void mark_exiting() { g_exiting = true; }
 
 struct Format {
   GLenum internal, format, type;
@@ -71,6 +77,7 @@ class GLSLKernel : public CompiledKernel {
     std::vector<int> outputs;
     GLuint program = 0;
     std::string source;
+    std::vector<uint32_t> constants;
   };
   GLSLKernel(GLSLBackend& be, ir::Function f, std::vector<Pass> passes)
       : be_(be), fn_(std::move(f)), passes_(std::move(passes)) {
@@ -118,7 +125,9 @@ class GLSLBackend : public Backend {
       GLSLKernel::Pass p;
       for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group)); ++i)
         p.outputs.push_back(static_cast<int>(i));
-      p.source = emit_glsl(f, o.accuracy, p.outputs);
+      GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs);
+      p.source = std::move(shader.source);
+      p.constants = std::move(shader.constants);
       p.program = link(gl, f.name, p.source);
       passes.push_back(std::move(p));
     }
@@ -203,7 +212,7 @@ class GLSLBackend : public Backend {
 
   void release(GLuint tex) {
     // Called from Texture destructors, possibly after the backend is gone at exit.
-    if (!context_) return;
+    if (!context_ || g_exiting) return;
     std::lock_guard<std::recursive_mutex> lock(mutex_);
     const GL& gl = current();
     gl.glDeleteTextures(1, &tex);
@@ -272,6 +281,8 @@ class GLSLBackend : public Backend {
     if (!init_error_.empty()) throw Error(init_error_);
     try {
       auto c = create_context();
+      // Registered after the kernel cache exists, so it runs before the cache is destroyed.
+      std::atexit(mark_exiting);
       const GL& gl = c->gl();
       GLint draw = 1, attach = 1, units = 16;
       gl.glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw);
@@ -307,6 +318,7 @@ Texture::~Texture() {
 }
 
 GLSLKernel::~GLSLKernel() {
+  if (g_exiting) return;
   std::lock_guard<std::recursive_mutex> lock(be_.mutex_);
   const GL& gl = be_.current();
   for (Pass& p : passes_) gl.glDeleteProgram(p.program);
@@ -317,7 +329,9 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
   if (a.count > kMaxRow * kMaxRow) throw Error("GLSL backend: streams are limited to 4096 x 4096 elements");
   std::lock_guard<std::recursive_mutex> lock(be_.mutex_);
   const GL& gl = be_.current();
-  const int units = static_cast<int>(a.inputs.size() + a.outputs.size() + a.arrays.size());
+  size_t widest = 0;
+  for (const Pass& p : passes_) widest = std::max(widest, p.outputs.size());
+  const int units = static_cast<int>(a.inputs.size() + widest + a.arrays.size());
   if (units > be_.max_texture_units())
     throw Error("GLSL backend: kernel '" + fn_.name + "' reads " + std::to_string(units) +
                 " textures but the context has " + std::to_string(be_.max_texture_units()) + " texture units");
@@ -375,7 +389,7 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
       ++unit;
     };
     for (size_t i = 0; i < in_tex.size(); ++i) bind("rill_in" + std::to_string(i), in_tex[i]);
-    for (size_t i = 0; i < prev.size(); ++i) bind("rill_prev" + std::to_string(i), prev[i]);
+    for (int o : p.outputs) bind("rill_prev" + std::to_string(o), prev[static_cast<size_t>(o)]);
     for (size_t i = 0; i < arr_tex.size(); ++i) bind("rill_arr" + std::to_string(i), arr_tex[i]);
     auto set_int = [&](const char* name, int64_t v) {
       GLint loc = gl.glGetUniformLocation(p.program, name);
@@ -387,6 +401,15 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
     if (!words.empty()) {
       GLint loc = gl.glGetUniformLocation(p.program, "rill_u");
       if (loc >= 0) gl.glUniform1uiv(loc, static_cast<GLsizei>(words.size()), words.data());
+    }
+    if (!p.constants.empty()) {
+      GLint loc = gl.glGetUniformLocation(p.program, "rill_k");
+      if (loc >= 0) gl.glUniform1uiv(loc, static_cast<GLsizei>(p.constants.size()), p.constants.data());
+    }
+    {
+      const GLuint one = 0x3f800000u;  // 1.0f, for the helpers (see GLSLEmitter.cpp)
+      GLint loc = gl.glGetUniformLocation(p.program, "rill_one");
+      if (loc >= 0) gl.glUniform1uiv(loc, 1, &one);
     }
     if (!shapes.empty()) {
       GLint loc = gl.glGetUniformLocation(p.program, "rill_shapes");

@@ -11,6 +11,7 @@
 // or reassociating the operations that compute it.
 #include "GLSLEmitter.h"
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -47,9 +48,23 @@ int rill_sign_i(int a) { return a > 0 ? 1 : (a < 0 ? -1 : 0); }
 int rill_shl(int a, int b) { return int(uint(a) << uint(b & 31)); }
 int rill_shr(int a, int b) { return a >> (b & 31); }
 
-float rill_min_f(float a, float b) { return b < a ? b : a; }
-float rill_max_f(float a, float b) { return a < b ? b : a; }
-float rill_sign_f(float x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+// Selections are made on bit patterns: shader compilers turn a float `a < b ? b : a` into
+// their own max, whose NaN and signed-zero behaviour differs.
+float rill_sel_f(bool c, float a, float b) { return intBitsToFloat(c ? floatBitsToInt(a) : floatBitsToInt(b)); }
+// Ordered comparisons on bit patterns: shader compilers may assume no NaN and rewrite
+// comparisons (a > b into !(a <= b)). key() orders floats as integers, -0 equal to +0.
+bool rill_isnan(float x) { return (floatBitsToInt(x) & 0x7fffffff) > 0x7f800000; }
+int rill_key(float x) { int b = floatBitsToInt(x); return b >= 0 ? b : int(0x80000000u) - b; }
+bool rill_lt(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) < rill_key(b); }
+bool rill_le(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) <= rill_key(b); }
+bool rill_eq(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) == rill_key(b); }
+float rill_min_f(float a, float b) { return rill_sel_f(rill_lt(b, a), b, a); }
+float rill_max_f(float a, float b) { return rill_sel_f(rill_lt(a, b), b, a); }
+float rill_sign_f(float x) {
+  int b = floatBitsToInt(x);
+  int m = b & 0x7fffffff;
+  return intBitsToFloat((m == 0 || m > 0x7f800000) ? 0 : ((b & int(0x80000000u)) | 0x3f800000));
+}
 float rill_abs_f(float x) { return abs(x); }
 float rill_floor(float x) { return floor(x); }
 float rill_ceil(float x) { return ceil(x); }
@@ -62,7 +77,7 @@ float rill_mod_f(float a, float b) {
   return r;
 }
 float rill_sqrt(float x) { return sqrt(x); }
-float rill_rsqrt(float x) { RILL_PRECISE float s = sqrt(x); RILL_PRECISE float r = 1.0 / s; return r; }
+float rill_rsqrt(float x) { RILL_PRECISE float s = sqrt(x); RILL_PRECISE float r = RILL_ONE / s; return r; }
 float rill_exp(float x) { return exp(x); }
 float rill_log(float x) { return log(x); }
 float rill_exp2(float x) { return exp2(x); }
@@ -75,7 +90,7 @@ float rill_pow(float x, float y) { return pow(x, y); }
 float rill_atan2(float y, float x) { return atan(y, x); }
 float rill_i2f(int i) { return float(i); }
 int rill_f2i(float x) {
-  if (isnan(x)) return 0;
+  if (rill_isnan(x)) return 0;
   if (x >= 2147483648.0) return 2147483647;
   if (x < -2147483648.0) return int(0x80000000u);
   return int(x);
@@ -89,7 +104,11 @@ const char kComp[] = "xyzw";
 
 class GLSLDialect : public codegen::Dialect {
  public:
-  explicit GLSLDialect(Accuracy a) : strict_(a != Accuracy::Fast) {}
+  GLSLDialect(Accuracy a, const std::vector<int>& pass_outputs)
+      : strict_(a != Accuracy::Fast), pass_outputs_(pass_outputs) {}
+
+  // Float constants a strict kernel uses, in the order of rill_k[] (see literal()).
+  mutable std::vector<uint32_t> constants;
 
   bool scalarize() const override { return true; }
   std::string scalar_type(ScalarKind k) const override {
@@ -111,6 +130,15 @@ class GLSLDialect : public codegen::Dialect {
           std::snprintf(buf, sizeof buf, "uintBitsToFloat(0x%08xu)", bits);
           return buf;
         }
+        if (strict_) {
+          // Shader compilers fold some operations on literals even in `precise` code
+          // (Mesa: x * 0.0 -> 0.0, 0.0 - x -> -x), which is wrong for infinities, NaN and
+          // signed zeros. A constant read from a uniform cannot be folded.
+          size_t i = 0;
+          while (i < constants.size() && constants[i] != bits) ++i;
+          if (i == constants.size()) constants.push_back(bits);
+          return "uintBitsToFloat(rill_k[" + std::to_string(i) + "])";
+        }
         auto r = std::to_chars(buf, buf + sizeof buf, v);
         std::string s(buf, r.ptr);
         if (s.find_first_of(".e") == std::string::npos) s += ".0";
@@ -128,7 +156,11 @@ class GLSLDialect : public codegen::Dialect {
     std::string comp = std::string(".") + kComp[c];
     switch (var.role) {
       case VarRole::Input: return "rill_in" + std::to_string(var.slot) + "_v" + comp;
-      case VarRole::Output: return "rill_prev" + std::to_string(var.slot) + "_v" + comp;
+      case VarRole::Output:
+        // Only this pass's outputs read their previous values (the others are not stored).
+        if (std::find(pass_outputs_.begin(), pass_outputs_.end(), var.slot) == pass_outputs_.end())
+          return literal(var.type.kind, 0);
+        return "rill_prev" + std::to_string(var.slot) + "_v" + comp;
       case VarRole::Uniform: return "u" + std::to_string(var.slot) + "_" + std::to_string(c);
       default: return literal(var.type.kind, 0);
     }
@@ -142,10 +174,28 @@ class GLSLDialect : public codegen::Dialect {
     if (index.size() > 1) lin += " + " + dim(0) + " * rill_clamp_index(" + index[1] + ", " + dim(1) + ")";
     if (index.size() > 2) lin += " + " + dim(0) + " * " + dim(1) + " * rill_clamp_index(" + index[2] + ", " + dim(2) + ")";
     const char* vec = f.arrays[static_cast<size_t>(s.array)].elem.is_float() ? "vec4" : "ivec4";
-    std::string out = "{\n  int g = " + lin + ";\n  " + vec + " e = texelFetch(rill_arr" + id +
-                      ", ivec2(g % rill_row, g / rill_row), 0);\n";
+    // The array's own row length (its texture's width), not the launch's.
+    std::string out = "{\n  int g = " + lin + ";\n  int w = textureSize(rill_arr" + id + ", 0).x;\n  " + vec +
+                      " e = texelFetch(rill_arr" + id + ", ivec2(g % w, g / w), 0);\n";
     for (size_t c = 0; c < dst.size(); ++c) out += "  " + dst[c] + " = e." + kComp[c] + ";\n";
     return out + "}\n";
+  }
+
+  std::string compare(ScalarKind k, const char* op, const std::string& a, const std::string& b) const override {
+    if (k != ScalarKind::Float || !strict_) return "(" + a + " " + op + " " + b + ")";
+    std::string o = op;
+    if (o == "<") return "rill_lt(" + a + ", " + b + ")";
+    if (o == "<=") return "rill_le(" + a + ", " + b + ")";
+    if (o == ">") return "rill_lt(" + b + ", " + a + ")";
+    if (o == ">=") return "rill_le(" + b + ", " + a + ")";
+    if (o == "==") return "rill_eq(" + a + ", " + b + ")";
+    return "(!rill_eq(" + a + ", " + b + "))";
+  }
+
+  std::string select(ScalarKind k, const std::string& c, const std::string& a,
+                     const std::string& b) const override {
+    if (k == ScalarKind::Float) return "rill_sel_f(" + c + ", " + a + ", " + b + ")";
+    return "(" + c + " ? " + a + " : " + b + ")";
   }
 
   std::string element_index() const override { return "rill_i"; }
@@ -155,6 +205,7 @@ class GLSLDialect : public codegen::Dialect {
 
  private:
   bool strict_;
+  std::vector<int> pass_outputs_;
 };
 
 std::string sampler(ScalarKind k) { return k == ScalarKind::Float ? "sampler2D" : "isampler2D"; }
@@ -171,15 +222,19 @@ std::string vertex_shader() {
          "}\n";
 }
 
-std::string emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs) {
-  GLSLDialect d(accuracy);
+GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs) {
+  GLSLDialect d(accuracy, outputs);
   codegen::CFamilyPrinter p(f, d);
+  // The body first: printing it collects the constants that the declarations need.
+  std::string body = p.declarations(1) + p.body(1);
   std::string src = "#version 430 core\n// Generated by Rill from kernel '" + codegen::comment_safe(f.name) + "' (" + accuracy_name(accuracy) + ").\n";
-  src += accuracy == Accuracy::Fast ? "#define RILL_PRECISE\n" : "#define RILL_PRECISE precise\n";
+  src += accuracy == Accuracy::Fast ? "#define RILL_PRECISE\n#define RILL_ONE 1.0\n"
+                                    : "#define RILL_PRECISE precise\n#define RILL_ONE uintBitsToFloat(rill_one)\nuniform uint rill_one;\n";
   for (size_t i = 0; i < f.inputs.size(); ++i)
     src += "uniform " + sampler(f.var(f.inputs[i]).type.kind) + " rill_in" + std::to_string(i) + ";\n";
-  for (size_t i = 0; i < f.outputs.size(); ++i)
-    src += "uniform " + sampler(f.var(f.outputs[i]).type.kind) + " rill_prev" + std::to_string(i) + ";\n";
+  for (int o : outputs)
+    src += "uniform " + sampler(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) + " rill_prev" + std::to_string(o) + ";\n";
+  if (!d.constants.empty()) src += "uniform uint rill_k[" + std::to_string(d.constants.size()) + "];\n";
   for (size_t i = 0; i < f.arrays.size(); ++i)
     src += "uniform " + sampler(f.arrays[i].elem.kind) + " rill_arr" + std::to_string(i) + ";\n";
   if (!f.uniforms.empty()) src += "uniform uint rill_u[" + std::to_string(f.uniforms.size() * 4) + "];\n";
@@ -198,9 +253,9 @@ std::string emit_glsl(const Function& f, Accuracy accuracy, const std::vector<in
   for (size_t i = 0; i < f.inputs.size(); ++i)
     src += "  " + vec4_of(f.var(f.inputs[i]).type.kind) + " rill_in" + std::to_string(i) + "_v = texelFetch(rill_in" +
            std::to_string(i) + ", rill_pos, 0);\n";
-  for (size_t i = 0; i < f.outputs.size(); ++i)
-    src += "  " + vec4_of(f.var(f.outputs[i]).type.kind) + " rill_prev" + std::to_string(i) + "_v = texelFetch(rill_prev" +
-           std::to_string(i) + ", rill_pos, 0);\n";
+  for (int o : outputs)
+    src += "  " + vec4_of(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) + " rill_prev" + std::to_string(o) +
+           "_v = texelFetch(rill_prev" + std::to_string(o) + ", rill_pos, 0);\n";
   for (size_t i = 0; i < f.uniforms.size(); ++i) {
     const Variable& v = f.var(f.uniforms[i]);
     for (int c = 0; c < v.type.width; ++c) {
@@ -212,18 +267,17 @@ std::string emit_glsl(const Function& f, Accuracy accuracy, const std::vector<in
              " = " + value + ";\n";
     }
   }
-  src += p.declarations(1);
-  src += p.body(1);
+  src += body;
   for (int o : outputs) {
     VarId v = f.outputs[static_cast<size_t>(o)];
     const Variable& var = f.var(v);
     std::string parts;
     for (int c = 0; c < 4; ++c)
-      parts += (c ? ", " : "") + (c < var.type.width ? p.component(v, c) : d.literal(var.type.kind, 0));
+      parts += (c ? ", " : "") + (c < var.type.width ? p.component(v, c) : std::string(var.type.is_float() ? "0.0" : "0"));
     src += "  rill_out" + std::to_string(o) + " = " + vec4_of(var.type.kind) + "(" + parts + ");\n";
   }
   src += "}\n";
-  return src;
+  return GLSLShader{src, d.constants};
 }
 
 }  // namespace rill::glsl

@@ -1,6 +1,7 @@
 // Emits a kernel as a GLSL fragment shader (see GLSLEmitter.cpp).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -9,9 +10,14 @@
 
 namespace rill::glsl {
 
+struct GLSLShader {
+  std::string source;
+  std::vector<uint32_t> constants;  // bits of uniform uint rill_k[] (strict mode)
+};
+
 // The fragment shader computing `optimized` and writing the outputs listed (indices into
 // Function::outputs), at draw-buffer locations 0, 1, ... in that order.
-std::string emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std::vector<int>& outputs);
+GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std::vector<int>& outputs);
 // The vertex shader every kernel is drawn with.
 std::string vertex_shader();
 

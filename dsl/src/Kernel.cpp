@@ -52,6 +52,9 @@ void clear_kernel_cache() {
 
 Kernel compile(const Program& p, const std::string& backend_name, const CompileOptions& options) {
   if (!p.valid()) throw Error("compile(): the program is empty (default-constructed)");
+  // The cache exists before any backend starts its driver, so it is destroyed after the
+  // backends' exit handlers have run (see GLSLBackend.cpp).
+  Cache& c = cache();
   Backend& be = backend(backend_name);
   std::string why = be.unavailable_reason();
   if (!why.empty()) throw Error("backend '" + be.name() + "' is not available: " + why);
@@ -65,7 +68,6 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
   k.out_.resize(p.ir().outputs.size());
   CacheKey key{p.hash(), be.name(), options.hash()};
 
-  Cache& c = cache();
   std::unique_lock<std::mutex> lock(c.mutex);
   auto it = c.entries.find(key);
   if (it != c.entries.end()) {

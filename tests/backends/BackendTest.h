@@ -20,6 +20,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <xmmintrin.h>
 #include <rill/rill.h>
 
 #include <algorithm>
@@ -30,6 +31,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <map>
 #include <random>
 #include <string>
 #include <tuple>
@@ -88,11 +90,45 @@ std::vector<H> unflatten(const std::vector<S>& v) {
   return out;
 }
 
+// ---- the denormal rule ----------------------------------------------------------------------
+// design.md: a backend may flush denormals to zero (llvmpipe's GLSL does); results are then
+// compared after flushing both sides, and inputs carry no denormals (a flushing backend reads
+// them as zero, the C++ reference would not). Set per test by BackendTest::SetUp.
+inline bool& flushes_denormals() {
+  static bool flag = false;
+  return flag;
+}
+inline bool is_denormal(float f) { return f != 0.0f && std::fabs(f) < std::numeric_limits<float>::min(); }
+inline float flush(float f) { return is_denormal(f) ? std::copysign(0.0f, f) : f; }
+
+// Does this backend flush? The smallest denormal doubled tells (x * 1 would not: shader
+// compilers drop the multiplication).
+inline bool probe_flushes_denormals(const std::string& backend) {
+  static std::map<std::string, bool> known;
+  auto it = known.find(backend);
+  if (it != known.end()) return it->second;
+  Program p = program("denormal_probe", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    y = x * 2.0f;
+  });
+  Kernel k = rill::compile(p, backend);
+  Stream<Float> in(std::vector<float>{std::numeric_limits<float>::denorm_min()}), out(1);
+  k.inputs(in).outputs(out);
+  k.execute();
+  bool flushes = out.download()[0] == 0.0f;
+  known[backend] = flushes;
+  return flushes;
+}
+
 class BackendTest : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
     std::string why = rill::backend(GetParam()).unavailable_reason();
     if (!why.empty()) GTEST_SKIP() << "backend '" << GetParam() << "' is not available: " << why;
+    flushes_denormals() = probe_flushes_denormals(GetParam());
+    if (flushes_denormals())
+      RecordProperty("denormals", "flushed to zero: compared after flushing both sides");
   }
 
   const std::string& backend_name() const { return GetParam(); }
@@ -167,8 +203,20 @@ inline std::string show(int32_t i) {
   return buf;
 }
 
-// Same value bit for bit; any NaN matches any NaN (payloads are not specified).
+// Same value bit for bit; any NaN matches any NaN (payloads are not specified). On a backend
+// that flushes denormals, both sides are flushed first.
 inline bool same_bits(float a, float b) {
+  if (flushes_denormals()) {
+    a = flush(a);
+    b = flush(b);
+    // Flush-to-zero hardware decides tininess before rounding: a result just below FLT_MIN
+    // that IEEE rounds up to +-FLT_MIN comes out as a zero of the same sign.
+    auto zero_for_min = [](float z, float m) {
+      return z == 0.0f && std::fabs(m) == std::numeric_limits<float>::min() && std::signbit(z) == std::signbit(m);
+    };
+    if (zero_for_min(a, b) || zero_for_min(b, a)) return true;
+    if (a == 0.0f && b == 0.0f) return true;  // the sign of a flushed zero is not specified
+  }
   return (std::isnan(a) && std::isnan(b)) || bits_of(a) == bits_of(b);
 }
 inline bool same_bits(int32_t a, int32_t b) {
@@ -231,7 +279,11 @@ inline ::testing::AssertionResult within_ulps(const std::vector<float>& got,
   std::vector<float> want(ref.size());
   for (size_t i = 0; i < ref.size(); ++i) want[i] = static_cast<float>(ref[i]);
   return detail::compare_all(
-      got, want, describe, width, [&](float a, float b) { return ulp_distance(a, b) <= ulps; },
+      got, want, describe, width,
+      [&](float a, float b) {
+        if (flushes_denormals() && same_bits(a, b)) return true;
+        return ulp_distance(a, b) <= ulps;
+      },
       "ulp tolerance");
 }
 
@@ -249,8 +301,32 @@ inline ::testing::AssertionResult close_to(const std::vector<float>& got,
       "relative tolerance");
 }
 
+// While alive, host float arithmetic flushes denormal operands and results to zero
+// (x86 MXCSR DAZ and FTZ), as a flushing backend does: references computed under it model
+// that backend exactly, intermediates included (llvmpipe uses the same hardware modes).
+class HostFlushScope {
+ public:
+  explicit HostFlushScope(bool on) : on_(on) {
+    if (on_) {
+      saved_ = _mm_getcsr();
+      _mm_setcsr(saved_ | 0x8040u);  // FTZ (bit 15) | DAZ (bit 6)
+    }
+  }
+  ~HostFlushScope() {
+    if (on_) _mm_setcsr(saved_);
+  }
+  HostFlushScope(const HostFlushScope&) = delete;
+  HostFlushScope& operator=(const HostFlushScope&) = delete;
+
+ private:
+  bool on_;
+  unsigned saved_ = 0;
+};
+
+// The reference of each element (under the flushing backend's rules, see HostFlushScope).
 template <class T, class F>
 auto map(const std::vector<T>& v, F f) {
+  HostFlushScope flush_like_backend(flushes_denormals());
   std::vector<std::decay_t<decltype(f(v[0]))>> out;
   out.reserve(v.size());
   for (const T& x : v) out.push_back(f(x));
@@ -258,6 +334,7 @@ auto map(const std::vector<T>& v, F f) {
 }
 template <class T, class U, class F>
 auto map(const std::vector<T>& a, const std::vector<U>& b, F f) {
+  HostFlushScope flush_like_backend(flushes_denormals());
   std::vector<std::decay_t<decltype(f(a[0], b[0]))>> out;
   out.reserve(a.size());
   for (size_t i = 0; i < a.size(); ++i) out.push_back(f(a[i], b[i]));
@@ -267,7 +344,7 @@ auto map(const std::vector<T>& a, const std::vector<U>& b, F f) {
 // ---- inputs ---------------------------------------------------------------------------------
 
 // Values that break careless implementations.
-inline const std::vector<float>& hard_floats() {
+inline const std::vector<float>& hard_floats_with_denormals() {
   static const std::vector<float> v = [] {
     using L = std::numeric_limits<float>;
     std::vector<float> h = {0.0f,
@@ -336,6 +413,16 @@ inline const std::vector<int32_t>& hard_ints() {
   return v;
 }
 
+// The hard values, with denormals flushed when the backend flushes them.
+inline const std::vector<float>& hard_floats() {
+  static const std::vector<float> flushed = [] {
+    std::vector<float> v = hard_floats_with_denormals();
+    for (float& x : v) x = flush(x);
+    return v;
+  }();
+  return flushes_denormals() ? flushed : hard_floats_with_denormals();
+}
+
 // A seeded mix: random bit patterns (every exponent, NaNs, denormals), moderate values,
 // integers and halves, wide magnitudes, and the hard values.
 inline std::vector<float> random_floats(uint32_t seed, size_t n) {
@@ -360,6 +447,7 @@ inline std::vector<float> random_floats(uint32_t seed, size_t n) {
       x = (rng() & 1 ? -1.0f : 1.0f) * std::ldexp(mantissa(rng), exponent(rng));
     else
       x = hard[hard_pick(rng)];
+    if (flushes_denormals()) x = flush(x);
   }
   return out;
 }
