@@ -133,7 +133,7 @@ void run_campaign(const Campaign& c) {
       size_t start = f.message.rfind('\n', mark) + 1;
       what = f.message.substr(start, f.message.find('\n', mark) - start);
     }
-    return "  RILL_DIFF_SEED=" + hex(subs[f.sub].seed) + ": " + f.kind + " on " + f.target + ": " +
+    return "  RILL_DIFF_SEED=" + hex(subs[f.sub].seed) + ": " + f.title() + ": " +
            what.substr(what.find_first_not_of(' ')) + "\n";
   };
   auto check = [&](const std::vector<ProgramSpec>& subs) {

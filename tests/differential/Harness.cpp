@@ -487,7 +487,7 @@ std::vector<Failure> run_batch(const std::vector<ProgramSpec>& subs, const Optio
   try {
     p = build_program(subs);
   } catch (const std::exception& e) {
-    return {failure("capture", "capture",
+    return {failure("capture", "reference",
                     locate(subs, [](const ProgramSpec& s) { build_program({s}); }),
                     std::string("  capturing the program threw: ") + e.what() + "\n")};
   }
@@ -507,7 +507,7 @@ std::vector<Failure> run_batch(const std::vector<ProgramSpec>& subs, const Optio
     size_t sub = locate(subs, [](const ProgramSpec& s) {
       passes::optimize(build_program({s}).ir(), PassOptions{}, Accuracy::Strict);
     });
-    return {failure("reference", "reference", sub,
+    return {failure("optimize", "reference", sub,
                     std::string("  optimizing the program threw: ") + e.what() + "\n")};
   }
   st.reference_s += seconds_since(t);
@@ -545,7 +545,7 @@ std::vector<Failure> run_batch(const std::vector<ProgramSpec>& subs, const Optio
         if (!diff.empty()) return failure("mismatch", "reference (passes off)", k, diff);
       }
     } catch (const std::exception& e) {
-      return failure("reference", "reference", k,
+      return failure("interpret", "reference", k,
                      std::string("  the interpreter threw: ") + e.what() + "\n");
     }
     st.reference_s += seconds_since(t);
@@ -736,14 +736,14 @@ std::string report_failure(const std::vector<ProgramSpec>& subs, const Failure& 
                            const std::string& filter) {
   std::ostringstream os;
   const ProgramSpec& bad = subs[f.sub];
-  os << "\n==== differential test failure: " << f.kind << " on " << f.target << " ====\n";
+  os << "\n==== differential test failure: " << f.title() << " ====\n";
   os << "program seed " << hex(bad.seed) << " (program " << f.sub << " of a kernel of "
      << subs.size() << "; its launch data derives from the seed too)\n";
   os << "reproduce: " << repro_line({bad}, filter) << "\n";
   if (subs.size() > 1) os << "the whole kernel: " << repro_line(subs, filter) << "\n";
   os << f.message;
   os << "program (IR as captured, alone):\n" << program_text({bad});
-  if (opt.targets.size() > 1 && f.kind != "capture" && f.kind != "reference") {
+  if (opt.targets.size() > 1 && f.target != "reference") {
     // Which of the other targets agree with the reference on this program alone.
     os << "this program alone on each target:\n";
     for (const Target& t : opt.targets) {

@@ -33,12 +33,17 @@ struct Options {
 };
 
 struct Failure {
-  // "capture", "reference", "compile", "run" (an exception) or "mismatch".
+  // "mismatch", or what threw: "capture", "optimize", "interpret" (the reference's steps),
+  // "compile", "run" (a target's).
   std::string kind;
-  std::string target;  // Target::name(), or "reference", "reference (passes off)"
+  std::string target;  // Target::name(), "reference" or "reference (passes off)"
   size_t sub = 0;      // which program of the batch
   std::string message;
   bool same_as(const Failure& o) const { return kind == o.kind && target == o.target; }
+  // "mismatch on glsl", "compile threw (opencl)", "optimize threw (reference)".
+  std::string title() const {
+    return kind == "mismatch" ? kind + " on " + target : kind + " threw (" + target + ")";
+  }
 };
 
 struct Stats {
