@@ -249,11 +249,6 @@ int main(int argc, char** argv) try {
                 mpix / (med * 1e-3), differ == 0 ? "identical" : "DIFFERENT", (long long)differ);
   }
 
-  // Release the compiled kernels now, while every backend is fully alive. (Left to the
-  // cache's static destructor, a GLSL kernel's destructor can run after Mesa's own exit
-  // handlers and crash in OSMesaMakeCurrent.)
-  clear_kernel_cache();
-
   const bool ok = mismatches == 0 && written_rill == n && written_hand == n && !first_from_disk &&
                   disk_from_disk && hit && others_ok;
   return ok ? 0 : 1;
