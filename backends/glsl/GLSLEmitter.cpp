@@ -54,7 +54,12 @@ float rill_sel_f(bool c, float a, float b) { return intBitsToFloat(c ? floatBits
 // Ordered comparisons on bit patterns: shader compilers may assume no NaN and rewrite
 // comparisons (a > b into !(a <= b)). key() orders floats as integers, -0 equal to +0.
 bool rill_isnan(float x) { return (floatBitsToInt(x) & 0x7fffffff) > 0x7f800000; }
-int rill_key(float x) { int b = floatBitsToInt(x); return b >= 0 ? b : int(0x80000000u) - b; }
+// Denormals compare as zero, as the arithmetic of flushing GPUs and llvmpipe treats them.
+int rill_key(float x) {
+  int b = floatBitsToInt(x);
+  if ((b & 0x7f800000) == 0) return 0;
+  return b >= 0 ? b : int(0x80000000u) - b;
+}
 bool rill_lt(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) < rill_key(b); }
 bool rill_le(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) <= rill_key(b); }
 bool rill_eq(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) == rill_key(b); }
@@ -124,20 +129,21 @@ class GLSLDialect : public codegen::Dialect {
       case ScalarKind::Bool: return bits ? "true" : "false";
       case ScalarKind::Float: {
         float v = std::bit_cast<float>(bits);
+        if (strict_) {
+          // Shader compilers fold some operations on literals even in `precise` code
+          // (Mesa: x * 0.0 -> 0.0, 0.0 - x -> -x, x - (-0.0) -> x), which is wrong for
+          // infinities, NaN and signed zeros. A constant read from a uniform cannot be
+          // folded: every float constant of a strict kernel lives in rill_k[].
+          size_t i = 0;
+          while (i < constants.size() && constants[i] != bits) ++i;
+          if (i == constants.size()) constants.push_back(bits);
+          return "uintBitsToFloat(rill_k[" + std::to_string(i) + "])";
+        }
         // Special and negative-zero values by their bits; others as the shortest decimal
         // that reads back to the same float.
         if (std::isnan(v) || std::isinf(v) || bits == 0x80000000u) {
           std::snprintf(buf, sizeof buf, "uintBitsToFloat(0x%08xu)", bits);
           return buf;
-        }
-        if (strict_) {
-          // Shader compilers fold some operations on literals even in `precise` code
-          // (Mesa: x * 0.0 -> 0.0, 0.0 - x -> -x), which is wrong for infinities, NaN and
-          // signed zeros. A constant read from a uniform cannot be folded.
-          size_t i = 0;
-          while (i < constants.size() && constants[i] != bits) ++i;
-          if (i == constants.size()) constants.push_back(bits);
-          return "uintBitsToFloat(rill_k[" + std::to_string(i) + "])";
         }
         auto r = std::to_chars(buf, buf + sizeof buf, v);
         std::string s(buf, r.ptr);

@@ -215,7 +215,6 @@ inline bool same_bits(float a, float b) {
       return z == 0.0f && std::fabs(m) == std::numeric_limits<float>::min() && std::signbit(z) == std::signbit(m);
     };
     if (zero_for_min(a, b) || zero_for_min(b, a)) return true;
-    if (a == 0.0f && b == 0.0f) return true;  // the sign of a flushed zero is not specified
   }
   return (std::isnan(a) && std::isnan(b)) || bits_of(a) == bits_of(b);
 }

@@ -652,7 +652,9 @@ TEST_P(LaunchTest, StrictRoutinesInEveryMode) {
     want.push_back(std::log(double{std::fabs(x) + 0.5f}));
     want.push_back(std::atan2(double{x}, 3.0));
   }
-  for (Accuracy a : {Accuracy::Strict, Accuracy::Fast, Accuracy::Double}) {
+  // StrictMath.h: the routines' bounds hold in strict (and double) mode; in fast mode the
+  // backend compiler may reassociate their arithmetic, so no bound is promised there.
+  for (Accuracy a : {Accuracy::Strict, Accuracy::Double}) {
     if (!supports(a)) continue;
     Kernel k = compile(p, a);
     auto y = flatten(run_kernel<Float4>(k, static_cast<int64_t>(xs.size()), xs));

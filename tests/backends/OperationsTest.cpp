@@ -607,7 +607,14 @@ class ConstantsTest : public BackendTest {
   // One kernel element per operand pair, computing every operation into 4-vector outputs.
   template <class T>
   void check(const std::string& name, const ConstantOps<T>& ops,
-             const std::vector<std::pair<T, T>>& args) {
+             const std::vector<std::pair<T, T>>& all_args) {
+    // The denormal rule: a flushing backend gets no denormal inputs (here: constants).
+    std::vector<std::pair<T, T>> args;
+    for (const auto& a : all_args) {
+      if constexpr (std::is_same_v<T, float>)
+        if (flushes_denormals() && (is_denormal(a.first) || is_denormal(a.second))) continue;
+      args.push_back(a);
+    }
     using V = Value<T, 1>;
     size_t nf = (ops.floats.size() + 3) / 4, ni = (ops.ints.size() + 3) / 4;
     Program p = program(name, [&] {
@@ -664,6 +671,11 @@ class ConstantsTest : public BackendTest {
           // Documented deviation (docs/backends.md): llvmpipe's GLSL computes mod(x, +-0) on
           // uniform-held constants as x instead of NaN; that one case is left out there.
           if (backend_name() == "glsl" && ops.floats[j].name == std::string("mod") && args[e].second == 0.0f) continue;
+          // Documented deviation (docs/backends.md): PoCL folds floor and ceil of a NaN
+          // literal to 0 (NaN read from a stream is right); that one case is left out there.
+          if (backend_name() == "opencl" && std::isnan(args[e].first) &&
+              (ops.floats[j].name == std::string("floor") || ops.floats[j].name == std::string("ceil")))
+            continue;
           got.push_back(r[e][static_cast<int>(j % 4)]);
           double plain = ops.floats[j].ref(args[e].first, args[e].second);
           if (flushes_denormals()) {

@@ -71,7 +71,7 @@ void copy_in(Storage& s, std::span<const HostOf<V>> data) {
     throw Error("upload of " + std::to_string(data.size()) + " elements into a stream of " +
                 std::to_string(s.count));
   s.host.resize(static_cast<size_t>(s.count) * V::width);
-  std::memcpy(s.host.data(), data.data(), s.host.size() * 4);
+  if (!s.host.empty()) std::memcpy(s.host.data(), data.data(), s.host.size() * 4);
   s.host_written();
 }
 
@@ -79,7 +79,7 @@ template <class V>
 std::vector<HostOf<V>> copy_out(Storage& s) {
   s.sync_to_host();
   std::vector<HostOf<V>> out(static_cast<size_t>(s.count));
-  std::memcpy(out.data(), s.host.data(), s.host.size() * 4);
+  if (!out.empty()) std::memcpy(out.data(), s.host.data(), s.host.size() * 4);
   return out;
 }
 

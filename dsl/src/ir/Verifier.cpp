@@ -10,13 +10,13 @@ namespace {
 
 class Checker {
  public:
-  explicit Checker(const Function& f) : f_(f) {}
+  Checker(const Function& f, bool outputs_written) : f_(f), outputs_written_(outputs_written) {}
 
   std::vector<std::string> run() {
     written_.assign(f_.vars.size(), false);
     block(f_.body, 0);
     for (VarId v : f_.outputs)
-      if (v < f_.vars.size() && !written_[v])
+      if (outputs_written_ && v < f_.vars.size() && !written_[v])
         problem({}, "output '" + f_.var(v).name + "' is never written");
     return problems_;
   }
@@ -138,16 +138,19 @@ class Checker {
   }
 
   const Function& f_;
+  bool outputs_written_;
   std::vector<bool> written_;
   std::vector<std::string> problems_;
 };
 
 }  // namespace
 
-std::vector<std::string> verify(const Function& f) { return Checker(f).run(); }
+std::vector<std::string> verify(const Function& f, bool outputs_written) {
+  return Checker(f, outputs_written).run();
+}
 
-void verify_or_throw(const Function& f, const std::string& context) {
-  auto problems = verify(f);
+void verify_or_throw(const Function& f, const std::string& context, bool outputs_written) {
+  auto problems = verify(f, outputs_written);
   if (problems.empty()) return;
   std::ostringstream os;
   os << context << ": kernel '" << f.name << "' is malformed:";

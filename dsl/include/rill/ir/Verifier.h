@@ -12,8 +12,10 @@
 namespace rill::ir {
 
 // All problems found, each naming the statement (and its source location when known).
-std::vector<std::string> verify(const Function& f);
+// `outputs_written`: every output must be assigned somewhere (true for captured programs;
+// after optimization an output whose only write was unreachable keeps its previous value).
+std::vector<std::string> verify(const Function& f, bool outputs_written = true);
 // Throws rill::Error listing the problems, prefixed with `context`, if there are any.
-void verify_or_throw(const Function& f, const std::string& context);
+void verify_or_throw(const Function& f, const std::string& context, bool outputs_written = true);
 
 }  // namespace rill::ir
