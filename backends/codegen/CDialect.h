@@ -26,9 +26,12 @@ class CDialect : public Dialect {
   bool scalarize() const override { return true; }
   std::string scalar_type(ir::ScalarKind k) const override {
     switch (k) {
-      case ir::ScalarKind::Float: return "rill_real";
-      case ir::ScalarKind::Int: return "int32_t";
-      case ir::ScalarKind::Bool: return "int";
+      case ir::ScalarKind::Float:
+        return "rill_real";
+      case ir::ScalarKind::Int:
+        return "int32_t";
+      case ir::ScalarKind::Bool:
+        return "int";
     }
     return "?";
   }
@@ -38,7 +41,8 @@ class CDialect : public Dialect {
       case ir::ScalarKind::Int:
         if (bits == 0x80000000u) return "(-2147483647 - 1)";
         return std::to_string(static_cast<int32_t>(bits));
-      case ir::ScalarKind::Bool: return bits ? "1" : "0";
+      case ir::ScalarKind::Bool:
+        return bits ? "1" : "0";
       case ir::ScalarKind::Float: {
         float v = std::bit_cast<float>(bits);
         if (v != v || v == INFINITY || v == -INFINITY) {
@@ -68,25 +72,32 @@ class CDialect : public Dialect {
     int w = var.type.width;
     std::string at = "[rill_i * " + std::to_string(w) + " + " + std::to_string(c) + "]";
     switch (var.role) {
-      case ir::VarRole::Input: return "in" + std::to_string(var.slot) + at;
-      case ir::VarRole::Output: return "out" + std::to_string(var.slot) + at;
-      case ir::VarRole::Uniform: return "u" + std::to_string(var.slot) + "_" + std::to_string(c);
+      case ir::VarRole::Input:
+        return "in" + std::to_string(var.slot) + at;
+      case ir::VarRole::Output:
+        return "out" + std::to_string(var.slot) + at;
+      case ir::VarRole::Uniform:
+        return "u" + std::to_string(var.slot) + "_" + std::to_string(c);
       default:
         return literal(var.type.kind, 0);
     }
   }
 
-  std::string gather(const ir::Function& f, const ir::Stmt& s, const std::vector<std::string>& index,
+  std::string gather(const ir::Function& f, const ir::Stmt& s,
+                     const std::vector<std::string>& index,
                      const std::vector<std::string>& dst) const override {
     const ir::ArrayDecl& a = f.arrays.at(static_cast<size_t>(s.array));
     std::string id = std::to_string(s.array);
     std::string shape = "arr" + id + "_shape";
     // Clamp each index into its dimension, then linearize (x fastest).
     std::string lin = "rill_clamp_index(" + index[0] + ", " + shape + "[0])";
-    if (index.size() > 1) lin += " + " + shape + "[0] * rill_clamp_index(" + index[1] + ", " + shape + "[1])";
+    if (index.size() > 1)
+      lin += " + " + shape + "[0] * rill_clamp_index(" + index[1] + ", " + shape + "[1])";
     if (index.size() > 2)
-      lin += " + " + shape + "[0] * " + shape + "[1] * rill_clamp_index(" + index[2] + ", " + shape + "[2])";
-    std::string out = "{\n  const int64_t g = (" + lin + ") * " + std::to_string(a.elem.width) + ";\n";
+      lin += " + " + shape + "[0] * " + shape + "[1] * rill_clamp_index(" + index[2] + ", " +
+             shape + "[2])";
+    std::string out =
+        "{\n  const int64_t g = (" + lin + ") * " + std::to_string(a.elem.width) + ";\n";
     for (size_t c = 0; c < dst.size(); ++c) {
       std::string load = "arr" + id + "[g + " + std::to_string(c) + "]";
       out += "  " + dst[c] + " = " + (a.elem.is_float() ? "(rill_real)" : "") + load + ";\n";
@@ -104,5 +115,41 @@ class CDialect : public Dialect {
   std::string discard_, width_;
 };
 
+// Statements both C-family entry points share, in the naming convention above.
+
+// `const T u<k>_<c> = ...;` for every uniform component, from the 4-words-per-uniform table
+// named `words` (L->uniforms in C, rill_uniforms in OpenCL).
+inline std::string unpack_uniforms(const ir::Function& f, const Dialect& d,
+                                   const std::string& words, const std::string& pad) {
+  std::string out;
+  for (size_t i = 0; i < f.uniforms.size(); ++i) {
+    const ir::Variable& v = f.var(f.uniforms[i]);
+    for (int c = 0; c < v.type.width; ++c) {
+      std::string word = words + "[" + std::to_string(i * 4 + static_cast<size_t>(c)) + "]";
+      std::string value = v.type.is_float() ? "rill_word_f(" + word + ")"
+                                            : "(" + d.scalar_type(v.type.kind) + ")" + word;
+      out += pad + "const " + d.scalar_type(v.type.kind) + " u" + std::to_string(i) + "_" +
+             std::to_string(c) + " = " + value + ";\n";
+    }
+  }
+  return out;
+}
+
+// `out<k>[rill_i * w + c] = ...;` for every output component (floats narrowed to binary32).
+inline std::string store_outputs(const ir::Function& f, const CFamilyPrinter& p,
+                                 const std::string& pad) {
+  std::string out;
+  for (size_t i = 0; i < f.outputs.size(); ++i) {
+    ir::VarId v = f.outputs[i];
+    const ir::Variable& var = f.var(v);
+    for (int c = 0; c < var.type.width; ++c) {
+      std::string value = p.component(v, c);
+      if (var.type.is_float()) value = "rill_store_f(" + value + ")";
+      out += pad + "out" + std::to_string(i) + "[rill_i * " + std::to_string(var.type.width) +
+             " + " + std::to_string(c) + "] = " + value + ";\n";
+    }
+  }
+  return out;
+}
 
 }  // namespace rill::codegen
