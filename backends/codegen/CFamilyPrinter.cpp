@@ -174,7 +174,7 @@ std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
     case Op::Add: return k == ScalarKind::Int ? call("rill_add_i", {a(0), a(1)}) : "(" + a(0) + " + " + a(1) + ")";
     case Op::Sub: return k == ScalarKind::Int ? call("rill_sub_i", {a(0), a(1)}) : "(" + a(0) + " - " + a(1) + ")";
     case Op::Mul: return k == ScalarKind::Int ? call("rill_mul_i", {a(0), a(1)}) : "(" + a(0) + " * " + a(1) + ")";
-    case Op::Div: return k == ScalarKind::Int ? call("rill_div_i", {a(0), a(1)}) : "(" + a(0) + " / " + a(1) + ")";
+    case Op::Div: return k == ScalarKind::Int ? call("rill_div_i", {a(0), a(1)}) : d_.float_div(a(0), a(1));
     case Op::Mod: return call("rill_mod" + sx, {a(0), a(1)});
     case Op::Min: return call("rill_min" + sx, {a(0), a(1)});
     case Op::Max: return call("rill_max" + sx, {a(0), a(1)});

@@ -55,6 +55,11 @@ class Dialect {
                               const std::string& b) const {
     return "(" + a + " " + op + " " + b + ")";
   }
+  // a / b on floats. GLSL routes it through a correctly rounded helper where the driver's
+  // division is not exact (see backends/glsl/DivSqrt.h).
+  virtual std::string float_div(const std::string& a, const std::string& b) const {
+    return "(" + a + " / " + b + ")";
+  }
   // c ? a : b for one component of kind k.
   virtual std::string select(ir::ScalarKind, const std::string& c, const std::string& a,
                              const std::string& b) const {

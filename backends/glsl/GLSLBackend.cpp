@@ -110,7 +110,8 @@ class GLSLBackend : public Backend {
     std::string why = unavailable_reason();
     if (!why.empty()) return "glsl: unavailable: " + why;
     auto* self = const_cast<GLSLBackend*>(this);
-    return "glsl: " + self->context().kind() + ", " + self->context().renderer;
+    return "glsl: " + self->context().kind() + ", " + self->context().renderer +
+           "; strict / and sqrt: " + divsqrt_name(self->divsqrt_);
   }
   bool supports(Accuracy a) const override { return a != Accuracy::Double; }
 
@@ -125,7 +126,7 @@ class GLSLBackend : public Backend {
       GLSLKernel::Pass p;
       for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group)); ++i)
         p.outputs.push_back(static_cast<int>(i));
-      GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs);
+      GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, divsqrt_);
       p.source = std::move(shader.source);
       p.constants = std::move(shader.constants);
       p.program = link(gl, f.name, p.source);
@@ -292,6 +293,7 @@ class GLSLBackend : public Backend {
       if (const char* force = std::getenv("RILL_GL_MAX_DRAW_BUFFERS"))  // to test pass splitting
         max_draw_buffers_ = std::clamp(std::atoi(force), 1, max_draw_buffers_);
       max_units_ = units;
+      divsqrt_ = divsqrt_mode(c->renderer);
       gl.glGenFramebuffers(1, &fbo_);
       gl.glGenVertexArrays(1, &vao_);
       gl.glGenQueries(1, &query_);
@@ -310,6 +312,7 @@ class GLSLBackend : public Backend {
   std::unique_ptr<GLContext> context_;  // kept until exit: textures of live streams refer to it
   std::string init_error_;
   int max_draw_buffers_ = 1, max_units_ = 16;
+  DivSqrt divsqrt_ = DivSqrt::Native;  // how strict kernels divide (DivSqrt.h)
   GLuint fbo_ = 0, vao_ = 0, query_ = 0;
 };
 

@@ -19,6 +19,7 @@
 
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/SourceText.h"
+#include "DivSqrt.h"
 
 namespace rill::glsl {
 
@@ -75,14 +76,13 @@ float rill_floor(float x) { return floor(x); }
 float rill_ceil(float x) { return ceil(x); }
 float rill_fract(float x) { RILL_PRECISE float f = floor(x); RILL_PRECISE float r = x - f; return r; }
 float rill_mod_f(float a, float b) {
-  RILL_PRECISE float q = a / b;
+  RILL_PRECISE float q = rill_div_f(a, b);
   RILL_PRECISE float f = floor(q);
   RILL_PRECISE float m = b * f;
   RILL_PRECISE float r = a - m;
   return r;
 }
-float rill_sqrt(float x) { return sqrt(x); }
-float rill_rsqrt(float x) { RILL_PRECISE float s = sqrt(x); RILL_PRECISE float r = RILL_ONE / s; return r; }
+float rill_rsqrt(float x) { RILL_PRECISE float s = rill_sqrt(x); RILL_PRECISE float r = rill_div_f(RILL_ONE, s); return r; }
 float rill_exp(float x) { return exp(x); }
 float rill_log(float x) { return log(x); }
 float rill_exp2(float x) { return exp2(x); }
@@ -105,12 +105,23 @@ float rill_ibits(int i) { return intBitsToFloat(i); }
 int rill_clamp_index(int i, int n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
 )";
 
+// Fast mode: the driver's operations as they are.
+const char* kFastDivSqrt = R"(
+float rill_div_f(float a, float b) { return a / b; }
+float rill_sqrt(float x) { return sqrt(x); }
+)";
+
 const char kComp[] = "xyzw";
 
 class GLSLDialect : public codegen::Dialect {
  public:
   GLSLDialect(Accuracy a, const std::vector<int>& pass_outputs)
       : strict_(a != Accuracy::Fast), pass_outputs_(pass_outputs) {}
+
+  // Strict: through rill_div_f, correctly rounded on every driver (DivSqrt.h).
+  std::string float_div(const std::string& a, const std::string& b) const override {
+    return strict_ ? "rill_div_f(" + a + ", " + b + ")" : "(" + a + " / " + b + ")";
+  }
 
   // Float constants a strict kernel uses, in the order of rill_k[] (see literal()).
   mutable std::vector<uint32_t> constants;
@@ -228,7 +239,7 @@ std::string vertex_shader() {
          "}\n";
 }
 
-GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs) {
+GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs, DivSqrt divsqrt) {
   GLSLDialect d(accuracy, outputs);
   codegen::CFamilyPrinter p(f, d);
   // The body first: printing it collects the constants that the declarations need.
@@ -251,6 +262,7 @@ GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int
     src += "layout(location = " + std::to_string(k) + ") out " + vec4_of(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) +
            " rill_out" + std::to_string(o) + ";\n";
   }
+  src += accuracy == Accuracy::Fast ? std::string(kFastDivSqrt) : divsqrt_helpers(divsqrt);
   src += kHelpers;
   src += "\nvoid main() {\n";
   src += "  ivec2 rill_pos = ivec2(gl_FragCoord.xy);\n";

@@ -7,6 +7,7 @@
 
 #include "rill/Backend.h"
 #include "rill/ir/IR.h"
+#include "DivSqrt.h"
 
 namespace rill::glsl {
 
@@ -17,7 +18,9 @@ struct GLSLShader {
 
 // The fragment shader computing `optimized` and writing the outputs listed (indices into
 // Function::outputs), at draw-buffer locations 0, 1, ... in that order.
-GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std::vector<int>& outputs);
+// Strict kernels divide and take square roots as `divsqrt` says (DivSqrt.h).
+GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std::vector<int>& outputs,
+                     DivSqrt divsqrt = DivSqrt::Native);
 // The vertex shader every kernel is drawn with.
 std::string vertex_shader();
 

@@ -1,0 +1,49 @@
+// Correctly rounded float division and square root in GLSL, for drivers whose own are not.
+//
+// GLSL only promises 2.5 ulp for `/` and `sqrt` (GLSL 4.30, section 4.7.1); NVIDIA's compute
+// a / b as a * rcp(b) and sqrt(x) as x * rsqrt(x). Strict mode needs the correctly rounded
+// results every other backend gives, so where the driver is not known to be exact the
+// generated shader calls helpers that correct the driver's estimate with exact arithmetic
+// built only from +, -, * (which GLSL does round correctly) and bit operations:
+//
+//   1. Special operands (0, inf, NaN; subnormals count as zero, as on flushing GPUs) are
+//      decided from their bits; the significands are scaled into [1, 2) (or [1, 4)).
+//   2. The driver's quotient (root) is refined by one Newton step whose residual a - q*b
+//      (x - s*s) is computed exactly: Dekker's two-product, Sterbenz's lemma for the
+//      subtraction. The result is then a faithful rounding.
+//   3. For a faithful q the residual is exactly representable (Markstein), so comparing it
+//      with half the distance to each neighbour picks the correctly rounded neighbour. A
+//      quotient or root of floats is never exactly halfway, so there are no ties.
+//   4. The exponent is put back with integer arithmetic; results too small for a normal
+//      float are flushed to zero judging by the exact result (tininess before rounding, as
+//      llvmpipe does), results too large become infinity.
+//
+// The mode comes from RILL_GLSL_DIVSQRT (see divsqrt_mode); two test modes replace the
+// driver's operations with NVIDIA-like inexact ones, so that the correction can be tested
+// on any machine (tests/backends, conformance).
+#pragma once
+
+#include <string>
+
+namespace rill::glsl {
+
+enum class DivSqrt {
+  Native,            // the driver's / and sqrt (known exact: Mesa llvmpipe)
+  Corrected,         // the driver's estimate, corrected to the correctly rounded result
+  Inexact,           // test mode: a * (1 / b) and x * inversesqrt(x), uncorrected
+  InexactCorrected,  // test mode: the same inexact estimates, corrected
+};
+
+const char* divsqrt_name(DivSqrt m);
+
+// RILL_GLSL_DIVSQRT = auto (default) | native | corrected | inexact | inexact-corrected.
+// auto: native on drivers known to divide and take roots exactly (Mesa's llvmpipe, which
+// compiles them to IEEE instructions), corrected on every other driver. Throws on an unknown
+// value.
+DivSqrt divsqrt_mode(const std::string& renderer);
+
+// GLSL source defining rill_div_f(a, b) and rill_sqrt(x) for strict kernels in mode m. Uses
+// the RILL_PRECISE and RILL_ONE macros of the generated shader.
+std::string divsqrt_helpers(DivSqrt m);
+
+}  // namespace rill::glsl
