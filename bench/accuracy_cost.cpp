@@ -17,7 +17,7 @@
 // median, the ratio to strict on the same backend, and the error of the result against the
 // same computation in double on the host (<cmath>): max ulp (in float ulps of the
 // reference) and RMS relative error of the float output, and the number of elements whose
-// integer result (Mandelbrot iteration count, branchy trip count) differs from the reference
+// integer result (Mandelbrot iteration count, branchy path signature) differs from the reference
 // (the float figures of the branchy kernel leave those elements out: see measure()).
 // Results stay on the device between runs (a launch includes no download).
 #include <rill/rill.h>
@@ -74,53 +74,63 @@ R math_chain(const R& x) {
 }
 
 // The branchy iteration, host reference in double (the kernel is below, in branchy_program).
-// v shrinks at every step, so it ends after a few dozen steps; the cap is a safety net.
+// v shrinks at every step, so it ends after a few dozen steps; the cap is a safety net. The
+// integer result is the path's signature: steps + 2^7 (times the fract branch was taken) +
+// 2^14 (inner loop iterations) + 2^24 (times the first branch was taken); each fits its
+// field (at most 100, 100, 500 and 100), so an element that took another path (a branch or
+// a loop condition decided the other way) shows as a different signature.
 constexpr int32_t kBranchyMaxSteps = 100;
-void branchy_reference(double x, double& acc_out, int32_t& steps_out) {
+void branchy_reference(double x, double& acc_out, int32_t& path_out) {
   double v = x, acc = 0;
-  int32_t steps = 0;
+  int32_t steps = 0, path = 0;
   while (v > 1.5f && steps < kBranchyMaxSteps) {
     if (v > 50.0f) {
       v = std::sqrt(v) * 1.1f;
       acc += 1.0f;
+      path += 1 << 24;
     } else if (v - std::floor(v) < 0.5f) {
       v = v * 0.75f;
       acc += std::log(v);
+      path += 1 << 7;
     } else {
       double m = v;
       while (m > 2.0f) {
         m = m * 0.5f;
         acc += 0.1f * m;
+        path += 1 << 14;
       }
       v = v * 0.9f - 0.2f;
     }
     steps += 1;
   }
   acc_out = acc;
-  steps_out = steps;
+  path_out = path + steps;
 }
 
 Program branchy_program() {
   return program("branchy", [] {
     Input<Float> x("x");
     Output<Float> acc_out("acc");
-    Output<Int> steps_out("steps");
+    Output<Int> path_out("path");
     Float v = x, acc = 0.0f;
-    Int steps = 0;
+    Int steps = 0, path = 0;
     RILL_WHILE(v > 1.5f && steps < kBranchyMaxSteps) {
       RILL_IF(v > 50.0f) {
         v = sqrt(v) * 1.1f;
         acc += 1.0f;
+        path += 1 << 24;
       }
       RILL_ELSE_IF(fract(v) < 0.5f) {
         v = v * 0.75f;
         acc += log(v);
+        path += 1 << 7;
       }
       RILL_ELSE {
         Float m = v;
         RILL_WHILE(m > 2.0f) {
           m = m * 0.5f;
           acc += 0.1f * m;
+          path += 1 << 14;
         }
         RILL_ENDWHILE;
         v = v * 0.9f - 0.2f;
@@ -130,7 +140,7 @@ Program branchy_program() {
     }
     RILL_ENDWHILE;
     acc_out = acc;
-    steps_out = steps;
+    path_out = path + steps;
   });
 }
 
@@ -260,7 +270,7 @@ struct ErrorStats {
   int64_t differing = -1;  // -1: no integer output
 };
 
-// Where the kernel also has an integer result (the branchy trip count), the float error is
+// Where the kernel also has an integer result (the branchy path signature), the float error is
 // taken over the elements whose integer result matches the reference: those that took the
 // reference's path. An element that took another path (one branch decided the other way)
 // has an error of another kind, counted in `differing` instead of swamping the float figures.
