@@ -24,7 +24,6 @@
 #include <stdlib.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -33,48 +32,25 @@
 #include <string>
 #include <vector>
 
+#include "MandelbrotKernel.h"
+#include "Timing.h"
+
 namespace {
 
 using namespace rill;
-using Clock = std::chrono::steady_clock;
+using namespace rill::bench;
+using View = MandelbrotView;
 
-double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-struct View {
-  int64_t width = 1920, height = 1080;
-  int32_t iterations = 256;
-  float x0 = 0, y0 = 0, step = 0;  // pixel (i, j) samples (x0 + (i+.5)*step, y0 + (j+.5)*step)
-};
-
-// The hand-written version. Statement for statement what the kernel below compiles to.
+// The hand-written version. Statement for statement what the kernel compiles to.
 int64_t mandelbrot_by_hand(const View& v, int32_t* out) {
   const int64_t count = v.width * v.height;
   return tbb::parallel_reduce(
       tbb::blocked_range<int64_t>(0, count, 1024), int64_t{0},
       [&](const tbb::blocked_range<int64_t>& r, int64_t written) {
         for (int64_t e = r.begin(); e < r.end(); ++e) {
-          const float cx =
-              v.x0 + (static_cast<float>(static_cast<int32_t>(e % v.width)) + 0.5f) * v.step;
-          const float cy =
-              v.y0 + (static_cast<float>(static_cast<int32_t>(e / v.width)) + 0.5f) * v.step;
-          float zx = 0.0f, zy = 0.0f;
-          int32_t i = 0;
-          while (i < v.iterations) {
-            const float x2 = zx * zx, y2 = zy * zy;
-            if (x2 + y2 > 4.0f) break;
-            zy = 2.0f * zx * zy + cy;
-            zx = x2 - y2 + cx;
-            i += 1;
-          }
-          out[e] = i;
+          const float cx = pixel_centre<float>(v.x0, static_cast<int32_t>(e % v.width), v.step);
+          const float cy = pixel_centre<float>(v.y0, static_cast<int32_t>(e / v.width), v.step);
+          out[e] = escape_iterations(cx, cy, v.iterations);
           ++written;
         }
         return written;
@@ -107,9 +83,7 @@ int main(int argc, char** argv) try {
                   " (options: --size WxH, --iterations N, --repeats R, --backends all|cpu,...)");
     }
   }
-  view.step = 3.0f / static_cast<float>(view.width);  // real axis -2.1 .. 0.9
-  view.x0 = -2.1f;
-  view.y0 = -0.5f * view.step * static_cast<float>(view.height);
+  view.frame();
 
   // A fresh, empty disk cache, so the first compile really compiles.
   std::string dir_template =
@@ -120,28 +94,7 @@ int main(int argc, char** argv) try {
 
   Uniform<Float> x0(view.x0, "x0"), y0(view.y0, "y0"), step(view.step, "step");
   Uniform<Int> max_iter(view.iterations, "max_iter");
-  auto define = [&] {
-    return program("mandelbrot", [&] {
-      Output<Int> iters("iters");
-      Int2 pixel = element_coord();
-      Float cx = x0 + (to_float(pixel.x()) + 0.5f) * step;
-      Float cy = y0 + (to_float(pixel.y()) + 0.5f) * step;
-      Float zx = 0.0f, zy = 0.0f;
-      Int i = 0;
-      RILL_WHILE(i < max_iter) {
-        Float x2 = zx * zx, y2 = zy * zy;
-        RILL_IF(x2 + y2 > 4.0f) {
-          RILL_BREAK;
-        }
-        RILL_ENDIF;
-        zy = 2.0f * zx * zy + cy;
-        zx = x2 - y2 + cx;
-        i += 1;
-      }
-      RILL_ENDWHILE;
-      iters = i;
-    });
-  };
+  auto define = [&] { return mandelbrot_program(x0, y0, step, max_iter); };
 
   // Compile latency: first compile, disk-cache hit, in-process hit.
   auto t = Clock::now();

@@ -313,9 +313,20 @@ std::vector<Case> transcendental_cases() {
   auto near_one = [](double x) { return x >= 0.5 && x <= 2 ? 1.0 : 0.0; };
   v.push_back(RILL_TRANSCENDENTAL(log, 0, 1000, in(FLT_MIN, FLT_MAX), near_one));
   v.push_back(RILL_TRANSCENDENTAL(log2, 0, 1000, in(FLT_MIN, FLT_MAX), near_one));
-  v.push_back(RILL_TRANSCENDENTAL(sin, -10, 10, in(-kPi, kPi)));
-  v.push_back(RILL_TRANSCENDENTAL(cos, -10, 10, in(-kPi, kPi)));
-  v.push_back(RILL_TRANSCENDENTAL(tan, -10, 10, in(-kPi, kPi)));
+  // sin and cos: absolute error on [-pi, pi] (in ulps of 1), as OpenCL's relaxed math and
+  // Vulkan specify them: GPU built-ins (NVIDIA's sin.approx) have an absolute error there,
+  // so near a zero of the function no relative bound holds.
+  auto absolute = [](double) { return 1.0; };
+  v.push_back(RILL_TRANSCENDENTAL(sin, -10, 10, in(-kPi, kPi), absolute));
+  v.push_back(RILL_TRANSCENDENTAL(cos, -10, 10, in(-kPi, kPi), absolute));
+  // tan: OpenCL's relaxed math derives it as sin(x) * (1 / cos(x)), so it inherits their
+  // absolute error e amplified by the pole: |error| <= sqrt(2) e / cos^2(x). The measure is in
+  // ulps of 1 / cos^2(x) (>= |tan x|), and the domain keeps |cos x| >= 2^-10, away from the
+  // poles, where such an error can change the sign of cos(x) or give an infinity.
+  v.push_back(RILL_TRANSCENDENTAL(
+      tan, -10, 10,
+      [](double x) { return x >= -kPi && x <= kPi && std::fabs(std::cos(x)) >= 0x1p-10; },
+      [](double x) { return 1.0 / (std::cos(x) * std::cos(x)); }));
   v.push_back(RILL_TRANSCENDENTAL(atan, -100, 100, [](double) { return true; }));
 
   // pow: positive bases, results a binade away from overflow and underflow (pow is
@@ -331,7 +342,14 @@ std::vector<Case> transcendental_cases() {
   std::vector<Binary<float, float>> at = {binary<float, float>(
       "atan2", [](const auto& a, const auto& b) { return atan2(a, b); },
       [](double y, double x) { return std::atan2(y, x); },
-      [](double y, double x) { return y != 0 || x != 0; })};
+      // OpenCL's relaxed math derives atan2 from atan(y / x): the operands are in the domain
+      // of its division (magnitudes in [2^-62, 2^62]; no zeros, whose sign picks +-pi).
+      [](double y, double x) {
+        auto in_division_domain = [](double v) {
+          return std::fabs(v) >= 0x1p-62 && std::fabs(v) <= 0x1p62;
+        };
+        return in_division_domain(y) && in_division_domain(x);
+      })};
   v.push_back(
       binary_case<float, float>("atan2", "transcendental", at, Domain{-10, 10}, Domain{-10, 10}));
   return v;

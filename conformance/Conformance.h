@@ -96,10 +96,14 @@ std::vector<std::string> case_names();
 // rows with Status::Error.
 Report run(const std::string& backend, Accuracy a, const Options& options = {});
 
-// The fast-mode bound (in ulps) for an operation on a backend; backends the suite has no
-// measurement for get the "other" column of docs/accuracy.md. -1: the operation is exact
-// (integer / boolean results, compared for equality).
-double fast_bound(const std::string& op, const std::string& backend);
+// The fast-mode bound (in ulps) for an operation on a backend and device (the backend's
+// description()): the drivers the suite was measured on (gcc + glibc, PoCL, Mesa llvmpipe)
+// get their measured bounds, any other driver the "other drivers" column of
+// docs/accuracy.md. -1: the operation is exact (integer / boolean results, compared for
+// equality).
+double fast_bound(const std::string& op, const std::string& backend, const std::string& device);
+// Whether fast_bound() holds a measurement for this backend and device.
+bool measured_driver(const std::string& backend, const std::string& device);
 // The double-mode bound (distance in float ulps from the double reference rounded once).
 double double_bound(const std::string& op);
 

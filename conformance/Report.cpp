@@ -55,6 +55,12 @@ std::string markdown(const std::vector<Report>& reports, bool only_failures) {
       continue;
     }
     o << "Device: " << r.device << "  \n";
+    if (r.accuracy == "fast")
+      o << "Fast-mode bounds: "
+        << (measured_driver(r.backend, r.device)
+                ? "measured on this driver"
+                : "the contract for drivers not measured here (\"other\" in docs/accuracy.md)")
+        << "  \n";
     o << "Denormals: " << r.denormal_probe
       << (r.flushes_denormals ? " (compared with the denormal rule)" : "") << "  \n";
     o << "Result: " << r.count(Status::Pass) << " pass, " << r.count(Status::Fail) << " fail, "

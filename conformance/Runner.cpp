@@ -290,6 +290,7 @@ struct Context {
   std::string backend;
   Accuracy accuracy;
   bool flush = false;
+  std::string device;  // Backend::description(): picks the fast-mode bounds (Bounds.cpp)
 };
 
 // ---- operation cases --------------------------------------------------------------------------
@@ -593,7 +594,7 @@ void run_case(const Case& c, const Context& cx, const Options& o, Rows& rows, bo
   if (!c.exact_program && !is_specials)
     for (const Check& ch : c.checks) {
       Tally& t = rows.at(ch.op, ch.category);
-      t.bound = cx.accuracy == Accuracy::Fast     ? fast_bound(ch.op, cx.backend)
+      t.bound = cx.accuracy == Accuracy::Fast     ? fast_bound(ch.op, cx.backend, cx.device)
                 : cx.accuracy == Accuracy::Double ? double_bound(ch.op)
                                                   : -1;
     }
@@ -686,7 +687,7 @@ Report run(const std::string& backend_name, Accuracy a, const Options& o) {
                     (a == Accuracy::Double ? " (no binary64 arithmetic)" : "");
     return r;
   }
-  Context cx{backend_name, a, false};
+  Context cx{backend_name, a, false, r.device};
   try {
     Probe pr = probe_denormals(backend_name, a);
     // Fast mode may flush denormals on any backend (relaxed math), whatever the probe saw.

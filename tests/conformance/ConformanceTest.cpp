@@ -106,6 +106,31 @@ TEST_P(Conformance, HardInputs) {
   check(o);
 }
 
+// Fast-mode bounds follow the driver, not only the backend: the drivers the bounds were
+// measured on get those, any other driver (NVIDIA's OpenCL, ...) the documented contract.
+TEST(FastBounds, MeasuredDriversAndOthers) {
+  using rill::conformance::fast_bound;
+  const std::string pocl = "opencl: Portable Computing Language / pthread-haswell";
+  const std::string nvidia = "opencl: NVIDIA CUDA / NVIDIA H200 (OpenCL 3.0 CUDA)";
+  const std::string llvmpipe = "glsl: osmesa, llvmpipe (LLVM 15.0.6, 256 bits)";
+  const std::string nvidia_gl = "glsl: egl, NVIDIA H200/PCIe/SSE2, OpenGL 4.3.0 NVIDIA";
+  EXPECT_TRUE(rill::conformance::measured_driver("opencl", pocl));
+  EXPECT_FALSE(rill::conformance::measured_driver("opencl", nvidia));
+  EXPECT_TRUE(rill::conformance::measured_driver("glsl", llvmpipe));
+  EXPECT_FALSE(rill::conformance::measured_driver("glsl", nvidia_gl));
+  for (const char* op : {"exp", "sin", "tan", "atan2"}) {
+    EXPECT_LT(fast_bound(op, "opencl", pocl), fast_bound(op, "opencl", nvidia)) << op;
+    EXPECT_LT(fast_bound(op, "glsl", llvmpipe), fast_bound(op, "glsl", nvidia_gl)) << op;
+  }
+  // sin and cos: OpenCL relaxed math and Vulkan allow an absolute error of 2^-11 on [-pi, pi]
+  // (the measure is in units of 2^-23 there).
+  EXPECT_EQ(fast_bound("sin", "opencl", nvidia), 4096);
+  EXPECT_EQ(fast_bound("cos", "glsl", nvidia_gl), 4096);
+  // Exact and correctly rounded operations stay so on every driver.
+  EXPECT_EQ(fast_bound("floor", "opencl", nvidia), 0);
+  EXPECT_EQ(fast_bound("add", "glsl", nvidia_gl), 0.5);
+}
+
 INSTANTIATE_TEST_SUITE_P(Suite, Conformance, ::testing::ValuesIn(params()),
                          [](const ::testing::TestParamInfo<Param>& info) {
                            return info.param.backend + "_" +
