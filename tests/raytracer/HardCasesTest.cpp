@@ -312,8 +312,7 @@ TEST_P(HardCases, SharedEdgesAndVerticesAreWatertight) {
     }
   for (const Config& c : intersect_configs()) {
     // The watertight test must not leak; Moller-Trumbore may (counted in the benchmark).
-    const bool must =
-        c.knobs.triangle == TriangleTest::Watertight && c.accuracy == Accuracy::Strict;
+    const bool must = c.knobs.triangle == TriangleTest::Watertight;
     check_rays(s, g, c, GetParam(), o, d, must, "fan and subdivided plane");
   }
 }
@@ -345,8 +344,7 @@ TEST_P(HardCases, RaysFromInsideClosedMeshesAlwaysHit) {
     d.push_back(glm::normalize(dir));
   }
   for (const Config& c : intersect_configs()) {
-    const bool must =
-        c.knobs.triangle == TriangleTest::Watertight && c.accuracy == Accuracy::Strict;
+    const bool must = c.knobs.triangle == TriangleTest::Watertight;
     check_rays(s, g, c, GetParam(), o, d, must, "inside closed meshes");
   }
 }
