@@ -52,7 +52,7 @@ struct RenderOptions {
   std::string strategy = "megakernel";
   bool quiet = false;
   // Accuracy knobs (Tracer.h, TracerOptions).
-  std::string triangle = "moller", offset = "epsilon", traversal = "incremental";
+  std::string triangle = "moller", offset = "scaled", traversal = "incremental";
 };
 
 void parse_size(const std::string& s, int& w, int& h) {
@@ -297,8 +297,8 @@ int main(int argc, char** argv) {
   r->add_flag("--quiet", ro.quiet, "print only the stats line");
   r->add_option("--triangle", ro.triangle, "triangle test: moller or watertight")
       ->default_str("moller");
-  r->add_option("--offset", ro.offset, "self-intersection: epsilon or scaled (Wachter-Binder)")
-      ->default_str("epsilon");
+  r->add_option("--offset", ro.offset, "self-intersection: scaled (Wachter-Binder) or epsilon")
+      ->default_str("scaled");
   r->add_option("--traversal", ro.traversal, "grid traversal: incremental or recompute")
       ->default_str("incremental");
 

@@ -29,7 +29,7 @@ std::vector<TracerOptions> all_knobs() {
 
 TEST(Knobs, DefaultsAndNames) {
   TracerOptions d;
-  EXPECT_EQ(d.str(), "moller epsilon incremental");
+  EXPECT_EQ(d.str(), "moller scaled incremental");
   EXPECT_EQ(parse_triangle_test("watertight"), TriangleTest::Watertight);
   EXPECT_EQ(parse_self_intersection("scaled"), SelfIntersection::Scaled);
   EXPECT_EQ(parse_traversal("recompute"), Traversal::Recompute);
