@@ -265,9 +265,14 @@ TEST_P(HardCases, TrianglesInCellPlanesHaveNoHoles) {
     glm::vec3 from = t + glm::vec3(u(rng) * 0.1f, (n % 2 ? 1.0f : -0.2f), u(rng) * 0.1f);
     o.push_back(from);
     d.push_back(glm::normalize(t - from));
+    // The lowest floor (y = -1.5, just inside the grid's padded bottom face), from below
+    // and grazing from outside the grid.
+    glm::vec3 b(t.x, -1.5f, t.z);
+    o.push_back(b + glm::vec3(u(rng) * 0.1f, n % 2 ? -0.3f : -1e-3f, u(rng) * 0.1f));
+    d.push_back(glm::normalize(b - o.back()));
   }
   for (const Config& c : intersect_configs()) {
-    check_rays(s, g, c, GetParam(), o, d, true, "floor in a cell plane");
+    check_rays(s, g, c, GetParam(), o, d, true, "floors in a cell plane and at the bottom");
   }
 }
 
