@@ -9,6 +9,9 @@
 // continues with a reflected or refracted ray (a second branch goes on a small ray stack),
 // until the path ends, the stack is empty and the loop finishes.
 //
+// The accuracy knobs (TracerOptions: triangle test, self-intersection offset, traversal)
+// are fixed per tracer and select the code of the shared building blocks (TracerImpl.h).
+//
 // Only what the scene calls for is generated (host C++ at capture time, see Features):
 // a scene without reflective materials has no reflection code, one without lights no
 // shadow rays, one without glass no refraction code and no ray stack.
