@@ -237,7 +237,9 @@ void Tracer::Impl::ray_box(const Float3& o, const Float3& d, const Float& tmax, 
   Bool outside = any(dz && ((o < grid_lo) || (o > grid_hi)));
   t_enter = max(max(tn.x(), tn.y()), max(tn.z(), 0.0f));
   t_exit = min(min(tf.x(), tf.y()), min(tf.z(), tmax));
-  // A ray with a NaN or infinite component misses (the comparisons are false for NaN).
+  // A ray with a NaN or infinite component misses (the comparisons are false for NaN). In
+  // `fast` the compiler may assume there are no NaNs and drop this; the traversal's step
+  // limit still ends the loop (upload()).
   Bool finite = all(abs(o) <= 3.40282347e38f) && all(abs(d) <= 3.40282347e38f);
   inside = finite && !outside && t_enter <= t_exit;
 }
@@ -265,14 +267,16 @@ namespace {
 
 // Watertight ray-triangle intersection (Woop, Benthin & Wald, "Watertight Ray/Triangle
 // Intersection", JCGT 2013). The vertices are moved to the ray's origin, permuted so that the
-// ray's dominant axis is z (x and y swapped when d.z < 0, to keep the winding) and sheared so
+// ray's dominant axis is z (the other two swapped when that component is negative, to keep
+// the winding) and sheared so
 // that the ray becomes the z axis; then three 2D edge functions decide. An edge shared by two
 // triangles gives the same edge function with the opposite sign (the same products of the
 // same bits, subtracted the other way round: exact without FMA contraction), and a ray on
 // the edge (edge function 0) counts as inside both: no ray passes between them. (The paper
 // redoes exactly-zero edge functions in double; GLSL has no double, and counting them as
-// inside keeps the test watertight.) The per-ray set-up is recomputed per triangle; the C
-// compiler hoists most of it out of the voxel loop.
+// inside keeps the test watertight.) The per-ray set-up is recomputed for every triangle:
+// the building block has no per-ray state to keep it in (the multipass strategy calls it
+// from several kernels).
 struct WatertightRay {
   Int kz = 0;
   Bool flip = false;
