@@ -61,6 +61,30 @@ Features scene_features(const Scene& s) {
   return f;
 }
 
+std::string TracerOptions::str() const {
+  return std::string(triangle == TriangleTest::Watertight ? "watertight" : "moller") +
+         (offset == SelfIntersection::Scaled ? " scaled" : " epsilon") +
+         (traversal == Traversal::Recompute ? " recompute" : " incremental");
+}
+
+TriangleTest parse_triangle_test(const std::string& s) {
+  if (s == "moller") return TriangleTest::MollerTrumbore;
+  if (s == "watertight") return TriangleTest::Watertight;
+  throw std::invalid_argument("--triangle expects moller or watertight (got '" + s + "')");
+}
+
+SelfIntersection parse_self_intersection(const std::string& s) {
+  if (s == "epsilon") return SelfIntersection::Epsilon;
+  if (s == "scaled") return SelfIntersection::Scaled;
+  throw std::invalid_argument("--offset expects epsilon or scaled (got '" + s + "')");
+}
+
+Traversal parse_traversal(const std::string& s) {
+  if (s == "incremental") return Traversal::Incremental;
+  if (s == "recompute") return Traversal::Recompute;
+  throw std::invalid_argument("--traversal expects incremental or recompute (got '" + s + "')");
+}
+
 glm::vec2 sample_offset(int k) {
   if (k == 0) return glm::vec2(0.5f);
   // Halton (2, 3): a low-discrepancy sequence, the same on every machine.
@@ -104,6 +128,15 @@ void Tracer::Impl::upload() {
   up3(tri_e1, e1);
   up3(tri_e2, e2);
   up3(tri_ng, ng);
+  if (K.triangle == TriangleTest::Watertight) {
+    std::vector<glm::vec3> v1(n), v2(n);
+    for (size_t t = 0; t < n; ++t) {
+      v1[t] = scene.positions[3 * t + 1];
+      v2[t] = scene.positions[3 * t + 2];
+    }
+    up3(tri_v1, v1);
+    up3(tri_v2, v2);
+  }
   if (F.vertex_normals) {
     std::vector<glm::vec3> n0(n), n1(n), n2(n);
     for (size_t t = 0; t < n; ++t) {
@@ -162,6 +195,14 @@ void Tracer::Impl::upload() {
   grid_hi.set(grid.hi);
   grid_cell.set(grid.cell);
   grid_res.set(grid.res);
+  // The traversal's step limit, a proof rather than a guess: every step moves the voxel by
+  // one along one axis, never against the sign of d, and the loop ends when the voxel
+  // leaves [0, res). So a ray (any ray, whatever rounding did to tMax) takes at most
+  // (res.x - 1) + (res.y - 1) + (res.z - 1) steps inside and one more out: res.x + res.y +
+  // res.z - 2 steps. The limit (with 5 to spare) never cuts a real traversal short; it ends
+  // the loop for rays whose steps are 0 on the chosen axis (NaN directions), which would
+  // otherwise stay in one voxel forever. Every loop iteration counts a step, so the loop
+  // runs at most max_voxel_steps + 1 times on any input.
   max_steps.set(grid.res.x + grid.res.y + grid.res.z + 3);
 
   // Secondary rays start a little off the surface: 2e-5 of the scene's size (and at least
@@ -181,9 +222,13 @@ void Tracer::Impl::upload() {
 
 // ---- the intersector ----------------------------------------------------------------------
 
+Bool3 Tracer::Impl::flat_axes(const Float3& d) const {
+  return abs(d) < 1.17549435e-38f;  // FLT_MIN
+}
+
 void Tracer::Impl::ray_box(const Float3& o, const Float3& d, const Float& tmax, Bool& inside,
                            Float& t_enter, Float& t_exit) const {
-  Bool3 dz = d == Float3(0.0f);
+  Bool3 dz = flat_axes(d);
   Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
   Float3 t0 = (grid_lo - o) * inv;
   Float3 t1 = (grid_hi - o) * inv;
@@ -192,16 +237,24 @@ void Tracer::Impl::ray_box(const Float3& o, const Float3& d, const Float& tmax, 
   Bool outside = any(dz && ((o < grid_lo) || (o > grid_hi)));
   t_enter = max(max(tn.x(), tn.y()), max(tn.z(), 0.0f));
   t_exit = min(min(tf.x(), tf.y()), min(tf.z(), tmax));
-  inside = !outside && t_enter <= t_exit;
+  // A ray with a NaN or infinite component misses (the comparisons are false for NaN). In
+  // `fast` the compiler may assume there are no NaNs and drop this; the traversal's step
+  // limit still ends the loop (upload()).
+  Bool finite = all(abs(o) <= 3.40282347e38f) && all(abs(d) <= 3.40282347e38f);
+  inside = finite && !outside && t_enter <= t_exit;
 }
 
 void Tracer::Impl::dda_init(const Float3& o, const Float3& d, const Float& t_enter, Int3& vox,
                             Float3& tmx) const {
-  Bool3 dz = d == Float3(0.0f);
+  Bool3 dz = flat_axes(d);
   Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
   Float3 p = o + t_enter * d;
   Float3 vf = clamp(floor((p - grid_lo) / grid_cell), 0.0f, to_float(grid_res) - 1.0f);
   vox = to_int(vf);
+  if (K.traversal == Traversal::Recompute) {
+    tmx = o - grid_lo;  // leave_voxel recomputes the boundaries from this and the cell index
+    return;
+  }
   Float3 bound = grid_lo + (vf + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * grid_cell;
   tmx = select(dz, Float3(kBig), (bound - o) * inv);
 }
@@ -210,8 +263,76 @@ Int2 Tracer::Impl::voxel_range(const Int3& vox) const {
   return voxels[vox.x() + grid_res.x() * (vox.y() + grid_res.y() * vox.z())];
 }
 
+namespace {
+
+// Watertight ray-triangle intersection (Woop, Benthin & Wald, "Watertight Ray/Triangle
+// Intersection", JCGT 2013). The vertices are moved to the ray's origin, permuted so that the
+// ray's dominant axis is z (the other two swapped when that component is negative, to keep
+// the winding) and sheared so
+// that the ray becomes the z axis; then three 2D edge functions decide. An edge shared by two
+// triangles gives the same edge function with the opposite sign (the same products of the
+// same bits, subtracted the other way round: exact without FMA contraction), and a ray on
+// the edge (edge function 0) counts as inside both: no ray passes between them. (The paper
+// redoes exactly-zero edge functions in double; GLSL has no double, and counting them as
+// inside keeps the test watertight.) The per-ray set-up is recomputed for every triangle:
+// the building block has no per-ray state to keep it in (the multipass strategy calls it
+// from several kernels).
+struct WatertightRay {
+  Int kz = 0;
+  Bool flip = false;
+  Float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+
+  WatertightRay(const Float3& d) {
+    Float3 ad = abs(d);
+    kz = select(ad.x() >= ad.y() && ad.x() >= ad.z(), Int(0),
+                select(ad.y() >= ad.z(), Int(1), Int(2)));
+    Float3 dp = permute(d, false);
+    flip = dp.z() < 0.0f;
+    dp = permute(d, true);
+    sz = 1.0f / dp.z();
+    sx = dp.x() / dp.z();
+    sy = dp.y() / dp.z();
+  }
+  // (v[kx], v[ky], v[kz]) with kx = kz + 1, ky = kz + 2 (mod 3), kx and ky swapped on flip.
+  Float3 permute(const Float3& v, bool use_flip) const {
+    Float a = select(kz == 0, v.y(), select(kz == 1, v.z(), v.x()));
+    Float b = select(kz == 0, v.z(), select(kz == 1, v.x(), v.y()));
+    Float c = select(kz == 0, v.x(), select(kz == 1, v.y(), v.z()));
+    if (!use_flip) return Float3(a, b, c);
+    return Float3(select(flip, b, a), select(flip, a, b), c);
+  }
+};
+
+}  // namespace
+
 void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& tri, Float& best_t,
                                  Int& best_id, Float& best_u, Float& best_v) const {
+  if (K.triangle == TriangleTest::Watertight) {
+    WatertightRay r(d);
+    Float3 a = r.permute(tri_v0[tri] - o, true), b = r.permute(tri_v1[tri] - o, true),
+           c = r.permute(tri_v2[tri] - o, true);
+    Float ax = a.x() - r.sx * a.z(), ay = a.y() - r.sy * a.z();
+    Float bx = b.x() - r.sx * b.z(), by = b.y() - r.sy * b.z();
+    Float cx = c.x() - r.sx * c.z(), cy = c.y() - r.sy * c.z();
+    Float eu = cx * by - cy * bx;  // the edge functions: barycentrics of a, b, c times det
+    Float ev = ax * cy - ay * cx;
+    Float ew = bx * ay - by * ax;
+    Bool mixed = (eu < 0.0f || ev < 0.0f || ew < 0.0f) && (eu > 0.0f || ev > 0.0f || ew > 0.0f);
+    Float det = eu + ev + ew;
+    Bool ok = !mixed && det != 0.0f;
+    Float tt = eu * (r.sz * a.z()) + ev * (r.sz * b.z()) + ew * (r.sz * c.z());
+    Float inv_det = 1.0f / select(ok, det, 1.0f);
+    Float t = tt * inv_det;
+    ok = ok && t > 0.0f;
+    RILL_IF(ok && (t < best_t || (t == best_t && tri < best_id))) {
+      best_t = t;
+      best_id = tri;
+      best_u = ev * inv_det;
+      best_v = ew * inv_det;
+    }
+    RILL_ENDIF;
+    return;
+  }
   Float3 v0 = tri_v0[tri], e1 = tri_e1[tri], e2 = tri_e2[tri];
   Float3 pv = cross(d, e2);
   Float det = dot(e1, pv);
@@ -235,20 +356,29 @@ void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& tr
 void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float& best_t,
                                const Int& best_id, const Bool& any_hit, Int3& vox, Float3& tmx,
                                Int& steps, Bool& done) const {
-  Bool3 dz = d == Float3(0.0f);
+  Bool3 dz = flat_axes(d);
   Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
-  Int3 step = select(d > 0.0f, Int3(1), select(d < 0.0f, Int3(-1), Int3(0)));
-  Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
-  Float t_leave = min(min(tmx.x(), tmx.y()), tmx.z());
+  Int3 step = select(dz, Int3(0), select(d > 0.0f, Int3(1), select(d < 0.0f, Int3(-1), Int3(0))));
+  // The distances to the voxel's exit planes: carried along (incremental), or computed from
+  // the cell index and the ray's origin relative to the grid, carried in tmx (recompute).
+  Float3 tb = tmx;
+  if (K.traversal == Traversal::Recompute) {
+    Float3 plane = (to_float(vox) + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * grid_cell;
+    tb = select(dz, Float3(kBig), (plane - tmx) * inv);
+  }
+  Float t_leave = min(min(tb.x(), tb.y()), tb.z());
   done = best_id >= 0 && (best_t <= t_leave || any_hit);
   done = done || t_leave >= t_exit;  // the ray ends inside this voxel
-  // Incremental traversal: step along the axis whose boundary is nearest.
-  Bool ax = tmx.x() <= tmx.y() && tmx.x() <= tmx.z();
-  Bool ay = !ax && tmx.y() <= tmx.z();
+  // Step along the axis whose boundary is nearest.
+  Bool ax = tb.x() <= tb.y() && tb.x() <= tb.z();
+  Bool ay = !ax && tb.y() <= tb.z();
   Bool az = !ax && !ay;
   Bool3 m(ax, ay, az);
   vox = vox + select(m, step, Int3(0));
-  tmx = select(m, tmx + tdl, tmx);
+  if (K.traversal == Traversal::Incremental) {
+    Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
+    tmx = select(m, tmx + tdl, tmx);
+  }
   steps += 1;
   done = done || any(vox < 0) || any(vox >= grid_res) || steps > max_steps;
 }
@@ -291,9 +421,32 @@ void Tracer::Impl::intersect(const Float3& o, const Float3& d, const Float& tmax
 
 // ---- shading -------------------------------------------------------------------------------
 
+// Wachter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection" (Ray Tracing
+// Gems, ch. 6): move each coordinate a number of ulps proportional to the normal (integer
+// steps on the float's bits, so the offset scales with the coordinate's magnitude: it
+// suffices at 1e4 as at 1e-4); where a coordinate is near zero and its ulps are tiny, a
+// fixed step instead. Two changes from the published constants, both measured (HardCases
+// tests, docs/accuracy.md): the point comes from the barycentrics (surface()), so its error
+// is about 2 ulps per coordinate and kIntScale = 8 ulps suffices where the paper's 256
+// (for points from o + t d after instance transforms) moved rays 0.25 units at 1e4 and lost
+// contact shadows; and the near-zero step is the scene-relative eps instead of 2^-16
+// absolute, which was 15% of a scene scaled to 1e-3 units.
+Float3 Tracer::Impl::offset_origin(const Float3& p, const Float3& n) const {
+  if (K.offset == SelfIntersection::Epsilon) return p + n * eps;
+  constexpr float kOrigin = 1.0f / 32.0f, kIntScale = 8.0f;
+  Int3 of = to_int(kIntScale * n);
+  Float3 pi = as_float(as_int(p) + select(p < 0.0f, -of, of));
+  return select(abs(p) < kOrigin, p + n * eps, pi);
+}
+
 void Tracer::Impl::surface(const Float3& ro, const Float3& rd, const Float& ht, const Int& hid,
                            const Float& hu, const Float& hv, Surface& s) const {
-  s.P = ro + ht * rd;
+  if (K.offset == SelfIntersection::Scaled) {
+    // On the triangle, from the barycentrics: the error does not grow with the distance.
+    s.P = tri_v0[hid] + hu * tri_e1[hid] + hv * tri_e2[hid];
+  } else {
+    s.P = ro + ht * rd;
+  }
   Float3 ng = tri_ng[hid];
   Float3 ns = ng;
   if (F.vertex_normals) {
@@ -349,12 +502,14 @@ Float3 Tracer::Impl::unshadowed_light(const Surface& s) const {
 
 void Tracer::Impl::shadow_ray(const Int& l, const Surface& s, Float3& ro, Float3& rd, Float& tmax,
                               Bool& active) const {
-  Float3 so = s.P + s.ngf * eps;
+  Float3 so = offset_origin(s.P, s.ngf);
   Float3 L = light_pos[l] - so;
   Float dist = length(L);
   ro = so;
   rd = L / dist;
-  tmax = dist;
+  // Stop short of the light by the same offset: a light on a surface (as on an area
+  // light's quad) is not shadowed by that surface.
+  tmax = dist - eps;
   active = dist > 0.0f && dot(s.nf, rd) > 0.0f;
 }
 
@@ -394,18 +549,18 @@ void Tracer::Impl::shade(const Surface& s, const Float3& local, Float3& color, F
     Bool go_t = wt > kMinWeight;
     if (second != nullptr) {  // both: the reflection is the second branch
       *has_second = go_r && go_t;
-      second->o = s.P + s.ngf * eps;
+      second->o = offset_origin(s.P, s.ngf);
       second->d = rdir;
       second->w = wr;
     }
     RILL_IF(go_t) {
-      ro = s.P - s.ngf * eps;
+      ro = offset_origin(s.P, -s.ngf);
       rd = tdir;
       weight = wt;
       go = true;
     }
     RILL_ELSE_IF(go_r) {
-      ro = s.P + s.ngf * eps;
+      ro = offset_origin(s.P, s.ngf);
       rd = rdir;
       weight = wr;
       go = true;
@@ -657,8 +812,10 @@ Kernel& Tracer::Impl::kernel(const std::string& backend_name, Accuracy a) {
 
 // ---- Tracer --------------------------------------------------------------------------------
 
-Tracer::Tracer(const Scene& scene, const Grid& grid) : d_(std::make_unique<Impl>()) {
+Tracer::Tracer(const Scene& scene, const Grid& grid, const TracerOptions& options)
+    : d_(std::make_unique<Impl>()) {
   scene.validate();
+  d_->K = options;
   d_->scene.materials = scene.materials;
   d_->scene.lights = scene.lights;
   d_->scene.options = scene.options;
@@ -684,6 +841,9 @@ const Program& Tracer::program() const {
 }
 const Features& Tracer::features() const {
   return d_->F;
+}
+const TracerOptions& Tracer::options() const {
+  return d_->K;
 }
 
 std::string Tracer::source(const std::string& backend, Accuracy a) {
@@ -785,10 +945,12 @@ std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Cam
 
 void Tracer::intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
                        const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
-                       std::vector<float>& dist) {
+                       std::vector<float>& dist, Accuracy accuracy) {
   Impl& I = *d_;
   if (!I.intersect_program.valid()) I.intersect_program = I.capture_intersector();
-  Kernel k = compile(I.intersect_program, backend);
+  CompileOptions opt;
+  opt.accuracy = accuracy;
+  Kernel k = compile(I.intersect_program, backend, opt);
   if (origins.size() != dirs.size())
     throw std::invalid_argument("intersect: origins and directions differ in size");
   const size_t n = origins.size();

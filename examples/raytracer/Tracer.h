@@ -9,6 +9,9 @@
 // continues with a reflected or refracted ray (a second branch goes on a small ray stack),
 // until the path ends, the stack is empty and the loop finishes.
 //
+// The accuracy knobs (TracerOptions: triangle test, self-intersection offset, traversal)
+// are fixed per tracer and select the code of the shared building blocks (TracerImpl.h).
+//
 // Only what the scene calls for is generated (host C++ at capture time, see Features):
 // a scene without reflective materials has no reflection code, one without lights no
 // shadow rays, one without glass no refraction code and no ray stack.
@@ -50,6 +53,36 @@ enum class Strategy {
   Multipass,   // the thesis's kernel sequence with ray states (no refraction)
 };
 
+// Accuracy knobs fixed when the tracer is built: each selects different DSL code in the
+// generated kernels (and so a different kernel; see docs/accuracy.md, "The ray tracer's
+// accuracy knobs"). The defaults are the recommended settings.
+enum class TriangleTest {
+  MollerTrumbore,  // Moller & Trumbore 1997: edges from v0, the determinant, u, v, t
+  Watertight,      // Woop, Benthin & Wald 2013: shear to ray space, three 2D edge functions
+};
+enum class SelfIntersection {
+  Epsilon,  // new rays start at P + eps * n, eps fixed per scene (its size)
+  Scaled,   // Wachter & Binder 2019: P from the barycentrics, then a few ulps along n
+};
+enum class Traversal {
+  Incremental,  // 3D-DDA: tMax += tDelta at each step (Amanatides & Woo)
+  Recompute,    // tMax recomputed from the cell index at each step (no accumulated error)
+};
+// Defaults as measured (docs/accuracy.md): the scaled offset is far more accurate at no
+// measurable cost; the watertight test costs 5-20% on the CPU for the rare hole; the
+// recomputed traversal costs 5-30% and gains nothing measurable.
+struct TracerOptions {
+  TriangleTest triangle = TriangleTest::MollerTrumbore;
+  SelfIntersection offset = SelfIntersection::Scaled;
+  Traversal traversal = Traversal::Incremental;
+  std::string str() const;  // "moller epsilon incremental"
+};
+// Parse the command-line names (moller|watertight, epsilon|scaled, incremental|recompute);
+// throw std::invalid_argument naming the bad value.
+TriangleTest parse_triangle_test(const std::string& s);
+SelfIntersection parse_self_intersection(const std::string& s);
+Traversal parse_traversal(const std::string& s);
+
 struct RenderSettings {
   std::string backend = "cpu";
   Strategy strategy = Strategy::Megakernel;
@@ -78,13 +111,14 @@ class Tracer {
   // Uploads the scene and grid into Rill arrays and captures the program. The scene's
   // options (shadows, smooth normals, ambient) are fixed here; camera, size, depth and
   // samples can change per render.
-  Tracer(const Scene& scene, const Grid& grid);
+  Tracer(const Scene& scene, const Grid& grid, const TracerOptions& options = {});
   ~Tracer();
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
 
   const rill::Program& program() const;
   const Features& features() const;
+  const TracerOptions& options() const;
   // Compiles (cached per backend and accuracy) and renders through the camera.
   RenderResult render(const RenderSettings& settings, const Camera& camera);
   // The generated source on a backend (compiles if needed).
@@ -97,7 +131,7 @@ class Tracer {
   // tests: returns per ray the primitive id (-1: miss) and distance (+inf: miss).
   void intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
                  const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
-                 std::vector<float>& dist);
+                 std::vector<float>& dist, rill::Accuracy accuracy = rill::Accuracy::Strict);
 
  private:
   struct Impl;

@@ -36,11 +36,15 @@ struct Tracer::Impl {
   Scene scene;  // materials, lights, options (the triangles live in the arrays)
   Grid grid;
   Features F;
+  TracerOptions K;  // the accuracy knobs: which code the DSL functions below generate
 
   // Grid (thesis section 5.3): voxel index, element list; triangle data.
   Array<Int2> voxels{1, "voxels"};
   Array<Int> elements{1, "elements"};
   Array<Float3> tri_v0{1, "tri_v0"}, tri_e1{1, "tri_e1"}, tri_e2{1, "tri_e2"}, tri_ng{1, "tri_ng"};
+  // The watertight test needs the vertices themselves: v0 + e1 rounds, and a shared edge
+  // must be computed from the same bits in both of its triangles.
+  Array<Float3> tri_v1{1, "tri_v1"}, tri_v2{1, "tri_v2"};
   Array<Float3> tri_n0{1, "tri_n0"}, tri_n1{1, "tri_n1"}, tri_n2{1, "tri_n2"};
   Array<Float3> tri_c0{1, "tri_c0"}, tri_c1{1, "tri_c1"}, tri_c2{1, "tri_c2"};
   Array<Int> tri_mat{1, "tri_mat"};
@@ -86,13 +90,18 @@ struct Tracer::Impl {
   // (t_exit at most tmax).
   void ray_box(const Float3& o, const Float3& d, const Float& tmax, Bool& inside, Float& t_enter,
                Float& t_exit) const;
+  // The direction components the traversal treats as zero: zero, and denormals (which a
+  // backend may flush, and whose reciprocal overflows): |d| < FLT_MIN.
+  Bool3 flat_axes(const Float3& d) const;
   // 3D-DDA initialization (thesis 5.1.2): the voxel at t_enter and the distances to the
-  // next voxel boundary on each axis.
+  // next voxel boundary on each axis (Traversal::Recompute: the origin relative to the
+  // grid's corner, from which leave_voxel recomputes the boundaries from the cell index).
   void dda_init(const Float3& o, const Float3& d, const Float& t_enter, Int3& vox,
                 Float3& tmx) const;
   // The index range (start, count) of a voxel's triangles.
   Int2 voxel_range(const Int3& vox) const;
-  // Moller-Trumbore against one triangle; keeps the closest hit (ties: the smaller id).
+  // The knob's triangle test (Moller-Trumbore or watertight) against one triangle; keeps
+  // the closest hit (ties: the smaller id).
   void test_triangle(const Float3& o, const Float3& d, const Int& tri, Float& best_t, Int& best_id,
                      Float& best_u, Float& best_v) const;
   // After a voxel's triangles: done when the best hit lies within the voxel (or any hit,
@@ -104,6 +113,9 @@ struct Tracer::Impl {
   void intersect(const Float3& o, const Float3& d, const Float& tmax, const Bool* any_hit,
                  Bool& hit, Float& best_t, Int& best_id, Float& best_u, Float& best_v) const;
 
+  // A secondary ray's origin: p moved off the surface along n (the knob's fixed epsilon or
+  // scale-aware offset).
+  Float3 offset_origin(const Float3& p, const Float3& n) const;
   // The surface at a hit of ray (ro, rd) at distance ht on triangle hid, (hu, hv).
   void surface(const Float3& ro, const Float3& rd, const Float& ht, const Int& hid, const Float& hu,
                const Float& hv, Surface& s) const;

@@ -5,6 +5,10 @@
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
 //                           [--grid N|auto] [--strategy megakernel|multipass]
 //                           [--stats-json FILE] [--source FILE] [--quiet]
+//                           [--triangle moller|watertight] [--offset epsilon|scaled]
+//                           [--traversal incremental|recompute]
+//   rill-trace accuracy [--backends LIST] [--scenes LIST] [--size WxH] [--repeats N]
+//                       [--one-at-a-time] [--out-dir DIR]
 //   rill-trace demo [--scene SCENE] [--size WxH] [--out-dir DIR]
 //   rill-trace info
 //
@@ -20,7 +24,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
+#include "AccuracyBench.h"
 #include "Grid.h"
 #include "Image.h"
 #include "Scene.h"
@@ -45,6 +51,8 @@ struct RenderOptions {
   std::string grid = "";
   std::string strategy = "megakernel";
   bool quiet = false;
+  // Accuracy knobs (Tracer.h, TracerOptions).
+  std::string triangle = "moller", offset = "scaled", traversal = "incremental";
 };
 
 void parse_size(const std::string& s, int& w, int& h) {
@@ -94,7 +102,11 @@ int render(const RenderOptions& o) {
   rt::Grid grid = rt::build_grid(scene, scene.options.grid);
 
   const auto t_setup = Clock::now();
-  rt::Tracer tracer(scene, grid);
+  rt::TracerOptions knobs;
+  knobs.triangle = rt::parse_triangle_test(o.triangle);
+  knobs.offset = rt::parse_self_intersection(o.offset);
+  knobs.traversal = rt::parse_traversal(o.traversal);
+  rt::Tracer tracer(scene, grid, knobs);
   const double setup_ms = ms_since(t_setup);
 
   rt::RenderSettings rs;
@@ -137,6 +149,7 @@ int render(const RenderOptions& o) {
     j["backend"] = o.backend;
     j["accuracy"] = o.accuracy;
     j["strategy"] = o.strategy;
+    j["knobs"] = knobs.str();
     j["spp"] = scene.options.spp;
     j["max_depth"] = scene.options.max_depth;
     j["features"] = tracer.features().str();
@@ -282,6 +295,26 @@ int main(int argc, char** argv) {
   r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
   r->add_option("--source", ro.source, "write the generated kernel source");
   r->add_flag("--quiet", ro.quiet, "print only the stats line");
+  r->add_option("--triangle", ro.triangle, "triangle test: moller or watertight")
+      ->default_str("moller");
+  r->add_option("--offset", ro.offset, "self-intersection: scaled (Wachter-Binder) or epsilon")
+      ->default_str("scaled");
+  r->add_option("--traversal", ro.traversal, "grid traversal: incremental or recompute")
+      ->default_str("incremental");
+
+  rt::AccuracyBenchOptions ao;
+  std::string acc_size, acc_backends, acc_scenes;
+  CLI::App* acc = app.add_subcommand(
+      "accuracy", "time against error for every accuracy knob on every backend (a benchmark)");
+  acc->add_option("--backends", acc_backends, "comma-separated (default: every available)");
+  acc->add_option("--scenes", acc_scenes,
+                  "comma-separated subset of closed,inside,floor-far,floor-tiny,cornell,glass");
+  acc->add_option("--size", acc_size, "image size WxH (default 64x48)");
+  acc->add_option("--repeats", ao.repeats, "timing repeats (median)")->check(CLI::Range(1, 100));
+  acc->add_flag(
+      "--one-at-a-time", [&](int64_t) { ao.factorial = false; },
+      "vary one knob at a time instead of every combination");
+  acc->add_option("--out-dir", ao.out_dir, "where accuracy.{md,csv,gp,svg} go");
 
   std::string demo_scene = "builtin:glass", demo_size, demo_out = ".";
   CLI::App* d =
@@ -306,6 +339,19 @@ int main(int argc, char** argv) {
     if (*r) rc = render(ro);
     if (*d) rc = demo(demo_scene, demo_size, demo_out);
     if (*in) rc = info();
+    if (*acc) {
+      auto split = [](const std::string& s) {
+        std::vector<std::string> v;
+        std::stringstream ss(s);
+        for (std::string item; std::getline(ss, item, ',');)
+          if (!item.empty()) v.push_back(item);
+        return v;
+      };
+      ao.backends = split(acc_backends);
+      ao.scenes = split(acc_scenes);
+      if (!acc_size.empty()) parse_size(acc_size, ao.width, ao.height);
+      rc = rt::accuracy_bench(ao);
+    }
   } catch (const std::exception& e) {
     std::string msg = e.what();
     for (char& c : msg)
