@@ -107,9 +107,10 @@ void Tracer::Impl::upload() {
   if (F.vertex_normals) {
     std::vector<glm::vec3> n0(n), n1(n), n2(n);
     for (size_t t = 0; t < n; ++t) {
-      n0[t] = scene.normals[3 * t];
-      n1[t] = scene.normals[3 * t + 1];
-      n2[t] = scene.normals[3 * t + 2];
+      const bool has = !scene.normals.empty();  // else forced on (Tracer's `extra`)
+      n0[t] = has ? scene.normals[3 * t] : ng[t];
+      n1[t] = has ? scene.normals[3 * t + 1] : ng[t];
+      n2[t] = has ? scene.normals[3 * t + 2] : ng[t];
     }
     up3(tri_n0, n0);
     up3(tri_n1, n1);
@@ -118,9 +119,10 @@ void Tracer::Impl::upload() {
   if (F.vertex_colors) {
     std::vector<glm::vec3> c0(n), c1(n), c2(n);
     for (size_t t = 0; t < n; ++t) {
-      c0[t] = scene.colors[3 * t];
-      c1[t] = scene.colors[3 * t + 1];
-      c2[t] = scene.colors[3 * t + 2];
+      const bool has = !scene.colors.empty();
+      c0[t] = has ? scene.colors[3 * t] : glm::vec3(1.0f);
+      c1[t] = has ? scene.colors[3 * t + 1] : glm::vec3(1.0f);
+      c2[t] = has ? scene.colors[3 * t + 2] : glm::vec3(1.0f);
     }
     up3(tri_c0, c0);
     up3(tri_c1, c1);
@@ -657,7 +659,8 @@ Kernel& Tracer::Impl::kernel(const std::string& backend_name, Accuracy a) {
 
 // ---- Tracer --------------------------------------------------------------------------------
 
-Tracer::Tracer(const Scene& scene, const Grid& grid) : d_(std::make_unique<Impl>()) {
+Tracer::Tracer(const Scene& scene, const Grid& grid, const Features& extra)
+    : d_(std::make_unique<Impl>()) {
   scene.validate();
   d_->scene.materials = scene.materials;
   d_->scene.lights = scene.lights;
@@ -669,6 +672,15 @@ Tracer::Tracer(const Scene& scene, const Grid& grid) : d_(std::make_unique<Impl>
   d_->scene.material = scene.material;
   d_->grid = grid;
   d_->F = scene_features(scene);
+  if (d_->F.geometry) {
+    Features& f = d_->F;
+    f.specular = f.specular || (f.lights && extra.specular);
+    f.refraction = f.refraction || extra.refraction;
+    f.reflection = f.reflection || extra.reflection || f.refraction;
+    f.stack = std::max(f.stack, f.refraction ? kRayStack : extra.stack);
+    f.vertex_normals = f.vertex_normals || extra.vertex_normals;
+    f.vertex_colors = f.vertex_colors || extra.vertex_colors;
+  }
   d_->upload();
   // The triangle data is in the arrays now; keep only what shading needs.
   d_->scene.positions.clear();
@@ -783,12 +795,16 @@ std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Cam
   return d;
 }
 
+Kernel Tracer::intersect_kernel(const std::string& backend) {
+  Impl& I = *d_;
+  if (!I.intersect_program.valid()) I.intersect_program = I.capture_intersector();
+  return compile(I.intersect_program, backend);
+}
+
 void Tracer::intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
                        const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
                        std::vector<float>& dist) {
-  Impl& I = *d_;
-  if (!I.intersect_program.valid()) I.intersect_program = I.capture_intersector();
-  Kernel k = compile(I.intersect_program, backend);
+  Kernel k = intersect_kernel(backend);
   if (origins.size() != dirs.size())
     throw std::invalid_argument("intersect: origins and directions differ in size");
   const size_t n = origins.size();

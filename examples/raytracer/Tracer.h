@@ -78,7 +78,11 @@ class Tracer {
   // Uploads the scene and grid into Rill arrays and captures the program. The scene's
   // options (shadows, smooth normals, ambient) are fixed here; camera, size, depth and
   // samples can change per render.
-  Tracer(const Scene& scene, const Grid& grid);
+  // `extra` turns kernel features on in addition to the scene's (specular, reflection,
+  // refraction, vertex normals and colours; the rest follow the scene), for benchmarks that
+  // compare the specialized kernel with one that has every effect on. Missing vertex normals
+  // or colours are then the geometric normal and white.
+  Tracer(const Scene& scene, const Grid& grid, const Features& extra = {});
   ~Tracer();
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
@@ -98,6 +102,9 @@ class Tracer {
   void intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
                  const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
                  std::vector<float>& dist);
+  // The same intersector compiled for a backend (inputs origin, direction; outputs prim,
+  // dist), for benchmarks that time launches alone.
+  rill::Kernel intersect_kernel(const std::string& backend);
 
  private:
   struct Impl;
