@@ -78,8 +78,9 @@ class Tracer {
   // Uploads the scene and grid into Rill arrays and captures the program. The scene's
   // options (shadows, smooth normals, ambient) are fixed here; camera, size, depth and
   // samples can change per render.
-  // `extra` turns kernel features on in addition to the scene's (specular, reflection,
-  // refraction, vertex normals and colours; the rest follow the scene), for benchmarks that
+  // `extra` turns kernel features on in addition to the scene's (specular when the scene has
+  // lights, reflection, refraction, vertex normals and colours; the rest follow the scene;
+  // nothing for a scene without geometry), for benchmarks that
   // compare the specialized kernel with one that has every effect on. Missing vertex normals
   // or colours are then the geometric normal and white.
   Tracer(const Scene& scene, const Grid& grid, const Features& extra = {});
