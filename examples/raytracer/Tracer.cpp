@@ -140,9 +140,10 @@ void Tracer::Impl::upload() {
   if (F.vertex_normals) {
     std::vector<glm::vec3> n0(n), n1(n), n2(n);
     for (size_t t = 0; t < n; ++t) {
-      n0[t] = scene.normals[3 * t];
-      n1[t] = scene.normals[3 * t + 1];
-      n2[t] = scene.normals[3 * t + 2];
+      const bool has = !scene.normals.empty();  // else forced on (Tracer's `extra`)
+      n0[t] = has ? scene.normals[3 * t] : ng[t];
+      n1[t] = has ? scene.normals[3 * t + 1] : ng[t];
+      n2[t] = has ? scene.normals[3 * t + 2] : ng[t];
     }
     up3(tri_n0, n0);
     up3(tri_n1, n1);
@@ -151,9 +152,10 @@ void Tracer::Impl::upload() {
   if (F.vertex_colors) {
     std::vector<glm::vec3> c0(n), c1(n), c2(n);
     for (size_t t = 0; t < n; ++t) {
-      c0[t] = scene.colors[3 * t];
-      c1[t] = scene.colors[3 * t + 1];
-      c2[t] = scene.colors[3 * t + 2];
+      const bool has = !scene.colors.empty();
+      c0[t] = has ? scene.colors[3 * t] : glm::vec3(1.0f);
+      c1[t] = has ? scene.colors[3 * t + 1] : glm::vec3(1.0f);
+      c2[t] = has ? scene.colors[3 * t + 2] : glm::vec3(1.0f);
     }
     up3(tri_c0, c0);
     up3(tri_c1, c1);
@@ -826,6 +828,16 @@ Tracer::Tracer(const Scene& scene, const Grid& grid, const TracerOptions& option
   d_->scene.material = scene.material;
   d_->grid = grid;
   d_->F = scene_features(scene);
+  if (d_->F.geometry) {
+    Features& f = d_->F;
+    const Features& extra = options.extra_features;
+    f.specular = f.specular || (f.lights && extra.specular);
+    f.refraction = f.refraction || extra.refraction;
+    f.reflection = f.reflection || extra.reflection || f.refraction;
+    f.stack = std::max(f.stack, f.refraction ? kRayStack : extra.stack);
+    f.vertex_normals = f.vertex_normals || extra.vertex_normals;
+    f.vertex_colors = f.vertex_colors || extra.vertex_colors;
+  }
   d_->upload();
   // The triangle data is in the arrays now; keep only what shading needs.
   d_->scene.positions.clear();
@@ -943,14 +955,18 @@ std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Cam
   return d;
 }
 
-void Tracer::intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
-                       const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
-                       std::vector<float>& dist, Accuracy accuracy) {
+Kernel Tracer::intersect_kernel(const std::string& backend, Accuracy accuracy) {
   Impl& I = *d_;
   if (!I.intersect_program.valid()) I.intersect_program = I.capture_intersector();
   CompileOptions opt;
   opt.accuracy = accuracy;
-  Kernel k = compile(I.intersect_program, backend, opt);
+  return compile(I.intersect_program, backend, opt);
+}
+
+void Tracer::intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
+                       const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
+                       std::vector<float>& dist, Accuracy accuracy) {
+  Kernel k = intersect_kernel(backend, accuracy);
   if (origins.size() != dirs.size())
     throw std::invalid_argument("intersect: origins and directions differ in size");
   const size_t n = origins.size();

@@ -75,6 +75,7 @@ struct TracerOptions {
   TriangleTest triangle = TriangleTest::MollerTrumbore;
   SelfIntersection offset = SelfIntersection::Scaled;
   Traversal traversal = Traversal::Incremental;
+  Features extra_features;  // kernel features forced on (see the Tracer constructor)
   std::string str() const;  // "moller epsilon incremental"
 };
 // Parse the command-line names (moller|watertight, epsilon|scaled, incremental|recompute);
@@ -111,6 +112,11 @@ class Tracer {
   // Uploads the scene and grid into Rill arrays and captures the program. The scene's
   // options (shadows, smooth normals, ambient) are fixed here; camera, size, depth and
   // samples can change per render.
+  // options.extra_features turns kernel features on in addition to the scene's (specular
+  // when the scene has lights, reflection, refraction, vertex normals and colours; the rest
+  // follow the scene; nothing for a scene without geometry), for benchmarks that compare the
+  // specialized kernel with one that has every effect on. Missing vertex normals or colours
+  // are then the geometric normal and white.
   Tracer(const Scene& scene, const Grid& grid, const TracerOptions& options = {});
   ~Tracer();
   Tracer(const Tracer&) = delete;
@@ -132,6 +138,10 @@ class Tracer {
   void intersect(const std::string& backend, const std::vector<glm::vec3>& origins,
                  const std::vector<glm::vec3>& dirs, std::vector<int32_t>& prim,
                  std::vector<float>& dist, rill::Accuracy accuracy = rill::Accuracy::Strict);
+  // The same intersector compiled for a backend (inputs origin, direction; outputs prim,
+  // dist), for benchmarks that time launches alone.
+  rill::Kernel intersect_kernel(const std::string& backend,
+                                rill::Accuracy accuracy = rill::Accuracy::Strict);
 
  private:
   struct Impl;

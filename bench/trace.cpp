@@ -1,0 +1,619 @@
+// rill-bench-trace: the ray tracer's benchmarks (issue #6, docs/raytracer.md, Performance).
+//
+//   rill-bench-trace [--sections throughput,embree,grid,depth,spec] [--size WxH]
+//                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends all|cpu,opencl,glsl]
+//                    [--repeats R] [--grid-scene S] [--grids auto,16,32,...]
+//                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu] [--md F] [--csv F]
+//
+// Sections (each a table; all timings are medians of R interleaved repeats, after an
+// untimed warm-up run that also compiles):
+//   throughput  per scene and backend: primary rays (the camera rays' closest hit, the
+//               tracer's intersector kernel alone, launch only: rays and results stay where
+//               the backend keeps them) and full shading (Tracer::render, its rays/s counted
+//               as rill-trace counts them: camera, shadow and secondary rays over the trace
+//               time, which includes downloading the image and AOVs).
+//   embree      the same primary rays through Intel Embree 3 (rtcIntersect1, one ray at a
+//               time, oneTBB over the same cores), interleaved with Rill's CPU backend:
+//               Mrays/s of both, the ratio, and how many rays agree (same primitive, or the
+//               same distance within 1e-5 relative: a ray through a shared edge may pick
+//               either triangle). Compiled out (with a note) when CMake found no Embree.
+//   grid        one scene at several grid resolutions (N^3 voxels, and the heuristic):
+//               build time, bytes per triangle, primary and full-shading throughput.
+//   depth       scenes with mirrors (default thesis-b, and glass with refraction) at maximum
+//               depth 1..8: trace time and rays.
+//   spec        the scene's specialized kernel (Features: only the code the scene calls
+//               for) against one with every effect on (specular, reflection, refraction with
+//               its ray stack, vertex normals and colours, the lights and shadows the scene
+//               has), same scene, interleaved: trace times, ratio, and pixels that differ.
+//
+// Exit status 1 if a check fails: Embree and Rill agree on fewer than --min-agree of the
+// rays, a backend's primary hits differ from the CPU's (strict: they must be identical), or
+// the every-effect kernel's image differs from the specialized one by more than 1e-4.
+#include <rill/rill.h>
+#include <tbb/info.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "Grid.h"
+#include "Scene.h"
+#include "Tracer.h"
+#include "TracerImpl.h"  // padded_rows (GLSL launches of at least one 4096-texel row)
+#include "trace_embree.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// A result table: printed as Markdown, and written to --md / --csv.
+struct Table {
+  std::string title;
+  std::vector<std::string> head;
+  std::vector<std::vector<std::string>> rows;
+  std::string markdown() const {
+    std::string s = "### " + title + "\n\n|";
+    for (const auto& h : head) s += " " + h + " |";
+    s += "\n|";
+    for (size_t i = 0; i < head.size(); ++i) s += i == 0 ? " --- |" : " ---: |";
+    s += "\n";
+    for (const auto& r : rows) {
+      s += "|";
+      for (const auto& c : r) s += " " + c + " |";
+      s += "\n";
+    }
+    return s + "\n";
+  }
+  std::string csv() const {
+    auto q = [](const std::string& c) { return "\"" + c + "\""; };
+    std::string s = q("table");
+    for (const auto& h : head) s += "," + q(h);
+    s += "\n";
+    for (const auto& r : rows) {
+      s += q(title);
+      for (const auto& c : r) s += "," + q(c);
+      s += "\n";
+    }
+    return s;
+  }
+};
+
+struct Options {
+  std::string sections = "throughput,embree,grid,depth,spec";
+  std::string size = "1024x1024";
+  std::string scenes = "builtin:thesis-a,builtin:thesis-b,builtin:thesis-c";
+  std::string backends = "all";
+  int repeats = 3;
+  std::string grid_scene = "builtin:thesis-c";
+  std::string grids = "auto,16,20,32,48,64,96,128";
+  std::string depth_scene = "builtin:thesis-b,builtin:glass";
+  std::string depths = "1-8";
+  std::string sweep_backends = "cpu";
+  std::string md, csv;
+  double min_agree = 0.999;
+  int width = 0, height = 0;
+};
+
+void parse_size(const std::string& s, int& w, int& h) {
+  char x = 0;
+  long a = 0, b = 0;
+  char tail[2];
+  if (std::sscanf(s.c_str(), "%ld%c%ld%1s", &a, &x, &b, tail) != 3 || (x != 'x' && x != 'X') ||
+      a < 1 || b < 1 || a > 16384 || b > 16384)
+    throw rt::SceneError("--size expects WxH, e.g. 1024x1024 (got '" + s + "')");
+  w = static_cast<int>(a);
+  h = static_cast<int>(b);
+}
+
+// The backends to run: the list (or all of this build's) that can run here; the others are
+// reported once.
+std::vector<std::string> usable_backends(const std::string& list) {
+  std::vector<std::string> want;
+  if (list == "all")
+    for (rill::Backend* b : rill::backends()) want.push_back(b->name());
+  else
+    want = split(list);
+  std::vector<std::string> out;
+  for (const auto& name : want) {
+    rill::Backend& b = rill::backend(name);  // throws for an unknown name
+    if (std::string why = b.unavailable_reason(); !why.empty()) {
+      std::printf("note: backend %s is not available here: %s\n", name.c_str(), why.c_str());
+      continue;
+    }
+    out.push_back(name);
+  }
+  return out;
+}
+
+rt::Scene load(const std::string& spec, const Options& o) {
+  rt::Scene s = rt::load_scene(spec);
+  s.width = o.width;
+  s.height = o.height;
+  s.options.spp = 1;
+  s.validate();
+  return s;
+}
+
+int64_t grid_bytes(const rt::Grid& g) {
+  return static_cast<int64_t>(g.voxels.size() * sizeof(glm::ivec2) +
+                              g.elements.size() * sizeof(int32_t));
+}
+
+std::string res_str(const rt::Grid& g) {
+  return std::to_string(g.res.x) + "x" + std::to_string(g.res.y) + "x" + std::to_string(g.res.z);
+}
+
+// The tracer's intersector on one backend, bound to the camera rays; launches are timed.
+struct PrimaryRun {
+  std::string backend;
+  rill::Kernel kernel;
+  rill::Stream<rill::Float3> origins, dirs;
+  rill::Stream<rill::Int> prim;
+  rill::Stream<rill::Float> dist;
+  PrimaryRun(rt::Tracer& tracer, const std::string& be, const std::vector<glm::vec3>& o,
+             const std::vector<glm::vec3>& d)
+      : backend(be),
+        kernel(tracer.intersect_kernel(be)),
+        origins(padded(o, be, glm::vec3(0.0f))),
+        dirs(padded(d, be, glm::vec3(0.0f, 0.0f, 1.0f))),
+        prim(origins.size()),
+        dist(origins.size()) {
+    kernel.inputs(origins, dirs).outputs(prim, dist);
+  }
+  static std::vector<glm::vec3> padded(std::vector<glm::vec3> v, const std::string& be,
+                                       glm::vec3 fill) {
+    const int64_t n = static_cast<int64_t>(v.size());
+    v.resize(static_cast<size_t>(rt::padded_rows(be, n, 1) * n), fill);
+    return v;
+  }
+  double run() {
+    const auto t = Clock::now();
+    kernel.execute();
+    return ms_since(t);
+  }
+  std::vector<int32_t> hits(size_t n) {
+    auto p = prim.download();
+    p.resize(n);
+    return p;
+  }
+  std::vector<float> dists(size_t n) {
+    auto d = dist.download();
+    d.resize(n);
+    return d;
+  }
+};
+
+rt::RenderSettings settings(const std::string& be, const rt::Scene& s, int max_depth = -1) {
+  rt::RenderSettings rs;
+  rs.backend = be;
+  rs.width = s.width;
+  rs.height = s.height;
+  rs.spp = 1;
+  rs.max_depth = max_depth;
+  return rs;
+}
+
+class Bench {
+ public:
+  explicit Bench(const Options& o) : o_(o) {}
+  std::vector<Table> tables;
+  bool ok = true;
+
+  void throughput_and_embree(bool throughput, bool embree) {
+    // The CPU backend first: the others' hits are compared with it, and Embree runs beside it.
+    std::vector<std::string> bes =
+        throughput ? usable_backends(o_.backends) : std::vector<std::string>{"cpu"};
+    bes.erase(std::remove(bes.begin(), bes.end(), "cpu"), bes.end());
+    if (embree || throughput) bes.insert(bes.begin(), "cpu");
+    Table tp{"Throughput, " + size_str() + ", strict, median of " + std::to_string(o_.repeats) +
+                 " (Mrays/s)",
+             {"scene", "triangles", "grid", "build ms", "grid B/tri", "backend", "primary ms",
+              "primary Mrays/s", "full ms", "rays/pixel", "full Mrays/s", "hits vs cpu"},
+             {}};
+    Table em{"Rill cpu against Embree " + embree_version() + ", primary rays, " + size_str() +
+                 ", " + std::to_string(tbb::info::default_concurrency()) + " threads, median of " +
+                 std::to_string(o_.repeats),
+             {"scene", "triangles", "Rill ms", "Rill Mrays/s", "Embree ms", "Embree Mrays/s",
+              "Rill/Embree", "same prim", "agree", "grid build ms", "grid B/tri", "Embree build ms",
+              "Embree B/tri"},
+             {}};
+    for (const auto& spec : split(o_.scenes)) {
+      rt::Scene scene = load(spec, o_);
+      rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+      rt::Tracer tracer(scene, grid);
+      const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
+      const std::vector<glm::vec3> dirs =
+          tracer.camera_rays("cpu", scene.camera, scene.width, scene.height);
+      const std::vector<glm::vec3> origins(n, scene.camera.eye);
+      std::printf("%s: %zu triangles, grid %s, features: %s\n", scene.name.c_str(),
+                  scene.triangle_count(), res_str(grid).c_str(), tracer.features().str().c_str());
+      std::fflush(stdout);
+
+      std::vector<std::unique_ptr<PrimaryRun>> runs;
+      for (const auto& be : bes) {
+        runs.push_back(std::make_unique<PrimaryRun>(tracer, be, origins, dirs));
+        runs.back()->run();  // warm-up: uploads, driver compiles
+      }
+#ifdef RILL_BENCH_HAVE_EMBREE
+      std::unique_ptr<bench::EmbreeScene> ebr;
+      std::vector<int32_t> e_prim(n);
+      std::vector<float> e_dist(n);
+      if (embree) {
+        ebr = std::make_unique<bench::EmbreeScene>(scene);
+        ebr->trace(scene.camera.eye, dirs, e_prim.data(), e_dist.data());  // warm-up
+      }
+#endif
+      std::vector<std::vector<double>> prim_ms(bes.size()), full_ms(bes.size());
+      std::vector<double> embree_ms;
+      std::vector<int64_t> full_rays(bes.size());
+      if (throughput)
+        for (size_t b = 0; b < bes.size(); ++b)  // warm-up and compile
+          tracer.render(settings(bes[b], scene), scene.camera);
+      for (int r = 0; r < o_.repeats; ++r) {
+        for (size_t b = 0; b < bes.size(); ++b) {
+          prim_ms[b].push_back(runs[b]->run());
+#ifdef RILL_BENCH_HAVE_EMBREE
+          if (ebr && bes[b] == "cpu") {
+            const auto t = Clock::now();
+            ebr->trace(scene.camera.eye, dirs, e_prim.data(), e_dist.data());
+            embree_ms.push_back(ms_since(t));
+          }
+#endif
+        }
+        if (throughput)
+          for (size_t b = 0; b < bes.size(); ++b) {
+            rt::RenderResult res = tracer.render(settings(bes[b], scene), scene.camera);
+            full_ms[b].push_back(res.trace_ms);
+            full_rays[b] = res.rays;
+          }
+      }
+      const std::vector<int32_t> cpu_prim = runs[0]->hits(n);
+      const double build_ms = grid.build_ms;
+      const double bpt = static_cast<double>(grid_bytes(grid)) /
+                         static_cast<double>(std::max<size_t>(scene.triangle_count(), 1));
+      for (size_t b = 0; b < bes.size() && throughput; ++b) {
+        const double pm = median(prim_ms[b]), fm = median(full_ms[b]);
+        std::string vs = "-";
+        if (b > 0) {
+          const std::vector<int32_t> p = runs[b]->hits(n);
+          size_t differ = 0;
+          for (size_t i = 0; i < n; ++i) differ += p[i] != cpu_prim[i];
+          vs = differ == 0 ? "identical" : std::to_string(differ) + " differ";
+          ok = ok && differ == 0;
+        }
+        tp.rows.push_back({scene.name, std::to_string(scene.triangle_count()), res_str(grid),
+                           fmt("%.1f", build_ms), fmt("%.1f", bpt), bes[b], fmt("%.2f", pm),
+                           fmt("%.3f", mrays(static_cast<double>(n), pm)), fmt("%.1f", fm),
+                           fmt("%.2f", static_cast<double>(full_rays[b]) / static_cast<double>(n)),
+                           fmt("%.3f", mrays(static_cast<double>(full_rays[b]), fm)), vs});
+      }
+#ifdef RILL_BENCH_HAVE_EMBREE
+      if (ebr) {
+        const std::vector<float> cpu_dist = runs[0]->dists(n);
+        size_t same = 0, agree = 0;
+        for (size_t i = 0; i < n; ++i) {
+          const bool s = cpu_prim[i] == e_prim[i];
+          same += s;
+          const bool both_hit = cpu_prim[i] >= 0 && e_prim[i] >= 0;
+          agree += s || (both_hit && std::fabs(cpu_dist[i] - e_dist[i]) <=
+                                         1e-5f * std::max(cpu_dist[i], e_dist[i]));
+        }
+        const double frac = static_cast<double>(agree) / static_cast<double>(n);
+        ok = ok && frac >= o_.min_agree;
+        const double rm = median(prim_ms[0]), emm = median(embree_ms);
+        em.rows.push_back(
+            {scene.name, std::to_string(scene.triangle_count()), fmt("%.2f", rm),
+             fmt("%.3f", mrays(static_cast<double>(n), rm)), fmt("%.2f", emm),
+             fmt("%.3f", mrays(static_cast<double>(n), emm)), fmt("%.3f", emm / rm),
+             fmt("%.4f%%", 100.0 * static_cast<double>(same) / static_cast<double>(n)),
+             fmt("%.4f%%", 100.0 * frac), fmt("%.1f", build_ms), fmt("%.1f", bpt),
+             fmt("%.1f", ebr->build_ms()),
+             fmt("%.1f", static_cast<double>(ebr->bytes()) /
+                             static_cast<double>(std::max<size_t>(scene.triangle_count(), 1)))});
+      }
+#endif
+    }
+    if (throughput) add(tp);
+    if (embree) {
+#ifdef RILL_BENCH_HAVE_EMBREE
+      add(em);
+#else
+      std::printf("note: built without Embree 3 (libembree-dev): no Embree comparison\n");
+#endif
+    }
+  }
+
+  // Time against grid resolution. Every grid's tracer is set up first, so that the timed
+  // repeats can interleave the resolutions (the machine's load drifts).
+  void grid_sweep() {
+    const auto bes = usable_backends(o_.sweep_backends);
+    rt::Scene scene = load(o_.grid_scene, o_);
+    const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
+    const double tris = static_cast<double>(std::max<size_t>(scene.triangle_count(), 1));
+    Table t{"Grid resolution sweep: " + scene.name + " (" + std::to_string(scene.triangle_count()) +
+                " triangles), " + size_str() + ", median of " + std::to_string(o_.repeats),
+            {"grid", "voxels", "refs/tri", "build ms", "grid B/tri", "backend", "primary Mrays/s",
+             "full ms", "full Mrays/s"},
+            {}};
+    struct Point {
+      int res = 0;
+      rt::Grid grid;
+      std::vector<double> build;
+      std::unique_ptr<rt::Tracer> tracer;
+      std::vector<std::unique_ptr<PrimaryRun>> runs;  // per backend
+      std::vector<std::vector<double>> prim_ms, full_ms;
+      std::vector<int64_t> rays;
+    };
+    std::vector<Point> points;
+    const std::vector<glm::vec3> origins(n, scene.camera.eye);
+    for (const auto& g : split(o_.grids)) {
+      Point p;
+      char* end = nullptr;
+      p.res = g == "auto" ? 0 : static_cast<int>(std::strtol(g.c_str(), &end, 10));
+      if (g != "auto" && (*end != '\0' || p.res < 1 || p.res > 512))
+        throw rt::SceneError("--grids: 'auto' or 1..512 (got " + g + ")");
+      for (int r = 0; r < o_.repeats; ++r) {  // the build time is a median too
+        p.grid = rt::build_grid(scene, p.res);
+        p.build.push_back(p.grid.build_ms);
+      }
+      p.tracer = std::make_unique<rt::Tracer>(scene, p.grid);
+      const auto dirs = p.tracer->camera_rays("cpu", scene.camera, scene.width, scene.height);
+      for (const auto& be : bes) {
+        p.runs.push_back(std::make_unique<PrimaryRun>(*p.tracer, be, origins, dirs));
+        p.runs.back()->run();                                 // warm-up
+        p.tracer->render(settings(be, scene), scene.camera);  // compile, warm-up
+      }
+      p.prim_ms.resize(bes.size());
+      p.full_ms.resize(bes.size());
+      p.rays.resize(bes.size());
+      points.push_back(std::move(p));
+    }
+    for (int r = 0; r < o_.repeats; ++r)
+      for (auto& p : points)
+        for (size_t b = 0; b < bes.size(); ++b) {
+          p.prim_ms[b].push_back(p.runs[b]->run());
+          rt::RenderResult res = p.tracer->render(settings(bes[b], scene), scene.camera);
+          p.full_ms[b].push_back(res.trace_ms);
+          p.rays[b] = res.rays;
+        }
+    for (auto& p : points)
+      for (size_t b = 0; b < bes.size(); ++b) {
+        const double fm = median(p.full_ms[b]);
+        t.rows.push_back({(p.res == 0 ? "auto " : "") + res_str(p.grid),
+                          std::to_string(p.grid.voxel_count()),
+                          fmt("%.2f", static_cast<double>(p.grid.elements.size()) / tris),
+                          fmt("%.1f", median(p.build)),
+                          fmt("%.1f", static_cast<double>(grid_bytes(p.grid)) / tris), bes[b],
+                          fmt("%.3f", mrays(static_cast<double>(n), median(p.prim_ms[b]))),
+                          fmt("%.1f", fm), fmt("%.3f", mrays(static_cast<double>(p.rays[b]), fm))});
+      }
+    add(t);
+  }
+
+  // Time against maximum reflection depth.
+  void depth_sweep() {
+    for (const auto& spec : split(o_.depth_scene)) depth_sweep(spec);
+  }
+  void depth_sweep(const std::string& spec) {
+    const auto bes = usable_backends(o_.sweep_backends);
+    rt::Scene scene = load(spec, o_);
+    int d0 = 1, d1 = 8;
+    if (std::sscanf(o_.depths.c_str(), "%d-%d", &d0, &d1) != 2 || d0 < 0 || d1 < d0 || d1 > 64)
+      throw rt::SceneError("--depths expects FIRST-LAST within 0..64 (got '" + o_.depths + "')");
+    rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+    rt::Tracer tracer(scene, grid);
+    const double n = static_cast<double>(scene.width) * scene.height;
+    Table t{"Reflection depth sweep: " + scene.name + " (" +
+                std::to_string(scene.triangle_count()) +
+                " triangles, features: " + tracer.features().str() + "), " + size_str() +
+                ", median of " + std::to_string(o_.repeats),
+            {"max depth", "backend", "rays/pixel", "trace ms", "Mrays/s",
+             "ms vs depth " + std::to_string(d0)},
+            {}};
+    for (const auto& be : bes) {
+      tracer.render(settings(be, scene, d0), scene.camera);  // compile, warm-up
+      std::map<int, std::vector<double>> ms;
+      std::map<int, int64_t> rays;
+      for (int r = 0; r < o_.repeats; ++r)
+        for (int d = d0; d <= d1; ++d) {
+          rt::RenderResult res = tracer.render(settings(be, scene, d), scene.camera);
+          ms[d].push_back(res.trace_ms);
+          rays[d] = res.rays;
+        }
+      const double base = median(ms[d0]);
+      for (int d = d0; d <= d1; ++d) {
+        const double m = median(ms[d]);
+        t.rows.push_back({std::to_string(d), be, fmt("%.2f", static_cast<double>(rays[d]) / n),
+                          fmt("%.1f", m), fmt("%.3f", mrays(static_cast<double>(rays[d]), m)),
+                          fmt("%.2fx", m / base)});
+      }
+    }
+    add(t);
+  }
+
+  // The specialized kernel against one with every effect on.
+  void specialization() {
+    const auto bes = usable_backends(o_.backends);
+    Table t{"Specialized kernel against every effect on, " + size_str() + ", median of " +
+                std::to_string(o_.repeats),
+            {"scene", "scene's features", "backend", "specialized ms", "all-on ms", "time saved",
+             "pixels differing"},
+            {}};
+    rt::TracerOptions all;
+    rt::Features& every = all.extra_features;
+    every.specular = every.reflection = every.refraction = true;
+    every.vertex_normals = every.vertex_colors = true;
+    every.stack = rt::kRayStack;
+    for (const auto& spec : split(o_.scenes)) {
+      rt::Scene scene = load(spec, o_);
+      rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+      rt::Tracer special(scene, grid), generic(scene, grid, all);
+      for (const auto& be : bes) {
+        rt::RenderResult a = special.render(settings(be, scene), scene.camera);
+        rt::RenderResult b = generic.render(settings(be, scene), scene.camera);
+        size_t differ = 0;
+        float maxdiff = 0;
+        for (size_t p = 0; p < a.color.size(); ++p) {
+          differ += std::memcmp(&a.color[p], &b.color[p], sizeof(glm::vec3)) != 0;
+          const glm::vec3 d = glm::abs(a.color[p] - b.color[p]);
+          maxdiff = std::max({maxdiff, d.x, d.y, d.z});
+        }
+        // Every effect on at zero strength changes only rounding (interpolated normals and
+        // white vertex colours are not exactly the face normal and 1).
+        const bool same = maxdiff <= 1e-4f && generic.features().refraction &&
+                          generic.features().vertex_colors && generic.features().vertex_normals;
+        ok = ok && same;
+        std::vector<double> sm, gm;
+        for (int r = 0; r < o_.repeats; ++r) {
+          sm.push_back(special.render(settings(be, scene), scene.camera).trace_ms);
+          gm.push_back(generic.render(settings(be, scene), scene.camera).trace_ms);
+        }
+        const double s = median(sm), g = median(gm);
+        t.rows.push_back({scene.name, special.features().str(), be, fmt("%.1f", s), fmt("%.1f", g),
+                          fmt("%.1f%%", 100.0 * (g - s) / g),
+                          differ == 0 ? std::string("0")
+                                      : std::to_string(differ) + " (max " +
+                                            fmt("%.2g", static_cast<double>(maxdiff)) + ")"});
+        std::printf("  %s %s done\n", scene.name.c_str(), be.c_str());
+        std::fflush(stdout);
+      }
+    }
+    add(t);
+  }
+
+ private:
+  const Options& o_;
+
+  static double mrays(double rays, double ms) {
+    return ms > 0 ? rays / (ms * 1e3) : 0.0;
+  }
+  std::string size_str() const {
+    return std::to_string(o_.width) + "x" + std::to_string(o_.height);
+  }
+  static std::string embree_version() {
+#ifdef RILL_BENCH_HAVE_EMBREE
+    return RTC_VERSION_STRING;
+#else
+    return "3";
+#endif
+  }
+  void add(Table t) {
+    std::printf("\n%s", t.markdown().c_str());
+    std::fflush(stdout);
+    tables.push_back(std::move(t));
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{
+      "rill-bench-trace: the ray tracer's benchmarks (primary and full-shading "
+      "throughput, Embree, grid and depth sweeps, kernel specialization)"};
+  app.add_option("--sections", o.sections, "comma list of throughput,embree,grid,depth,spec")
+      ->default_str(o.sections);
+  app.add_option("--size", o.size, "image size WxH")->default_str(o.size);
+  app.add_option("--scenes", o.scenes, "comma list: builtin:NAME, OBJ or JSON files")
+      ->default_str(o.scenes);
+  app.add_option("--backends", o.backends, "all, or a comma list of cpu,opencl,glsl")
+      ->default_str(o.backends);
+  app.add_option("--repeats", o.repeats, "timed repeats (medians)")
+      ->check(CLI::Range(1, 1000))
+      ->default_str("3");
+  app.add_option("--grid-scene", o.grid_scene, "scene of the grid sweep")
+      ->default_str(o.grid_scene);
+  app.add_option("--grids", o.grids, "grid resolutions of the sweep: auto or N (N^3 voxels)")
+      ->default_str(o.grids);
+  app.add_option("--depth-scene", o.depth_scene, "scenes of the depth sweep (comma list)")
+      ->default_str(o.depth_scene);
+  app.add_option("--depths", o.depths, "depth range of the sweep, FIRST-LAST")
+      ->default_str(o.depths);
+  app.add_option("--sweep-backends", o.sweep_backends, "backends of the two sweeps")
+      ->default_str(o.sweep_backends);
+  app.add_option("--min-agree", o.min_agree, "fraction of rays Embree and Rill must agree on")
+      ->check(CLI::Range(0.0, 1.0))
+      ->default_str("0.999");
+  app.add_option("--md", o.md, "also write the tables as Markdown to this file");
+  app.add_option("--csv", o.csv, "also write the tables as CSV to this file");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  int rc = 0;
+  try {
+    parse_size(o.size, o.width, o.height);
+    const auto sections = split(o.sections);
+    auto has = [&](const char* s) {
+      return std::find(sections.begin(), sections.end(), s) != sections.end();
+    };
+    for (const auto& s : sections)
+      if (s != "throughput" && s != "embree" && s != "grid" && s != "depth" && s != "spec")
+        throw rt::SceneError("--sections: unknown section '" + s +
+                             "' (throughput, embree, grid, depth, spec)");
+    std::printf("rill-bench-trace: %dx%d, %d repeats, %d threads\n", o.width, o.height, o.repeats,
+                tbb::info::default_concurrency());
+    Bench b(o);
+    if (has("throughput") || has("embree"))
+      b.throughput_and_embree(has("throughput"), has("embree"));
+    if (has("grid")) b.grid_sweep();
+    if (has("depth")) b.depth_sweep();
+    if (has("spec")) b.specialization();
+    if (!o.md.empty()) {
+      std::ofstream f(o.md);
+      for (const auto& t : b.tables) f << t.markdown();
+      if (!f) throw rt::SceneError("cannot write " + o.md);
+    }
+    if (!o.csv.empty()) {
+      std::ofstream f(o.csv);
+      for (const auto& t : b.tables) f << t.csv();
+      if (!f) throw rt::SceneError("cannot write " + o.csv);
+    }
+    if (!b.ok) {
+      std::fprintf(stderr, "rill-bench-trace: a check failed (see the tables)\n");
+      rc = 1;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rill-bench-trace: %s\n", e.what());
+    rc = 1;
+  }
+  rill::clear_kernel_cache();
+  return rc;
+}
