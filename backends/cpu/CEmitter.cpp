@@ -35,13 +35,26 @@ typedef struct rill_launch {
   const void* const* arrays;
   const int64_t* array_shapes;  /* 3 per array */
   int64_t count, width, height;
+  const int32_t* mask;          /* masked launch: run element i only if mask[i] is one of */
+  const int32_t* mask_values;   /* mask_values[0 .. mask_count); no mask: mask_count == 0 */
+  int64_t mask_count;
 } rill_launch;
+
 
 #define RILL_FN static inline
 RILL_FN rill_real rill_ibits(int32_t i) { float f; memcpy(&f, &i, 4); return (rill_real)f; }
 RILL_FN int32_t rill_fbits(rill_real x) { float f = (float)x; int32_t i; memcpy(&i, &f, 4); return i; }
 RILL_FN rill_real rill_word_f(uint32_t w) { float f; memcpy(&f, &w, 4); return (rill_real)f; }
 RILL_FN float rill_store_f(rill_real x) { return (float)x; }
+
+/* Is element i selected by the launch's mask (always, without one)? */
+RILL_FN int rill_selected(const rill_launch* L, int64_t i) {
+  if (L->mask_count == 0) return 1;
+  const int32_t s = L->mask[i];
+  for (int64_t k = 0; k < L->mask_count; ++k)
+    if (s == L->mask_values[k]) return 1;
+  return 0;
+}
 
 )";
 
@@ -83,6 +96,7 @@ std::string emit_c(const Function& f, Accuracy accuracy) {
   }
   src += "  int64_t rill_written = 0;\n";
   src += "  for (int64_t rill_i = rill_begin; rill_i < rill_end; ++rill_i) {\n";
+  src += "    if (!rill_selected(L, rill_i)) continue;\n";
   src += p.declarations(2);
   src += p.body(2);
   src += codegen::store_outputs(f, p, "    ");

@@ -1,6 +1,8 @@
 #include "CpuBackend.h"
 
 #include <dlfcn.h>
+
+#include <algorithm>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/info.h>
@@ -21,8 +23,19 @@ struct Launch {
   const void* const* arrays;
   const int64_t* array_shapes;
   int64_t count, width, height;
+  const int32_t* mask;  // masked launch (see rill_selected in the generated C)
+  const int32_t* mask_values;
+  int64_t mask_count;
 };
 using RunFn = int64_t (*)(const Launch*, int64_t, int64_t);
+
+// How many of mask[begin, end) are one of values.
+int64_t selected_in(const int32_t* mask, const std::vector<int32_t>& values, int64_t begin, int64_t end) {
+  int64_t n = 0;
+  for (int64_t i = begin; i < end; ++i)
+    n += std::find(values.begin(), values.end(), mask[i]) != values.end();
+  return n;
+}
 
 class CpuKernel : public CompiledKernel {
  public:
@@ -53,17 +66,36 @@ class CpuKernel : public CompiledKernel {
       shapes.insert(shapes.end(), {arr->shape[0], arr->shape[1], arr->shape[2]});
     }
     for (auto* u : a.uniforms) uniforms.insert(uniforms.end(), u->bits.begin(), u->bits.end());
-    Launch L{in.data(), out.data(), uniforms.data(), arrays.data(), shapes.data(), a.count, a.width, a.height};
+    const int32_t* mask = nullptr;
+    if (a.mask) {
+      a.mask->sync_to_host();
+      mask = reinterpret_cast<const int32_t*>(a.mask->host.data());
+    }
+    Launch L{in.data(),   out.data(), uniforms.data(),      arrays.data(),
+             shapes.data(), a.count,  a.width,              a.height,
+             mask,        a.mask_values.data(), static_cast<int64_t>(mask ? a.mask_values.size() : 0)};
 
     // Ranges of a few thousand elements amortize the call and let TBB balance uneven work
-    // (a Mandelbrot row inside the set costs far more than one outside).
+    // (a Mandelbrot row inside the set costs far more than one outside). Under a mask, each
+    // range first counts its selected elements (for LaunchStats) and is skipped when there
+    // are none; the generated loop tests each element again before its body.
+    struct Counts {
+      int64_t written = 0, selected = 0;
+    };
     const int64_t grain = 1024;
-    int64_t written = tbb::parallel_reduce(
-        tbb::blocked_range<int64_t>(0, a.count, grain), int64_t{0},
-        [&](const tbb::blocked_range<int64_t>& r, int64_t acc) { return acc + run_(&L, r.begin(), r.end()); },
-        [](int64_t x, int64_t y) { return x + y; });
+    Counts total = tbb::parallel_reduce(
+        tbb::blocked_range<int64_t>(0, a.count, grain), Counts{},
+        [&](const tbb::blocked_range<int64_t>& r, Counts acc) {
+          int64_t selected = r.size();
+          if (mask) selected = selected_in(mask, a.mask_values, r.begin(), r.end());
+          acc.selected += selected;
+          if (selected > 0) acc.written += run_(&L, r.begin(), r.end());
+          return acc;
+        },
+        [](Counts x, Counts y) { return Counts{x.written + y.written, x.selected + y.selected}; });
+    selected = total.selected;
     for (auto* s : a.outputs) s->host_written();
-    return written;
+    return total.written;
   }
 
   const std::string& source() const override { return source_; }
