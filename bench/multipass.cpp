@@ -1,6 +1,7 @@
 // The thesis's multipass stream ray tracer against the single kernel, per backend.
 //
-//   rill-bench-multipass [--full] [--repeats R] [--backends cpu,opencl,glsl] [--smoke]
+//   rill-bench-multipass [--full] [--repeats R] [--backends cpu,opencl,glsl] [--only abc]
+//                        [--sizes 256,1024] [--depths 1,2,3] [--smoke]
 //
 // Three tables, each measured side by side in one run (the configurations compared are
 // interleaved within every repeat, and medians of the trace time are reported):
@@ -10,10 +11,11 @@
 //                  passes ran on (processed) in each case;
 //   (c) threshold  the intersector's rerun threshold from 5% to 100%: launches and time,
 //                  relative to the thesis's 20%.
-// --quick (the default) keeps it affordable on a 2-core machine: 256x256, depths 1, 4 and
-// 8, 3 repeats. --full: 256x256 and 1024x1024, depths 1..8, 5 repeats. Every multipass image
-// is compared with the megakernel's (strict: they must be bitwise identical); a mismatch is
-// reported and makes the exit status 1. --smoke: a tiny run for the CTest smoke test.
+// The default (quick) keeps it affordable on a 2-core machine with llvmpipe: 128x128,
+// depths 1, 4 and 8, 3 repeats (tables b and c at depth 4). --full: 256x256 and 1024x1024,
+// depths 1..8, 5 repeats. Every multipass image is compared with the megakernel's (strict: they
+// must be bitwise identical); a mismatch is reported and makes the exit status 1. --smoke: a tiny
+// run for the CTest smoke test.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -110,15 +112,19 @@ int main(int argc, char** argv) {
   CLI::App app{"rill-bench-multipass: multipass vs single-kernel ray tracing, masking, threshold"};
   bool full = false, smoke = false;
   int repeats = 0;
-  std::string backends_opt = "all";
-  app.add_flag("--full", full, "256 and 1024 pixels, depths 1..8, 5 repeats (long)");
+  std::string backends_opt = "all", only = "abc", sizes_opt, depths_opt;
+  app.add_flag("--full", full, "256x256 and 1024x1024, depths 1..8, 5 repeats (hours on llvmpipe)");
   app.add_flag("--smoke", smoke, "a tiny run (for CTest)");
   app.add_option("--repeats", repeats, "timed repeats per configuration (default 3, --full 5)");
   app.add_option("--backends", backends_opt, "all, or a list such as cpu,glsl");
+  app.add_option("--only", only, "which tables: any of a, b, c (default abc)");
+  app.add_option("--sizes", sizes_opt,
+                 "image sizes (square), e.g. 256,1024; the first is used for b and c");
+  app.add_option("--depths", depths_opt, "reflection depths for table a, e.g. 1,2,4");
   CLI11_PARSE(app, argc, argv);
 
   try {
-    std::vector<int> sizes = {256};
+    std::vector<int> sizes = {128};
     std::vector<int> depths = {1, 4, 8};
     std::vector<std::string> scenes = {"thesis-a", "thesis-b", "thesis-c"};
     int rep = 3;
@@ -136,6 +142,14 @@ int main(int argc, char** argv) {
       fixed_depth = 1;
     }
     if (repeats > 0) rep = repeats;
+    if (!sizes_opt.empty()) {
+      sizes.clear();
+      for (const std::string& v : split(sizes_opt)) sizes.push_back(std::stoi(v));
+    }
+    if (!depths_opt.empty()) {
+      depths.clear();
+      for (const std::string& v : split(depths_opt)) depths.push_back(std::stoi(v));
+    }
 
     std::vector<std::string> backends;
     for (rill::Backend* b : rill::backends()) {
@@ -167,61 +181,72 @@ int main(int argc, char** argv) {
 
     bool mismatch = false;
     const Config mega{rt::Strategy::Megakernel, true, 0.2}, multi{};
-    std::printf("\n(a) single kernel vs multipass (masking on, threshold 20%%)\n");
-    std::printf("%-8s %-9s %5s %5s %11s %11s %8s %9s %s\n", "backend", "scene", "size", "depth",
-                "single ms", "multi ms", "multi/1", "launches", "image");
-    for (const std::string& be : backends)
-      for (Setup& s : setups)
-        for (int size : sizes)
-          for (int depth : depths) {
-            std::vector<Run> r = measure(s, be, size, depth, {mega, multi}, rep);
-            const bool same = same_bits(r[0].color, r[1].color);
-            mismatch |= !same;
-            std::printf("%-8s %-9s %5d %5d %11.2f %11.2f %8.2f %9lld %s\n", be.c_str(),
-                        s.name.c_str(), size, depth, r[0].ms, r[1].ms, r[1].ms / r[0].ms,
-                        static_cast<long long>(r[1].launches), same ? "identical" : "DIFFERENT");
-            std::fflush(stdout);
-          }
+    const bool table_a = only.find('a') != std::string::npos;
+    const bool table_b = only.find('b') != std::string::npos;
+    const bool table_c = only.find('c') != std::string::npos;
+    if (table_a) std::printf("\n(a) single kernel vs multipass (masking on, threshold 20%%)\n");
+    if (table_a)
+      std::printf("%-8s %-9s %5s %5s %11s %11s %8s %9s %s\n", "backend", "scene", "size", "depth",
+                  "single ms", "multi ms", "multi/1", "launches", "image");
+    if (table_a)
+      for (const std::string& be : backends)
+        for (Setup& s : setups)
+          for (int size : sizes)
+            for (int depth : depths) {
+              std::vector<Run> r = measure(s, be, size, depth, {mega, multi}, rep);
+              const bool same = same_bits(r[0].color, r[1].color);
+              mismatch |= !same;
+              std::printf("%-8s %-9s %5d %5d %11.2f %11.2f %8.2f %9lld %s\n", be.c_str(),
+                          s.name.c_str(), size, depth, r[0].ms, r[1].ms, r[1].ms / r[0].ms,
+                          static_cast<long long>(r[1].launches), same ? "identical" : "DIFFERENT");
+              std::fflush(stdout);
+            }
 
     const int size_bc = sizes.front();
-    std::printf("\n(b) multipass masking on vs off (%dx%d, depth %d, threshold 20%%)\n", size_bc,
-                size_bc, fixed_depth);
-    std::printf("%-8s %-9s %9s %9s %7s %14s %14s %s\n", "backend", "scene", "on ms", "off ms",
-                "on/off", "processed on", "processed off", "image");
+    if (table_b)
+      std::printf("\n(b) multipass masking on vs off (%dx%d, depth %d, threshold 20%%)\n", size_bc,
+                  size_bc, fixed_depth);
+    if (table_b)
+      std::printf("%-8s %-9s %9s %9s %7s %14s %14s %s\n", "backend", "scene", "on ms", "off ms",
+                  "on/off", "processed on", "processed off", "image");
     const Config off{rt::Strategy::Multipass, false, 0.2};
-    for (const std::string& be : backends)
-      for (Setup& s : setups) {
-        std::vector<Run> r = measure(s, be, size_bc, fixed_depth, {multi, off}, rep);
-        const bool same = same_bits(r[0].color, r[1].color);
-        mismatch |= !same;
-        std::printf("%-8s %-9s %9.2f %9.2f %7.2f %14lld %14lld %s\n", be.c_str(), s.name.c_str(),
-                    r[0].ms, r[1].ms, r[0].ms / r[1].ms, static_cast<long long>(r[0].processed),
-                    static_cast<long long>(r[1].processed), same ? "identical" : "DIFFERENT");
-        std::fflush(stdout);
-      }
+    if (table_b)
+      for (const std::string& be : backends)
+        for (Setup& s : setups) {
+          std::vector<Run> r = measure(s, be, size_bc, fixed_depth, {multi, off}, rep);
+          const bool same = same_bits(r[0].color, r[1].color);
+          mismatch |= !same;
+          std::printf("%-8s %-9s %9.2f %9.2f %7.2f %14lld %14lld %s\n", be.c_str(), s.name.c_str(),
+                      r[0].ms, r[1].ms, r[0].ms / r[1].ms, static_cast<long long>(r[0].processed),
+                      static_cast<long long>(r[1].processed), same ? "identical" : "DIFFERENT");
+          std::fflush(stdout);
+        }
 
     std::printf(
         "\n(c) intersector rerun threshold (%dx%d, depth %d, masking on): launches, ms, "
         "time relative to 20%%\n",
         size_bc, size_bc, fixed_depth);
     const std::vector<double> thresholds = {0.05, 0.10, 0.20, 0.30, 0.50, 0.75, 1.00};
-    std::printf("%-8s %-9s", "backend", "scene");
-    for (double t : thresholds) std::printf(" %17.0f%%", t * 100);
-    std::printf("\n");
-    for (const std::string& be : backends)
-      for (Setup& s : setups) {
-        std::vector<Config> configs;
-        for (double t : thresholds) configs.push_back({rt::Strategy::Multipass, true, t});
-        std::vector<Run> r = measure(s, be, size_bc, fixed_depth, configs, rep);
-        std::printf("%-8s %-9s", be.c_str(), s.name.c_str());
-        for (size_t i = 0; i < r.size(); ++i) {
-          mismatch |= !same_bits(r[i].color, r[2].color);
-          std::printf(" %5lld %7.1f %4.2f", static_cast<long long>(r[i].launches), r[i].ms,
-                      r[i].ms / r[2].ms);
+    if (table_c) {
+      std::printf("%-8s %-9s", "backend", "scene");
+      for (double t : thresholds) std::printf(" %17.0f%%", t * 100);
+      std::printf("\n");
+    }
+    if (table_c)
+      for (const std::string& be : backends)
+        for (Setup& s : setups) {
+          std::vector<Config> configs;
+          for (double t : thresholds) configs.push_back({rt::Strategy::Multipass, true, t});
+          std::vector<Run> r = measure(s, be, size_bc, fixed_depth, configs, rep);
+          std::printf("%-8s %-9s", be.c_str(), s.name.c_str());
+          for (size_t i = 0; i < r.size(); ++i) {
+            mismatch |= !same_bits(r[i].color, r[2].color);
+            std::printf(" %5lld %7.1f %4.2f", static_cast<long long>(r[i].launches), r[i].ms,
+                        r[i].ms / r[2].ms);
+          }
+          std::printf("\n");
+          std::fflush(stdout);
         }
-        std::printf("\n");
-        std::fflush(stdout);
-      }
     if (mismatch) {
       std::printf("\nERROR: some multipass image differs from the single kernel's\n");
       return 1;

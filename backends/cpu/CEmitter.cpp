@@ -15,6 +15,7 @@
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
 #include "../codegen/SourceText.h"
+#include "rill/Mask.h"
 
 namespace rill::cpu {
 
@@ -47,13 +48,11 @@ RILL_FN int32_t rill_fbits(rill_real x) { float f = (float)x; int32_t i; memcpy(
 RILL_FN rill_real rill_word_f(uint32_t w) { float f; memcpy(&f, &w, 4); return (rill_real)f; }
 RILL_FN float rill_store_f(rill_real x) { return (float)x; }
 
-/* Is element i selected by the launch's mask (always, without one)? */
-RILL_FN int rill_selected(const rill_launch* L, int64_t i) {
-  if (L->mask_count == 0) return 1;
-  const int32_t s = L->mask[i];
-  for (int64_t k = 0; k < L->mask_count; ++k)
-    if (s == L->mask_values[k]) return 1;
-  return 0;
+/* Is state s one of values[0 .. n)? (values: a local copy, which no output can alias) */
+RILL_FN int rill_in_set(int32_t s, const int32_t* values, int n) {
+  int hit = 0;
+  for (int k = 0; k < n; ++k) hit |= s == values[k];
+  return hit;
 }
 
 )";
@@ -94,9 +93,14 @@ std::string emit_c(const Function& f, Accuracy accuracy) {
     src +=
         "  const int64_t* arr" + id + "_shape = L->array_shapes + " + std::to_string(i * 3) + ";\n";
   }
+  // The launch's mask, read once (the values into locals that no output store can alias).
+  src += "  const int32_t* rill_mask = L->mask_count ? L->mask : 0;\n";
+  src += "  int32_t rill_mask_values[" + std::to_string(rill::Mask::kMaxValues) + "] = {0};\n";
+  src += "  const int rill_mask_count = (int)L->mask_count;\n";
+  src += "  for (int k = 0; k < rill_mask_count; ++k) rill_mask_values[k] = L->mask_values[k];\n";
   src += "  int64_t rill_written = 0;\n";
   src += "  for (int64_t rill_i = rill_begin; rill_i < rill_end; ++rill_i) {\n";
-  src += "    if (!rill_selected(L, rill_i)) continue;\n";
+  src += "    if (rill_mask && !rill_in_set(rill_mask[rill_i], rill_mask_values, rill_mask_count)) continue;\n";
   src += p.declarations(2);
   src += p.body(2);
   src += codegen::store_outputs(f, p, "    ");
