@@ -2,8 +2,9 @@
 //
 // Vectors are scalarized (one C variable per component), which gives the C compiler plain
 // scalar code to optimize. Each kernel becomes one function, rill_run(launch, begin, end),
-// that computes elements [begin, end) and returns how many it wrote; the runtime calls it
-// from many threads on disjoint ranges.
+// that computes elements [begin, end) (under a masked launch, those whose state is in the
+// mask's set) and returns how many it wrote; the runtime calls it from many threads on
+// disjoint ranges.
 #include "CEmitter.h"
 
 #include <bit>
@@ -40,7 +41,6 @@ typedef struct rill_launch {
   const int32_t* mask_values;   /* mask_values[0 .. mask_count); no mask: mask_count == 0 */
   int64_t mask_count;
 } rill_launch;
-
 
 #define RILL_FN static inline
 RILL_FN rill_real rill_ibits(int32_t i) { float f; memcpy(&f, &i, 4); return (rill_real)f; }

@@ -21,7 +21,7 @@ struct Launch {
   const void* const* arrays;
   const int64_t* array_shapes;
   int64_t count, width, height;
-  const int32_t* mask;  // masked launch (see rill_selected in the generated C)
+  const int32_t* mask;  // masked launch (see rill_in_set in the generated C)
   const int32_t* mask_values;
   int64_t mask_count;
 };
