@@ -16,7 +16,7 @@
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
 #include "../codegen/SourceText.h"
-#include "rill/Mask.h"
+#include "rill/StateMask.h"
 
 namespace rill::cpu {
 
@@ -95,7 +95,7 @@ std::string emit_c(const Function& f, Accuracy accuracy) {
   }
   // The launch's mask, read once (the values into locals that no output store can alias).
   src += "  const int32_t* rill_mask = L->mask_count ? L->mask : 0;\n";
-  src += "  int32_t rill_mask_values[" + std::to_string(rill::Mask::kMaxValues) + "] = {0};\n";
+  src += "  int32_t rill_mask_values[" + std::to_string(rill::StateMask::kMaxValues) + "] = {0};\n";
   src += "  const int rill_mask_count = (int)L->mask_count;\n";
   src += "  for (int k = 0; k < rill_mask_count; ++k) rill_mask_values[k] = L->mask_values[k];\n";
   src += "  int64_t rill_written = 0;\n";

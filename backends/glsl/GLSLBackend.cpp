@@ -13,7 +13,7 @@
 // With more outputs than the context has draw buffers, the kernel is drawn once per group
 // of outputs (each draw computes everything and writes its group).
 //
-// A masked launch (rill::where, Mask.h) first draws a small shader over the state texture
+// A masked launch (rill::where, StateMask.h) first draws a small shader over the state texture
 // that keeps the fragments whose state is in the set and writes 1 to a stencil buffer there
 // (its occlusion query counts the selected elements); the kernel is then drawn with the
 // stencil test EQUAL 1 and stencil writes off. With no depth or stencil writes in the
@@ -33,7 +33,7 @@
 #include "../codegen/SourceText.h"
 #include "GLContext.h"
 #include "GLSLEmitter.h"
-#include "rill/Mask.h"
+#include "rill/StateMask.h"
 #include "rill/Parameters.h"
 
 namespace rill::glsl {
@@ -252,7 +252,7 @@ class GLSLBackend : public Backend {
                            "#version 430 core\n"
                            "// Rill: the stencil mask of a masked launch.\n"
                            "uniform isampler2D rill_state;\n"
-                           "uniform int rill_values[" + std::to_string(Mask::kMaxValues) + "];\n"
+                           "uniform int rill_values[" + std::to_string(StateMask::kMaxValues) + "];\n"
                            "uniform int rill_nvalues;\n"
                            "uniform int rill_count;\n"
                            "uniform int rill_row;\n"

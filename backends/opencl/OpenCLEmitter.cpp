@@ -4,7 +4,7 @@
 // backend (scalarized, same helpers), so the two compute the same operations in the same
 // order. What differs is the frame: one work-item per element; an element function that
 // returns 1 when it wrote its outputs and 0 when it was discarded; and a work-group count
-// of written elements added to one global counter. A masked launch (Mask.h) passes the
+// of written elements added to one global counter. A masked launch (StateMask.h) passes the
 // state stream and the set: a work-item whose state is not in it returns at once, and the
 // selected elements are counted in a second counter.
 #include "OpenCLEmitter.h"

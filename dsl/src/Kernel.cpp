@@ -177,7 +177,7 @@ int64_t Kernel::execute() {
   return launch(a);
 }
 
-int64_t Kernel::execute(const Mask& mask) {
+int64_t Kernel::execute(const StateMask& mask) {
   LaunchArgs a = prepare();
   const std::string& name = program_.name();
   detail::StreamState& s = mask.state().state();
@@ -187,15 +187,16 @@ int64_t Kernel::execute(const Mask& mask) {
   if (s.count != a.count)
     throw Error("kernel '" + name + "': the mask stream has " + std::to_string(s.count) +
                 " elements but the kernel runs over " + std::to_string(a.count));
-  if (mask.values().empty() || mask.values().size() > Mask::kMaxValues)
-    throw Error("kernel '" + name + "': a mask selects 1 to " + std::to_string(Mask::kMaxValues) +
-                " state values (got " + std::to_string(mask.values().size()) + ")");
+  if (mask.values().empty() || mask.values().size() > StateMask::kMaxValues)
+    throw Error("kernel '" + name + "': a mask selects 1 to " +
+                std::to_string(StateMask::kMaxValues) + " state values (got " +
+                std::to_string(mask.values().size()) + ")");
   a.mask = &s;
   a.mask_values = mask.values();
   return launch(a);
 }
 
-int64_t Kernel::loop(const Mask& mask, int64_t max_passes) {
+int64_t Kernel::loop(const StateMask& mask, int64_t max_passes) {
   int64_t passes = 0;
   while (passes < max_passes) {
     ++passes;

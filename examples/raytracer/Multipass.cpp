@@ -507,7 +507,7 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
 
   int64_t launches = 0;
   // Runs one pass, masked to the elements in `state` when masking is on.
-  auto run = [&](Kernel& k, Pass pass, const std::optional<rill::Mask>& mask) {
+  auto run = [&](Kernel& k, Pass pass, const std::optional<rill::StateMask>& mask) {
     ++launches;
     const auto t = std::chrono::steady_clock::now();
     const int64_t written = mask && rs.masking ? k.execute(*mask) : k.execute();
@@ -555,7 +555,7 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
     K.combine.inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_w, B.path_i, B.color, B.local)
         .outputs(B.color, B.path_w, B.path_i, B.ray_o, B.ray_d, B.tr_vox, B.tr_state,
                  B.path_state);
-    const rill::Mask with_surface = where(B.path_state, kPathSurface);
+    const rill::StateMask with_surface = where(B.path_state, kPathSurface);
     for (int bounce = 0; bounce <= depth; ++bounce) {
       if (F.geometry) trace(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id);
       if (run(K.surface, kSurface, where(B.path_state, {kPathAlive, kPathSurface})) == 0) break;

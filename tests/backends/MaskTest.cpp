@@ -1,4 +1,4 @@
-// Masked launches (rill::where, Mask.h) on every backend: only the selected elements run,
+// Masked launches (rill::where, StateMask.h) on every backend: only the selected elements run,
 // the others keep their outputs and are not counted; sets of values; a mask stream that
 // the kernel also writes (the state is read as it was before the launch); loop() with a
 // mask; an empty selection; LaunchStats; and the errors for a wrong mask stream.

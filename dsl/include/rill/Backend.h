@@ -52,9 +52,9 @@ struct LaunchArgs {
   std::vector<detail::ArrayState*> arrays;
   int64_t count = 0;                 // elements to run
   int64_t width = 0, height = 1;     // domain shape (of the first output)
-  // A masked launch (Mask.h): run only elements i whose mask value is in mask_values.
+  // A masked launch (StateMask.h): run only elements i whose mask value is in mask_values.
   // Null: every element. Checked by Kernel: an Int stream of `count` elements, 1 to
-  // Mask::kMaxValues values.
+  // StateMask::kMaxValues values.
   detail::StreamState* mask = nullptr;
   std::vector<int32_t> mask_values;
 };

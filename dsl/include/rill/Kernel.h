@@ -4,7 +4,7 @@
 //   k.inputs(s).outputs(s);                          // the same stream may be both
 //   int64_t written = k.execute();                   // elements not discarded
 //   int64_t passes = k.loop();                       // until a pass writes nothing
-//   k.execute(rill::where(state, 3));                // only where state == 3 (Mask.h)
+//   k.execute(rill::where(state, 3));                // only where state == 3 (StateMask.h)
 //
 // Compiled kernels are cached by (IR hash, backend, options): compiling the same program
 // twice, or an identical program defined again, costs nothing the second time.
@@ -16,8 +16,8 @@
 #include <string>
 
 #include "rill/Backend.h"
-#include "rill/Mask.h"
 #include "rill/Program.h"
+#include "rill/StateMask.h"
 #include "rill/Stream.h"
 
 namespace rill {
@@ -57,11 +57,11 @@ class Kernel {
   // Runs until a pass writes nothing; returns the number of passes, the last (empty) one
   // included. Throws if max_passes pass without termination.
   int64_t loop(int64_t max_passes = std::numeric_limits<int64_t>::max());
-  // Masked launch (see Mask.h): runs only on the elements the mask selects; the others
+  // Masked launch (see StateMask.h): runs only on the elements the mask selects; the others
   // keep their outputs and are not counted. The mask's stream must be a Stream<Int> of as
   // many elements as the kernel runs over. loop(mask) re-evaluates the mask every pass.
-  int64_t execute(const Mask& mask);
-  int64_t loop(const Mask& mask, int64_t max_passes = std::numeric_limits<int64_t>::max());
+  int64_t execute(const StateMask& mask);
+  int64_t loop(const StateMask& mask, int64_t max_passes = std::numeric_limits<int64_t>::max());
   // Elements processed and written by the last execute() of this Kernel object.
   const LaunchStats& last_launch() const { return last_; }
 

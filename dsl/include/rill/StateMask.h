@@ -28,12 +28,12 @@
 
 namespace rill {
 
-class Mask {
+class StateMask {
  public:
   // At most this many values in one set (a GLSL uniform array of fixed size holds them).
   static constexpr size_t kMaxValues = 8;
 
-  Mask(StreamRef state, std::vector<int32_t> values)
+  StateMask(StreamRef state, std::vector<int32_t> values)
       : state_(std::move(state)), values_(std::move(values)) {}
   const StreamRef& state() const { return state_; }
   const std::vector<int32_t>& values() const { return values_; }
@@ -44,16 +44,16 @@ class Mask {
 };
 
 // The elements where state equals value.
-inline Mask where(const Stream<Int>& state, int32_t value) {
-  return Mask(state, {value});
+inline StateMask where(const Stream<Int>& state, int32_t value) {
+  return StateMask(state, {value});
 }
-// The elements where state is one of values (1 to Mask::kMaxValues of them).
-inline Mask where(const Stream<Int>& state, std::initializer_list<int32_t> values) {
-  return Mask(state, std::vector<int32_t>(values));
+// The elements where state is one of values (1 to StateMask::kMaxValues of them).
+inline StateMask where(const Stream<Int>& state, std::initializer_list<int32_t> values) {
+  return StateMask(state, std::vector<int32_t>(values));
 }
 // Type-erased form; the stream must hold Int elements (checked at launch).
-inline Mask where(StreamRef state, std::vector<int32_t> values) {
-  return Mask(std::move(state), std::move(values));
+inline StateMask where(StreamRef state, std::vector<int32_t> values) {
+  return StateMask(std::move(state), std::move(values));
 }
 
 }  // namespace rill
