@@ -222,10 +222,11 @@ int main(int argc, char** argv) {
           std::fflush(stdout);
         }
 
-    std::printf(
-        "\n(c) intersector rerun threshold (%dx%d, depth %d, masking on): launches, ms, "
-        "time relative to 20%%\n",
-        size_bc, size_bc, fixed_depth);
+    if (table_c)
+      std::printf(
+          "\n(c) intersector rerun threshold (%dx%d, depth %d, masking on): launches, ms, "
+          "time relative to 20%%\n",
+          size_bc, size_bc, fixed_depth);
     const std::vector<double> thresholds = {0.05, 0.10, 0.20, 0.30, 0.50, 0.75, 1.00};
     if (table_c) {
       std::printf("%-8s %-9s", "backend", "scene");
