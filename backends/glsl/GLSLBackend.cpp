@@ -456,6 +456,21 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
   gl.glBindFramebuffer(GL_FRAMEBUFFER, be_.fbo());
   gl.glBindVertexArray(be_.vao());
   gl.glViewport(0, 0, shape.row, shape.rows);
+  // After a masked launch (also one that throws), the stencil test is off and the stencil
+  // buffer detached again, so it cannot clip or mask the next launch.
+  struct StencilOff {
+    const GL& gl;
+    GLuint fbo;
+    bool active;
+    ~StencilOff() {
+      if (!active) return;
+      gl.glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+      gl.glDisable(GL_STENCIL_TEST);
+      gl.glStencilMask(0xff);
+      gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
+      gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+  } stencil_off{gl, be_.fbo(), a.mask != nullptr};
   if (a.mask) selected = draw_mask(gl, a, shape);
   for (size_t pi = 0; pi < passes_.size(); ++pi) {
     const Pass& p = passes_[pi];
@@ -512,11 +527,6 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
     }
     for (size_t k = 0; k < p.outputs.size(); ++k)
       gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k), GL_TEXTURE_2D, 0, 0);
-  }
-  if (a.mask) {
-    gl.glDisable(GL_STENCIL_TEST);
-    gl.glStencilMask(0xff);
-    gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
   }
   gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
   gl.glDeleteTextures(static_cast<GLsizei>(prev.size()), prev.data());
