@@ -2,9 +2,8 @@
 //
 // Vectors are scalarized (one C variable per component), which gives the C compiler plain
 // scalar code to optimize. Each kernel becomes one function, rill_run(launch, begin, end),
-// that computes elements [begin, end) (under a masked launch, those whose state is in the
-// mask's set) and returns how many it wrote; the runtime calls it from many threads on
-// disjoint ranges.
+// that computes elements [begin, end) and returns how many it wrote; the runtime calls it
+// from many threads on disjoint ranges.
 #include "CEmitter.h"
 
 #include <bit>
@@ -16,7 +15,6 @@
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
 #include "../codegen/SourceText.h"
-#include "rill/StateMask.h"
 
 namespace rill::cpu {
 
@@ -37,9 +35,6 @@ typedef struct rill_launch {
   const void* const* arrays;
   const int64_t* array_shapes;  /* 3 per array */
   int64_t count, width, height;
-  const int32_t* mask;          /* masked launch: run element i only if mask[i] is one of */
-  const int32_t* mask_values;   /* mask_values[0 .. mask_count); no mask: mask_count == 0 */
-  int64_t mask_count;
 } rill_launch;
 
 #define RILL_FN static inline
@@ -47,13 +42,6 @@ RILL_FN rill_real rill_ibits(int32_t i) { float f; memcpy(&f, &i, 4); return (ri
 RILL_FN int32_t rill_fbits(rill_real x) { float f = (float)x; int32_t i; memcpy(&i, &f, 4); return i; }
 RILL_FN rill_real rill_word_f(uint32_t w) { float f; memcpy(&f, &w, 4); return (rill_real)f; }
 RILL_FN float rill_store_f(rill_real x) { return (float)x; }
-
-/* Is state s one of values[0 .. n)? (values: a local copy, which no output can alias) */
-RILL_FN int rill_in_set(int32_t s, const int32_t* values, int n) {
-  int hit = 0;
-  for (int k = 0; k < n; ++k) hit |= s == values[k];
-  return hit;
-}
 
 )";
 
@@ -93,14 +81,8 @@ std::string emit_c(const Function& f, Accuracy accuracy) {
     src +=
         "  const int64_t* arr" + id + "_shape = L->array_shapes + " + std::to_string(i * 3) + ";\n";
   }
-  // The launch's mask, read once (the values into locals that no output store can alias).
-  src += "  const int32_t* rill_mask = L->mask_count ? L->mask : 0;\n";
-  src += "  int32_t rill_mask_values[" + std::to_string(rill::StateMask::kMaxValues) + "] = {0};\n";
-  src += "  const int rill_mask_count = (int)L->mask_count;\n";
-  src += "  for (int k = 0; k < rill_mask_count; ++k) rill_mask_values[k] = L->mask_values[k];\n";
   src += "  int64_t rill_written = 0;\n";
   src += "  for (int64_t rill_i = rill_begin; rill_i < rill_end; ++rill_i) {\n";
-  src += "    if (rill_mask && !rill_in_set(rill_mask[rill_i], rill_mask_values, rill_mask_count)) continue;\n";
   src += p.declarations(2);
   src += p.body(2);
   src += codegen::store_outputs(f, p, "    ");

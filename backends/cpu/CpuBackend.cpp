@@ -2,8 +2,8 @@
 
 #include <dlfcn.h>
 #include <tbb/blocked_range.h>
-#include <tbb/info.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/info.h>
 
 #include "CEmitter.h"
 #include "SharedObjectCache.h"
@@ -21,29 +21,24 @@ struct Launch {
   const void* const* arrays;
   const int64_t* array_shapes;
   int64_t count, width, height;
-  const int32_t* mask;  // masked launch (see rill_in_set in the generated C)
-  const int32_t* mask_values;
-  int64_t mask_count;
 };
 using RunFn = int64_t (*)(const Launch*, int64_t, int64_t);
 
-// How many of mask[begin, end) are one of values. Branch-free, so the compiler vectorizes
-// it: this pass costs far less than the kernel's own test of each element.
-int64_t selected_in(const int32_t* mask, const std::vector<int32_t>& values, int64_t begin,
-                    int64_t end) {
-  int64_t n = 0;
-  if (values.size() == 1) {
-    const int32_t v = values[0];
-    for (int64_t i = begin; i < end; ++i) n += mask[i] == v;
-    return n;
+// Masked launches run the unchanged kernel over each maximal run of consecutive selected
+// elements, found here on the host: states are spatially coherent (neighbouring pixels tend
+// to be in the same state), so runs are long, and the generated code pays nothing for the
+// mask. (Testing the state inside the generated loop instead measured 5-10% slower on the
+// multipass ray tracer than not masking at all; runs match it or beat it.)
+struct Selection {
+  const int32_t* mask;
+  const std::vector<int32_t>& values;
+  bool operator()(int64_t i) const {
+    if (values.size() == 1) return mask[i] == values[0];
+    for (int32_t v : values)
+      if (mask[i] == v) return true;
+    return false;
   }
-  for (int64_t i = begin; i < end; ++i) {
-    int hit = 0;
-    for (int32_t v : values) hit |= mask[i] == v;
-    n += hit;
-  }
-  return n;
-}
+};
 
 class CpuKernel : public CompiledKernel {
  public:
@@ -74,27 +69,17 @@ class CpuKernel : public CompiledKernel {
       shapes.insert(shapes.end(), {arr->shape[0], arr->shape[1], arr->shape[2]});
     }
     for (auto* u : a.uniforms) uniforms.insert(uniforms.end(), u->bits.begin(), u->bits.end());
+    Launch L{in.data(), out.data(), uniforms.data(), arrays.data(), shapes.data(), a.count, a.width, a.height};
     const int32_t* mask = nullptr;
     if (a.mask) {
       a.mask->sync_to_host();
       mask = reinterpret_cast<const int32_t*>(a.mask->host.data());
     }
-    Launch L{in.data(),
-             out.data(),
-             uniforms.data(),
-             arrays.data(),
-             shapes.data(),
-             a.count,
-             a.width,
-             a.height,
-             mask,
-             a.mask_values.data(),
-             static_cast<int64_t>(mask ? a.mask_values.size() : 0)};
+    const Selection selected_at{mask, a.mask_values};
 
     // Ranges of a few thousand elements amortize the call and let TBB balance uneven work
     // (a Mandelbrot row inside the set costs far more than one outside). Under a mask, each
-    // range first counts its selected elements (for LaunchStats) and is skipped when there
-    // are none; the generated loop tests each element again before its body.
+    // range runs the kernel over its runs of selected elements (see Selection).
     struct Counts {
       int64_t written = 0, selected = 0;
     };
@@ -102,10 +87,21 @@ class CpuKernel : public CompiledKernel {
     Counts total = tbb::parallel_reduce(
         tbb::blocked_range<int64_t>(0, a.count, grain), Counts{},
         [&](const tbb::blocked_range<int64_t>& r, Counts acc) {
-          int64_t selected = r.size();
-          if (mask) selected = selected_in(mask, a.mask_values, r.begin(), r.end());
-          acc.selected += selected;
-          if (selected > 0) acc.written += run_(&L, r.begin(), r.end());
+          if (!mask) {
+            acc.written += run_(&L, r.begin(), r.end());
+            acc.selected += static_cast<int64_t>(r.size());
+            return acc;
+          }
+          for (int64_t i = r.begin(); i < r.end();) {
+            while (i < r.end() && !selected_at(i)) ++i;
+            int64_t j = i;
+            while (j < r.end() && selected_at(j)) ++j;
+            if (j > i) {
+              acc.written += run_(&L, i, j);
+              acc.selected += j - i;
+            }
+            i = j;
+          }
           return acc;
         },
         [](Counts x, Counts y) {
@@ -144,9 +140,8 @@ class CpuBackend : public Backend {
 }  // namespace
 
 std::vector<std::string> compiler_flags(Accuracy a) {
-  std::vector<std::string> f{
-      "-std=c99", "-O2", "-fPIC", "-shared", "-fno-math-errno", "-fwrapv", "-fno-strict-aliasing",
-      "-w"};
+  std::vector<std::string> f{"-std=c99", "-O2", "-fPIC", "-shared", "-fno-math-errno", "-fwrapv",
+                             "-fno-strict-aliasing", "-w"};
   if (a == Accuracy::Fast) {
     // -ffast-math's parts, spelled out: the option itself would also link crtfastmath.o,
     // which turns on flush-to-zero for the whole process, strict kernels included.
@@ -159,8 +154,6 @@ std::vector<std::string> compiler_flags(Accuracy a) {
   return f;
 }
 
-std::unique_ptr<Backend> make_backend() {
-  return std::make_unique<CpuBackend>();
-}
+std::unique_ptr<Backend> make_backend() { return std::make_unique<CpuBackend>(); }
 
 }  // namespace rill::cpu
