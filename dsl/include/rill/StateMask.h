@@ -11,8 +11,8 @@
 //   glsl    the mask is rendered into a stencil buffer and the kernel is drawn with the
 //           stencil test, so rasterization culls masked fragments before shading (the
 //           thesis's early-z culling; the stencil test is the same early per-fragment test);
-//   cpu     the generated loop tests the state first, and ranges without any selected
-//           element are not entered at all;
+//   cpu     the unchanged kernel runs over each run of consecutive selected elements,
+//           found on the host (ranges without one cost only the scan);
 //   opencl  each work-item tests the state first and returns.
 // Semantics are the same on every backend: a masked-out element is not run, its outputs
 // keep their previous values and it is not counted as written; Kernel::last_launch()
