@@ -24,6 +24,22 @@ struct Launch {
 };
 using RunFn = int64_t (*)(const Launch*, int64_t, int64_t);
 
+// Masked launches run the unchanged kernel over each maximal run of consecutive selected
+// elements, found here on the host: states are spatially coherent (neighbouring pixels tend
+// to be in the same state), so runs are long, and the generated code pays nothing for the
+// mask. (Testing the state inside the generated loop instead measured 5-10% slower on the
+// multipass ray tracer than not masking at all; runs match it or beat it.)
+struct Selection {
+  const int32_t* mask;
+  const std::vector<int32_t>& values;
+  bool operator()(int64_t i) const {
+    if (values.size() == 1) return mask[i] == values[0];
+    for (int32_t v : values)
+      if (mask[i] == v) return true;
+    return false;
+  }
+};
+
 class CpuKernel : public CompiledKernel {
  public:
   CpuKernel(std::string source, SharedObject so) : source_(std::move(source)), so_(std::move(so)) {
@@ -54,16 +70,46 @@ class CpuKernel : public CompiledKernel {
     }
     for (auto* u : a.uniforms) uniforms.insert(uniforms.end(), u->bits.begin(), u->bits.end());
     Launch L{in.data(), out.data(), uniforms.data(), arrays.data(), shapes.data(), a.count, a.width, a.height};
+    const int32_t* mask = nullptr;
+    if (a.mask) {
+      a.mask->sync_to_host();
+      mask = reinterpret_cast<const int32_t*>(a.mask->host.data());
+    }
+    const Selection selected_at{mask, a.mask_values};
 
     // Ranges of a few thousand elements amortize the call and let TBB balance uneven work
-    // (a Mandelbrot row inside the set costs far more than one outside).
+    // (a Mandelbrot row inside the set costs far more than one outside). Under a mask, each
+    // range runs the kernel over its runs of selected elements (see Selection).
+    struct Counts {
+      int64_t written = 0, selected = 0;
+    };
     const int64_t grain = 1024;
-    int64_t written = tbb::parallel_reduce(
-        tbb::blocked_range<int64_t>(0, a.count, grain), int64_t{0},
-        [&](const tbb::blocked_range<int64_t>& r, int64_t acc) { return acc + run_(&L, r.begin(), r.end()); },
-        [](int64_t x, int64_t y) { return x + y; });
+    Counts total = tbb::parallel_reduce(
+        tbb::blocked_range<int64_t>(0, a.count, grain), Counts{},
+        [&](const tbb::blocked_range<int64_t>& r, Counts acc) {
+          if (!mask) {
+            acc.written += run_(&L, r.begin(), r.end());
+            acc.selected += static_cast<int64_t>(r.size());
+            return acc;
+          }
+          for (int64_t i = r.begin(); i < r.end();) {
+            while (i < r.end() && !selected_at(i)) ++i;
+            int64_t j = i;
+            while (j < r.end() && selected_at(j)) ++j;
+            if (j > i) {
+              acc.written += run_(&L, i, j);
+              acc.selected += j - i;
+            }
+            i = j;
+          }
+          return acc;
+        },
+        [](Counts x, Counts y) {
+          return Counts{x.written + y.written, x.selected + y.selected};
+        });
+    selected = total.selected;
     for (auto* s : a.outputs) s->host_written();
-    return written;
+    return total.written;
   }
 
   const std::string& source() const override { return source_; }

@@ -12,17 +12,28 @@
 //   - a GL_SAMPLES_PASSED query counts the fragments written.
 // With more outputs than the context has draw buffers, the kernel is drawn once per group
 // of outputs (each draw computes everything and writes its group).
+//
+// A masked launch (rill::where, StateMask.h) first draws a small shader over the state texture
+// that keeps the fragments whose state is in the set and writes 1 to a stencil buffer there
+// (its occlusion query counts the selected elements); the kernel is then drawn with the
+// stencil test EQUAL 1 and stencil writes off. With no depth or stencil writes in the
+// kernel's draw, drivers test before shading (early stencil / early-z: llvmpipe skips
+// whole 4x4 blocks, GPUs whole tiles), so masked elements cost close to nothing.
+// layout(early_fragment_tests) is not used: it would make the occlusion query count
+// fragments the kernel then discards.
 #include "GLSLBackend.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <mutex>
 
 #include "../codegen/SourceText.h"
 #include "GLContext.h"
 #include "GLSLEmitter.h"
+#include "rill/StateMask.h"
 #include "rill/Parameters.h"
 
 namespace rill::glsl {
@@ -88,6 +99,9 @@ class GLSLKernel : public CompiledKernel {
   const std::string& source() const override { return source_; }
 
  private:
+  // Masked launches: fills the stencil buffer from a.mask; returns the elements selected.
+  GLuint draw_mask(const GL& gl, const LaunchArgs& a, const Shape& shape);
+
   GLSLBackend& be_;
   ir::Function fn_;
   std::vector<Pass> passes_;
@@ -219,6 +233,41 @@ class GLSLBackend : public Backend {
     gl.glDeleteTextures(1, &tex);
   }
 
+  // A depth-stencil renderbuffer of this size, for masked launches (kept for reuse).
+  GLuint stencil(const GL& gl, const Shape& shape) {
+    GLuint& rb = stencils_[{shape.row, shape.rows}];
+    if (rb == 0) {
+      gl.glGenRenderbuffers(1, &rb);
+      gl.glBindRenderbuffer(GL_RENDERBUFFER, rb);
+      gl.glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, shape.row, shape.rows);
+      check(gl, "allocating a stencil buffer");
+    }
+    return rb;
+  }
+
+  // The shader that turns a state texture into the stencil mask: it keeps (does not
+  // discard) the elements whose state is one of rill_values[0 .. rill_nvalues).
+  GLuint mask_program(const GL& gl) {
+    if (mask_program_ == 0)
+      mask_program_ = link(gl, "rill_mask",
+                           "#version 430 core\n"
+                           "// Rill: the stencil mask of a masked launch.\n"
+                           "uniform isampler2D rill_state;\n"
+                           "uniform int rill_values[" + std::to_string(StateMask::kMaxValues) + "];\n"
+                           "uniform int rill_nvalues;\n"
+                           "uniform int rill_count;\n"
+                           "uniform int rill_row;\n"
+                           "void main() {\n"
+                           "  ivec2 p = ivec2(gl_FragCoord.xy);\n"
+                           "  if (p.y * rill_row + p.x >= rill_count) discard;\n"
+                           "  int s = texelFetch(rill_state, p, 0).r;\n"
+                           "  bool selected = false;\n"
+                           "  for (int k = 0; k < rill_nvalues; ++k) selected = selected || s == rill_values[k];\n"
+                           "  if (!selected) discard;\n"
+                           "}\n");
+    return mask_program_;
+  }
+
   GLuint fbo() const { return fbo_; }
   GLuint vao() const { return vao_; }
   GLuint query() const { return query_; }
@@ -314,6 +363,8 @@ class GLSLBackend : public Backend {
   int max_draw_buffers_ = 1, max_units_ = 16;
   DivSqrt divsqrt_ = DivSqrt::Native;  // how strict kernels divide (DivSqrt.h)
   GLuint fbo_ = 0, vao_ = 0, query_ = 0;
+  GLuint mask_program_ = 0;
+  std::map<std::pair<int, int>, GLuint> stencils_;
 };
 
 Texture::~Texture() {
@@ -325,6 +376,43 @@ GLSLKernel::~GLSLKernel() {
   std::lock_guard<std::recursive_mutex> lock(be_.mutex_);
   const GL& gl = be_.current();
   for (Pass& p : passes_) gl.glDeleteProgram(p.program);
+}
+
+GLuint GLSLKernel::draw_mask(const GL& gl, const LaunchArgs& a, const Shape& shape) {
+  GLuint state = be_.to_device(gl, *a.mask).tex;
+  gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, be_.stencil(gl, shape));
+  const GLenum none = GL_NONE;
+  gl.glDrawBuffers(1, &none);
+  if (gl.glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("GLSL backend: the stencil buffer for a masked launch of kernel '" + fn_.name +
+                "' does not form a complete framebuffer");
+  gl.glEnable(GL_STENCIL_TEST);
+  gl.glStencilMask(0xff);
+  gl.glClearStencil(0);
+  gl.glClear(GL_STENCIL_BUFFER_BIT);
+  gl.glStencilFunc(GL_ALWAYS, 1, 0xff);
+  gl.glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  GLuint prog = be_.mask_program(gl);
+  gl.glUseProgram(prog);
+  gl.glActiveTexture(GL_TEXTURE0);
+  gl.glBindTexture(GL_TEXTURE_2D, state);
+  gl.glUniform1i(gl.glGetUniformLocation(prog, "rill_state"), 0);
+  gl.glUniform1iv(gl.glGetUniformLocation(prog, "rill_values"), static_cast<GLsizei>(a.mask_values.size()),
+                  a.mask_values.data());
+  gl.glUniform1i(gl.glGetUniformLocation(prog, "rill_nvalues"), static_cast<GLint>(a.mask_values.size()));
+  gl.glUniform1i(gl.glGetUniformLocation(prog, "rill_count"), static_cast<GLint>(a.count));
+  gl.glUniform1i(gl.glGetUniformLocation(prog, "rill_row"), shape.row);
+  GLuint selected = 0;
+  gl.glBeginQuery(GL_SAMPLES_PASSED, be_.query());
+  gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+  gl.glEndQuery(GL_SAMPLES_PASSED);
+  gl.glGetQueryObjectuiv(be_.query(), GL_QUERY_RESULT, &selected);
+  // The kernel's draws: only where the mask wrote 1, and the stencil stays as it is.
+  gl.glStencilMask(0);
+  gl.glStencilFunc(GL_EQUAL, 1, 0xff);
+  gl.glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  be_.check(gl, "building the mask of a masked launch");
+  return selected;
 }
 
 int64_t GLSLKernel::run(const LaunchArgs& a) {
@@ -371,6 +459,22 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
   gl.glBindFramebuffer(GL_FRAMEBUFFER, be_.fbo());
   gl.glBindVertexArray(be_.vao());
   gl.glViewport(0, 0, shape.row, shape.rows);
+  // After a masked launch (also one that throws), the stencil test is off and the stencil
+  // buffer detached again, so it cannot clip or mask the next launch.
+  struct StencilOff {
+    const GL& gl;
+    GLuint fbo;
+    bool active;
+    ~StencilOff() {
+      if (!active) return;
+      gl.glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+      gl.glDisable(GL_STENCIL_TEST);
+      gl.glStencilMask(0xff);
+      gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, 0);
+      gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+  } stencil_off{gl, be_.fbo(), a.mask != nullptr};
+  if (a.mask) selected = draw_mask(gl, a, shape);
   for (size_t pi = 0; pi < passes_.size(); ++pi) {
     const Pass& p = passes_[pi];
     std::vector<GLenum> bufs;

@@ -315,18 +315,24 @@ int64_t ClKernel::run(const LaunchArgs& a) {
   }
   std::vector<cl_uint> uniforms;
   for (auto* u : a.uniforms) uniforms.insert(uniforms.end(), u->bits.begin(), u->bits.end());
-  cl_uint zero = 0;
+  cl_uint zero[2] = {0, 0};  // elements written, elements selected
   cl_mem shape_buf = be_.scratch(shapes.size() * sizeof(cl_long), shapes.data());
   cl_mem uniform_buf = be_.scratch(uniforms.size() * sizeof(cl_uint), uniforms.data());
-  cl_mem counter = be_.scratch(sizeof zero, &zero);
+  cl_mem counter = be_.scratch(sizeof zero, zero);
   cl_long width = a.width, count = a.count;
   set_mem(shape_buf);
   set_mem(uniform_buf);
   check(clSetKernelArg(kernel_, arg++, sizeof width, &width), "clSetKernelArg");
   check(clSetKernelArg(kernel_, arg++, sizeof count, &count), "clSetKernelArg");
   set_mem(counter);
+  // The mask (none: an empty set, and the values table stands in for the state stream).
+  cl_mem values_buf = be_.scratch(a.mask_values.size() * sizeof(cl_int), a.mask_values.data());
+  cl_int mask_count = a.mask ? static_cast<cl_int>(a.mask_values.size()) : 0;
+  set_mem(a.mask ? be_.to_device(*a.mask) : values_buf);
+  set_mem(values_buf);
+  check(clSetKernelArg(kernel_, arg++, sizeof mask_count, &mask_count), "clSetKernelArg");
 
-  cl_uint written = 0;
+  cl_uint written[2] = {0, 0};
   cl_int e = CL_SUCCESS;
   if (a.count > 0) {
     size_t group = 64;
@@ -336,14 +342,16 @@ int64_t ClKernel::run(const LaunchArgs& a) {
     size_t global = (static_cast<size_t>(a.count) + group - 1) / group * group;
     e = clEnqueueNDRangeKernel(d.queue, kernel_, 1, nullptr, &global, &group, 0, nullptr, nullptr);
     if (e == CL_SUCCESS)
-      e = clEnqueueReadBuffer(d.queue, counter, CL_TRUE, 0, sizeof written, &written, 0, nullptr, nullptr);
+      e = clEnqueueReadBuffer(d.queue, counter, CL_TRUE, 0, sizeof written, written, 0, nullptr, nullptr);
   }
+  selected = a.mask ? written[1] : a.count;
+  clReleaseMemObject(values_buf);
   clReleaseMemObject(shape_buf);
   clReleaseMemObject(uniform_buf);
   clReleaseMemObject(counter);
   check(e, "running the kernel");
   for (auto* s : a.outputs) be_.device_written(*s);
-  return written;
+  return written[0];
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 // backend (scalarized, same helpers), so the two compute the same operations in the same
 // order. What differs is the frame: one work-item per element; an element function that
 // returns 1 when it wrote its outputs and 0 when it was discarded; and a work-group count
-// of written elements added to one global counter.
+// of written elements added to one global counter. A masked launch (StateMask.h) passes the
+// state stream and the set: a work-item whose state is not in it returns at once, and the
+// selected elements are counted in a second counter.
 #include "OpenCLEmitter.h"
 
 #include "../codegen/CDialect.h"
@@ -82,17 +84,29 @@ std::string emit_opencl(const Function& f, Accuracy accuracy) {
   src += codegen::store_outputs(f, p, "  ");
   src += "  return 1;\n}\n\n";
 
+  // A masked launch (rill_mask_count > 0) runs element i only if rill_mask[i] is one of
+  // rill_mask_values; rill_written[0] counts the elements written, [1] those selected.
   src += "__kernel void rill_run(" + joined(params) +
-         ", long rill_count, __global uint* rill_written) {\n";
-  src += R"(  __local uint group_written;
+         ", long rill_count, __global uint* rill_written, __global const int* rill_mask, "
+         "__global const int* rill_mask_values, int rill_mask_count) {\n";
+  src += R"(  __local uint group_written, group_selected;
   const long rill_i = get_global_id(0);
-  if (get_local_id(0) == 0) group_written = 0;
+  if (get_local_id(0) == 0) group_written = group_selected = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
-  if (rill_i < rill_count && rill_element(rill_i, )" +
-         joined(names) + R"())
-    atomic_inc(&group_written);
+  int rill_sel = rill_i < rill_count;
+  if (rill_sel && rill_mask_count > 0) {
+    const int s = rill_mask[rill_i];
+    rill_sel = 0;
+    for (int k = 0; k < rill_mask_count; ++k) rill_sel |= s == rill_mask_values[k];
+  }
+  if (rill_sel) {
+    atomic_inc(&group_selected);
+    if (rill_element(rill_i, )" +
+         joined(names) + R"()) atomic_inc(&group_written);
+  }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (get_local_id(0) == 0 && group_written != 0) atomic_add(rill_written, group_written);
+  if (get_local_id(0) == 0 && group_selected != 0) atomic_add(rill_written + 1, group_selected);
 }
 )";
   return src;

@@ -84,7 +84,8 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
   shared->backend = &be;
   shared->optimized = passes::optimize(p.ir(), options.passes, options.accuracy);
   shared->compiled = be.compile(shared->optimized, options);
-  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   shared->compiled->compile_ms = ms;
   k.info_.compile_ms = ms;
   k.info_.from_disk_cache = shared->compiled->from_disk_cache;
@@ -130,7 +131,8 @@ LaunchArgs Kernel::prepare() {
   LaunchArgs a;
   auto check = [&](const std::shared_ptr<detail::StreamState>& s, ir::VarId v, const char* dir) {
     if (!s)
-      throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) + " is not bound to a stream");
+      throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) +
+                  " is not bound to a stream");
     if (s->type != f.var(v).type)
       throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) +
                   " is bound to a stream of " + s->type.str());
@@ -161,10 +163,47 @@ LaunchArgs Kernel::prepare() {
   return a;
 }
 
+int64_t Kernel::launch(LaunchArgs& a) {
+  std::lock_guard<std::mutex> lock(shared_->run_mutex);
+  CompiledKernel& c = *shared_->compiled;
+  c.selected = a.count;
+  last_.written = c.run(a);
+  last_.processed = a.mask ? c.selected : a.count;
+  return last_.written;
+}
+
 int64_t Kernel::execute() {
   LaunchArgs a = prepare();
-  std::lock_guard<std::mutex> lock(shared_->run_mutex);
-  return shared_->compiled->run(a);
+  return launch(a);
+}
+
+int64_t Kernel::execute(const StateMask& mask) {
+  LaunchArgs a = prepare();
+  const std::string& name = program_.name();
+  detail::StreamState& s = mask.state().state();
+  if (s.type != ir::int_type(1))
+    throw Error("kernel '" + name + "': the mask stream must be a Stream<Int>, not a stream of " +
+                s.type.str());
+  if (s.count != a.count)
+    throw Error("kernel '" + name + "': the mask stream has " + std::to_string(s.count) +
+                " elements but the kernel runs over " + std::to_string(a.count));
+  if (mask.values().empty() || mask.values().size() > StateMask::kMaxValues)
+    throw Error("kernel '" + name + "': a mask selects 1 to " +
+                std::to_string(StateMask::kMaxValues) + " state values (got " +
+                std::to_string(mask.values().size()) + ")");
+  a.mask = &s;
+  a.mask_values = mask.values();
+  return launch(a);
+}
+
+int64_t Kernel::loop(const StateMask& mask, int64_t max_passes) {
+  int64_t passes = 0;
+  while (passes < max_passes) {
+    ++passes;
+    if (execute(mask) == 0) return passes;
+  }
+  throw Error("kernel '" + program_.name() + "': loop() still wrote elements after " +
+              std::to_string(max_passes) + " passes");
 }
 
 int64_t Kernel::loop(int64_t max_passes) {
@@ -190,6 +229,8 @@ std::string Kernel::ir() const {
   return ir::print(named);
 }
 
-std::string Kernel::backend_name() const { return shared_ ? shared_->backend->name() : std::string(); }
+std::string Kernel::backend_name() const {
+  return shared_ ? shared_->backend->name() : std::string();
+}
 
 }  // namespace rill

@@ -12,12 +12,20 @@
 //   combine          eq. 5.1 and the reflected ray of the next bounce
 //
 // Traverser and intersector run in a host loop until neither has a ray left; the
-// intersector runs again while at least 20% of the rays wait for it (thesis 5.6), and when
-// fewer than 5% are left, one kernel takes them to the end (the same steps in a loop). Every
-// kernel discards the elements it has nothing to do for, so execute() counts the rays in
-// each state. Built from the same DSL functions as the single kernel, it gives the same
-// bits (tested); glass (refraction) is left to the single kernel, as in the thesis (5.2.2).
+// intersector runs again while at least 20% of the rays wait for it (thesis 5.6; the
+// fraction is RenderSettings::wait_threshold, `--wait-threshold`), and when fewer than 5%
+// are left, one kernel takes them to the end (the same steps in a loop). Every kernel
+// discards the elements it has nothing to do for, so execute() counts the rays in each
+// state. Masking (RenderSettings::masking, `--masking on|off`): two Int state streams
+// mirror the states kept in tr_vox.w and path_i (tr_state: the ray's trace state;
+// path_state: 0 path ended, 1 alive, 2 alive with a surface to shade), and each kernel is
+// launched with rill::where() on its state, so the backend skips the other elements before
+// running the body (GLSL: early stencil test, the thesis's early-z culling). The discards
+// stay, so masking on and off give the same bits. Built from the same DSL functions as the
+// single kernel, it gives the same bits (tested); glass (refraction) is left to the single
+// kernel, as in the thesis (5.2.2).
 #include <chrono>
+#include <optional>
 
 #include "TracerImpl.h"
 
@@ -28,8 +36,9 @@ namespace {
 // Ray states, in the low 3 bits of tr_vox.w; bit 3: any-hit (shadow) ray; bits 4-: steps.
 constexpr int kNone = 0, kPending = 1, kEnter = 2, kWait = 3, kFinished = 4;
 constexpr int kAnyHit = 8;
+// Path states (path_state), for masking the shading kernels.
+constexpr int kPathEnded = 0, kPathAlive = 1, kPathSurface = 2;
 constexpr int kBatch = 8;               // triangles an intersector pass tests per ray
-constexpr double kWaitFraction = 0.2;   // rerun the intersector while this many rays wait
 constexpr double kTailFraction = 0.05;  // fewer rays than this left: one kernel finishes them
 
 }  // namespace
@@ -62,13 +71,16 @@ struct Multipass {
           path_i(w, h),
           tr_cur(w, h),
           path_w(w, h),
-          aov_depth(w, h) {}
+          aov_depth(w, h),
+          tr_state(w, h),
+          path_state(w, h) {}
     Stream<Float4> ray_o, sh_o, tr_tmx;
     Stream<Float3> ray_d, hit_tuv, sh_d, sh_tuv, color, local, aov_normal;
     Stream<Int> hit_id, sh_id, aov_prim;
     Stream<Int4> tr_vox, path_i;  // path_i: depth, alive, rays, has a surface
     Stream<Int2> tr_cur;
     Stream<Float> path_w, aov_depth;
+    Stream<Int> tr_state, path_state;  // masks: tr_vox.w & 7 and the path's state (above)
   };
 
   void capture(const Tracer::Impl& I);
@@ -87,6 +99,8 @@ void Multipass::capture(const Tracer::Impl& I) {
     Output<Float> ad("aov_depth");
     Output<Int> ap("aov_prim");
     Output<Float3> an("aov_normal");
+    Output<Int> ts("tr_state");
+    Output<Int> ps("path_state");
     Float3 eye = I.eye;
     o = Float4(eye, kBig);
     d = I.camera_ray(element_coord());
@@ -97,6 +111,8 @@ void Multipass::capture(const Tracer::Impl& I) {
     ad = as_float(Int(0x7f800000));
     ap = -1;
     an = Float3(0.0f);
+    ts = kPending;
+    ps = kPathAlive;
   });
 
   // ---- the trace loop: voxel precalculation, traverser, intersector ----------------------
@@ -108,6 +124,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     Output<Float4> tout("tr_tmx");
     Output<Float3> tuv("hit_tuv");
     Output<Int> id("hit_id");
+    Output<Int> ts("tr_state");
     Int w = vin.w();
     RILL_IF((w & 7) != kPending) {
       RILL_DISCARD;
@@ -125,10 +142,12 @@ void Multipass::capture(const Tracer::Impl& I) {
       Float3 tmx(0.0f);
       I.dda_init(o, d, t_enter, vox, tmx);
       vout = Int4(vox, (w & kAnyHit) | kEnter);
+      ts = kEnter;
       tout = Float4(tmx, t_exit);
     }
     RILL_ELSE {
       vout = Int4(0, 0, 0, (w & kAnyHit) | kFinished);
+      ts = kFinished;
       tout = Float4(0.0f);
     }
     RILL_ENDIF;
@@ -144,6 +163,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     Output<Int4> vout("tr_vox_out");
     Output<Float4> tout("tr_tmx_out");
     Output<Int2> cur("tr_cur");
+    Output<Int> ts("tr_state");
     Int w = vin.w();
     RILL_IF((w & 7) != kEnter) {
       RILL_DISCARD;
@@ -171,6 +191,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     }
     RILL_ENDWHILE;
     vout = Int4(vox, select(found, Int(kWait), Int(kFinished)) | (w & kAnyHit) | (steps << 4));
+    ts = select(found, Int(kWait), Int(kFinished));
     tout = Float4(tmx, t_exit);
     cur = Int2(range.x(), range.x() + range.y());
   });
@@ -188,6 +209,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     Output<Int2> cout("tr_cur_out");
     Output<Float3> tuv("hit_tuv_out");
     Output<Int> id("hit_id_out");
+    Output<Int> ts("tr_state_out");
     Int w = vin.w();
     RILL_IF((w & 7) != kWait) {
       RILL_DISCARD;
@@ -214,6 +236,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     }
     RILL_ENDIF;
     vout = Int4(vox, state | (w & kAnyHit) | (steps << 4));
+    ts = state;
     tout = Float4(tmx, tin.w());
     cout = Int2(c, end);
     tuv = Float3(best_t, best_u, best_v);
@@ -233,6 +256,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     Output<Int4> vout("tr_vox_out");
     Output<Float3> tuv("hit_tuv_out");
     Output<Int> id("hit_id_out");
+    Output<Int> ts("tr_state_out");
     Int w = vin.w();
     Int state = w & 7;
     RILL_IF(state != kEnter && state != kWait) {
@@ -266,6 +290,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     }
     RILL_ENDWHILE;
     vout = Int4(vox, kFinished | (w & kAnyHit) | (steps << 4));
+    ts = kFinished;
     tuv = Float3(best_t, best_u, best_v);
     id = best_id;
   });
@@ -285,6 +310,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     Output<Float> ad("aov_depth");
     Output<Int> ap("aov_prim");
     Output<Float3> an("aov_normal");
+    Output<Int> ps("path_state");
     RILL_IF(pi.y() == 0) {
       RILL_DISCARD;
     }
@@ -304,10 +330,12 @@ void Multipass::capture(const Tracer::Impl& I) {
       if (!F.shadows) loc += I.unshadowed_light(s);
       local = loc;
       pi_out = Int4(pi.x(), 1, pi.z(), 1);
+      ps = kPathSurface;
     }
     RILL_ELSE {
       color_out = color + w * I.background;
       pi_out = Int4(pi.x(), 0, pi.z(), 0);
+      ps = kPathEnded;
     }
     RILL_ENDIF;
   });
@@ -323,6 +351,7 @@ void Multipass::capture(const Tracer::Impl& I) {
       Output<Float3> sd("shadow_d");
       Output<Int4> vox("tr_vox");
       Output<Int4> pi_out("path_i_out");
+      Output<Int> ts("tr_state");
       RILL_IF(pi.y() == 0 || pi.w() == 0) {
         RILL_DISCARD;
       }
@@ -336,6 +365,7 @@ void Multipass::capture(const Tracer::Impl& I) {
       so = Float4(ro, tmax);
       sd = rd;
       vox = Int4(0, 0, 0, select(active, Int(kPending | kAnyHit), Int(kNone)));
+      ts = select(active, Int(kPending), Int(kNone));
       pi_out = Int4(pi.x(), pi.y(), pi.z() + select(active, Int(1), Int(0)), pi.w());
     });
     shadow_acc = rill::program("mp_shadow_light", [&] {
@@ -373,6 +403,8 @@ void Multipass::capture(const Tracer::Impl& I) {
     Output<Float4> o_out("ray_o_out");
     Output<Float3> d_out("ray_d_out");
     Output<Int4> vox("tr_vox");
+    Output<Int> ts("tr_state");
+    Output<Int> ps("path_state");
     RILL_IF(pi.y() == 0 || pi.w() == 0) {
       RILL_DISCARD;
     }
@@ -391,10 +423,13 @@ void Multipass::capture(const Tracer::Impl& I) {
       o_out = Float4(ro, kBig);
       d_out = rd;
       vox = Int4(0, 0, 0, kPending);
+      ts = kPending;
       pi_out = Int4(depth, 1, pi.z() + 1, 0);
+      ps = kPathAlive;
     }
     RILL_ELSE {
       pi_out = Int4(depth, 0, pi.z(), 0);
+      ps = kPathEnded;
     }
     RILL_ENDIF;
   });
@@ -459,27 +494,49 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
   r.compile_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
+  if (!(rs.wait_threshold > 0.0 && rs.wait_threshold <= 1.0))
+    throw std::runtime_error("multipass: the wait threshold must be in (0, 1] (got " +
+                             std::to_string(rs.wait_threshold) + ")");
+  // Per-pass statistics, in the order the passes first run.
+  enum Pass { kRaygen, kSetup, kTraverse, kIntersect, kFinish, kSurface, kShadowGen, kShadowAcc, kCombine, kPasses };
+  static const char* const kPassNames[kPasses] = {"raygen",  "voxel_precalc", "traverser",
+                                                  "intersector", "finish", "surface",
+                                                  "shadow_rays", "shadow_light", "combine"};
+  r.passes.assign(kPasses, PassStats{});
+  for (int p = 0; p < kPasses; ++p) r.passes[static_cast<size_t>(p)].name = kPassNames[p];
+
   int64_t launches = 0;
-  auto run = [&](Kernel& k) {
+  // Runs one pass, masked to the elements in `state` when masking is on.
+  auto run = [&](Kernel& k, Pass pass, const std::optional<rill::StateMask>& mask) {
     ++launches;
-    return k.execute();
+    const auto t = std::chrono::steady_clock::now();
+    const int64_t written = mask && rs.masking ? k.execute(*mask) : k.execute();
+    PassStats& st = r.passes[static_cast<size_t>(pass)];
+    st.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    ++st.calls;
+    st.processed += k.last_launch().processed;
+    st.written += written;
+    return written;
   };
   // Traces the rays in (o, d) whose state is pending; the hits go to (tuv, id).
   auto trace = [&](Stream<Float4>& o, Stream<Float3>& d, Stream<Float3>& tuv, Stream<Int>& id) {
-    K.setup.inputs(o, d, B.tr_vox).outputs(B.tr_vox, B.tr_tmx, tuv, id);
-    K.traverse.inputs(o, d, B.tr_vox, B.tr_tmx, tuv, id).outputs(B.tr_vox, B.tr_tmx, B.tr_cur);
+    K.setup.inputs(o, d, B.tr_vox).outputs(B.tr_vox, B.tr_tmx, tuv, id, B.tr_state);
+    K.traverse.inputs(o, d, B.tr_vox, B.tr_tmx, tuv, id)
+        .outputs(B.tr_vox, B.tr_tmx, B.tr_cur, B.tr_state);
     K.intersect.inputs(o, d, B.tr_vox, B.tr_tmx, B.tr_cur, tuv, id)
-        .outputs(B.tr_vox, B.tr_tmx, B.tr_cur, tuv, id);
-    K.finish.inputs(o, d, B.tr_vox, B.tr_tmx, B.tr_cur, tuv, id).outputs(B.tr_vox, tuv, id);
-    const double n = static_cast<double>(run(K.setup));
+        .outputs(B.tr_vox, B.tr_tmx, B.tr_cur, tuv, id, B.tr_state);
+    K.finish.inputs(o, d, B.tr_vox, B.tr_tmx, B.tr_cur, tuv, id)
+        .outputs(B.tr_vox, tuv, id, B.tr_state);
+    const double n = static_cast<double>(run(K.setup, kSetup, where(B.tr_state, kPending)));
     for (int64_t pass = 0; n > 0; ++pass) {
       if (pass > 100000000) throw std::runtime_error("multipass: the trace loop does not end");
-      const int64_t active = run(K.traverse);
-      int64_t waiting = run(K.intersect);
-      while (static_cast<double>(waiting) >= kWaitFraction * n) waiting = run(K.intersect);
+      const int64_t active = run(K.traverse, kTraverse, where(B.tr_state, kEnter));
+      auto intersect = [&] { return run(K.intersect, kIntersect, where(B.tr_state, kWait)); };
+      int64_t waiting = intersect();
+      while (static_cast<double>(waiting) >= rs.wait_threshold * n) waiting = intersect();
       if (active == 0 && waiting == 0) break;
       if (static_cast<double>(active + waiting) < kTailFraction * n) {
-        run(K.finish);
+        run(K.finish, kFinish, where(B.tr_state, {kEnter, kWait}));
         break;
       }
     }
@@ -491,29 +548,31 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
   for (int sample = 0; sample < spp; ++sample) {
     offset.set(sample_offset(sample));
     K.raygen.outputs(B.ray_o, B.ray_d, B.tr_vox, B.path_w, B.path_i, B.color, B.aov_depth,
-                     B.aov_prim, B.aov_normal);
-    run(K.raygen);
+                     B.aov_prim, B.aov_normal, B.tr_state, B.path_state);
+    run(K.raygen, kRaygen, std::nullopt);
     K.surface.inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_w, B.path_i, B.color)
-        .outputs(B.local, B.color, B.path_i, B.aov_depth, B.aov_prim, B.aov_normal);
+        .outputs(B.local, B.color, B.path_i, B.aov_depth, B.aov_prim, B.aov_normal, B.path_state);
     K.combine.inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_w, B.path_i, B.color, B.local)
-        .outputs(B.color, B.path_w, B.path_i, B.ray_o, B.ray_d, B.tr_vox);
+        .outputs(B.color, B.path_w, B.path_i, B.ray_o, B.ray_d, B.tr_vox, B.tr_state,
+                 B.path_state);
+    const rill::StateMask with_surface = where(B.path_state, kPathSurface);
     for (int bounce = 0; bounce <= depth; ++bounce) {
       if (F.geometry) trace(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id);
-      if (run(K.surface) == 0) break;
+      if (run(K.surface, kSurface, where(B.path_state, {kPathAlive, kPathSurface})) == 0) break;
       if (F.shadows) {
         for (size_t l = 0; l < scene.lights.size(); ++l) {
           M.light.set(static_cast<int32_t>(l));
           K.shadow_gen.inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_i)
-              .outputs(B.sh_o, B.sh_d, B.tr_vox, B.path_i);
-          run(K.shadow_gen);
+              .outputs(B.sh_o, B.sh_d, B.tr_vox, B.path_i, B.tr_state);
+          run(K.shadow_gen, kShadowGen, with_surface);
           trace(B.sh_o, B.sh_d, B.sh_tuv, B.sh_id);
           K.shadow_acc
               .inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_i, B.tr_vox, B.sh_id, B.local)
               .outputs(B.local);
-          run(K.shadow_acc);
+          run(K.shadow_acc, kShadowAcc, with_surface);
         }
       }
-      run(K.combine);
+      run(K.combine, kCombine, with_surface);
     }
     auto crop = [npix](auto v) {
       v.resize(npix);

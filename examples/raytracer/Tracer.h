@@ -91,6 +91,17 @@ struct RenderSettings {
   int width = 0, height = 0;  // 0: the scene's
   int max_depth = -1;         // -1: the scene's
   int spp = 0;                // 0: the scene's
+  // Multipass strategy (Multipass.cpp): rerun the intersector while at least this fraction
+  // of the traced rays waits for it (thesis 5.6: 20%); launch each pass masked to its state.
+  double wait_threshold = 0.2;
+  bool masking = true;
+};
+
+// One multipass pass (kernel) over a render: launches, elements run and written, time.
+struct PassStats {
+  std::string name;
+  int64_t calls = 0, processed = 0, written = 0;
+  double ms = 0;
 };
 
 struct RenderResult {
@@ -104,6 +115,7 @@ struct RenderResult {
   bool from_cache = false;
   double trace_ms = 0;
   int64_t launches = 0;  // kernel launches while tracing
+  std::vector<PassStats> passes;  // multipass only: per pass (Multipass.cpp)
   std::string backend;
 };
 

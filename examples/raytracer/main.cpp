@@ -7,6 +7,7 @@
 //                           [--stats-json FILE] [--source FILE] [--quiet]
 //                           [--triangle moller|watertight] [--offset epsilon|scaled]
 //                           [--traversal incremental|recompute]
+//                           [--stats] [--wait-threshold F] [--masking on|off]   (multipass)
 //   rill-trace accuracy [--backends LIST] [--scenes LIST] [--size WxH] [--repeats N]
 //                       [--one-at-a-time] [--out-dir DIR]
 //   rill-trace demo [--scene SCENE] [--size WxH] [--out-dir DIR]
@@ -53,6 +54,10 @@ struct RenderOptions {
   bool quiet = false;
   // Accuracy knobs (Tracer.h, TracerOptions).
   std::string triangle = "moller", offset = "scaled", traversal = "incremental";
+  // Multipass: per-pass statistics, the intersector's rerun threshold, masked launches.
+  bool stats = false;
+  double wait_threshold = 0.2;
+  std::string masking = "on";
 };
 
 void parse_size(const std::string& s, int& w, int& h) {
@@ -115,6 +120,10 @@ int render(const RenderOptions& o) {
   rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
   rs.width = scene.width;
   rs.height = scene.height;
+  if (o.masking != "on" && o.masking != "off")
+    throw rt::SceneError("--masking expects on or off (got '" + o.masking + "')");
+  rs.wait_threshold = o.wait_threshold;
+  rs.masking = o.masking == "on";
   const auto t_render = Clock::now();
   rt::RenderResult r = tracer.render(rs, scene.camera);
   const double render_ms = ms_since(t_render);
@@ -160,6 +169,18 @@ int render(const RenderOptions& o) {
                  {"non_finite", grid.non_finite}};
     j["rays"] = r.rays;
     j["launches"] = r.launches;
+    if (o.strategy == "multipass") {
+      j["wait_threshold"] = rs.wait_threshold;
+      j["masking"] = rs.masking;
+      nlohmann::json passes = nlohmann::json::array();
+      for (const rt::PassStats& p : r.passes)
+        passes.push_back({{"name", p.name},
+                          {"calls", p.calls},
+                          {"processed", p.processed},
+                          {"written", p.written},
+                          {"ms", p.ms}});
+      j["passes"] = passes;
+    }
     j["rays_per_second"] = rays_per_s;
     j["compiled_from_cache"] = r.from_cache;
     j["time_ms"] = {{"load", load_ms},
@@ -185,6 +206,14 @@ int render(const RenderOptions& o) {
     if (grid.degenerate + grid.non_finite > 0)
       std::printf("note: %zu degenerate and %zu non-finite triangles are never hit\n",
                   grid.degenerate, grid.non_finite);
+  }
+  if (o.stats && o.strategy == "multipass") {
+    std::printf("%-14s %8s %14s %14s %10s   (masking %s, wait threshold %g)\n", "pass", "calls",
+                "processed", "written", "ms", rs.masking ? "on" : "off", rs.wait_threshold);
+    for (const rt::PassStats& p : r.passes)
+      std::printf("%-14s %8lld %14lld %14lld %10.2f\n", p.name.c_str(),
+                  static_cast<long long>(p.calls), static_cast<long long>(p.processed),
+                  static_cast<long long>(p.written), p.ms);
   }
   std::printf(
       "rill-trace: %s, %zu triangles, %dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
@@ -315,6 +344,13 @@ int main(int argc, char** argv) {
       "--one-at-a-time", [&](int64_t) { ao.factorial = false; },
       "vary one knob at a time instead of every combination");
   acc->add_option("--out-dir", ao.out_dir, "where accuracy.{md,csv,gp,svg} go");
+  r->add_flag("--stats", ro.stats, "multipass: print per-pass calls, elements and time");
+  r->add_option("--wait-threshold", ro.wait_threshold,
+                "multipass: rerun the intersector while this fraction of rays waits (0..1]")
+      ->default_str("0.2")
+      ->check(CLI::Range(1e-6, 1.0));
+  r->add_option("--masking", ro.masking, "multipass: launch each pass masked to its state (on|off)")
+      ->default_str("on");
 
   std::string demo_scene = "builtin:glass", demo_size, demo_out = ".";
   CLI::App* d =

@@ -71,6 +71,10 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --backend nope --size 4x4", "nope");
   expect_clean_failure("render builtin:thesis-a --strategy quantum --size 4x4", "strategy");
   expect_clean_failure("render builtin:glass --strategy multipass --size 4x4", "megakernel");
+  expect_clean_failure("render builtin:thesis-a --strategy multipass --masking maybe --size 4x4",
+                       "--masking");
+  expect_clean_failure("render builtin:thesis-a --strategy multipass --wait-threshold 0 --size 4x4",
+                       "--wait-threshold");
   expect_clean_failure("render builtin:thesis-a --size 4x4 --out /no/such/dir/x.png", "x.png");
 }
 

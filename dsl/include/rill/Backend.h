@@ -52,6 +52,11 @@ struct LaunchArgs {
   std::vector<detail::ArrayState*> arrays;
   int64_t count = 0;                 // elements to run
   int64_t width = 0, height = 1;     // domain shape (of the first output)
+  // A masked launch (StateMask.h): run only elements i whose mask value is in mask_values.
+  // Null: every element. Checked by Kernel: an Int stream of `count` elements, 1 to
+  // StateMask::kMaxValues values.
+  detail::StreamState* mask = nullptr;
+  std::vector<int32_t> mask_values;
 };
 
 class CompiledKernel {
@@ -62,6 +67,8 @@ class CompiledKernel {
   // The generated source (C, OpenCL C, GLSL...).
   virtual const std::string& source() const = 0;
 
+  // Elements the last run() processed: those its mask selected, or count without a mask.
+  int64_t selected = 0;
   double compile_ms = 0;         // time this compile took
   bool from_disk_cache = false;  // the backend reused a binary compiled earlier
 };

@@ -4,6 +4,7 @@
 //   k.inputs(s).outputs(s);                          // the same stream may be both
 //   int64_t written = k.execute();                   // elements not discarded
 //   int64_t passes = k.loop();                       // until a pass writes nothing
+//   k.execute(rill::where(state, 3));                // only where state == 3 (StateMask.h)
 //
 // Compiled kernels are cached by (IR hash, backend, options): compiling the same program
 // twice, or an identical program defined again, costs nothing the second time.
@@ -16,9 +17,16 @@
 
 #include "rill/Backend.h"
 #include "rill/Program.h"
+#include "rill/StateMask.h"
 #include "rill/Stream.h"
 
 namespace rill {
+
+// What the last launch of a kernel did.
+struct LaunchStats {
+  int64_t processed = 0;  // elements the kernel ran on (all, or those selected by the mask)
+  int64_t written = 0;    // elements not discarded (<= processed)
+};
 
 struct CompileInfo {
   double compile_ms = 0;       // 0 on a cache hit
@@ -49,6 +57,13 @@ class Kernel {
   // Runs until a pass writes nothing; returns the number of passes, the last (empty) one
   // included. Throws if max_passes pass without termination.
   int64_t loop(int64_t max_passes = std::numeric_limits<int64_t>::max());
+  // Masked launch (see StateMask.h): runs only on the elements the mask selects; the others
+  // keep their outputs and are not counted. The mask's stream must be a Stream<Int> of as
+  // many elements as the kernel runs over. loop(mask) re-evaluates the mask every pass.
+  int64_t execute(const StateMask& mask);
+  int64_t loop(const StateMask& mask, int64_t max_passes = std::numeric_limits<int64_t>::max());
+  // Elements processed and written by the last execute() of this Kernel object.
+  const LaunchStats& last_launch() const { return last_; }
 
   const std::string& source() const;  // generated code
   std::string ir() const;             // optimized IR text
@@ -62,11 +77,13 @@ class Kernel {
   friend Kernel compile(const Program&, const std::string&, const CompileOptions&);
   void bind_all(bool inputs, std::initializer_list<StreamRef> s);
   LaunchArgs prepare();
+  int64_t launch(LaunchArgs& a);
 
   std::shared_ptr<Shared> shared_;
   Program program_;
   std::vector<std::shared_ptr<detail::StreamState>> in_, out_;
   CompileInfo info_;
+  LaunchStats last_;
 };
 
 Kernel compile(const Program& p, const std::string& backend = "cpu",

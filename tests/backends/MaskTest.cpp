@@ -1,0 +1,190 @@
+// Masked launches (rill::where, StateMask.h) on every backend: only the selected elements run,
+// the others keep their outputs and are not counted; sets of values; a mask stream that
+// the kernel also writes (the state is read as it was before the launch); loop() with a
+// mask; an empty selection; LaunchStats; and the errors for a wrong mask stream.
+#include "BackendTest.h"
+
+namespace rill::testing {
+namespace {
+
+class MaskTest : public BackendTest {};
+
+// 5000 elements: not a multiple of the CPU grain (1024) nor of a GLSL texture row (4096).
+constexpr int64_t kN = 5000;
+
+std::vector<int32_t> random_states(uint32_t seed, int64_t n, int32_t states) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int32_t> d(0, states - 1);
+  std::vector<int32_t> v(static_cast<size_t>(n));
+  for (int32_t& s : v) s = d(rng);
+  return v;
+}
+
+// kN floats with hard values (signed zeros, infinities, NaN...) mixed in.
+std::vector<float> floats(uint32_t seed) {
+  std::vector<float> xs = sweep_floats(seed, static_cast<size_t>(kN));
+  xs.resize(static_cast<size_t>(kN));
+  return xs;
+}
+
+bool in_set(int32_t s, std::initializer_list<int32_t> set) {
+  return std::find(set.begin(), set.end(), s) != set.end();
+}
+
+template <class F>
+void expect_error(F f, const char* part) {
+  try {
+    f();
+    ADD_FAILURE() << "expected rill::Error mentioning '" << part << "'";
+  } catch (const rill::Error& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
+        << "message '" << e.what() << "' does not mention '" << part << "'";
+  }
+}
+
+Program scale_program() {
+  return program("mask_scale", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    Output<Int> ran("ran");
+    y = x * 2.0f + 1.0f;
+    ran = 1;
+  });
+}
+
+TEST_P(MaskTest, RunsOnlyTheSelectedElements) {
+  std::vector<float> xs = floats(7);
+  std::vector<int32_t> states = random_states(1, kN, 5);
+  Kernel k = compile(scale_program());
+  Stream<Float> x(xs), y(kN);
+  Stream<Int> ran(kN), state(states);
+  y.fill(-7.0f);
+  ran.fill(0);
+  k.inputs(x).outputs(y, ran);
+  int64_t written = k.execute(where(state, 3));
+
+  int64_t want = 0;
+  for (int32_t s : states) want += s == 3;
+  ASSERT_GT(want, 0);
+  ASSERT_LT(want, kN);
+  EXPECT_EQ(written, want);
+  EXPECT_EQ(k.last_launch().written, want);
+  EXPECT_EQ(k.last_launch().processed, want);
+  std::vector<float> want_y(xs.size());
+  std::vector<int32_t> want_ran(xs.size());
+  for (size_t i = 0; i < xs.size(); ++i) {
+    want_y[i] = states[i] == 3 ? xs[i] * 2.0f + 1.0f : -7.0f;
+    want_ran[i] = states[i] == 3;
+  }
+  Describe d = describe_inputs(xs);
+  EXPECT_TRUE(bits_equal(y.download(), want_y, d));
+  EXPECT_TRUE(bits_equal(ran.download(), want_ran, d));
+
+  // Without a mask the same Kernel runs everywhere again.
+  EXPECT_EQ(k.execute(), kN);
+  EXPECT_EQ(k.last_launch().processed, kN);
+}
+
+TEST_P(MaskTest, SetOfValuesWithDiscardInside) {
+  std::vector<float> xs = floats(8);
+  std::vector<int32_t> states = random_states(2, kN, 6);
+  Program p = program("mask_discard", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    RILL_IF(x < 0.0f) {
+      RILL_DISCARD;
+    }
+    RILL_ENDIF;
+    y = x + 1.0f;
+  });
+  Kernel k = compile(p);
+  Stream<Float> x(xs), y(kN);
+  Stream<Int> state(states);
+  y.fill(-7.0f);
+  k.inputs(x).outputs(y);
+  int64_t written = k.execute(where(state, {1, 4, 5}));
+  int64_t want_processed = 0, want_written = 0;
+  std::vector<float> want_y(xs.size());
+  for (size_t i = 0; i < xs.size(); ++i) {
+    bool sel = in_set(states[i], {1, 4, 5});
+    bool writes = sel && !(xs[i] < 0.0f);
+    want_processed += sel;
+    want_written += writes;
+    want_y[i] = writes ? xs[i] + 1.0f : -7.0f;
+  }
+  EXPECT_EQ(written, want_written);
+  EXPECT_EQ(k.last_launch().processed, want_processed);
+  EXPECT_LT(want_written, want_processed);  // the discard mattered
+  EXPECT_TRUE(bits_equal(y.download(), want_y, describe_inputs(xs)));
+}
+
+// A state machine step: the kernel advances the state it is masked on. The mask is the
+// state before the launch, so an element moved into a selected state is not run again.
+Program step_program() {
+  return program("mask_step", [] {
+    Input<Int> s("s");
+    Output<Int> s_out("s_out");
+    s_out = s + 1;
+  });
+}
+
+TEST_P(MaskTest, MaskStreamWrittenByTheKernel) {
+  std::vector<int32_t> states = random_states(3, kN, 4);
+  Kernel k = compile(step_program());
+  Stream<Int> s(states);
+  k.inputs(s).outputs(s);
+  int64_t written = k.execute(where(s, {1, 2}));
+  int64_t want = 0;
+  std::vector<int32_t> after = states;
+  for (int32_t& v : after)
+    if (v == 1 || v == 2) {
+      ++v;
+      ++want;
+    }
+  EXPECT_EQ(written, want);
+  EXPECT_TRUE(bits_equal(s.download(), after));
+}
+
+TEST_P(MaskTest, LoopReevaluatesTheMask) {
+  std::vector<int32_t> states = random_states(4, kN, 6);  // 0..5
+  Kernel k = compile(step_program());
+  Stream<Int> s(states);
+  k.inputs(s).outputs(s);
+  // Every element below 3 steps up to 3: three passes that write, one that writes nothing.
+  int64_t passes = k.loop(where(s, {0, 1, 2}));
+  EXPECT_EQ(passes, 4);
+  std::vector<int32_t> want = states;
+  for (int32_t& v : want) v = std::max(v, 3);
+  EXPECT_TRUE(bits_equal(s.download(), want));
+  EXPECT_EQ(k.last_launch().processed, 0);
+}
+
+TEST_P(MaskTest, EmptySelectionRunsNothing) {
+  std::vector<float> xs = floats(9);
+  Kernel k = compile(scale_program());
+  Stream<Float> x(xs), y(kN);
+  Stream<Int> ran(kN), state(kN);
+  y.fill(-7.0f);
+  ran.fill(0);
+  state.fill(1);
+  k.inputs(x).outputs(y, ran);
+  EXPECT_EQ(k.execute(where(state, 2)), 0);
+  EXPECT_EQ(k.last_launch().processed, 0);
+  EXPECT_TRUE(bits_equal(y.download(), std::vector<float>(xs.size(), -7.0f)));
+}
+
+TEST_P(MaskTest, BadMasksAreErrors) {
+  Kernel k = compile(scale_program());
+  Stream<Float> x(kN), y(kN), wrong_type(kN);
+  Stream<Int> ran(kN), short_state(kN - 1), state(kN);
+  k.inputs(x).outputs(y, ran);
+  expect_error([&] { k.execute(where(StreamRef(wrong_type), {1})); }, "must be a Stream<Int>");
+  expect_error([&] { k.execute(where(short_state, 1)); }, "mask stream has 4999 elements");
+  expect_error([&] { k.execute(where(StreamRef(state), {})); }, "1 to 8 state values");
+  expect_error([&] { k.execute(where(state, {0, 1, 2, 3, 4, 5, 6, 7, 8})); }, "(got 9)");
+}
+
+RILL_BACKEND_TEST_SUITE(MaskTest);
+
+}  // namespace
+}  // namespace rill::testing
