@@ -57,6 +57,10 @@ std::vector<Config> intersect_configs() {
 // distance of a triangle's edge: the float ray, its direction rounded to 2^-24, passes a
 // target point up to ~1e-7 of the distance away.
 constexpr double kRayTol = 1e-6;
+// In fast mode drivers contract and use relaxed division and square roots (NVIDIA's OpenCL
+// under -cl-fast-relaxed-math: a few ulps per operation, docs/accuracy.md); over the ~20
+// operations from the ray to an edge function that reaches ~1e-5 of the distance.
+constexpr double kFastRayTol = 1e-5;
 
 struct RefHit {
   double t = INFINITY;       // closest clear hit, +inf: none
@@ -70,7 +74,7 @@ double min_altitude(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& 
   return twice_area / std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
 }
 
-RefHit reference(const Scene& s, const glm::vec3& of, const glm::vec3& df) {
+RefHit reference(const Scene& s, const glm::vec3& of, const glm::vec3& df, double ray_tol) {
   RefHit r;
   r.t_of.assign(s.triangle_count(), NAN);
   glm::dvec3 o(of), d(df);
@@ -82,7 +86,7 @@ RefHit reference(const Scene& s, const glm::vec3& of, const glm::vec3& df) {
     if (!testing::hit_triangle_d(o, d, a, b, c, t, margin)) continue;
     // The margin as a distance, against the float ray's uncertainty there.
     const double dist = margin * min_altitude(a, b, c);
-    const double tol = kRayTol * (glm::length(o) + std::fabs(t) + glm::length(a));
+    const double tol = ray_tol * (glm::length(o) + std::fabs(t) + glm::length(a));
     if (dist < -tol) continue;
     r.t_of[k] = t;
     if (dist > tol && t < r.t) {
@@ -97,9 +101,9 @@ RefHit reference(const Scene& s, const glm::vec3& of, const glm::vec3& df) {
 // (the brute force is the slow part of these tests): keyed by the bytes of the scene's
 // vertices and of the rays.
 const std::vector<RefHit>& references(const Scene& s, const std::vector<glm::vec3>& o,
-                                      const std::vector<glm::vec3>& d) {
+                                      const std::vector<glm::vec3>& d, double ray_tol) {
   static std::map<uint64_t, std::vector<RefHit>> cache;
-  uint64_t h = 1469598103934665603ull;  // FNV-1a
+  uint64_t h = 1469598103934665603ull ^ std::bit_cast<uint64_t>(ray_tol);  // FNV-1a
   for (const auto* v : {&s.positions, &o, &d}) {
     const auto* b = reinterpret_cast<const unsigned char*>(v->data());
     for (size_t i = 0; i < v->size() * sizeof(glm::vec3); ++i) h = (h ^ b[i]) * 1099511628211ull;
@@ -107,7 +111,7 @@ const std::vector<RefHit>& references(const Scene& s, const std::vector<glm::vec
   }
   auto [it, fresh] = cache.try_emplace(h);
   if (fresh)
-    for (size_t k = 0; k < o.size(); ++k) it->second.push_back(reference(s, o[k], d[k]));
+    for (size_t k = 0; k < o.size(); ++k) it->second.push_back(reference(s, o[k], d[k], ray_tol));
   return it->second;
 }
 
@@ -125,7 +129,8 @@ int check_rays(const Scene& s, const Grid& g, const Config& c, const std::string
   glm::vec3 lo, hi;
   scene_bounds(s, lo, hi);
   const double mag = std::max(glm::length(glm::dvec3(lo)), glm::length(glm::dvec3(hi)));
-  const std::vector<RefHit>& refs = references(s, o, d);
+  const double ray_tol = c.accuracy == Accuracy::Strict ? kRayTol : kFastRayTol;
+  const std::vector<RefHit>& refs = references(s, o, d, ray_tol);
   int wrong = 0, misses = 0;
   auto fail = [&](size_t k, const std::string& why) {
     if (++wrong <= 5)
@@ -337,7 +342,9 @@ TEST_P(HardCases, SharedEdgesAndVerticesAreWatertight) {
     }
   for (const Config& c : intersect_configs()) {
     // The watertight test must not leak; Moller-Trumbore may (counted in the benchmark).
-    const bool must = c.knobs.triangle == TriangleTest::Watertight;
+    // Only in strict: in fast mode a driver may contract the edge functions into FMAs, which
+    // breaks their exact antisymmetry on shared edges (NVIDIA's OpenCL does: docs/raytracer.md).
+    const bool must = c.knobs.triangle == TriangleTest::Watertight && c.accuracy == Accuracy::Strict;
     check_rays(s, g, c, GetParam(), o, d, must, "fan and subdivided plane");
   }
 }
@@ -369,7 +376,7 @@ TEST_P(HardCases, RaysFromInsideClosedMeshesAlwaysHit) {
     d.push_back(glm::normalize(dir));
   }
   for (const Config& c : intersect_configs()) {
-    const bool must = c.knobs.triangle == TriangleTest::Watertight;
+    const bool must = c.knobs.triangle == TriangleTest::Watertight && c.accuracy == Accuracy::Strict;
     check_rays(s, g, c, GetParam(), o, d, must, "inside closed meshes");
   }
 }
