@@ -375,19 +375,11 @@ void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float
   Bool ax = tb.x() <= tb.y() && tb.x() <= tb.z();
   Bool ay = !ax && tb.y() <= tb.z();
   Bool az = !ax && !ay;
-  // The step, as arithmetic rather than selects: gcc turns a float select into a branch,
-  // and which axis comes next is a coin toss for the branch predictor (one mispredicted
-  // branch per voxel step was a fifth of the traversal's time: callgrind --branch-sim).
-  // 0 or 1 per axis; the unchosen axes add +0.
-  Int3 mi = select(Bool3(ax, ay, az), Int3(1), Int3(0));
-  vox = vox + step * mi;
+  Bool3 m(ax, ay, az);
+  vox = vox + select(m, step, Int3(0));
   if (K.traversal == Traversal::Incremental) {
-    // tdl is capped at kBig so that 0 * tdl is never NaN (cell * |inv| overflows to inf for
-    // a component just above FLT_MIN). The cap does not change the traversal: a capped axis
-    // reaches kBig >= t_exit on its step, so it is never the nearest boundary again before
-    // the ray ends, and compares against every boundary below kBig as infinity would.
-    Float3 tdl = select(dz, Float3(kBig), min(grid_cell * abs(inv), Float3(kBig)));
-    tmx = tmx + tdl * to_float(mi);
+    Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
+    tmx = select(m, tmx + tdl, tmx);
   }
   steps += 1;
   done = done || any(vox < 0) || any(vox >= grid_res) || steps > max_steps;
