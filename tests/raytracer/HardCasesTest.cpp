@@ -82,14 +82,17 @@ RefHit reference(const Scene& s, const glm::vec3& of, const glm::vec3& df, doubl
     const glm::vec3* p = &s.positions[3 * k];
     if (!triangle_usable(p[0], p[1], p[2])) continue;
     const glm::dvec3 a(p[0]), b(p[1]), c(p[2]);
-    double t, margin;
-    if (!testing::hit_triangle_d(o, d, a, b, c, t, margin)) continue;
+    double t = NAN, margin = NAN;
+    const bool ahead = testing::hit_triangle_d(o, d, a, b, c, t, margin);
+    const double tol = ray_tol * (glm::length(o) + std::fabs(t) + glm::length(a));
+    // A ray that starts on a triangle (t = 0) may or may not report it: fast mode's t comes
+    // out just above or below 0 (NVIDIA's OpenCL reported one).
+    if (!ahead && !(std::fabs(t) <= tol)) continue;
     // The margin as a distance, against the float ray's uncertainty there.
     const double dist = margin * min_altitude(a, b, c);
-    const double tol = ray_tol * (glm::length(o) + std::fabs(t) + glm::length(a));
     if (dist < -tol) continue;
     r.t_of[k] = t;
-    if (dist > tol && t < r.t) {
+    if (dist > tol && t > tol && t < r.t) {
       r.t = t;
       r.id = static_cast<int32_t>(k);
     }
