@@ -28,7 +28,8 @@
 //
 // Exit status 1 if a check fails: Embree and Rill agree on fewer than --min-agree of the
 // rays, a backend's primary hits differ from the CPU's (strict: they must be identical), or
-// the every-effect kernel's image differs from the specialized one by more than 1e-4.
+// the every-effect kernel's image differs from the specialized one by more than the tracer's
+// weight cut-off (1e-3) or one of its camera rays hits another primitive.
 #include <rill/rill.h>
 #include <tbb/info.h>
 #include <CLI/CLI.hpp>
@@ -495,8 +496,11 @@ class Bench {
           maxdiff = std::max({maxdiff, d.x, d.y, d.z});
         }
         // Every effect on at zero strength changes only rounding (interpolated normals and
-        // white vertex colours are not exactly the face normal and 1).
-        const bool same = maxdiff <= 1e-4f && generic.features().refraction &&
+        // white vertex colours are not exactly the face normal and 1), and rounding can flip
+        // whether a secondary ray whose weight is at the tracer's cut-off (1e-3, kMinWeight in
+        // TracerImpl.h) is traced: so colours may differ by up to that weight (measured: 3.7e-4
+        // on thesis-b at 1920x1080), while every camera ray must hit the same primitive.
+        const bool same = maxdiff <= 1e-3f && a.prim == b.prim && generic.features().refraction &&
                           generic.features().vertex_colors && generic.features().vertex_normals;
         ok = ok && same;
         std::vector<double> sm, gm;
