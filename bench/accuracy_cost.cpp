@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "CommaList.h"
 #include "MandelbrotKernel.h"
 #include "Timing.h"
 
@@ -425,14 +426,6 @@ void write_file(const std::string& path, const std::string& text) {
   if (!f) throw Error("cannot write " + path);
   f << text;
   if (!f) throw Error("error writing " + path);
-}
-
-std::vector<std::string> split_list(const std::string& s) {
-  std::vector<std::string> v;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) v.push_back(item);
-  return v;
 }
 
 }  // namespace

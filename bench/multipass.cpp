@@ -31,22 +31,13 @@
 #include "Grid.h"
 #include "Scene.h"
 #include "Tracer.h"
+#include "CommaList.h"
+#include "Timing.h"
 
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
+using rill::bench::median;
+using rill::bench::split_list;
 
 struct Setup {
   std::string name;
@@ -144,17 +135,17 @@ int main(int argc, char** argv) {
     if (repeats > 0) rep = repeats;
     if (!sizes_opt.empty()) {
       sizes.clear();
-      for (const std::string& v : split(sizes_opt)) sizes.push_back(std::stoi(v));
+      for (const std::string& v : split_list(sizes_opt)) sizes.push_back(std::stoi(v));
     }
     if (!depths_opt.empty()) {
       depths.clear();
-      for (const std::string& v : split(depths_opt)) depths.push_back(std::stoi(v));
+      for (const std::string& v : split_list(depths_opt)) depths.push_back(std::stoi(v));
     }
 
     std::vector<std::string> backends;
     for (rill::Backend* b : rill::backends()) {
       if (backends_opt != "all") {
-        auto wanted = split(backends_opt);
+        auto wanted = split_list(backends_opt);
         if (std::find(wanted.begin(), wanted.end(), b->name()) == wanted.end()) continue;
       }
       if (std::string why = b->unavailable_reason(); !why.empty()) {

@@ -52,35 +52,21 @@
 #include "Scene.h"
 #include "Tracer.h"
 #include "TracerImpl.h"  // padded_rows (GLSL launches of at least one 4096-texel row)
+#include "CommaList.h"
+#include "Timing.h"
 #include "trace_embree.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using rill::bench::Clock;
+using rill::bench::median;
+using rill::bench::ms_since;
+using rill::bench::split_list;
 
 std::string fmt(const char* f, double v) {
   char b[64];
   std::snprintf(b, sizeof b, f, v);
   return b;
-}
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
 }
 
 // A result table: printed as Markdown, and written to --md / --csv.
@@ -149,7 +135,7 @@ std::vector<std::string> usable_backends(const std::string& list) {
   if (list == "all")
     for (rill::Backend* b : rill::backends()) want.push_back(b->name());
   else
-    want = split(list);
+    want = split_list(list);
   std::vector<std::string> out;
   for (const auto& name : want) {
     rill::Backend& b = rill::backend(name);  // throws for an unknown name
@@ -254,7 +240,7 @@ class Bench {
               "Rill/Embree", "same prim", "agree", "grid build ms", "grid B/tri", "Embree build ms",
               "Embree B/tri"},
              {}};
-    for (const auto& spec : split(o_.scenes)) {
+    for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
       rt::Grid grid = rt::build_grid(scene, scene.options.grid);
       rt::Tracer tracer(scene, grid);
@@ -383,7 +369,7 @@ class Bench {
     };
     std::vector<Point> points;
     const std::vector<glm::vec3> origins(n, scene.camera.eye);
-    for (const auto& g : split(o_.grids)) {
+    for (const auto& g : split_list(o_.grids)) {
       Point p;
       char* end = nullptr;
       p.res = g == "auto" ? 0 : static_cast<int>(std::strtol(g.c_str(), &end, 10));
@@ -429,7 +415,7 @@ class Bench {
 
   // Time against maximum reflection depth.
   void depth_sweep() {
-    for (const auto& spec : split(o_.depth_scene)) depth_sweep(spec);
+    for (const auto& spec : split_list(o_.depth_scene)) depth_sweep(spec);
   }
   void depth_sweep(const std::string& spec) {
     const auto bes = usable_backends(o_.sweep_backends);
@@ -481,7 +467,7 @@ class Bench {
     every.specular = every.reflection = every.refraction = true;
     every.vertex_normals = every.vertex_colors = true;
     every.stack = rt::kRayStack;
-    for (const auto& spec : split(o_.scenes)) {
+    for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
       rt::Grid grid = rt::build_grid(scene, scene.options.grid);
       rt::Tracer special(scene, grid), generic(scene, grid, all);
@@ -584,7 +570,7 @@ int main(int argc, char** argv) {
   int rc = 0;
   try {
     parse_size(o.size, o.width, o.height);
-    const auto sections = split(o.sections);
+    const auto sections = split_list(o.sections);
     auto has = [&](const char* s) {
       return std::find(sections.begin(), sections.end(), s) != sections.end();
     };

@@ -347,7 +347,8 @@ TEST_P(HardCases, SharedEdgesAndVerticesAreWatertight) {
     // The watertight test must not leak; Moller-Trumbore may (counted in the benchmark).
     // Only in strict: in fast mode a driver may contract the edge functions into FMAs, which
     // breaks their exact antisymmetry on shared edges (NVIDIA's OpenCL does: docs/raytracer.md).
-    const bool must = c.knobs.triangle == TriangleTest::Watertight && c.accuracy == Accuracy::Strict;
+    const bool must =
+        c.knobs.triangle == TriangleTest::Watertight && c.accuracy == Accuracy::Strict;
     check_rays(s, g, c, GetParam(), o, d, must, "fan and subdivided plane");
   }
 }
@@ -379,7 +380,8 @@ TEST_P(HardCases, RaysFromInsideClosedMeshesAlwaysHit) {
     d.push_back(glm::normalize(dir));
   }
   for (const Config& c : intersect_configs()) {
-    const bool must = c.knobs.triangle == TriangleTest::Watertight && c.accuracy == Accuracy::Strict;
+    const bool must =
+        c.knobs.triangle == TriangleTest::Watertight && c.accuracy == Accuracy::Strict;
     check_rays(s, g, c, GetParam(), o, d, must, "inside closed meshes");
   }
 }
@@ -662,6 +664,20 @@ struct Counts {
   int acne = 0, lost = 0, lit = 0, shadowed = 0, nonfinite = 0;
 };
 
+// A render of scene s at w x h on a backend with one self-intersection offset.
+RenderResult render_with_offset(const Scene& s, const Grid& g, SelfIntersection off,
+                                const std::string& backend, Accuracy a, int w, int h) {
+  TracerOptions k;
+  k.offset = off;
+  Tracer tracer(s, g, k);
+  RenderSettings rs;
+  rs.backend = backend;
+  rs.accuracy = a;
+  rs.width = w;
+  rs.height = h;
+  return tracer.render(rs, s.camera);
+}
+
 Counts count_errors(const ShadowCase& c, const RenderResult& r) {
   Counts n;
   for (size_t p = 0; p < r.color.size(); ++p) {
@@ -687,16 +703,10 @@ TEST_P(HardCases, NoAcneFarFromTheOriginOrScaledTiny) {
     Grid g = build_grid(c.scene, 0);
     for (Accuracy a : {Accuracy::Strict, Accuracy::Fast})
       for (SelfIntersection off : {SelfIntersection::Epsilon, SelfIntersection::Scaled}) {
+        RenderResult r = render_with_offset(c.scene, g, off, GetParam(), a, W, H);
+        Counts n = count_errors(c, r);
         TracerOptions k;
         k.offset = off;
-        Tracer tracer(c.scene, g, k);
-        RenderSettings rs;
-        rs.backend = GetParam();
-        rs.accuracy = a;
-        rs.width = W;
-        rs.height = H;
-        RenderResult r = tracer.render(rs, c.scene.camera);
-        Counts n = count_errors(c, r);
         const std::string what = "translate " + std::to_string(pl.translate) + " scale " +
                                  std::to_string(pl.scale) + " [" + rill::accuracy_name(a) + " " +
                                  k.str() + "]";
@@ -717,14 +727,7 @@ TEST_P(HardCases, LightsOnAndNearSurfaces) {
     ShadowCase c = shadow_case(0.0f, 1.0f, W, H, h);
     Grid g = build_grid(c.scene, 0);
     for (SelfIntersection off : {SelfIntersection::Epsilon, SelfIntersection::Scaled}) {
-      TracerOptions k;
-      k.offset = off;
-      Tracer tracer(c.scene, g, k);
-      RenderSettings rs;
-      rs.backend = GetParam();
-      rs.width = W;
-      rs.height = H;
-      RenderResult r = tracer.render(rs, c.scene.camera);
+      RenderResult r = render_with_offset(c.scene, g, off, GetParam(), Accuracy::Strict, W, H);
       Counts n = count_errors(c, r);
       EXPECT_EQ(n.nonfinite, 0);
       if (h == 0.0f) {
@@ -749,14 +752,9 @@ TEST_P(HardCases, LightsOnAndNearSurfaces) {
     one.lights = {s.lights[static_cast<size_t>(light)]};
     Grid g = build_grid(one, 4);
     for (SelfIntersection off : {SelfIntersection::Epsilon, SelfIntersection::Scaled}) {
+      RenderResult r = render_with_offset(one, g, off, GetParam(), Accuracy::Strict, W, H);
       TracerOptions k;
       k.offset = off;
-      Tracer tracer(one, g, k);
-      RenderSettings rs;
-      rs.backend = GetParam();
-      rs.width = W;
-      rs.height = H;
-      RenderResult r = tracer.render(rs, one.camera);
       const CameraFrame f = camera_frame(one.camera, W, H);
       const glm::dvec3 L(one.lights[0].position);
       int floor = 0, dark = 0, wrong = 0;

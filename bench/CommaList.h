@@ -1,0 +1,18 @@
+// The benchmarks' list options ("cpu,opencl", "1,4,8"): comma-separated, empty items dropped.
+#pragma once
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace rill::bench {
+
+inline std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> v;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) v.push_back(item);
+  return v;
+}
+
+}  // namespace rill::bench
