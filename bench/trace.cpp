@@ -177,17 +177,11 @@ struct PrimaryRun {
              const std::vector<glm::vec3>& d)
       : backend(be),
         kernel(tracer.intersect_kernel(be)),
-        origins(padded(o, be, glm::vec3(0.0f))),
-        dirs(padded(d, be, glm::vec3(0.0f, 0.0f, 1.0f))),
+        origins(o),
+        dirs(d),
         prim(origins.size()),
         dist(origins.size()) {
     kernel.inputs(origins, dirs).outputs(prim, dist);
-  }
-  static std::vector<glm::vec3> padded(std::vector<glm::vec3> v, const std::string& be,
-                                       glm::vec3 fill) {
-    const int64_t n = static_cast<int64_t>(v.size());
-    v.resize(static_cast<size_t>(rt::padded_rows(be, n, 1) * n), fill);
-    return v;
   }
   double run() {
     const auto t = Clock::now();

@@ -489,8 +489,7 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
   r.from_cache = K.raygen.info().cache_hit || K.raygen.info().from_disk_cache;
 
   max_depth.set(depth);
-  const int64_t rows = padded_rows(rs.backend, width, height);
-  Multipass::Buffers B(width, rows);
+  Multipass::Buffers B(width, height);
   r.compile_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
@@ -498,10 +497,21 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
     throw std::runtime_error("multipass: the wait threshold must be in (0, 1] (got " +
                              std::to_string(rs.wait_threshold) + ")");
   // Per-pass statistics, in the order the passes first run.
-  enum Pass { kRaygen, kSetup, kTraverse, kIntersect, kFinish, kSurface, kShadowGen, kShadowAcc, kCombine, kPasses };
-  static const char* const kPassNames[kPasses] = {"raygen",  "voxel_precalc", "traverser",
-                                                  "intersector", "finish", "surface",
-                                                  "shadow_rays", "shadow_light", "combine"};
+  enum Pass {
+    kRaygen,
+    kSetup,
+    kTraverse,
+    kIntersect,
+    kFinish,
+    kSurface,
+    kShadowGen,
+    kShadowAcc,
+    kCombine,
+    kPasses
+  };
+  static const char* const kPassNames[kPasses] = {"raygen",      "voxel_precalc", "traverser",
+                                                  "intersector", "finish",        "surface",
+                                                  "shadow_rays", "shadow_light",  "combine"};
   r.passes.assign(kPasses, PassStats{});
   for (int p = 0; p < kPasses; ++p) r.passes[static_cast<size_t>(p)].name = kPassNames[p];
 
@@ -512,7 +522,8 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
     const auto t = std::chrono::steady_clock::now();
     const int64_t written = mask && rs.masking ? k.execute(*mask) : k.execute();
     PassStats& st = r.passes[static_cast<size_t>(pass)];
-    st.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    st.ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
     ++st.calls;
     st.processed += k.last_launch().processed;
     st.written += written;
@@ -553,8 +564,7 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
     K.surface.inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_w, B.path_i, B.color)
         .outputs(B.local, B.color, B.path_i, B.aov_depth, B.aov_prim, B.aov_normal, B.path_state);
     K.combine.inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_w, B.path_i, B.color, B.local)
-        .outputs(B.color, B.path_w, B.path_i, B.ray_o, B.ray_d, B.tr_vox, B.tr_state,
-                 B.path_state);
+        .outputs(B.color, B.path_w, B.path_i, B.ray_o, B.ray_d, B.tr_vox, B.tr_state, B.path_state);
     const rill::StateMask with_surface = where(B.path_state, kPathSurface);
     for (int bounce = 0; bounce <= depth; ++bounce) {
       if (F.geometry) trace(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id);
@@ -574,18 +584,14 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
       }
       run(K.combine, kCombine, with_surface);
     }
-    auto crop = [npix](auto v) {
-      v.resize(npix);
-      return v;
-    };
-    std::vector<glm::ivec4> pi = crop(B.path_i.download());
+    std::vector<glm::ivec4> pi = B.path_i.download();
     for (const glm::ivec4& p : pi) r.rays += p.z;
-    std::vector<glm::vec3> c = crop(B.color.download());
+    std::vector<glm::vec3> c = B.color.download();
     if (sample == 0) {
       r.color = c;
-      r.depth = crop(B.aov_depth.download());
-      r.prim = crop(B.aov_prim.download());
-      r.normal = crop(B.aov_normal.download());
+      r.depth = B.aov_depth.download();
+      r.prim = B.aov_prim.download();
+      r.normal = B.aov_normal.download();
     }
     if (spp > 1)
       for (size_t p = 0; p < npix; ++p) sum[p] += glm::dvec3(c[p]);

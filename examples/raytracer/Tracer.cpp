@@ -99,12 +99,6 @@ glm::vec2 sample_offset(int k) {
   return glm::vec2(halton(k, 2), halton(k, 3));
 }
 
-int64_t padded_rows(const std::string& backend, int64_t width, int64_t height) {
-  constexpr int64_t kGlslRow = 4096;
-  if (backend != "glsl" || width * height >= kGlslRow) return height;
-  return (kGlslRow + width - 1) / width;
-}
-
 // ---- scene data and uniforms ---------------------------------------------------------------
 
 void Tracer::Impl::upload() {
@@ -888,16 +882,15 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
   const int64_t iters =
       int64_t{depth + 1} * (static_cast<int64_t>(sc.lights.size()) + 1) * stack_factor * 2 + 8;
 
-  const int64_t rows = padded_rows(rs.backend, r.width, r.height);
-  Stream<Float3> color(r.width, rows), normal(r.width, rows);
-  Stream<Float> dist(r.width, rows);
-  Stream<Int> prim(r.width, rows), rays(r.width, rows);
+  Stream<Float3> color(r.width, r.height), normal(r.width, r.height);
+  Stream<Float> dist(r.width, r.height);
+  Stream<Int> prim(r.width, r.height), rays(r.width, r.height);
   k.outputs(color, dist, prim, normal, rays);
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
   // below is tracing alone.
   const auto warm_key =
-      std::make_pair(rs.backend + "/" + accuracy_name(rs.accuracy), r.width * rows);
+      std::make_pair(rs.backend + "/" + accuracy_name(rs.accuracy), r.width * r.height);
   if (!I.warmed.count(warm_key)) {
     I.max_iter.set(0);
     k.execute();
@@ -909,27 +902,23 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
   const size_t npix = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
-  auto crop = [npix](auto v) {
-    v.resize(npix);
-    return v;
-  };
   std::vector<glm::dvec3> sum(spp > 1 ? npix : 0, glm::dvec3(0.0));
   const auto start = std::chrono::steady_clock::now();
   for (int s = 0; s < spp; ++s) {
     I.offset.set(sample_offset(s));
     k.execute();
     ++r.launches;
-    std::vector<int32_t> n = crop(rays.download());
+    std::vector<int32_t> n = rays.download();
     for (int32_t x : n) r.rays += x;
     if (s == 0) {
-      r.color = crop(color.download());
-      r.depth = crop(dist.download());
-      r.prim = crop(prim.download());
-      r.normal = crop(normal.download());
+      r.color = color.download();
+      r.depth = dist.download();
+      r.prim = prim.download();
+      r.normal = normal.download();
       if (spp > 1)
         for (size_t p = 0; p < npix; ++p) sum[p] = glm::dvec3(r.color[p]);
     } else {
-      std::vector<glm::vec3> c = crop(color.download());
+      std::vector<glm::vec3> c = color.download();
       for (size_t p = 0; p < npix; ++p) sum[p] += glm::dvec3(c[p]);
     }
   }
@@ -947,7 +936,7 @@ std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Cam
   I.set_camera(camera, width, height);
   I.offset.set(offset);
   Kernel k = compile(I.camera_program, backend);
-  Stream<Float3> dirs(width, padded_rows(backend, width, height));
+  Stream<Float3> dirs(width, height);
   k.outputs(dirs);
   k.execute();
   std::vector<glm::vec3> d = dirs.download();
@@ -973,19 +962,13 @@ void Tracer::intersect(const std::string& backend, const std::vector<glm::vec3>&
   prim.clear();
   dist.clear();
   if (n == 0) return;
-  const size_t m = static_cast<size_t>(padded_rows(backend, static_cast<int64_t>(n), 1)) * n;
-  std::vector<glm::vec3> po(origins), pd(dirs);
-  po.resize(std::max<size_t>(m, 1), glm::vec3(0.0f));
-  pd.resize(std::max<size_t>(m, 1), glm::vec3(0.0f, 0.0f, 1.0f));
-  Stream<Float3> o(po), d(pd);
-  Stream<Int> p(static_cast<int64_t>(po.size()));
-  Stream<Float> t(static_cast<int64_t>(po.size()));
+  Stream<Float3> o(origins), d(dirs);
+  Stream<Int> p(static_cast<int64_t>(n));
+  Stream<Float> t(static_cast<int64_t>(n));
   k.inputs(o, d).outputs(p, t);
   k.execute();
   prim = p.download();
   dist = t.download();
-  prim.resize(n);
-  dist.resize(n);
 }
 
 }  // namespace rt

@@ -146,9 +146,4 @@ std::vector<typename V::host_type> padded(std::vector<typename V::host_type> v) 
   return v;
 }
 
-// Workaround for a GLSL backend bug (reported): an array gather computes the texel from
-// the launch's row length instead of the array's, so on GLSL a launch must cover at least
-// one full 4096-texel row. Small launches are padded with rows the caller ignores.
-int64_t padded_rows(const std::string& backend, int64_t width, int64_t height);
-
 }  // namespace rt
