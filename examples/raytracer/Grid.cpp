@@ -60,6 +60,63 @@ glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n) {
   return r;
 }
 
+void compute_empty_distances(Grid& g) {
+  const glm::ivec3 r = g.res;
+  if (g.voxels.size() != static_cast<size_t>(g.voxel_count())) return;
+  bool any = false;
+  for (const glm::ivec2& v : g.voxels) any = any || v.y > 0;
+  if (!any) {
+    for (glm::ivec2& v : g.voxels) v.x = 0;
+    return;
+  }
+  // The chessboard distance transform (Rosenfeld & Pfaltz): a forward raster pass takes
+  // the 13 of the 26 neighbours already visited, a backward pass the other 13; with unit
+  // weights the two passes give the exact distance. The distances live in a copy of the
+  // grid with a one-voxel border (kMaxSkip: outside counts as empty), so that the inner
+  // loop needs no bounds checks.
+  const int64_t X = r.x + 2, Y = r.y + 2, Z = r.z + 2;
+  std::vector<int32_t> dist(static_cast<size_t>(X * Y * Z), kMaxSkip);
+  auto inner = [&](int64_t x, int64_t y, int64_t z) {
+    return static_cast<size_t>((x + 1) + X * ((y + 1) + Y * (z + 1)));
+  };
+  auto entry = [&](int64_t x, int64_t y, int64_t z) -> glm::ivec2& {
+    return g.voxels[static_cast<size_t>(x + r.x * (y + r.y * z))];
+  };
+  for (int64_t z = 0; z < r.z; ++z)
+    for (int64_t y = 0; y < r.y; ++y)
+      for (int64_t x = 0; x < r.x; ++x)
+        if (entry(x, y, z).y > 0) dist[inner(x, y, z)] = 0;
+  // The neighbours that come before a voxel in the forward scan (z, then y, then x): all
+  // have a smaller flat index.
+  int64_t before[13];
+  int nb = 0;
+  for (int dz = -1; dz <= 0; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (dz < 0 || dy < 0 || (dy == 0 && dx < 0)) before[nb++] = dx + X * (dy + Y * dz);
+  for (int pass = 0; pass < 2; ++pass) {
+    const int64_t sign = pass == 0 ? 1 : -1;
+    for (int64_t zi = 0; zi < r.z; ++zi)
+      for (int64_t yi = 0; yi < r.y; ++yi)
+        for (int64_t xi = 0; xi < r.x; ++xi) {
+          const size_t i =
+              pass == 0 ? inner(xi, yi, zi) : inner(r.x - 1 - xi, r.y - 1 - yi, r.z - 1 - zi);
+          int32_t best = dist[i];
+          if (best == 0) continue;
+          for (int k = 0; k < 13; ++k)
+            best = std::min(
+                best, dist[static_cast<size_t>(static_cast<int64_t>(i) + sign * before[k])] + 1);
+          dist[i] = std::min(best, kMaxSkip);
+        }
+  }
+  for (int64_t z = 0; z < r.z; ++z)
+    for (int64_t y = 0; y < r.y; ++y)
+      for (int64_t x = 0; x < r.x; ++x) {
+        glm::ivec2& e = entry(x, y, z);
+        if (e.y == 0) e.x = dist[inner(x, y, z)];
+      }
+}
+
 Grid build_grid(const Scene& s, int resolution) {
   const auto start = std::chrono::steady_clock::now();
   Grid g;
@@ -154,6 +211,7 @@ Grid build_grid(const Scene& s, int resolution) {
           }
     }
   }
+  compute_empty_distances(g);
   g.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return g;

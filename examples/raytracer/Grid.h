@@ -10,6 +10,14 @@
 // list), the element list (triangle ids, ascending within a voxel) and the triangle data
 // (in Tracer.cpp). Voxel (x, y, z) has index x + res.x * (y + res.y * z).
 //
+// Empty-space skipping (a "proximity cloud", Cohen & Sheffer 1994): an empty voxel has no
+// use for its start, so its entry holds instead its chessboard distance to the nearest
+// non-empty voxel (max over the axes of |index difference|; 0 never occurs, and a grid
+// with no triangles at all has 0 everywhere). Every voxel closer than that is empty, so the
+// traversal may jump across them in one step (Tracer.cpp, leave_voxel) instead of visiting
+// them one by one; the entry it loads anyway tells it how far. Voxel entry = (start, count)
+// when count > 0, (distance, 0) when count == 0.
+//
 // Resolution: --grid N gives N^3 voxels. "auto" chooses cells of equal size, about
 // kDensity = 4 voxels per triangle: with the box extents d and n triangles,
 // res_a = round(d_a * cbrt(kDensity * n / (d_x d_y d_z))), each clamped to 1..256 and the
@@ -34,7 +42,7 @@ struct Grid {
   glm::vec3 lo{0.0f}, hi{0.0f};  // hi = lo + res * cell (float32)
   glm::vec3 cell{1.0f};
   glm::ivec3 res{1};
-  std::vector<glm::ivec2> voxels;  // (start, count) into elements
+  std::vector<glm::ivec2> voxels;  // (start, count) into elements; (distance, 0) if empty
   std::vector<int32_t> elements;
   size_t usable = 0;      // triangles in the grid
   size_t degenerate = 0;  // zero area: left out
@@ -50,6 +58,11 @@ bool triangle_box_overlap(const glm::dvec3& c, const glm::dvec3& h, const glm::d
 bool triangle_usable(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
 // The automatic resolution for n triangles in a box of extent d.
 glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n);
+
+// Writes into each empty voxel's entry its chessboard distance to the nearest non-empty
+// voxel (exact: two raster passes over the 26-neighbourhood, capped at kMaxSkip).
+void compute_empty_distances(Grid& g);
+constexpr int32_t kMaxSkip = 1 << 16;
 
 // resolution: voxels per axis, 0 = auto.
 Grid build_grid(const Scene& s, int resolution = 0);

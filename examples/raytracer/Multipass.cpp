@@ -185,7 +185,7 @@ void Multipass::capture(const Tracer::Impl& I) {
         found = true;
       }
       RILL_ELSE {
-        I.leave_voxel(d, t_exit, best_t, best_id, any_hit, vox, tmx, steps, done);
+        I.leave_voxel(d, t_exit, best_t, best_id, any_hit, range, vox, tmx, steps, done);
       }
       RILL_ENDIF;
     }
@@ -231,7 +231,9 @@ void Multipass::capture(const Tracer::Impl& I) {
     Int steps = w >> 4;
     RILL_IF(c >= end) {  // the voxel's list is done
       Bool done = false;
-      I.leave_voxel(d, tin.w(), best_t, best_id, (w & kAnyHit) != 0, vox, tmx, steps, done);
+      // A voxel with triangles: a plain step.
+      I.leave_voxel(d, tin.w(), best_t, best_id, (w & kAnyHit) != 0, Int2(0), vox, tmx, steps,
+                    done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDIF;
@@ -272,11 +274,12 @@ void Multipass::capture(const Tracer::Impl& I) {
     Float3 tmx = tin(0, 1, 2);
     Int steps = w >> 4;
     Bool any_hit = (w & kAnyHit) != 0;
+    Int2 entry(0);  // a resumed voxel (kWait) has triangles: a plain step after it
     RILL_WHILE(state != kFinished) {
       RILL_IF(state == kEnter) {
-        Int2 range = I.voxel_range(vox);
-        c = range.x();
-        end = range.x() + range.y();
+        entry = I.voxel_range(vox);
+        c = entry.x();
+        end = entry.x() + entry.y();
       }
       RILL_ENDIF;
       RILL_WHILE(c < end) {
@@ -285,7 +288,7 @@ void Multipass::capture(const Tracer::Impl& I) {
       }
       RILL_ENDWHILE;
       Bool done = false;
-      I.leave_voxel(d, tin.w(), best_t, best_id, any_hit, vox, tmx, steps, done);
+      I.leave_voxel(d, tin.w(), best_t, best_id, any_hit, entry, vox, tmx, steps, done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDWHILE;

@@ -350,11 +350,12 @@ void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& tr
 }
 
 void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float& best_t,
-                               const Int& best_id, const Bool& any_hit, Int3& vox, Float3& tmx,
-                               Int& steps, Bool& done) const {
+                               const Int& best_id, const Bool& any_hit, const Int2& entry,
+                               Int3& vox, Float3& tmx, Int& steps, Bool& done) const {
   Bool3 dz = flat_axes(d);
   Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
   Int3 step = select(dz, Int3(0), select(d > 0.0f, Int3(1), select(d < 0.0f, Int3(-1), Int3(0))));
+  Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
   // The distances to the voxel's exit planes: carried along (incremental), or computed from
   // the cell index and the ray's origin relative to the grid, carried in tmx (recompute).
   Float3 tb = tmx;
@@ -365,16 +366,42 @@ void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float
   Float t_leave = min(min(tb.x(), tb.y()), tb.z());
   done = best_id >= 0 && (best_t <= t_leave || any_hit);
   done = done || t_leave >= t_exit;  // the ray ends inside this voxel
-  // Step along the axis whose boundary is nearest.
-  Bool ax = tb.x() <= tb.y() && tb.x() <= tb.z();
-  Bool ay = !ax && tb.y() <= tb.z();
+  // An empty voxel at chessboard distance s >= 3 from the nearest listed triangle: every
+  // voxel within s - 1 of it is empty, so the ray may jump k = s - 1 voxel shells at once
+  // (Grid.h). The jump lands where the ray crosses from shell k - 1 into shell k: at
+  // T = min over the axes of tb + (k - 1) tdl, k boundaries along that axis and, along each
+  // other axis, the boundaries crossed before T. Rounding can make such a count one too
+  // many or too few only where T falls within ulps of a boundary; the voxels the ray then
+  // skips or adds are within k of this one, still empty, so the closest hit is unchanged
+  // (the shell k - 1 bound, rather than s - 1, is that margin). Shorter jumps cost more
+  // than the plain step they replace.
+  Int k = select(entry.y() == 0 && entry.x() >= 3, entry.x() - 1, Int(1));
+  Float3 tk = tb;
+  RILL_IF(k > 1) {
+    tk = select(dz, Float3(kBig), tb + to_float(k - 1) * tdl);
+  }
+  RILL_ENDIF;
+  // Step along the axis whose boundary is nearest (the first of equals).
+  Bool ax = tk.x() <= tk.y() && tk.x() <= tk.z();
+  Bool ay = !ax && tk.y() <= tk.z();
   Bool az = !ax && !ay;
   Bool3 m(ax, ay, az);
-  vox = vox + select(m, step, Int3(0));
-  if (K.traversal == Traversal::Incremental) {
-    Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
-    tmx = select(m, tmx + tdl, tmx);
+  RILL_IF(k > 1) {
+    Float T = min(min(tk.x(), tk.y()), tk.z());
+    done = done || T >= t_exit;  // the ray ends inside the empty region
+    // Boundaries crossed before T on each other axis: ceil((T - tb) / tdl), 0 to k - 1
+    // (NaN from infinite distances counts as none).
+    Float3 q = (T - tb) / tdl;
+    Float3 crossed = select(q > 0.0f, min(ceil(q), to_float(k - 1)), Float3(0.0f));
+    Int3 n = select(m, Int3(k), to_int(crossed));
+    vox = vox + step * n;
+    if (K.traversal == Traversal::Incremental) tmx = select(n > 0, tmx + to_float(n) * tdl, tmx);
   }
+  RILL_ELSE {
+    vox = vox + select(m, step, Int3(0));
+    if (K.traversal == Traversal::Incremental) tmx = select(m, tmx + tdl, tmx);
+  }
+  RILL_ENDIF;
   steps += 1;
   done = done || any(vox < 0) || any(vox >= grid_res) || steps > max_steps;
 }
@@ -406,8 +433,8 @@ void Tracer::Impl::intersect(const Float3& o, const Float3& d, const Float& tmax
         test_triangle(o, d, elements[range.x() + k], best_t, best_id, best_u, best_v);
       }
       RILL_ENDFOR;
-      leave_voxel(d, t_exit, best_t, best_id, any_hit != nullptr ? *any_hit : no, vox, tmx, steps,
-                  done);
+      leave_voxel(d, t_exit, best_t, best_id, any_hit != nullptr ? *any_hit : no, range, vox, tmx,
+                  steps, done);
     }
     RILL_UNTIL(done);
     hit = best_id >= 0;

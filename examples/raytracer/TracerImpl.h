@@ -98,7 +98,8 @@ struct Tracer::Impl {
   // grid's corner, from which leave_voxel recomputes the boundaries from the cell index).
   void dda_init(const Float3& o, const Float3& d, const Float& t_enter, Int3& vox,
                 Float3& tmx) const;
-  // The index range (start, count) of a voxel's triangles.
+  // The voxel's entry: the index range (start, count) of its triangles, or (distance to the
+  // nearest non-empty voxel, 0) when it is empty (Grid.h).
   Int2 voxel_range(const Int3& vox) const;
   // The knob's triangle test (Moller-Trumbore or watertight) against one triangle; keeps
   // the closest hit (ties: the smaller id).
@@ -106,9 +107,12 @@ struct Tracer::Impl {
                      Float& best_u, Float& best_v) const;
   // After a voxel's triangles: done when the best hit lies within the voxel (or any hit,
   // for shadow rays), the ray ends inside it, it leaves the grid or the steps run out;
-  // otherwise steps to the next voxel (the axis with the nearest boundary).
+  // otherwise steps to the next voxel (the axis with the nearest boundary), or, from an
+  // empty voxel far from any triangle, jumps over the empty voxels around it. entry is the
+  // voxel's entry (voxel_range; (0, 0) where the caller has not loaded it: a plain step).
   void leave_voxel(const Float3& d, const Float& t_exit, const Float& best_t, const Int& best_id,
-                   const Bool& any_hit, Int3& vox, Float3& tmx, Int& steps, Bool& done) const;
+                   const Bool& any_hit, const Int2& entry, Int3& vox, Float3& tmx, Int& steps,
+                   Bool& done) const;
   // The whole closest-hit (or any-hit) search, for the single kernel.
   void intersect(const Float3& o, const Float3& d, const Float& tmax, const Bool* any_hit,
                  Bool& hit, Float& best_t, Int& best_id, Float& best_u, Float& best_v) const;

@@ -68,6 +68,7 @@ TEST(Grid, EveryTriangleIsInTheVoxelsItTouches) {
     Grid g = build_grid(s, res);
     ASSERT_EQ(static_cast<int64_t>(g.voxels.size()), g.voxel_count());
     for (const glm::ivec2& v : g.voxels) {
+      if (v.y == 0) continue;  // an empty voxel's x is its distance (EmptyDistances)
       ASSERT_GE(v.x, 0);
       ASSERT_LE(static_cast<size_t>(v.x + v.y), g.elements.size());
       ASSERT_TRUE(std::is_sorted(g.elements.begin() + v.x, g.elements.begin() + v.x + v.y));
@@ -92,6 +93,47 @@ TEST(Grid, EveryTriangleIsInTheVoxelsItTouches) {
       }
     }
   }
+}
+
+// The chessboard distance stored in every empty voxel equals a brute-force minimum over the
+// non-empty voxels, which is what makes the traversal's jumps safe.
+TEST(Grid, EmptyDistances) {
+  for (const char* name : {"thesis-a", "thesis-b", "cornell"}) {
+    for (int res : {0, 5, 24}) {
+      SCOPED_TRACE(std::string(name) + " " + std::to_string(res));
+      Grid g = build_grid(builtin_scene(name), res);
+      std::vector<glm::ivec3> full;
+      for (int z = 0; z < g.res.z; ++z)
+        for (int y = 0; y < g.res.y; ++y)
+          for (int x = 0; x < g.res.x; ++x)
+            if (g.voxels[static_cast<size_t>(x + g.res.x * (y + g.res.y * z))].y > 0)
+              full.emplace_back(x, y, z);
+      ASSERT_FALSE(full.empty());
+      int checked = 0, far = 0;
+      for (int z = 0; z < g.res.z; ++z)
+        for (int y = 0; y < g.res.y; ++y)
+          for (int x = 0; x < g.res.x; ++x) {
+            const glm::ivec2 e = g.voxels[static_cast<size_t>(x + g.res.x * (y + g.res.y * z))];
+            if (e.y > 0) continue;
+            int best = kMaxSkip;
+            for (const glm::ivec3& f : full)
+              best = std::min(best,
+                              std::max({std::abs(f.x - x), std::abs(f.y - y), std::abs(f.z - z)}));
+            ASSERT_EQ(e.x, best) << "voxel " << x << " " << y << " " << z;
+            ++checked;
+            far += best >= 3;
+          }
+      if (res == 24) {
+        EXPECT_GT(checked, 0);
+        EXPECT_GT(far, 0);  // some voxels are far enough to jump from
+      }
+    }
+  }
+  // No triangles at all: one voxel, nothing to skip to.
+  Scene empty;
+  Grid g = build_grid(empty, 0);
+  ASSERT_EQ(g.voxels.size(), 1u);
+  EXPECT_EQ(g.voxels[0], glm::ivec2(0));
 }
 
 TEST(Grid, ResolutionHeuristic) {
