@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 namespace rt {
 
 namespace {
@@ -60,13 +62,112 @@ glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n) {
   return r;
 }
 
+namespace {
+
+// One voxel's subgrid: its resolution, and per sub-voxel (in index order) the count and the
+// ascending triangle ids, concatenated.
+struct Subgrid {
+  int m = 0;
+  std::vector<int32_t> counts, ids;
+};
+
+Subgrid make_subgrid(const Grid& g, const Scene& s, int64_t v, double mag) {
+  const glm::ivec2 e = g.voxels[static_cast<size_t>(v)];
+  Subgrid r;
+  const int m = r.m = static_cast<int>(std::clamp(std::lround(std::cbrt(kSubgridDensity * e.y)), 2l,
+                                                  static_cast<long>(kSubgridMaxRes)));
+  const glm::ivec3 vi(v % g.res.x, (v / g.res.x) % g.res.y, v / (int64_t{g.res.x} * g.res.y));
+  // The voxel's corner and the sub-voxel size as the kernel computes them, in float
+  // (walk_subgrid); the margin covers the rounding of its DDA, as on the top level.
+  glm::dvec3 corner, sub;
+  for (int a = 0; a < 3; ++a) {
+    corner[a] = static_cast<double>(g.lo[a] + static_cast<float>(vi[a]) * g.cell[a]);
+    sub[a] = static_cast<double>(g.cell[a] / static_cast<float>(m));
+  }
+  const glm::dvec3 margin = sub * 1e-4 + glm::dvec3(4e-7 * mag);
+  const glm::dvec3 half = sub * 0.5 + margin;
+  std::vector<std::pair<int32_t, int32_t>> refs;  // (sub-voxel, triangle)
+  for (int32_t i = 0; i < e.y; ++i) {
+    const int32_t t = g.elements[static_cast<size_t>(e.x + i)];
+    const glm::dvec3 tri[3] = {glm::dvec3(s.positions[3 * t]), glm::dvec3(s.positions[3 * t + 1]),
+                               glm::dvec3(s.positions[3 * t + 2])};
+    glm::ivec3 lo, hi;
+    for (int k = 0; k < 3; ++k) {
+      double mn = std::min({tri[0][k], tri[1][k], tri[2][k]}) - margin[k];
+      double mx = std::max({tri[0][k], tri[1][k], tri[2][k]}) + margin[k];
+      lo[k] = std::clamp(static_cast<int>(std::floor((mn - corner[k]) / sub[k])), 0, m - 1);
+      hi[k] = std::clamp(static_cast<int>(std::floor((mx - corner[k]) / sub[k])), 0, m - 1);
+    }
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x)
+          if (triangle_box_overlap(corner + (glm::dvec3(x, y, z) + 0.5) * sub, half, tri))
+            refs.emplace_back(x + m * (y + m * z), t);
+  }
+  // Grouped by sub-voxel; stable, so each list stays ascending like the voxel's.
+  std::stable_sort(refs.begin(), refs.end(),
+                   [](const auto& p, const auto& q) { return p.first < q.first; });
+  r.counts.assign(static_cast<size_t>(m) * m * m, 0);
+  r.ids.reserve(refs.size());
+  for (const auto& [k, t] : refs) {
+    ++r.counts[static_cast<size_t>(k)];
+    r.ids.push_back(t);
+  }
+  return r;
+}
+
+}  // namespace
+
+void build_subgrids(Grid& g, const Scene& s, int32_t min_count) {
+  const int64_t nv = g.voxel_count();
+  if (g.voxels.size() != static_cast<size_t>(nv)) return;
+  double mag = 0;
+  for (int a = 0; a < 3; ++a)
+    mag = std::max(
+        {mag, std::fabs(static_cast<double>(g.lo[a])), std::fabs(static_cast<double>(g.hi[a]))});
+  std::vector<int64_t> dense;
+  for (int64_t v = 0; v < nv; ++v)
+    if (g.voxels[static_cast<size_t>(v)].y > min_count) dense.push_back(v);
+  if (dense.empty()) return;
+  // The subgrids are independent: built in parallel, then laid out in voxel order.
+  std::vector<Subgrid> subs(dense.size());
+  tbb::parallel_for(size_t{0}, dense.size(),
+                    [&](size_t i) { subs[i] = make_subgrid(g, s, dense[i], mag); });
+  std::vector<int32_t> elements;
+  elements.reserve(g.elements.size());
+  size_t next = 0;
+  for (int64_t v = 0; v < nv; ++v) {
+    glm::ivec2& e = g.voxels[static_cast<size_t>(v)];
+    if (next < dense.size() && dense[next] == v) {
+      const Subgrid& sg = subs[next++];
+      const size_t base = g.voxels.size();  // (g.voxels grows: e is not used after this)
+      const int32_t m = sg.m;
+      g.voxels[static_cast<size_t>(v)] = glm::ivec2(static_cast<int32_t>(base), -m);
+      int32_t start = static_cast<int32_t>(elements.size());
+      for (int32_t c : sg.counts) {
+        g.voxels.emplace_back(start, c);
+        start += c;
+      }
+      elements.insert(elements.end(), sg.ids.begin(), sg.ids.end());
+      ++g.subgrids;
+      continue;
+    }
+    const glm::ivec2 old = e;
+    e.x = static_cast<int32_t>(elements.size());
+    elements.insert(elements.end(), g.elements.begin() + old.x, g.elements.begin() + old.x + old.y);
+  }
+  if (elements.size() > (size_t{1} << 30)) throw SceneError("grid too large: reduce --grid");
+  g.elements = std::move(elements);
+}
+
 void compute_empty_distances(Grid& g) {
   const glm::ivec3 r = g.res;
-  if (g.voxels.size() != static_cast<size_t>(g.voxel_count())) return;
+  const size_t top = static_cast<size_t>(g.voxel_count());
+  if (g.voxels.size() < top) return;
   bool any = false;
-  for (const glm::ivec2& v : g.voxels) any = any || v.y > 0;
+  for (size_t v = 0; v < top; ++v) any = any || g.voxels[v].y != 0;
   if (!any) {
-    for (glm::ivec2& v : g.voxels) v.x = 0;
+    for (size_t v = 0; v < top; ++v) g.voxels[v].x = 0;
     return;
   }
   // The chessboard distance transform (Rosenfeld & Pfaltz): a forward raster pass takes
@@ -85,7 +186,7 @@ void compute_empty_distances(Grid& g) {
   for (int64_t z = 0; z < r.z; ++z)
     for (int64_t y = 0; y < r.y; ++y)
       for (int64_t x = 0; x < r.x; ++x)
-        if (entry(x, y, z).y > 0) dist[inner(x, y, z)] = 0;
+        if (entry(x, y, z).y != 0) dist[inner(x, y, z)] = 0;
   // The neighbours that come before a voxel in the forward scan (z, then y, then x): all
   // have a smaller flat index.
   int64_t before[13];
@@ -117,7 +218,7 @@ void compute_empty_distances(Grid& g) {
       }
 }
 
-Grid build_grid(const Scene& s, int resolution) {
+Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min) {
   const auto start = std::chrono::steady_clock::now();
   Grid g;
   const size_t n = s.triangle_count();
@@ -211,6 +312,7 @@ Grid build_grid(const Scene& s, int resolution) {
           }
     }
   }
+  build_subgrids(g, s, subgrid_min);
   compute_empty_distances(g);
   g.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

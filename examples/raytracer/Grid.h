@@ -15,8 +15,20 @@
 // non-empty voxel (max over the axes of |index difference|; 0 never occurs, and a grid
 // with no triangles at all has 0 everywhere). Every voxel closer than that is empty, so the
 // traversal may jump across them in one step (Tracer.cpp, leave_voxel) instead of visiting
-// them one by one; the entry it loads anyway tells it how far. Voxel entry = (start, count)
-// when count > 0, (distance, 0) when count == 0.
+// them one by one; the entry it loads anyway tells it how far.
+//
+// Two levels (Jevans & Wyvill 1989; Kalojanov, Billeter & Slusallek 2011 on GPUs): a uniform
+// grid suits the empty space between objects, but a surface mesh puts many triangles in the
+// few voxels its surface crosses (the bunny: about 10 per voxel a ray reaches). A voxel
+// listing more than kSubgridMin triangles gets its own m x m x m subgrid (m from
+// kSubgridDensity sub-voxels per triangle, 2..kSubgridMaxRes), built with the same exact
+// overlap test and margin on the sub-voxels; the ray walks it with a second 3D-DDA confined
+// to the voxel (Tracer.cpp, walk_subgrid). Subgrid entries follow the top level's in
+// `voxels`: sub-voxel (i, j, k) of a subgrid at base b is voxels[b + i + m (j + m k)].
+//
+// A voxel entry is (start, count) into the element list when count > 0; (distance, 0) when
+// the voxel is empty; (base, -m) when it has a subgrid. Sub-voxel entries are (start, count)
+// (count 0: empty).
 //
 // Resolution: --grid N gives N^3 voxels. "auto" chooses cells of equal size, about
 // kDensity = 4 voxels per triangle: with the box extents d and n triangles,
@@ -29,6 +41,7 @@
 
 #include <glm/glm.hpp>
 
+#include <climits>
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +50,9 @@
 namespace rt {
 
 constexpr double kGridDensity = 4.0;
+constexpr int32_t kSubgridMin = 12;      // more triangles than this in a voxel: a subgrid
+constexpr double kSubgridDensity = 4.0;  // sub-voxels per triangle of the voxel
+constexpr int32_t kSubgridMaxRes = 8;
 
 struct Grid {
   glm::vec3 lo{0.0f}, hi{0.0f};  // hi = lo + res * cell (float32)
@@ -44,6 +60,7 @@ struct Grid {
   glm::ivec3 res{1};
   std::vector<glm::ivec2> voxels;  // (start, count) into elements; (distance, 0) if empty
   std::vector<int32_t> elements;
+  int64_t subgrids = 0;   // voxels with a subgrid
   size_t usable = 0;      // triangles in the grid
   size_t degenerate = 0;  // zero area: left out
   size_t non_finite = 0;  // a NaN or infinite vertex: left out
@@ -59,12 +76,16 @@ bool triangle_usable(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
 // The automatic resolution for n triangles in a box of extent d.
 glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n);
 
+// Replaces each voxel listing more than min_count triangles by a subgrid (above).
+void build_subgrids(Grid& g, const Scene& s, int32_t min_count = kSubgridMin);
 // Writes into each empty voxel's entry its chessboard distance to the nearest non-empty
 // voxel (exact: two raster passes over the 26-neighbourhood, capped at kMaxSkip).
 void compute_empty_distances(Grid& g);
 constexpr int32_t kMaxSkip = 1 << 16;
 
-// resolution: voxels per axis, 0 = auto.
-Grid build_grid(const Scene& s, int resolution = 0);
+// resolution: voxels per axis, 0 = auto. subgrid_min: voxels listing more triangles than
+// this get a subgrid (kNoSubgrids: a one-level grid).
+constexpr int32_t kNoSubgrids = INT32_MAX;
+Grid build_grid(const Scene& s, int resolution = 0, int32_t subgrid_min = kSubgridMin);
 
 }  // namespace rt

@@ -181,7 +181,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     // Empty voxels are stepped over here; leave_voxel's step limit ends the loop.
     RILL_WHILE(!done && !found) {
       range = I.voxel_range(vox);
-      RILL_IF(range.y() > 0) {
+      RILL_IF(range.y() != 0) {  // triangles, or a subgrid
         found = true;
       }
       RILL_ELSE {
@@ -193,7 +193,8 @@ void Multipass::capture(const Tracer::Impl& I) {
     vout = Int4(vox, select(found, Int(kWait), Int(kFinished)) | (w & kAnyHit) | (steps << 4));
     ts = select(found, Int(kWait), Int(kFinished));
     tout = Float4(tmx, t_exit);
-    cur = Int2(range.x(), range.x() + range.y());
+    // The cursor over the voxel's list, or a subgrid's entry (base, -m) as it is.
+    cur = select(range.y() < 0, range, Int2(range.x(), range.x() + range.y()));
   });
 
   intersect = rill::program("mp_intersector", [&] {
@@ -220,13 +221,22 @@ void Multipass::capture(const Tracer::Impl& I) {
     Int best_id = id_in;
     Int c = cin.x();
     Int end = cin.y();
+    Int3 vox = vin(0, 1, 2);
+    Float3 tmx = tin(0, 1, 2);
+    if (I.grid.subgrids > 0) {
+      RILL_IF(end < 0) {  // a subgrid: walked whole, in this pass
+        I.walk_subgrid(o, d, tin.w(), (w & kAnyHit) != 0, Int2(c, end), vox, tmx, best_t, best_id,
+                       best_u, best_v);
+        c = 0;
+        end = 0;
+      }
+      RILL_ENDIF;
+    }
     RILL_FOR(Int k = 0, k < kBatch && c < end, k += 1) {
       I.test_triangle(o, d, I.elements[c], best_t, best_id, best_u, best_v);
       c += 1;
     }
     RILL_ENDFOR;
-    Int3 vox = vin(0, 1, 2);
-    Float3 tmx = tin(0, 1, 2);
     Int state = kWait;
     Int steps = w >> 4;
     RILL_IF(c >= end) {  // the voxel's list is done
@@ -279,9 +289,18 @@ void Multipass::capture(const Tracer::Impl& I) {
       RILL_IF(state == kEnter) {
         entry = I.voxel_range(vox);
         c = entry.x();
-        end = entry.x() + entry.y();
+        end = select(entry.y() < 0, entry.y(), entry.x() + entry.y());
       }
       RILL_ENDIF;
+      if (I.grid.subgrids > 0) {
+        RILL_IF(end < 0) {  // a subgrid (entered here, or by the traverser)
+          I.walk_subgrid(o, d, tin.w(), any_hit, Int2(c, end), vox, tmx, best_t, best_id, best_u,
+                         best_v);
+          c = 0;
+          end = 0;
+        }
+        RILL_ENDIF;
+      }
       RILL_WHILE(c < end) {
         I.test_triangle(o, d, I.elements[c], best_t, best_id, best_u, best_v);
         c += 1;

@@ -349,6 +349,65 @@ void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& tr
   RILL_ENDIF;
 }
 
+Float3 Tracer::Impl::voxel_exits(const Float3& d, const Int3& vox, const Float3& tmx) const {
+  if (K.traversal == Traversal::Incremental) return tmx;
+  Bool3 dz = flat_axes(d);
+  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
+  Float3 plane = (to_float(vox) + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * grid_cell;
+  return select(dz, Float3(kBig), (plane - tmx) * inv);
+}
+
+// A second 3D-DDA, over the voxel's m^3 subgrid, from where the ray enters the voxel (or its
+// origin, if inside) to where it leaves it or ends. Sub-voxels are visited in the ray's order
+// and the walk stops once the best hit lies within the current one, exactly as on the top
+// level; a hit beyond the voxel stays the best so far and the top-level walk goes on. Where
+// rounding makes the entry point or the last exit fall within ulps of a sub-voxel face, the
+// sub-voxels' margin (Grid.cpp) holds the triangles near it, as on the top level.
+void Tracer::Impl::walk_subgrid(const Float3& o, const Float3& d, const Float& t_exit,
+                                const Bool& any_hit, const Int2& entry, const Int3& vox,
+                                const Float3& tmx, Float& best_t, Int& best_id, Float& best_u,
+                                Float& best_v) const {
+  Bool3 dz = flat_axes(d);
+  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
+  Int3 step = select(dz, Int3(0), select(d > 0.0f, Int3(1), select(d < 0.0f, Int3(-1), Int3(0))));
+  Int m = -entry.y();
+  Float fm = to_float(m);
+  Float3 sub = grid_cell / Float3(fm);
+  Float3 corner = grid_lo + to_float(vox) * grid_cell;
+  Float3 entry_plane = corner + select(d > 0.0f, Float3(0.0f), grid_cell);
+  Float3 t_in3 = select(dz, Float3(-kBig), (entry_plane - o) * inv);
+  Float t_in = max(max(t_in3.x(), t_in3.y()), max(t_in3.z(), 0.0f));
+  Float3 tb = voxel_exits(d, vox, tmx);
+  Float t_out = min(min(tb.x(), tb.y()), min(tb.z(), t_exit));
+  Float3 sf = clamp(floor((o + t_in * d - corner) / sub), Float3(0.0f), Float3(fm - 1.0f));
+  Int3 sv = to_int(sf);
+  Float3 sdl = select(dz, Float3(kBig), sub * abs(inv));
+  Float3 smx =
+      select(dz, Float3(kBig),
+             (corner + (sf + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * sub - o) * inv);
+  Int sub_steps = 0;
+  Bool done = false;
+  RILL_DO {
+    Int2 range = voxels[entry.x() + sv.x() + m * (sv.y() + m * sv.z())];
+    RILL_FOR(Int k = 0, k < range.y(), k += 1) {
+      test_triangle(o, d, elements[range.x() + k], best_t, best_id, best_u, best_v);
+    }
+    RILL_ENDFOR;
+    Float s_leave = min(min(smx.x(), smx.y()), smx.z());
+    done = best_id >= 0 && (best_t <= s_leave || any_hit);
+    done = done || s_leave >= t_out;
+    Bool ax = smx.x() <= smx.y() && smx.x() <= smx.z();
+    Bool ay = !ax && smx.y() <= smx.z();
+    Bool3 sm(ax, ay, !ax && !ay);
+    sv = sv + select(sm, step, Int3(0));
+    smx = select(sm, smx + sdl, smx);
+    sub_steps += 1;
+    // At most 3 (m - 1) + 1 steps inside (the argument of upload()'s step limit).
+    done = done || any(sv < 0) || any(sv >= Int3(m)) || sub_steps > 3 * m;
+  }
+  RILL_UNTIL(done);
+}
+
 void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float& best_t,
                                const Int& best_id, const Bool& any_hit, const Int2& entry,
                                Int3& vox, Float3& tmx, Int& steps, Bool& done) const {
@@ -356,13 +415,7 @@ void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float
   Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
   Int3 step = select(dz, Int3(0), select(d > 0.0f, Int3(1), select(d < 0.0f, Int3(-1), Int3(0))));
   Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
-  // The distances to the voxel's exit planes: carried along (incremental), or computed from
-  // the cell index and the ray's origin relative to the grid, carried in tmx (recompute).
-  Float3 tb = tmx;
-  if (K.traversal == Traversal::Recompute) {
-    Float3 plane = (to_float(vox) + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * grid_cell;
-    tb = select(dz, Float3(kBig), (plane - tmx) * inv);
-  }
+  Float3 tb = voxel_exits(d, vox, tmx);
   Float t_leave = min(min(tb.x(), tb.y()), tb.z());
   done = best_id >= 0 && (best_t <= t_leave || any_hit);
   done = done || t_leave >= t_exit;  // the ray ends inside this voxel
@@ -433,6 +486,13 @@ void Tracer::Impl::intersect(const Float3& o, const Float3& d, const Float& tmax
         test_triangle(o, d, elements[range.x() + k], best_t, best_id, best_u, best_v);
       }
       RILL_ENDFOR;
+      if (grid.subgrids > 0) {  // the second level's code only where the grid has one
+        RILL_IF(range.y() < 0) {
+          walk_subgrid(o, d, t_exit, any_hit != nullptr ? *any_hit : no, range, vox, tmx, best_t,
+                       best_id, best_u, best_v);
+        }
+        RILL_ENDIF;
+      }
       leave_voxel(d, t_exit, best_t, best_id, any_hit != nullptr ? *any_hit : no, range, vox, tmx,
                   steps, done);
     }

@@ -114,7 +114,7 @@ struct RenderResult {
   double compile_ms = 0;          // 0 when the compiled kernel came from a cache
   bool from_cache = false;
   double trace_ms = 0;
-  int64_t launches = 0;  // kernel launches while tracing
+  int64_t launches = 0;           // kernel launches while tracing
   std::vector<PassStats> passes;  // multipass only: per pass (Multipass.cpp)
   std::string backend;
 };

@@ -105,6 +105,13 @@ struct Tracer::Impl {
   // the closest hit (ties: the smaller id).
   void test_triangle(const Float3& o, const Float3& d, const Int& tri, Float& best_t, Int& best_id,
                      Float& best_u, Float& best_v) const;
+  // The distances along the ray to the voxel's exit planes (tmx itself when incremental).
+  Float3 voxel_exits(const Float3& d, const Int3& vox, const Float3& tmx) const;
+  // The triangles of a voxel with a subgrid (entry (base, -m), Grid.h): a 3D-DDA over its
+  // sub-voxels, within the voxel.
+  void walk_subgrid(const Float3& o, const Float3& d, const Float& t_exit, const Bool& any_hit,
+                    const Int2& entry, const Int3& vox, const Float3& tmx, Float& best_t,
+                    Int& best_id, Float& best_u, Float& best_v) const;
   // After a voxel's triangles: done when the best hit lies within the voxel (or any hit,
   // for shadow rays), the ray ends inside it, it leaves the grid or the steps run out;
   // otherwise steps to the next voxel (the axis with the nearest boundary), or, from an

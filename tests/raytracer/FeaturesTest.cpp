@@ -29,8 +29,9 @@ void walk(const rill::ir::Block& b, IrStats& s) {
   }
 }
 
-IrStats stats(const Scene& scene) {
-  Grid g = build_grid(scene, 4);
+// The tracer's IR for the scene, on a one-level grid (the subgrid's loops: Subgrids below).
+IrStats stats(const Scene& scene, int32_t subgrid_min = kNoSubgrids) {
+  Grid g = build_grid(scene, 4, subgrid_min);
   Tracer t(scene, g);
   const rill::ir::Function& fn = t.program().ir();
   IrStats s;
@@ -120,6 +121,17 @@ TEST(Features, LightsWithoutShadowsLoopOverLights) {
   IrStats d = stats(s);
   EXPECT_EQ(d.loops, 4);  // + the RILL_FOR over the lights
   EXPECT_EQ(d.arrays.count("light_pos"), 1u);
+}
+
+// The second grid level's code (a DDA loop and a triangle loop) is generated only when the
+// grid has a subgrid.
+TEST(Features, Subgrids) {
+  Scene s = base();
+  Grid g = build_grid(s, 4, 4);
+  EXPECT_GT(g.subgrids, 0);  // some of the box's voxels list more than 4 triangles
+  EXPECT_EQ(stats(s, 4).loops, stats(s).loops + 2);
+  EXPECT_EQ(build_grid(s, 4).subgrids, 0);  // none lists more than kSubgridMin
+  EXPECT_EQ(stats(s, kSubgridMin).loops, stats(s).loops);
 }
 
 TEST(Features, VertexNormalsAndColors) {
