@@ -28,11 +28,11 @@
 #include <string>
 #include <vector>
 
+#include "CommaList.h"
 #include "Grid.h"
 #include "Scene.h"
-#include "Tracer.h"
-#include "CommaList.h"
 #include "Timing.h"
+#include "Tracer.h"
 
 namespace {
 
@@ -165,7 +165,8 @@ int main(int argc, char** argv) {
       Setup s;
       s.name = name;
       s.scene = rt::load_scene("builtin:" + name);
-      s.grid = std::make_unique<rt::Grid>(rt::build_grid(s.scene, s.scene.options.grid));
+      s.grid = std::make_unique<rt::Grid>(
+          rt::build_grid(s.scene, s.scene.options.grid, s.scene.options.subgrid_min));
       s.tracer = std::make_unique<rt::Tracer>(s.scene, *s.grid);
       setups.push_back(std::move(s));
     }

@@ -2,7 +2,7 @@
 //
 //   rill-bench-trace [--sections throughput,embree,grid,depth,spec] [--size WxH]
 //                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends all|cpu,opencl,glsl]
-//                    [--repeats R] [--grid-scene S] [--grids auto,16,32,...]
+//                    [--repeats R] [--subgrids N|off] [--grid-scene S] [--grids auto,16,32,...]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu] [--md F] [--csv F]
 //
 // Sections (each a table; all timings are medians of R interleaved repeats, after an
@@ -48,12 +48,12 @@
 #include <string>
 #include <vector>
 
+#include "CommaList.h"
 #include "Grid.h"
 #include "Scene.h"
+#include "Timing.h"
 #include "Tracer.h"
 #include "TracerImpl.h"  // padded_rows (GLSL launches of at least one 4096-texel row)
-#include "CommaList.h"
-#include "Timing.h"
 #include "trace_embree.h"
 
 namespace {
@@ -109,6 +109,7 @@ struct Options {
   int repeats = 3;
   std::string grid_scene = "builtin:thesis-c";
   std::string grids = "auto,16,20,32,48,64,96,128";
+  std::string subgrids;  // empty: the scene's (default 12)
   std::string depth_scene = "builtin:thesis-b,builtin:glass";
   std::string depths = "1-8";
   std::string sweep_backends = "cpu";
@@ -153,6 +154,7 @@ rt::Scene load(const std::string& spec, const Options& o) {
   s.width = o.width;
   s.height = o.height;
   s.options.spp = 1;
+  if (!o.subgrids.empty()) s.options.subgrid_min = rt::parse_subgrid_min(o.subgrids);
   s.validate();
   return s;
 }
@@ -236,7 +238,7 @@ class Bench {
              {}};
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
-      rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+      rt::Grid grid = rt::build_grid(scene, scene.options.grid, scene.options.subgrid_min);
       rt::Tracer tracer(scene, grid);
       const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
       const std::vector<glm::vec3> dirs =
@@ -370,7 +372,7 @@ class Bench {
       if (g != "auto" && (*end != '\0' || p.res < 1 || p.res > 512))
         throw rt::SceneError("--grids: 'auto' or 1..512 (got " + g + ")");
       for (int r = 0; r < o_.repeats; ++r) {  // the build time is a median too
-        p.grid = rt::build_grid(scene, p.res);
+        p.grid = rt::build_grid(scene, p.res, scene.options.subgrid_min);
         p.build.push_back(p.grid.build_ms);
       }
       p.tracer = std::make_unique<rt::Tracer>(scene, p.grid);
@@ -417,7 +419,7 @@ class Bench {
     int d0 = 1, d1 = 8;
     if (std::sscanf(o_.depths.c_str(), "%d-%d", &d0, &d1) != 2 || d0 < 0 || d1 < d0 || d1 > 64)
       throw rt::SceneError("--depths expects FIRST-LAST within 0..64 (got '" + o_.depths + "')");
-    rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+    rt::Grid grid = rt::build_grid(scene, scene.options.grid, scene.options.subgrid_min);
     rt::Tracer tracer(scene, grid);
     const double n = static_cast<double>(scene.width) * scene.height;
     Table t{"Reflection depth sweep: " + scene.name + " (" +
@@ -463,7 +465,7 @@ class Bench {
     every.stack = rt::kRayStack;
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
-      rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+      rt::Grid grid = rt::build_grid(scene, scene.options.grid, scene.options.subgrid_min);
       rt::Tracer special(scene, grid), generic(scene, grid, all);
       for (const auto& be : bes) {
         rt::RenderResult a = special.render(settings(be, scene), scene.camera);
@@ -543,6 +545,8 @@ int main(int argc, char** argv) {
       ->default_str("3");
   app.add_option("--grid-scene", o.grid_scene, "scene of the grid sweep")
       ->default_str(o.grid_scene);
+  app.add_option("--subgrids", o.subgrids,
+                 "voxels listing more triangles than this get a subgrid (default 12), or off");
   app.add_option("--grids", o.grids, "grid resolutions of the sweep: auto or N (N^3 voxels)")
       ->default_str(o.grids);
   app.add_option("--depth-scene", o.depth_scene, "scenes of the depth sweep (comma list)")

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 
 #include <tbb/parallel_for.h>
 
@@ -118,9 +119,21 @@ Subgrid make_subgrid(const Grid& g, const Scene& s, int64_t v, double mag) {
 
 }  // namespace
 
+int32_t parse_subgrid_min(const std::string& s) {
+  if (s == "off") return kNoSubgrids;
+  char* end = nullptr;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || end == s.c_str() || *end != '\0' || v < 1 || v > (1 << 20))
+    throw SceneError("subgrids: expected 'off' or a triangle count in 1..1048576 (got '" + s +
+                     "')");
+  return static_cast<int32_t>(v);
+}
+
+static_assert(kSubgridMin == 12, "SceneOptions::subgrid_min's default is kSubgridMin");
+
 void build_subgrids(Grid& g, const Scene& s, int32_t min_count) {
   const int64_t nv = g.voxel_count();
-  if (g.voxels.size() != static_cast<size_t>(nv)) return;
+  if (min_count <= 0 || g.voxels.size() != static_cast<size_t>(nv)) return;
   double mag = 0;
   for (int a = 0; a < 3; ++a)
     mag = std::max(

@@ -41,8 +41,8 @@
 
 #include <glm/glm.hpp>
 
-#include <climits>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "Scene.h"
@@ -83,9 +83,13 @@ void build_subgrids(Grid& g, const Scene& s, int32_t min_count = kSubgridMin);
 void compute_empty_distances(Grid& g);
 constexpr int32_t kMaxSkip = 1 << 16;
 
+// The --subgrids / "subgrids" value: "off" (kNoSubgrids) or a triangle count in 1..2^20;
+// throws SceneError naming the bad value.
+int32_t parse_subgrid_min(const std::string& s);
+
 // resolution: voxels per axis, 0 = auto. subgrid_min: voxels listing more triangles than
-// this get a subgrid (kNoSubgrids: a one-level grid).
-constexpr int32_t kNoSubgrids = INT32_MAX;
+// this get a subgrid (kNoSubgrids, or any value <= 0: a one-level grid).
+constexpr int32_t kNoSubgrids = 0;
 Grid build_grid(const Scene& s, int resolution = 0, int32_t subgrid_min = kSubgridMin);
 
 }  // namespace rt

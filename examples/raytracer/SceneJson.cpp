@@ -244,7 +244,7 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     if (j.contains("options")) {
       const json& o = j["options"];
       check_keys(c, o, "options",
-                 {"shadows", "ambient", "max_depth", "grid", "spp", "smooth_normals"});
+                 {"shadows", "ambient", "max_depth", "grid", "subgrids", "spp", "smooth_normals"});
       if (o.contains("shadows")) s.options.shadows = boolean(c, o["shadows"], "options.shadows");
       if (o.contains("ambient")) s.options.ambient = num(c, o["ambient"], "options.ambient");
       if (o.contains("max_depth"))
@@ -257,6 +257,12 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
           s.options.grid = 0;
         else
           s.options.grid = integer(c, o["grid"], "options.grid", 1, 512);
+      }
+      if (o.contains("subgrids")) {
+        if (o["subgrids"].is_string() && o["subgrids"].get<std::string>() == "off")
+          s.options.subgrid_min = 0;
+        else
+          s.options.subgrid_min = integer(c, o["subgrids"], "options.subgrids", 1, 1 << 20);
       }
     }
     if (j.contains("camera")) {

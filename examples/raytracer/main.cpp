@@ -3,7 +3,8 @@
 //   rill-trace render SCENE [--backend cpu|opencl|glsl] [--accuracy strict|fast|double]
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
-//                           [--grid N|auto] [--strategy megakernel|multipass]
+//                           [--grid N|auto] [--subgrids N|off]
+//                           [--strategy megakernel|multipass]
 //                           [--stats-json FILE] [--source FILE] [--quiet]
 //                           [--triangle moller|watertight] [--offset epsilon|scaled]
 //                           [--traversal incremental|recompute]
@@ -50,6 +51,7 @@ struct RenderOptions {
   int max_depth = -1;
   int spp = 0;
   std::string grid = "";
+  std::string subgrids = "";
   std::string strategy = "megakernel";
   bool quiet = false;
   // Accuracy knobs (Tracer.h, TracerOptions).
@@ -99,12 +101,13 @@ int render(const RenderOptions& o) {
   if (o.max_depth >= 0) scene.options.max_depth = o.max_depth;
   if (o.spp > 0) scene.options.spp = o.spp;
   if (!o.grid.empty()) scene.options.grid = parse_grid(o.grid);
+  if (!o.subgrids.empty()) scene.options.subgrid_min = rt::parse_subgrid_min(o.subgrids);
   if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
   if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
   scene.validate();
   const double load_ms = ms_since(t_load);
 
-  rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+  rt::Grid grid = rt::build_grid(scene, scene.options.grid, scene.options.subgrid_min);
 
   const auto t_setup = Clock::now();
   rt::TracerOptions knobs;
@@ -163,6 +166,7 @@ int render(const RenderOptions& o) {
     j["max_depth"] = scene.options.max_depth;
     j["features"] = tracer.features().str();
     j["grid"] = {{"resolution", {grid.res.x, grid.res.y, grid.res.z}},
+                 {"subgrids", grid.subgrids},
                  {"references", grid.elements.size()},
                  {"triangles", grid.usable},
                  {"degenerate", grid.degenerate},
@@ -230,7 +234,7 @@ int demo(const std::string& scene_spec, const std::string& size, const std::stri
   rt::Scene scene = rt::load_scene(scene_spec);
   if (!size.empty()) parse_size(size, scene.width, scene.height);
   scene.validate();
-  rt::Grid grid = rt::build_grid(scene, scene.options.grid);
+  rt::Grid grid = rt::build_grid(scene, scene.options.grid, scene.options.subgrid_min);
   rt::Tracer tracer(scene, grid);
   std::printf("rill-trace demo: %s, %zu triangles, %dx%d, grid %dx%dx%d, kernel features: %s\n",
               scene.name.c_str(), scene.triangle_count(), scene.width, scene.height, grid.res.x,
@@ -318,6 +322,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 64));
   r->add_option("--spp", ro.spp, "samples per pixel")->check(CLI::Range(1, 4096));
   r->add_option("--grid", ro.grid, "voxels per axis, or auto");
+  r->add_option("--subgrids", ro.subgrids,
+                "voxels listing more triangles than this get a subgrid (default 12), or off");
   r->add_option("--strategy", ro.strategy,
                 "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
       ->default_str("megakernel");

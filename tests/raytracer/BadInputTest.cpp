@@ -245,6 +245,9 @@ TEST(BadInput, MalformedJson) {
                 .find("reflect"),
             std::string::npos);
   EXPECT_NE(err("{\"options\": {\"grid\": \"fine\"}}").find("options.grid"), std::string::npos);
+  EXPECT_NE(err("{\"options\": {\"subgrids\": \"on\"}}").find("options.subgrids"),
+            std::string::npos);
+  EXPECT_NE(err("{\"options\": {\"subgrids\": 0}}").find("options.subgrids"), std::string::npos);
   EXPECT_NE(err("{\"options\": {\"max_depth\": 65}}").find("max_depth"), std::string::npos);
   EXPECT_NE(err("{\"builtin\": \"nope\"}").find("unknown built-in"), std::string::npos);
   // Deep nesting: an error, not a stack overflow.

@@ -65,6 +65,8 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --size banana", "--size");
   expect_clean_failure("render builtin:thesis-a --grid 0", "--grid");
   expect_clean_failure("render builtin:thesis-a --grid 99999", "--grid");
+  expect_clean_failure("render builtin:thesis-a --subgrids 0", "subgrids");
+  expect_clean_failure("render builtin:thesis-a --subgrids some", "subgrids");
   expect_clean_failure("render builtin:thesis-a --spp 0");
   expect_clean_failure("render builtin:thesis-a --max-depth -3");
   expect_clean_failure("render builtin:thesis-a --accuracy sloppy --size 4x4");

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "Camera.h"
+#include "Grid.h"
 #include "Scene.h"
 #include "TestUtil.h"
 
@@ -221,13 +222,17 @@ TEST(Scene, JsonShapesOptionsAndBuiltinBase) {
                {"shape": "quad", "vertices": [[0,0,0],[1,0,0],[1,0,1],[0,0,1]]},
                {"shape": "triangle", "vertices": [[0,0,0],[1,0,0],[0,0,1]]}],
     "options": {"shadows": false, "max_depth": 3, "grid": 7, "spp": 4, "ambient": 0.2,
-                "smooth_normals": false}
+                "smooth_normals": false, "subgrids": 30}
   })",
                              ".", "inline.json");
   EXPECT_EQ(s.triangle_count(), 12u + 2u * 8u * 3u + 64u * 4u + 2u + 1u);
   EXPECT_FALSE(s.options.shadows);
   EXPECT_EQ(s.options.max_depth, 3);
   EXPECT_EQ(s.options.grid, 7);
+  EXPECT_EQ(s.options.subgrid_min, 30);
+  EXPECT_EQ(
+      parse_json_scene(R"({"options": {"subgrids": "off"}})", ".", "off.json").options.subgrid_min,
+      kNoSubgrids);
   EXPECT_EQ(s.options.spp, 4);
   EXPECT_FLOAT_EQ(s.options.ambient, 0.2f);
   EXPECT_FALSE(s.options.smooth_normals);
