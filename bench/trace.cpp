@@ -109,7 +109,7 @@ struct Options {
   int repeats = 3;
   std::string grid_scene = "builtin:thesis-c";
   std::string grids = "auto,16,20,32,48,64,96,128";
-  std::string subgrids;  // empty: the scene's (default 12)
+  std::string subgrids;  // empty: the scene's (default off)
   std::string depth_scene = "builtin:thesis-b,builtin:glass";
   std::string depths = "1-8";
   std::string sweep_backends = "cpu";
@@ -545,8 +545,10 @@ int main(int argc, char** argv) {
       ->default_str("3");
   app.add_option("--grid-scene", o.grid_scene, "scene of the grid sweep")
       ->default_str(o.grid_scene);
-  app.add_option("--subgrids", o.subgrids,
-                 "voxels listing more triangles than this get a subgrid (default 12), or off");
+  app.add_option(
+      "--subgrids", o.subgrids,
+      "voxels listing more triangles than this get a subgrid (12 is a good value), or off "
+      "(default)");
   app.add_option("--grids", o.grids, "grid resolutions of the sweep: auto or N (N^3 voxels)")
       ->default_str(o.grids);
   app.add_option("--depth-scene", o.depth_scene, "scenes of the depth sweep (comma list)")

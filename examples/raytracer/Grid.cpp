@@ -129,7 +129,7 @@ int32_t parse_subgrid_min(const std::string& s) {
   return static_cast<int32_t>(v);
 }
 
-static_assert(kSubgridMin == 12, "SceneOptions::subgrid_min's default is kSubgridMin");
+static_assert(kNoSubgrids == 0, "SceneOptions::subgrid_min's default (0) is kNoSubgrids");
 
 void build_subgrids(Grid& g, const Scene& s, int32_t min_count) {
   const int64_t nv = g.voxel_count();

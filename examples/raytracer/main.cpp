@@ -322,8 +322,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 64));
   r->add_option("--spp", ro.spp, "samples per pixel")->check(CLI::Range(1, 4096));
   r->add_option("--grid", ro.grid, "voxels per axis, or auto");
-  r->add_option("--subgrids", ro.subgrids,
-                "voxels listing more triangles than this get a subgrid (default 12), or off");
+  r->add_option(
+      "--subgrids", ro.subgrids,
+      "voxels listing more triangles than this get a subgrid (12 is a good value), or off "
+      "(default)");
   r->add_option("--strategy", ro.strategy,
                 "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
       ->default_str("megakernel");

@@ -130,7 +130,8 @@ TEST(Features, Subgrids) {
   Grid g = build_grid(s, 4, 4);
   EXPECT_GT(g.subgrids, 0);  // some of the box's voxels list more than 4 triangles
   EXPECT_EQ(stats(s, 4).loops, stats(s).loops + 2);
-  EXPECT_EQ(build_grid(s, 4).subgrids, 0);  // none lists more than kSubgridMin
+  EXPECT_EQ(build_grid(s, 4).subgrids, 0);               // off by default
+  EXPECT_EQ(build_grid(s, 4, kSubgridMin).subgrids, 0);  // and none lists more than 12
   EXPECT_EQ(stats(s, kSubgridMin).loops, stats(s).loops);
 }
 

@@ -86,7 +86,7 @@ TEST(Grid, EveryTriangleIsInTheVoxelsItTouches) {
     Scene s = builtin_scene(name);
     for (int res : {0, 1, 7, 32}) {
       SCOPED_TRACE(std::string(name) + " " + std::to_string(res));
-      Grid g = build_grid(s, res);
+      Grid g = build_grid(s, res, kSubgridMin);
       ASSERT_GE(static_cast<int64_t>(g.voxels.size()), g.voxel_count());
       int64_t sub_entries = 0;
       for (size_t i = 0; i < g.voxels.size(); ++i) {
@@ -144,7 +144,7 @@ TEST(Grid, EmptyDistances) {
   for (const char* name : {"thesis-a", "thesis-b", "cornell"}) {
     for (int res : {0, 5, 24}) {
       SCOPED_TRACE(std::string(name) + " " + std::to_string(res));
-      Grid g = build_grid(builtin_scene(name), res);
+      Grid g = build_grid(builtin_scene(name), res, kSubgridMin);  // subgrids: not empty
       std::vector<glm::ivec3> full;
       for (int z = 0; z < g.res.z; ++z)
         for (int y = 0; y < g.res.y; ++y)
