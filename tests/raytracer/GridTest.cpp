@@ -242,19 +242,28 @@ TEST_P(GridTraversal, FindsTheSameClosestHitAsBruteForce) {
     // (resolution, subgrid threshold): the automatic grid; one voxel for all (whose subgrid
     // then holds everything: 8^3 sub-voxels); a fine grid with and without subgrids in its
     // voxels of more than 2 triangles; one level only.
+    // The last two: a fine grid, where the room's air is many voxels from any triangle (long
+    // jumps), with both traversals (the recomputing one's jumps move the voxel only).
     struct Config {
       int res;
       int32_t subgrid_min;
+      Traversal traversal = Traversal::Incremental;
     };
-    std::vector<Config> configs = {
-        {0, kSubgridMin}, {1, kSubgridMin}, {13, kSubgridMin}, {13, 2}, {0, kNoSubgrids}};
+    std::vector<Config> configs = {{0, kSubgridMin},
+                                   {1, kSubgridMin},
+                                   {13, kSubgridMin},
+                                   {13, 2},
+                                   {0, kNoSubgrids},
+                                   {64, kNoSubgrids},
+                                   {64, kNoSubgrids, Traversal::Recompute}};
     // (Not glass in one voxel: no subgrid would make its 6986 triangles per ray slow on
     // llvmpipe.)
     if (std::string(name) == "glass") configs = {{0, kSubgridMin}, {13, 2}};
     for (const Config& c : configs) {
       const int res = c.res;
       SCOPED_TRACE(std::string(name) + " grid " + std::to_string(res) + " subgrids above " +
-                   std::to_string(c.subgrid_min));
+                   std::to_string(c.subgrid_min) +
+                   (c.traversal == Traversal::Recompute ? " recompute" : ""));
       Grid g = build_grid(s, res, c.subgrid_min);
       if (res == 1 || c.subgrid_min == 2) {
         EXPECT_GT(g.subgrids, 0);
@@ -262,7 +271,13 @@ TEST_P(GridTraversal, FindsTheSameClosestHitAsBruteForce) {
       if (c.subgrid_min == kNoSubgrids) {
         EXPECT_EQ(g.subgrids, 0);
       }
-      Tracer tracer(s, g);
+      if (res == 64) {  // jumps of at least 2 shells are possible
+        EXPECT_TRUE(std::any_of(g.voxels.begin(), g.voxels.end(),
+                                [](const glm::ivec2& e) { return e.y == 0 && e.x >= 4; }));
+      }
+      TracerOptions options;
+      options.traversal = c.traversal;
+      Tracer tracer(s, g, options);
       std::vector<int32_t> prim;
       std::vector<float> dist;
       tracer.intersect(GetParam(), o, d, prim, dist);
