@@ -222,10 +222,33 @@ Bool3 Tracer::Impl::flat_axes(const Float3& d) const {
   return abs(d) < 1.17549435e-38f;  // FLT_MIN
 }
 
+Float3 Tracer::Impl::inverse_dir(const Float3& d) const {
+  return 1.0f / select(flat_axes(d), Float3(1.0f), d);
+}
+
+Int3 Tracer::Impl::step_dir(const Float3& d) const {
+  return select(flat_axes(d), Int3(0),
+                select(d > 0.0f, Int3(1), select(d < 0.0f, Int3(-1), Int3(0))));
+}
+
+Bool3 Tracer::Impl::nearest_axis(const Float3& t) const {
+  Bool ax = t.x() <= t.y() && t.x() <= t.z();
+  Bool ay = !ax && t.y() <= t.z();
+  return Bool3(ax, ay, !ax && !ay);
+}
+
+void Tracer::Impl::dda_start(const Float3& o, const Float3& d, const Float& t, const Float3& lo,
+                             const Float3& cell, const Float3& last, Int3& vox, Float3& tmx) const {
+  Float3 vf = clamp(floor((o + t * d - lo) / cell), Float3(0.0f), last);
+  vox = to_int(vf);
+  Float3 bound = lo + (vf + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * cell;
+  tmx = select(flat_axes(d), Float3(kBig), (bound - o) * inverse_dir(d));
+}
+
 void Tracer::Impl::ray_box(const Float3& o, const Float3& d, const Float& tmax, Bool& inside,
                            Float& t_enter, Float& t_exit) const {
   Bool3 dz = flat_axes(d);
-  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
+  Float3 inv = inverse_dir(d);
   Float3 t0 = (grid_lo - o) * inv;
   Float3 t1 = (grid_hi - o) * inv;
   Float3 tn = select(dz, Float3(-kBig), min(t0, t1));
@@ -242,17 +265,9 @@ void Tracer::Impl::ray_box(const Float3& o, const Float3& d, const Float& tmax, 
 
 void Tracer::Impl::dda_init(const Float3& o, const Float3& d, const Float& t_enter, Int3& vox,
                             Float3& tmx) const {
-  Bool3 dz = flat_axes(d);
-  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
-  Float3 p = o + t_enter * d;
-  Float3 vf = clamp(floor((p - grid_lo) / grid_cell), 0.0f, to_float(grid_res) - 1.0f);
-  vox = to_int(vf);
-  if (K.traversal == Traversal::Recompute) {
-    tmx = o - grid_lo;  // leave_voxel recomputes the boundaries from this and the cell index
-    return;
-  }
-  Float3 bound = grid_lo + (vf + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * grid_cell;
-  tmx = select(dz, Float3(kBig), (bound - o) * inv);
+  dda_start(o, d, t_enter, grid_lo, grid_cell, to_float(grid_res) - 1.0f, vox, tmx);
+  // Recompute: leave_voxel recomputes the boundaries from this and the cell index.
+  if (K.traversal == Traversal::Recompute) tmx = o - grid_lo;
 }
 
 Int2 Tracer::Impl::voxel_range(const Int3& vox) const {
@@ -351,10 +366,8 @@ void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& tr
 
 Float3 Tracer::Impl::voxel_exits(const Float3& d, const Int3& vox, const Float3& tmx) const {
   if (K.traversal == Traversal::Incremental) return tmx;
-  Bool3 dz = flat_axes(d);
-  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
   Float3 plane = (to_float(vox) + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * grid_cell;
-  return select(dz, Float3(kBig), (plane - tmx) * inv);
+  return select(flat_axes(d), Float3(kBig), (plane - tmx) * inverse_dir(d));
 }
 
 // A second 3D-DDA, over the voxel's m^3 subgrid, from where the ray enters the voxel (or its
@@ -368,8 +381,8 @@ void Tracer::Impl::walk_subgrid(const Float3& o, const Float3& d, const Float& t
                                 const Float3& tmx, Float& best_t, Int& best_id, Float& best_u,
                                 Float& best_v) const {
   Bool3 dz = flat_axes(d);
-  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
-  Int3 step = select(dz, Int3(0), select(d > 0.0f, Int3(1), select(d < 0.0f, Int3(-1), Int3(0))));
+  Float3 inv = inverse_dir(d);
+  Int3 step = step_dir(d);
   Int m = -entry.y();
   Float fm = to_float(m);
   Float3 sub = grid_cell / Float3(fm);
@@ -379,12 +392,10 @@ void Tracer::Impl::walk_subgrid(const Float3& o, const Float3& d, const Float& t
   Float t_in = max(max(t_in3.x(), t_in3.y()), max(t_in3.z(), 0.0f));
   Float3 tb = voxel_exits(d, vox, tmx);
   Float t_out = min(min(tb.x(), tb.y()), min(tb.z(), t_exit));
-  Float3 sf = clamp(floor((o + t_in * d - corner) / sub), Float3(0.0f), Float3(fm - 1.0f));
-  Int3 sv = to_int(sf);
+  Int3 sv(0);
+  Float3 smx(0.0f);
+  dda_start(o, d, t_in, corner, sub, Float3(fm - 1.0f), sv, smx);
   Float3 sdl = select(dz, Float3(kBig), sub * abs(inv));
-  Float3 smx =
-      select(dz, Float3(kBig),
-             (corner + (sf + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * sub - o) * inv);
   Int sub_steps = 0;
   Bool done = false;
   RILL_DO {
@@ -396,9 +407,7 @@ void Tracer::Impl::walk_subgrid(const Float3& o, const Float3& d, const Float& t
     Float s_leave = min(min(smx.x(), smx.y()), smx.z());
     done = best_id >= 0 && (best_t <= s_leave || any_hit);
     done = done || s_leave >= t_out;
-    Bool ax = smx.x() <= smx.y() && smx.x() <= smx.z();
-    Bool ay = !ax && smx.y() <= smx.z();
-    Bool3 sm(ax, ay, !ax && !ay);
+    Bool3 sm = nearest_axis(smx);
     sv = sv + select(sm, step, Int3(0));
     smx = select(sm, smx + sdl, smx);
     sub_steps += 1;
@@ -412,9 +421,8 @@ void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float
                                const Int& best_id, const Bool& any_hit, const Int2& entry,
                                Int3& vox, Float3& tmx, Int& steps, Bool& done) const {
   Bool3 dz = flat_axes(d);
-  Float3 inv = 1.0f / select(dz, Float3(1.0f), d);
-  Int3 step = select(dz, Int3(0), select(d > 0.0f, Int3(1), select(d < 0.0f, Int3(-1), Int3(0))));
-  Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inv));
+  Int3 step = step_dir(d);
+  Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inverse_dir(d)));
   Float3 tb = voxel_exits(d, vox, tmx);
   Float t_leave = min(min(tb.x(), tb.y()), tb.z());
   done = best_id >= 0 && (best_t <= t_leave || any_hit);
@@ -429,17 +437,9 @@ void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float
   // (the shell k - 1 bound, rather than s - 1, is that margin). Shorter jumps cost more
   // than the plain step they replace.
   Int k = select(entry.y() == 0 && entry.x() >= 3, entry.x() - 1, Int(1));
-  Float3 tk = tb;
   RILL_IF(k > 1) {
-    tk = select(dz, Float3(kBig), tb + to_float(k - 1) * tdl);
-  }
-  RILL_ENDIF;
-  // Step along the axis whose boundary is nearest (the first of equals).
-  Bool ax = tk.x() <= tk.y() && tk.x() <= tk.z();
-  Bool ay = !ax && tk.y() <= tk.z();
-  Bool az = !ax && !ay;
-  Bool3 m(ax, ay, az);
-  RILL_IF(k > 1) {
+    Float3 tk = select(dz, Float3(kBig), tb + to_float(k - 1) * tdl);
+    Bool3 m = nearest_axis(tk);
     Float T = min(min(tk.x(), tk.y()), tk.z());
     done = done || T >= t_exit;  // the ray ends inside the empty region
     // Boundaries crossed before T on each other axis: ceil((T - tb) / tdl), 0 to k - 1
@@ -450,7 +450,8 @@ void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float
     vox = vox + step * n;
     if (K.traversal == Traversal::Incremental) tmx = select(n > 0, tmx + to_float(n) * tdl, tmx);
   }
-  RILL_ELSE {
+  RILL_ELSE {  // a plain step, along the axis whose boundary is nearest (the first of equals)
+    Bool3 m = nearest_axis(tb);
     vox = vox + select(m, step, Int3(0));
     if (K.traversal == Traversal::Incremental) tmx = select(m, tmx + tdl, tmx);
   }

@@ -93,6 +93,15 @@ struct Tracer::Impl {
   // The direction components the traversal treats as zero: zero, and denormals (which a
   // backend may flush, and whose reciprocal overflows): |d| < FLT_MIN.
   Bool3 flat_axes(const Float3& d) const;
+  // 1 / d, with 1 on the flat axes; the step (+1, -1, or 0 on flat axes) along each axis.
+  Float3 inverse_dir(const Float3& d) const;
+  Int3 step_dir(const Float3& d) const;
+  // The axis of the smallest of t (the first of equals), as a mask.
+  Bool3 nearest_axis(const Float3& t) const;
+  // A 3D-DDA's start in the grid of cells (lo, cell), indices 0..last: the cell at o + t d
+  // (clamped) and the distances to its exit planes. The top level and the subgrids share it.
+  void dda_start(const Float3& o, const Float3& d, const Float& t, const Float3& lo,
+                 const Float3& cell, const Float3& last, Int3& vox, Float3& tmx) const;
   // 3D-DDA initialization (thesis 5.1.2): the voxel at t_enter and the distances to the
   // next voxel boundary on each axis (Traversal::Recompute: the origin relative to the
   // grid's corner, from which leave_voxel recomputes the boundaries from the cell index).
