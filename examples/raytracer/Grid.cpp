@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 
@@ -65,6 +66,31 @@ glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n) {
 
 namespace {
 
+// Calls fn(x, y, z) for each cell of the grid with corner lo, cell size cell and res cells
+// that the triangle overlaps, the cells enlarged by margin on every side: the cells of its
+// bounding box, then the exact test. The top level and the subgrids share it.
+template <class Fn>
+void for_each_overlapped_cell(const glm::dvec3 tri[3], const glm::dvec3& lo, const glm::dvec3& cell,
+                              const glm::ivec3& res, const glm::dvec3& margin, Fn&& fn) {
+  glm::ivec3 a, b;
+  for (int k = 0; k < 3; ++k) {
+    const double mn = std::min({tri[0][k], tri[1][k], tri[2][k]}) - margin[k];
+    const double mx = std::max({tri[0][k], tri[1][k], tri[2][k]}) + margin[k];
+    a[k] = std::clamp(static_cast<int>(std::floor((mn - lo[k]) / cell[k])), 0, res[k] - 1);
+    b[k] = std::clamp(static_cast<int>(std::floor((mx - lo[k]) / cell[k])), 0, res[k] - 1);
+  }
+  const glm::dvec3 half = cell * 0.5 + margin;
+  for (int z = a.z; z <= b.z; ++z)
+    for (int y = a.y; y <= b.y; ++y)
+      for (int x = a.x; x <= b.x; ++x)
+        if (triangle_box_overlap(lo + (glm::dvec3(x, y, z) + 0.5) * cell, half, tri)) fn(x, y, z);
+}
+
+// The triangle's vertices in double precision.
+void triangle_vertices(const Scene& s, size_t t, glm::dvec3 tri[3]) {
+  for (int k = 0; k < 3; ++k) tri[k] = glm::dvec3(s.positions[3 * t + static_cast<size_t>(k)]);
+}
+
 // One voxel's subgrid: its resolution, and per sub-voxel (in index order) the count and the
 // ascending triangle ids, concatenated.
 struct Subgrid {
@@ -86,24 +112,14 @@ Subgrid make_subgrid(const Grid& g, const Scene& s, int64_t v, double mag) {
     sub[a] = static_cast<double>(g.cell[a] / static_cast<float>(m));
   }
   const glm::dvec3 margin = sub * 1e-4 + glm::dvec3(4e-7 * mag);
-  const glm::dvec3 half = sub * 0.5 + margin;
   std::vector<std::pair<int32_t, int32_t>> refs;  // (sub-voxel, triangle)
   for (int32_t i = 0; i < e.y; ++i) {
     const int32_t t = g.elements[static_cast<size_t>(e.x + i)];
-    const glm::dvec3 tri[3] = {glm::dvec3(s.positions[3 * t]), glm::dvec3(s.positions[3 * t + 1]),
-                               glm::dvec3(s.positions[3 * t + 2])};
-    glm::ivec3 lo, hi;
-    for (int k = 0; k < 3; ++k) {
-      double mn = std::min({tri[0][k], tri[1][k], tri[2][k]}) - margin[k];
-      double mx = std::max({tri[0][k], tri[1][k], tri[2][k]}) + margin[k];
-      lo[k] = std::clamp(static_cast<int>(std::floor((mn - corner[k]) / sub[k])), 0, m - 1);
-      hi[k] = std::clamp(static_cast<int>(std::floor((mx - corner[k]) / sub[k])), 0, m - 1);
-    }
-    for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x)
-          if (triangle_box_overlap(corner + (glm::dvec3(x, y, z) + 0.5) * sub, half, tri))
-            refs.emplace_back(x + m * (y + m * z), t);
+    glm::dvec3 tri[3];
+    triangle_vertices(s, static_cast<size_t>(t), tri);
+    for_each_overlapped_cell(tri, corner, sub, glm::ivec3(m), margin, [&](int x, int y, int z) {
+      refs.emplace_back(x + m * (y + m * z), t);
+    });
   }
   // Grouped by sub-voxel; stable, so each list stays ascending like the voxel's.
   std::stable_sort(refs.begin(), refs.end(),
@@ -282,48 +298,32 @@ Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min) {
   const glm::dvec3 glo(g.lo), cell(g.cell);
   const glm::dvec3 margin = cell * 1e-4 + glm::dvec3(4e-7 * mag);
   const int64_t nv = g.voxel_count();
-  std::vector<int32_t> count(static_cast<size_t>(nv), 0);
-  // Pass 1 counts, pass 2 fills; triangles are visited in id order, so each voxel's list is
-  // ascending.
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<int32_t> fill;
-    if (pass == 1) {
-      g.voxels.resize(static_cast<size_t>(nv));
-      int64_t total = 0;
-      for (int64_t v = 0; v < nv; ++v) {
-        g.voxels[static_cast<size_t>(v)] =
-            glm::ivec2(static_cast<int32_t>(total), count[static_cast<size_t>(v)]);
-        total += count[static_cast<size_t>(v)];
-      }
-      if (total > (int64_t{1} << 30)) throw SceneError("grid too large: reduce --grid");
-      g.elements.resize(static_cast<size_t>(total));
-      fill.assign(static_cast<size_t>(nv), 0);
-    }
-    for (size_t t = 0; t < n; ++t) {
-      if (!usable[t]) continue;
-      const glm::dvec3 tri[3] = {glm::dvec3(s.positions[3 * t]), glm::dvec3(s.positions[3 * t + 1]),
-                                 glm::dvec3(s.positions[3 * t + 2])};
-      glm::ivec3 a, b;
-      for (int k = 0; k < 3; ++k) {
-        double mn = std::min({tri[0][k], tri[1][k], tri[2][k]}) - margin[k];
-        double mxk = std::max({tri[0][k], tri[1][k], tri[2][k]}) + margin[k];
-        a[k] = std::clamp(static_cast<int>(std::floor((mn - glo[k]) / cell[k])), 0, g.res[k] - 1);
-        b[k] = std::clamp(static_cast<int>(std::floor((mxk - glo[k]) / cell[k])), 0, g.res[k] - 1);
-      }
-      const glm::dvec3 half = cell * 0.5 + margin;
-      for (int z = a.z; z <= b.z; ++z)
-        for (int y = a.y; y <= b.y; ++y)
-          for (int x = a.x; x <= b.x; ++x) {
-            glm::dvec3 c = glo + (glm::dvec3(x, y, z) + 0.5) * cell;
-            if (!triangle_box_overlap(c, half, tri)) continue;
-            const size_t v = static_cast<size_t>(x + int64_t{g.res.x} * (y + int64_t{g.res.y} * z));
-            if (pass == 0) {
-              ++count[v];
-            } else {
-              g.elements[static_cast<size_t>(g.voxels[v].x + fill[v]++)] = static_cast<int32_t>(t);
-            }
-          }
-    }
+  // (--grid allows 512^3; voxel indices are 32-bit here and in the kernel.)
+  if (nv > INT32_MAX) throw SceneError("grid too large: reduce --grid");
+  // Each triangle's voxels, once (triangles in id order), then a counting sort by voxel:
+  // each voxel's list stays ascending.
+  std::vector<std::pair<int32_t, int32_t>> refs;  // (voxel, triangle)
+  for (size_t t = 0; t < n; ++t) {
+    if (!usable[t]) continue;
+    glm::dvec3 tri[3];
+    triangle_vertices(s, t, tri);
+    for_each_overlapped_cell(tri, glo, cell, g.res, margin, [&](int x, int y, int z) {
+      refs.emplace_back(x + g.res.x * (y + g.res.y * z), static_cast<int32_t>(t));
+    });
+  }
+  if (refs.size() > (size_t{1} << 30)) throw SceneError("grid too large: reduce --grid");
+  g.voxels.assign(static_cast<size_t>(nv), glm::ivec2(0));
+  for (const auto& r : refs) ++g.voxels[static_cast<size_t>(r.first)].y;
+  int32_t first = 0;
+  for (glm::ivec2& v : g.voxels) {
+    v.x = first;
+    first += v.y;
+  }
+  g.elements.resize(refs.size());
+  std::vector<int32_t> fill(static_cast<size_t>(nv), 0);
+  for (const auto& [v, t] : refs) {
+    const glm::ivec2 e = g.voxels[static_cast<size_t>(v)];
+    g.elements[static_cast<size_t>(e.x + fill[static_cast<size_t>(v)]++)] = t;
   }
   build_subgrids(g, s, subgrid_min);
   compute_empty_distances(g);
