@@ -17,11 +17,12 @@
 // traversal may jump across them in one step (Tracer.cpp, leave_voxel) instead of visiting
 // them one by one; the entry it loads anyway tells it how far.
 //
-// Two levels (Jevans & Wyvill 1989; Kalojanov, Billeter & Slusallek 2011 on GPUs): a uniform
-// grid suits the empty space between objects, but a surface mesh puts many triangles in the
-// few voxels its surface crosses (the bunny: about 10 per voxel a ray reaches). A voxel
-// listing more than kSubgridMin triangles gets its own m x m x m subgrid (m from
-// kSubgridDensity sub-voxels per triangle, 2..kSubgridMaxRes), built with the same exact
+// Two levels, optional (Jevans & Wyvill 1989; Kalojanov, Billeter & Slusallek 2011 on GPUs):
+// a uniform grid suits the empty space between objects, but a surface mesh puts many
+// triangles in the few voxels its surface crosses (the bunny: about 10 per voxel a ray
+// reaches). With subgrids on (build_grid's subgrid_min, --subgrids; off by default, see
+// kSubgridMin), a voxel listing more than subgrid_min triangles gets its own m x m x m subgrid (m
+// from kSubgridDensity sub-voxels per triangle, 2..kSubgridMaxRes), built with the same exact
 // overlap test and margin on the sub-voxels; the ray walks it with a second 3D-DDA confined
 // to the voxel (Tracer.cpp, walk_subgrid). Subgrid entries follow the top level's in
 // `voxels`: sub-voxel (i, j, k) of a subgrid at base b is voxels[b + i + m (j + m k)].

@@ -107,8 +107,8 @@ struct Tracer::Impl {
   // grid's corner, from which leave_voxel recomputes the boundaries from the cell index).
   void dda_init(const Float3& o, const Float3& d, const Float& t_enter, Int3& vox,
                 Float3& tmx) const;
-  // The voxel's entry: the index range (start, count) of its triangles, or (distance to the
-  // nearest non-empty voxel, 0) when it is empty (Grid.h).
+  // The voxel's entry: the index range (start, count) of its triangles, (distance to the
+  // nearest non-empty voxel, 0) when it is empty, or (base, -m) for a subgrid (Grid.h).
   Int2 voxel_range(const Int3& vox) const;
   // The knob's triangle test (Moller-Trumbore or watertight) against one triangle; keeps
   // the closest hit (ties: the smaller id).
