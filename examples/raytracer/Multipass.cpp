@@ -116,6 +116,22 @@ void Multipass::capture(const Tracer::Impl& I) {
   });
 
   // ---- the trace loop: voxel precalculation, traverser, intersector ----------------------
+  // A voxel's cursor (c, end) is a subgrid's entry (base, -m) when end < 0: the intersector
+  // walks the whole subgrid in one pass (then the cursor is empty). Generated only when the
+  // grid has subgrids.
+  auto walk_pending_subgrid = [&](const Float3& o, const Float3& d, const Float& t_exit,
+                                  const Bool& any_hit, const Int3& vox, const Float3& tmx, Int& c,
+                                  Int& end, Float& best_t, Int& best_id, Float& best_u,
+                                  Float& best_v) {
+    if (I.grid.subgrids == 0) return;
+    RILL_IF(end < 0) {
+      I.walk_subgrid(o, d, t_exit, any_hit, Int2(c, end), vox, tmx, best_t, best_id, best_u,
+                     best_v);
+      c = 0;
+      end = 0;
+    }
+    RILL_ENDIF;
+  };
   setup = rill::program("mp_voxel_precalc", [&] {
     Input<Float4> o4("ray_o");
     Input<Float3> d("ray_d");
@@ -223,15 +239,8 @@ void Multipass::capture(const Tracer::Impl& I) {
     Int end = cin.y();
     Int3 vox = vin(0, 1, 2);
     Float3 tmx = tin(0, 1, 2);
-    if (I.grid.subgrids > 0) {
-      RILL_IF(end < 0) {  // a subgrid: walked whole, in this pass
-        I.walk_subgrid(o, d, tin.w(), (w & kAnyHit) != 0, Int2(c, end), vox, tmx, best_t, best_id,
-                       best_u, best_v);
-        c = 0;
-        end = 0;
-      }
-      RILL_ENDIF;
-    }
+    walk_pending_subgrid(o, d, tin.w(), (w & kAnyHit) != 0, vox, tmx, c, end, best_t, best_id,
+                         best_u, best_v);
     RILL_FOR(Int k = 0, k < kBatch && c < end, k += 1) {
       I.test_triangle(o, d, I.elements[c], best_t, best_id, best_u, best_v);
       c += 1;
@@ -292,15 +301,9 @@ void Multipass::capture(const Tracer::Impl& I) {
         end = select(entry.y() < 0, entry.y(), entry.x() + entry.y());
       }
       RILL_ENDIF;
-      if (I.grid.subgrids > 0) {
-        RILL_IF(end < 0) {  // a subgrid (entered here, or by the traverser)
-          I.walk_subgrid(o, d, tin.w(), any_hit, Int2(c, end), vox, tmx, best_t, best_id, best_u,
-                         best_v);
-          c = 0;
-          end = 0;
-        }
-        RILL_ENDIF;
-      }
+      // A subgrid entered here or by the traverser.
+      walk_pending_subgrid(o, d, tin.w(), any_hit, vox, tmx, c, end, best_t, best_id, best_u,
+                           best_v);
       RILL_WHILE(c < end) {
         I.test_triangle(o, d, I.elements[c], best_t, best_id, best_u, best_v);
         c += 1;
