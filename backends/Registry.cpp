@@ -12,6 +12,7 @@ namespace rill::detail {
 
 void register_builtin_backends() {
   register_backend(cpu::make_backend());
+  register_backend(cpu::make_lockstep_backend());
 #ifdef RILL_HAVE_OPENCL
   register_backend(opencl::make_backend());
 #endif

@@ -2,10 +2,11 @@
 
 #include <dlfcn.h>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 #include <tbb/info.h>
+#include <tbb/parallel_reduce.h>
 
 #include "CEmitter.h"
+#include "LockstepEmitter.h"
 #include "SharedObjectCache.h"
 #include "rill/Parameters.h"
 
@@ -69,7 +70,8 @@ class CpuKernel : public CompiledKernel {
       shapes.insert(shapes.end(), {arr->shape[0], arr->shape[1], arr->shape[2]});
     }
     for (auto* u : a.uniforms) uniforms.insert(uniforms.end(), u->bits.begin(), u->bits.end());
-    Launch L{in.data(), out.data(), uniforms.data(), arrays.data(), shapes.data(), a.count, a.width, a.height};
+    Launch L{in.data(),     out.data(), uniforms.data(), arrays.data(),
+             shapes.data(), a.count,    a.width,         a.height};
     const int32_t* mask = nullptr;
     if (a.mask) {
       a.mask->sync_to_host();
@@ -120,28 +122,53 @@ class CpuKernel : public CompiledKernel {
   RunFn run_ = nullptr;
 };
 
+// `cpu` runs the scalar C of emit_c(), one element per iteration; `simd` runs the
+// lockstep C of emit_c_lockstep(), kLockstepLanes elements per iteration in vector
+// registers. Both give the same bits; which is faster depends on the kernel (see
+// docs/backends.md).
 class CpuBackend : public Backend {
  public:
-  std::string name() const override { return "cpu"; }
+  explicit CpuBackend(bool lockstep) : lockstep_(lockstep) {}
+
+  std::string name() const override { return lockstep_ ? "simd" : "cpu"; }
   std::string description() const override {
-    return "cpu: generated C compiled by " + c_compiler() + ", " +
+    std::string what = lockstep_ ? "lockstep C, " + std::to_string(kLockstepLanes) + " lanes (" +
+                                       vector_isa() + "), compiled by "
+                                 : "generated C compiled by ";
+    return name() + ": " + what + c_compiler() + ", " +
            std::to_string(tbb::info::default_concurrency()) + " threads (oneTBB), cache " +
            cache_directory();
   }
   bool supports(Accuracy) const override { return true; }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
-    std::string source = emit_c(f, o.accuracy);
-    SharedObject so = compile_shared_object(source, compiler_flags(o.accuracy), "rill_run");
+    // The double mode is the accuracy reference, not a speed mode: it runs as scalar C.
+    const bool lockstep = lockstep_ && o.accuracy != Accuracy::Double;
+    std::string source = lockstep ? emit_c_lockstep(f, o.accuracy) : emit_c(f, o.accuracy);
+    std::vector<std::string> flags = compiler_flags(o.accuracy);
+    if (lockstep && vector_isa() == "AVX2") flags.push_back("-mavx2");
+    SharedObject so = compile_shared_object(source, flags, "rill_run");
     return std::make_unique<CpuKernel>(std::move(source), std::move(so));
   }
+
+ private:
+  // The widest vector instructions the lockstep code may use on this CPU. Only AVX2 is
+  // asked for explicitly (8 binary32 lanes in one register); without it GCC splits each
+  // vector into SSE2 halves. FMA is never enabled: contraction is off in strict mode anyway.
+  static std::string vector_isa() {
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    return avx2 ? "AVX2" : "SSE2";
+  }
+
+  bool lockstep_;
 };
 
 }  // namespace
 
 std::vector<std::string> compiler_flags(Accuracy a) {
-  std::vector<std::string> f{"-std=c99", "-O2", "-fPIC", "-shared", "-fno-math-errno", "-fwrapv",
-                             "-fno-strict-aliasing", "-w"};
+  std::vector<std::string> f{
+      "-std=c99", "-O2", "-fPIC", "-shared", "-fno-math-errno", "-fwrapv", "-fno-strict-aliasing",
+      "-w"};
   if (a == Accuracy::Fast) {
     // -ffast-math's parts, spelled out: the option itself would also link crtfastmath.o,
     // which turns on flush-to-zero for the whole process, strict kernels included.
@@ -154,6 +181,11 @@ std::vector<std::string> compiler_flags(Accuracy a) {
   return f;
 }
 
-std::unique_ptr<Backend> make_backend() { return std::make_unique<CpuBackend>(); }
+std::unique_ptr<Backend> make_backend() {
+  return std::make_unique<CpuBackend>(false);
+}
+std::unique_ptr<Backend> make_lockstep_backend() {
+  return std::make_unique<CpuBackend>(true);
+}
 
 }  // namespace rill::cpu

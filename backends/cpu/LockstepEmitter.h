@@ -1,0 +1,20 @@
+// Emits a kernel as lockstep SIMD C for the `simd` backend (see LockstepEmitter.cpp).
+#pragma once
+
+#include <string>
+
+#include "rill/Backend.h"
+#include "rill/ir/IR.h"
+
+namespace rill::cpu {
+
+// Lanes per group: 8 binary32 values fill one AVX register.
+constexpr int kLockstepLanes = 8;
+
+// The kernel as C over `lanes` elements at a time: every variable becomes a GCC/Clang vector
+// of `lanes` values, control flow becomes masks, and each element computes exactly the
+// operations the scalar C of emit_c() computes, so the results are bit for bit the same.
+std::string emit_c_lockstep(const ir::Function& optimized, Accuracy accuracy,
+                            int lanes = kLockstepLanes);
+
+}  // namespace rill::cpu
