@@ -68,6 +68,23 @@ RILL_FN rill_vr rill_v_i2f(rill_vi a) { return __builtin_convertvector(a, rill_v
 RILL_FN rill_vi rill_v_fbits(rill_vr a) { return (rill_vi)a; }
 RILL_FN rill_vr rill_v_ibits(rill_vi a) { return (rill_vr)a; }
 
+/* Array index clamped into [0, n), n < 2^31 (see rill_clamp_index). */
+RILL_FN rill_vi rill_v_clamp_index(rill_vi i, int64_t n) {
+  return rill_v_min_i(rill_v_max_i(i, rill_splat_i(0)), rill_splat_i((int32_t)(n - 1)));
+}
+#ifdef __AVX2__
+#include <immintrin.h>
+RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) { return (rill_vr)_mm256_i32gather_ps(base, (__m256i)i, 4); }
+RILL_FN rill_vi rill_gather_i(const int32_t* base, rill_vi i) { return (rill_vi)_mm256_i32gather_epi32((const int*)base, (__m256i)i, 4); }
+#else
+RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) {
+  rill_vr r; for (int l = 0; l < RILL_W; ++l) r[l] = base[i[l]]; return r;
+}
+RILL_FN rill_vi rill_gather_i(const int32_t* base, rill_vi i) {
+  rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = base[i[l]]; return r;
+}
+#endif
+
 /* The other helpers, lane by lane through their scalar definitions. */
 #define RILL_LANES1(name, R, A, fn) \
   RILL_FN R name(A a) { R r; for (int l = 0; l < RILL_W; ++l) r[l] = fn(a[l]); return r; }
@@ -432,38 +449,35 @@ class Lockstep {
     out += pad + "}\n";
   }
 
-  // Each lane loads its own element at the scalar gather's clamped index. The vectors are
-  // built from the loaded scalars directly (a vector initializer): writing lanes one by one
-  // to memory and reading the vector back would stall on store forwarding.
+  // Each lane loads its own element at the scalar gather's clamped index. The index is
+  // computed on vectors in 32 bits (the backend refuses arrays of 2^31 words or more, see
+  // CpuBackend.cpp), then one hardware gather per component loads the lanes (AVX2), or a
+  // vector initializer from scalar loads does: writing lanes one by one to memory and
+  // reading the vector back would stall on store forwarding.
   void gather(std::string& out, const Stmt& s, const std::string& mask, const std::string& pad) {
     const ArrayDecl& a = f_.arrays.at(static_cast<size_t>(s.array));
     const Type dst_type = f_.var(s.dst).type;
     const int width = s.mask.full() ? dst_type.width : s.mask.count;
-    std::vector<std::string> index;
-    for (const Operand& o : s.args) index.push_back(operand_lane(o, 0));
     const std::string id = std::to_string(s.array), shape = "arr" + id + "_shape";
-    std::string lin = "rill_clamp_index(" + index[0] + ", " + shape + "[0])";
-    if (index.size() > 1)
-      lin += " + " + shape + "[0] * rill_clamp_index(" + index[1] + ", " + shape + "[1])";
-    if (index.size() > 2)
-      lin += " + " + shape + "[0] * " + shape + "[1] * rill_clamp_index(" + index[2] + ", " +
-             shape + "[2])";
+    auto clamped = [&](size_t d) {
+      return "rill_v_clamp_index(" + operand(s.args[d], 0) + ", " + shape + "[" + std::to_string(d) + "])";
+    };
+    std::string lin = clamped(0);
+    if (s.args.size() > 1)
+      lin = "rill_v_add_i(" + lin + ", rill_v_mul_i(rill_splat_i((int32_t)" + shape + "[0]), " + clamped(1) + "))";
+    if (s.args.size() > 2)
+      lin = "rill_v_add_i(" + lin + ", rill_v_mul_i(rill_splat_i((int32_t)(" + shape + "[0] * " + shape +
+            "[1])), " + clamped(2) + "))";
     out += pad + "{\n";
-    out += pad + "  int64_t rill_g[RILL_W];\n";
-    out += pad + "  for (int l = 0; l < RILL_W; ++l) rill_g[l] = (" + lin + ") * " +
-           std::to_string(a.elem.width) + ";\n";
+    out += pad + "  const rill_vi rill_g = rill_v_mul_i(" + lin + ", rill_splat_i(" +
+           std::to_string(a.elem.width) + "));\n";
     for (int c = 0; c < width; ++c) {
-      std::string v = "(" + vtype(dst_type.kind) + "){";
-      for (int l = 0; l < lanes_; ++l)
-        v += (l ? ", " : "") + std::string("arr") + id + "[rill_g[" + std::to_string(l) + "] + " +
-             std::to_string(c) + "]";
-      v += "}";
+      std::string v = std::string(a.elem.is_float() ? "rill_gather_r" : "rill_gather_i") + "(arr" + id +
+                      " + " + std::to_string(c) + ", rill_g)";
       int dc = s.mask.full() ? c : s.mask.comps[static_cast<size_t>(c)];
       std::string dst = component(s.dst, dc);
       out += pad + "  " + dst + " = " +
-             (mask.empty() || unblended_[s.dst]
-                  ? v
-                  : call(dst_type.is_float() ? "rill_sel_r" : "rill_sel_i", {mask, v, dst})) +
+             (mask.empty() || unblended_[s.dst] ? v : call(dst_type.is_float() ? "rill_sel_r" : "rill_sel_i", {mask, v, dst})) +
              ";\n";
     }
     out += pad + "}\n";
