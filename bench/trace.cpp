@@ -224,19 +224,20 @@ class Bench {
     std::vector<std::string> bes =
         throughput ? usable_backends(o_.backends) : std::vector<std::string>{"cpu", "simd"};
     bes.erase(std::remove(bes.begin(), bes.end(), "cpu"), bes.end());
-    if (embree && std::find(bes.begin(), bes.end(), "simd") == bes.end()) bes.insert(bes.begin(), "simd");
+    if (embree && std::find(bes.begin(), bes.end(), "simd") == bes.end())
+      bes.insert(bes.begin(), "simd");
     if (embree || throughput) bes.insert(bes.begin(), "cpu");
     Table tp{"Throughput, " + size_str() + ", strict, median of " + std::to_string(o_.repeats) +
                  " (Mrays/s)",
              {"scene", "triangles", "grid", "build ms", "grid B/tri", "backend", "primary ms",
               "primary Mrays/s", "full ms", "rays/pixel", "full Mrays/s", "hits vs cpu"},
              {}};
-    Table em{"Rill's CPU backends against Embree " + embree_version() + ", primary rays, " + size_str() +
-                 ", " + std::to_string(tbb::info::default_concurrency()) + " threads, median of " +
-                 std::to_string(o_.repeats),
-             {"scene", "triangles", "backend", "Rill ms", "Rill Mrays/s", "Embree ms", "Embree Mrays/s",
-              "Rill/Embree", "same prim", "agree", "grid build ms", "grid B/tri", "Embree build ms",
-              "Embree B/tri"},
+    Table em{"Rill's CPU backends against Embree " + embree_version() + ", primary rays, " +
+                 size_str() + ", " + std::to_string(tbb::info::default_concurrency()) +
+                 " threads, median of " + std::to_string(o_.repeats),
+             {"scene", "triangles", "backend", "Rill ms", "Rill Mrays/s", "Embree ms",
+              "Embree Mrays/s", "Rill/Embree", "same prim", "agree", "grid build ms", "grid B/tri",
+              "Embree build ms", "Embree B/tri"},
              {}};
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
@@ -300,7 +301,8 @@ class Bench {
           for (size_t i = 0; i < n; ++i) differ += p[i] != cpu_prim[i];
           vs = differ == 0 ? "identical" : std::to_string(differ) + " differ";
           ok = ok && differ == 0;
-          if (differ) std::printf("error: %s: %zu primary hits differ from cpu's\n", bes[b].c_str(), differ);
+          if (differ)
+            std::printf("error: %s: %zu primary hits differ from cpu's\n", bes[b].c_str(), differ);
         }
         if (!throughput) continue;
         const double pm = median(prim_ms[b]), fm = median(full_ms[b]);

@@ -42,11 +42,16 @@ typedef uint32_t rill_vu __attribute__((vector_size(RILL_W * 4)));
 
 RILL_FN rill_vr rill_splat_r(rill_real x) { rill_vr r; for (int l = 0; l < RILL_W; ++l) r[l] = x; return r; }
 RILL_FN rill_vi rill_splat_i(int32_t x) { rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = x; return r; }
+#if defined(__AVX__) && RILL_W == 8
+#include <immintrin.h>
+RILL_FN int rill_any(rill_vi m) { return !_mm256_testz_si256((__m256i)m, (__m256i)m); }
+#else
 RILL_FN int rill_any(rill_vi m) {
   int32_t r = 0;
   for (int l = 0; l < RILL_W; ++l) r |= m[l];
   return r != 0;
 }
+#endif
 RILL_FN rill_vi rill_sel_i(rill_vi c, rill_vi a, rill_vi b) { return (a & c) | (b & ~c); }
 RILL_FN rill_vr rill_sel_r(rill_vi c, rill_vr a, rill_vr b) {
   return (rill_vr)(((rill_vi)a & c) | ((rill_vi)b & ~c));
@@ -76,6 +81,44 @@ RILL_FN rill_vi rill_v_clamp_index(rill_vi i, int64_t n) {
 #include <immintrin.h>
 RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) { return (rill_vr)_mm256_i32gather_ps(base, (__m256i)i, 4); }
 RILL_FN rill_vi rill_gather_i(const int32_t* base, rill_vi i) { return (rill_vi)_mm256_i32gather_epi32((const int*)base, (__m256i)i, 4); }
+/* Three or four consecutive floats per lane (a vec3/vec4 element): one 16-byte load per lane
+   (masked to three floats for vec3, so the last element never reads past the array) and a
+   transpose, instead of one hardware gather per component. */
+RILL_FN void rill_transpose_lanes(const __m128 q[8], rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
+  __m256 r0 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[0]), q[4], 1);
+  __m256 r1 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[1]), q[5], 1);
+  __m256 r2 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[2]), q[6], 1);
+  __m256 r3 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[3]), q[7], 1);
+  __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
+  __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
+  *x = (rill_vr)_mm256_shuffle_ps(t0, t1, 0x44);
+  *y = (rill_vr)_mm256_shuffle_ps(t0, t1, 0xee);
+  *z = (rill_vr)_mm256_shuffle_ps(t2, t3, 0x44);
+  if (w) *w = (rill_vr)_mm256_shuffle_ps(t2, t3, 0xee);
+}
+RILL_FN void rill_gather3_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z) {
+  const __m128i m = _mm_setr_epi32(-1, -1, -1, 0);
+  __m128 q[8];
+  for (int l = 0; l < 8; ++l) q[l] = _mm_maskload_ps(base + i[l], m);
+  rill_transpose_lanes(q, x, y, z, 0);
+}
+RILL_FN void rill_gather4_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
+  __m128 q[8];
+  for (int l = 0; l < 8; ++l) q[l] = _mm_loadu_ps(base + i[l]);
+  rill_transpose_lanes(q, x, y, z, w);
+}
+/* Two consecutive ints per lane (an ivec2 element): one 8-byte load per lane and a transpose. */
+RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi* y) {
+  __m128i q[8];
+  for (int l = 0; l < 8; ++l) q[l] = _mm_loadl_epi64((const __m128i*)(base + i[l]));
+  __m128i a = _mm_unpacklo_epi64(q[0], q[1]), b = _mm_unpacklo_epi64(q[2], q[3]);
+  __m128i c = _mm_unpacklo_epi64(q[4], q[5]), d = _mm_unpacklo_epi64(q[6], q[7]);
+  __m256 lo = _mm256_castsi256_ps(_mm256_insertf128_si256(_mm256_castsi128_si256(a), c, 1));
+  __m256 hi = _mm256_castsi256_ps(_mm256_insertf128_si256(_mm256_castsi128_si256(b), d, 1));
+  *x = (rill_vi)_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, 0x88));
+  *y = (rill_vi)_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, 0xdd));
+}
+#define RILL_HAVE_GATHER34 1
 #else
 RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) {
   rill_vr r; for (int l = 0; l < RILL_W; ++l) r[l] = base[i[l]]; return r;
@@ -182,21 +225,25 @@ std::vector<bool> unblended_vars(const Function& f) {
   auto read = [&](const Operand& o) {
     if (o.is_var() && !visible[o.var]) ok[o.var] = false;
   };
-  auto walk = [&](auto& self, const Block& b) -> void {
+  // A loop's condition is read at the end of its condition block, by lanes that ran it; a
+  // lane that did not is already off the loop mask, so a value it never got is harmless.
+  auto walk = [&](auto& self, const Block& b, const Operand* read_at_end) -> void {
     std::vector<VarId> added;
     for (const Stmt& s : b) {
       for (const Operand& o : s.args) read(o);
-      if (s.kind == StmtKind::If || s.kind == StmtKind::Loop) read(s.cond);
-      for (const Block* sub : {&s.then_body, &s.else_body, &s.cond_body, &s.body, &s.step})
-        self(self, *sub);
+      if (s.kind == StmtKind::If) read(s.cond);
+      for (const Block* sub : {&s.then_body, &s.else_body, &s.body, &s.step})
+        self(self, *sub, nullptr);
+      if (s.kind == StmtKind::Loop) self(self, s.cond_body, &s.cond);
       if (s.kind == StmtKind::Assign && ok[s.dst] && !visible[s.dst]) {
         visible[s.dst] = true;
         added.push_back(s.dst);
       }
     }
+    if (read_at_end) read(*read_at_end);
     for (VarId v : added) visible[v] = false;
   };
-  walk(walk, f.body);
+  walk(walk, f.body, nullptr);
   return ok;
 }
 
@@ -460,24 +507,54 @@ class Lockstep {
     const int width = s.mask.full() ? dst_type.width : s.mask.count;
     const std::string id = std::to_string(s.array), shape = "arr" + id + "_shape";
     auto clamped = [&](size_t d) {
-      return "rill_v_clamp_index(" + operand(s.args[d], 0) + ", " + shape + "[" + std::to_string(d) + "])";
+      return "rill_v_clamp_index(" + operand(s.args[d], 0) + ", " + shape + "[" +
+             std::to_string(d) + "])";
     };
     std::string lin = clamped(0);
     if (s.args.size() > 1)
-      lin = "rill_v_add_i(" + lin + ", rill_v_mul_i(rill_splat_i((int32_t)" + shape + "[0]), " + clamped(1) + "))";
+      lin = "rill_v_add_i(" + lin + ", rill_v_mul_i(rill_splat_i((int32_t)" + shape + "[0]), " +
+            clamped(1) + "))";
     if (s.args.size() > 2)
-      lin = "rill_v_add_i(" + lin + ", rill_v_mul_i(rill_splat_i((int32_t)(" + shape + "[0] * " + shape +
-            "[1])), " + clamped(2) + "))";
+      lin = "rill_v_add_i(" + lin + ", rill_v_mul_i(rill_splat_i((int32_t)(" + shape + "[0] * " +
+            shape + "[1])), " + clamped(2) + "))";
     out += pad + "{\n";
     out += pad + "  const rill_vi rill_g = rill_v_mul_i(" + lin + ", rill_splat_i(" +
            std::to_string(a.elem.width) + "));\n";
+    // A whole vec3/vec4 element per lane: one load and a transpose (rill_gather3_r).
+    const bool whole =
+        lanes_ == 8 && width >= 2 &&
+        (a.elem.is_float() ? a.elem.width == 3 || a.elem.width == 4 : a.elem.width == 2);
+    if (whole && !a.elem.is_float()) {
+      out += "#ifdef RILL_HAVE_GATHER34\n";
+      out += pad + "  rill_vi rill_q0, rill_q1;\n";
+      out += pad + "  rill_gather2_i(arr" + id + ", rill_g, &rill_q0, &rill_q1);\n";
+      out += "#else\n";
+      for (int c = 0; c < 2; ++c)
+        out += pad + "  const rill_vi rill_q" + std::to_string(c) + " = rill_gather_i(arr" + id +
+               " + " + std::to_string(c) + ", rill_g);\n";
+      out += "#endif\n";
+    } else if (whole) {
+      out += "#ifdef RILL_HAVE_GATHER34\n";
+      out += pad + "  rill_vr rill_q0, rill_q1, rill_q2, rill_q3;\n";
+      out += pad + "  rill_gather" + std::to_string(a.elem.width) + "_r(arr" + id +
+             ", rill_g, &rill_q0, &rill_q1, &rill_q2" + (a.elem.width == 4 ? ", &rill_q3" : "") +
+             ");\n";
+      out += "#else\n";
+      for (int c = 0; c < a.elem.width; ++c)
+        out += pad + "  const rill_vr rill_q" + std::to_string(c) + " = rill_gather_r(arr" + id +
+               " + " + std::to_string(c) + ", rill_g);\n";
+      out += "#endif\n";
+    }
     for (int c = 0; c < width; ++c) {
-      std::string v = std::string(a.elem.is_float() ? "rill_gather_r" : "rill_gather_i") + "(arr" + id +
-                      " + " + std::to_string(c) + ", rill_g)";
+      std::string v = whole ? "rill_q" + std::to_string(c)
+                            : std::string(a.elem.is_float() ? "rill_gather_r" : "rill_gather_i") +
+                                  "(arr" + id + " + " + std::to_string(c) + ", rill_g)";
       int dc = s.mask.full() ? c : s.mask.comps[static_cast<size_t>(c)];
       std::string dst = component(s.dst, dc);
       out += pad + "  " + dst + " = " +
-             (mask.empty() || unblended_[s.dst] ? v : call(dst_type.is_float() ? "rill_sel_r" : "rill_sel_i", {mask, v, dst})) +
+             (mask.empty() || unblended_[s.dst]
+                  ? v
+                  : call(dst_type.is_float() ? "rill_sel_r" : "rill_sel_i", {mask, v, dst})) +
              ";\n";
     }
     out += pad + "}\n";

@@ -65,9 +65,12 @@ std::string cache_directory() {
   if (dir.empty()) {
     std::string xdg = env("XDG_CACHE_HOME");
     std::string home = env("HOME");
-    if (!xdg.empty()) dir = xdg + "/rill";
-    else if (!home.empty()) dir = home + "/.cache/rill";
-    else dir = (fs::temp_directory_path() / "rill-cache").string();
+    if (!xdg.empty())
+      dir = xdg + "/rill";
+    else if (!home.empty())
+      dir = home + "/.cache/rill";
+    else
+      dir = (fs::temp_directory_path() / "rill-cache").string();
   }
   return dir;
 }
@@ -92,8 +95,8 @@ SharedObject compile_shared_object(const std::string& source, const std::vector<
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec)
-    throw Error("CPU backend: cannot create the kernel cache directory '" + dir.string() +
-                "' (" + ec.message() + "); set RILL_CACHE_DIR to a writable directory");
+    throw Error("CPU backend: cannot create the kernel cache directory '" + dir.string() + "' (" +
+                ec.message() + "); set RILL_CACHE_DIR to a writable directory");
 
   SharedObject so;
   fs::path lib = dir / (key + ".so");
@@ -102,7 +105,8 @@ SharedObject compile_shared_object(const std::string& source, const std::vector<
   if (!so.from_disk_cache) {
     // Unique temporary names per process and thread, then an atomic rename.
     std::ostringstream tag;
-    tag << key << "." << getpid() << "." << std::hash<std::thread::id>{}(std::this_thread::get_id());
+    tag << key << "." << getpid() << "."
+        << std::hash<std::thread::id>{}(std::this_thread::get_id());
     fs::path src = dir / (tag.str() + ".c");
     fs::path tmp = dir / (tag.str() + ".so.tmp");
     fs::path log = dir / (tag.str() + ".log");
@@ -124,11 +128,13 @@ SharedObject compile_shared_object(const std::string& source, const std::vector<
         throw Error("CPU backend: the C compiler '" + cc +
                     "' could not be run; install one (apt-get install gcc) or set RILL_CC");
       throw Error("CPU backend: the C compiler rejected the generated kernel (exit " +
-                  std::to_string(rc) + "):\n" + messages + "\ngenerated source:\n" + codegen::numbered(source));
+                  std::to_string(rc) + "):\n" + messages + "\ngenerated source:\n" +
+                  codegen::numbered(source));
     }
     fs::remove(src, ec);
     fs::rename(tmp, lib, ec);
-    if (ec) throw Error("CPU backend: cannot move the compiled kernel into the cache: " + ec.message());
+    if (ec)
+      throw Error("CPU backend: cannot move the compiled kernel into the cache: " + ec.message());
   }
 
   so.handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -137,11 +143,13 @@ SharedObject compile_shared_object(const std::string& source, const std::vector<
     fs::remove(lib, ec);
     return compile_shared_object(source, flags, entry);
   }
-  if (!so.handle) throw Error(std::string("CPU backend: cannot load compiled kernel: ") + dlerror());
+  if (!so.handle)
+    throw Error(std::string("CPU backend: cannot load compiled kernel: ") + dlerror());
   so.symbol = dlsym(so.handle, entry.c_str());
   if (!so.symbol) {
     dlclose(so.handle);
-    throw Error("CPU backend: compiled kernel has no '" + entry + "' (stale cache file " + lib.string() + "?)");
+    throw Error("CPU backend: compiled kernel has no '" + entry + "' (stale cache file " +
+                lib.string() + "?)");
   }
   return so;
 }
