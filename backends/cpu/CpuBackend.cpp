@@ -43,7 +43,9 @@ struct Selection {
 
 class CpuKernel : public CompiledKernel {
  public:
-  CpuKernel(std::string source, SharedObject so) : source_(std::move(source)), so_(std::move(so)) {
+  // lockstep: the kernel is emit_c_lockstep()'s, which indexes arrays with 32-bit lanes.
+  CpuKernel(std::string source, SharedObject so, bool lockstep)
+      : source_(std::move(source)), so_(std::move(so)), lockstep_(lockstep) {
     run_ = reinterpret_cast<RunFn>(so_.symbol);
     from_disk_cache = so_.from_disk_cache;
   }
@@ -65,6 +67,11 @@ class CpuKernel : public CompiledKernel {
       out.push_back(s->host.data());
     }
     for (auto* arr : a.arrays) {
+      if (lockstep_ && arr->host.size() >= (size_t{1} << 31))
+        throw Error("simd backend: array '" + arr->name + "' holds " +
+                    std::to_string(arr->host.size()) +
+                    " words; the lockstep kernels index arrays in 32 bits (under 2^31 words). Use "
+                    "the cpu backend for arrays this large");
       arr->sync_to_host();
       arrays.push_back(arr->host.data());
       shapes.insert(shapes.end(), {arr->shape[0], arr->shape[1], arr->shape[2]});
@@ -120,6 +127,7 @@ class CpuKernel : public CompiledKernel {
   std::string source_;
   SharedObject so_;
   RunFn run_ = nullptr;
+  bool lockstep_;
 };
 
 // `cpu` runs the scalar C of emit_c(), one element per iteration; `simd` runs the
@@ -148,7 +156,7 @@ class CpuBackend : public Backend {
     std::vector<std::string> flags = compiler_flags(o.accuracy);
     if (lockstep && vector_isa() == "AVX2") flags.push_back("-mavx2");
     SharedObject so = compile_shared_object(source, flags, "rill_run");
-    return std::make_unique<CpuKernel>(std::move(source), std::move(so));
+    return std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep);
   }
 
  private:

@@ -471,6 +471,15 @@ inline std::vector<int32_t> random_ints(uint32_t seed, size_t n) {
 }
 
 // Every hard value first, then n random values.
+// n integers drawn uniformly from [lo, hi], seeded (trip counts, branch selectors).
+inline std::vector<int32_t> small_ints(uint32_t seed, size_t n, int32_t lo, int32_t hi) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int32_t> d(lo, hi);
+  std::vector<int32_t> v(n);
+  for (int32_t& x : v) x = d(rng);
+  return v;
+}
+
 inline std::vector<float> sweep_floats(uint32_t seed, size_t n) {
   std::vector<float> v = hard_floats();
   std::vector<float> r = random_floats(seed, n);

@@ -12,14 +12,6 @@ namespace {
 
 class ControlFlowTest : public BackendTest {};
 
-std::vector<int32_t> small_ints(uint32_t seed, size_t n, int32_t lo, int32_t hi) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int32_t> d(lo, hi);
-  std::vector<int32_t> v(n);
-  for (int32_t& x : v) x = d(rng);
-  return v;
-}
-
 TEST_P(ControlFlowTest, IfElseIfElse) {
   auto xs = sweep_floats(1, 2048);
   Program p = program("if_chain", [] {
