@@ -310,7 +310,7 @@ int main(int argc, char** argv) {
   RenderOptions ro;
   CLI::App* r = app.add_subcommand("render", "render a scene");
   r->add_option("scene", ro.scene, "JSON scene, OBJ file or builtin:NAME")->required();
-  r->add_option("--backend", ro.backend, "cpu, opencl or glsl")->default_str("cpu");
+  r->add_option("--backend", ro.backend, "cpu, simd, opencl or glsl")->default_str("cpu");
   r->add_option("--accuracy", ro.accuracy, "strict, fast or double")->default_str("strict");
   r->add_option("--size", ro.size, "image size WxH (default: the scene's)");
   r->add_option("--out", ro.out, "PNG output (sRGB)");
