@@ -10,10 +10,14 @@ using namespace ir;
 namespace {
 const char* kComp[] = {"x", "y", "z", "w"};
 
-std::string pad_of(int indent) { return std::string(static_cast<size_t>(indent) * 2, ' '); }
+std::string pad_of(int indent) {
+  return std::string(static_cast<size_t>(indent) * 2, ' ');
+}
 
 // Suffix of the rill_* helper for a scalar kind: rill_min_f, rill_min_i.
-const char* suffix(ScalarKind k) { return k == ScalarKind::Float ? "_f" : k == ScalarKind::Int ? "_i" : "_b"; }
+const char* suffix(ScalarKind k) {
+  return k == ScalarKind::Float ? "_f" : k == ScalarKind::Int ? "_i" : "_b";
+}
 
 std::string call(const std::string& fn, std::initializer_list<std::string> args) {
   std::string s = fn + "(";
@@ -26,6 +30,36 @@ std::string call(const std::string& fn, std::initializer_list<std::string> args)
   return s + ")";
 }
 }  // namespace
+
+std::string fixed_form_expr(const Stmt& s, int c,
+                            const std::function<std::string(const Operand&, int)>& operand) {
+  switch (s.op) {
+    case Op::Dot: {
+      // ((a.x*b.x + a.y*b.y) + a.z*b.z) + a.w*b.w: one fixed order everywhere.
+      std::string sum;
+      for (int i = 0; i < s.args[0].width(); ++i) {
+        std::string p = "(" + operand(s.args[0], i) + " * " + operand(s.args[1], i) + ")";
+        sum = i == 0 ? p : "(" + sum + " + " + p + ")";
+      }
+      return sum;
+    }
+    case Op::Cross: {
+      int i = (c + 1) % 3, j = (c + 2) % 3;
+      return "((" + operand(s.args[0], i) + " * " + operand(s.args[1], j) + ") - (" +
+             operand(s.args[0], j) + " * " + operand(s.args[1], i) + "))";
+    }
+    case Op::Construct: {
+      int k = c;
+      for (const Operand& o : s.args) {
+        if (k < o.width()) return operand(o, k);
+        k -= o.width();
+      }
+      throw Error("internal: construct has too few components");
+    }
+    default:
+      throw Error(std::string("internal: ") + op_name(s.op) + " has no fixed form");
+  }
+}
 
 std::string CFamilyPrinter::component(VarId v, int c) const {
   std::string n = f_.var_name(v);
@@ -64,8 +98,7 @@ std::string CFamilyPrinter::declarations(int indent) const {
                d_.initial_value(f_, v, c) + ";\n";
     } else {
       std::string init = d_.vector_type(var.type) + "(";
-      for (int c = 0; c < var.type.width; ++c)
-        init += (c ? ", " : "") + d_.initial_value(f_, v, c);
+      for (int c = 0; c < var.type.width; ++c) init += (c ? ", " : "") + d_.initial_value(f_, v, c);
       out += pad + qual + d_.vector_type(var.type) + " " + f_.var_name(v) + " = " + init + ");\n";
     }
   }
@@ -113,16 +146,24 @@ void CFamilyPrinter::stmt(std::string& out, const Stmt& s, int indent) const {
       out += pad + "}\n";
       return;
     }
-    case StmtKind::Break: out += pad + "break;\n"; return;
-    case StmtKind::Continue: out += pad + "continue;\n"; return;
-    case StmtKind::Discard: out += pad + d_.discard() + "\n"; return;
+    case StmtKind::Break:
+      out += pad + "break;\n";
+      return;
+    case StmtKind::Continue:
+      out += pad + "continue;\n";
+      return;
+    case StmtKind::Discard:
+      out += pad + d_.discard() + "\n";
+      return;
   }
 }
 
 void CFamilyPrinter::assign(std::string& out, const Stmt& s, const std::string& pad) const {
   const Type dst_type = f_.var(s.dst).type;
   const int width = s.mask.full() ? dst_type.width : s.mask.count;
-  auto dst_comp = [&](int c) { return s.mask.full() ? c : static_cast<int>(s.mask.comps[static_cast<size_t>(c)]); };
+  auto dst_comp = [&](int c) {
+    return s.mask.full() ? c : static_cast<int>(s.mask.comps[static_cast<size_t>(c)]);
+  };
 
   if (s.op == Op::Gather) {
     std::vector<std::string> index, dst;
@@ -148,13 +189,15 @@ void CFamilyPrinter::assign(std::string& out, const Stmt& s, const std::string& 
   if (width > 1)
     for (const Operand& a : s.args) aliased = aliased || (a.is_var() && a.var == s.dst);
   if (!aliased) {
-    for (int c = 0; c < width; ++c) out += pad + component(s.dst, dst_comp(c)) + " = " + values[static_cast<size_t>(c)] + ";\n";
+    for (int c = 0; c < width; ++c)
+      out += pad + component(s.dst, dst_comp(c)) + " = " + values[static_cast<size_t>(c)] + ";\n";
     return;
   }
   out += pad + "{\n";
   std::string qual = dst_type.is_float() ? d_.float_qualifier() : "";
   for (int c = 0; c < width; ++c)
-    out += pad + "  " + qual + d_.scalar_type(dst_type.kind) + " r" + std::to_string(c) + " = " + values[static_cast<size_t>(c)] + ";\n";
+    out += pad + "  " + qual + d_.scalar_type(dst_type.kind) + " r" + std::to_string(c) + " = " +
+           values[static_cast<size_t>(c)] + ";\n";
   for (int c = 0; c < width; ++c)
     out += pad + "  " + component(s.dst, dst_comp(c)) + " = r" + std::to_string(c) + ";\n";
   out += pad + "}\n";
@@ -165,81 +208,114 @@ std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
   ScalarKind k = s.args.empty() ? ScalarKind::Int : s.args[0].type.kind;
   std::string sx = suffix(k);
   switch (s.op) {
-    case Op::Copy: return a(0);
+    case Op::Copy:
+      return a(0);
     case Op::Neg: {
       if (k == ScalarKind::Int) return call("rill_neg_i", {a(0)});
       std::string x = a(0);
       return x[0] == '-' ? "(-(" + x + "))" : "(-" + x + ")";  // never print "--"
     }
-    case Op::Add: return k == ScalarKind::Int ? call("rill_add_i", {a(0), a(1)}) : "(" + a(0) + " + " + a(1) + ")";
-    case Op::Sub: return k == ScalarKind::Int ? call("rill_sub_i", {a(0), a(1)}) : "(" + a(0) + " - " + a(1) + ")";
-    case Op::Mul: return k == ScalarKind::Int ? call("rill_mul_i", {a(0), a(1)}) : "(" + a(0) + " * " + a(1) + ")";
-    case Op::Div: return k == ScalarKind::Int ? call("rill_div_i", {a(0), a(1)}) : d_.float_div(a(0), a(1));
-    case Op::Mod: return call("rill_mod" + sx, {a(0), a(1)});
-    case Op::Min: return call("rill_min" + sx, {a(0), a(1)});
-    case Op::Max: return call("rill_max" + sx, {a(0), a(1)});
-    case Op::Abs: return call("rill_abs" + sx, {a(0)});
-    case Op::Sign: return call("rill_sign" + sx, {a(0)});
-    case Op::Floor: return call("rill_floor", {a(0)});
-    case Op::Ceil: return call("rill_ceil", {a(0)});
-    case Op::Fract: return call("rill_fract", {a(0)});
-    case Op::Sqrt: return call("rill_sqrt", {a(0)});
-    case Op::Rsqrt: return call("rill_rsqrt", {a(0)});
-    case Op::Exp: return call("rill_exp", {a(0)});
-    case Op::Log: return call("rill_log", {a(0)});
-    case Op::Exp2: return call("rill_exp2", {a(0)});
-    case Op::Log2: return call("rill_log2", {a(0)});
-    case Op::Sin: return call("rill_sin", {a(0)});
-    case Op::Cos: return call("rill_cos", {a(0)});
-    case Op::Tan: return call("rill_tan", {a(0)});
-    case Op::Atan: return call("rill_atan", {a(0)});
-    case Op::Pow: return call("rill_pow", {a(0), a(1)});
-    case Op::Atan2: return call("rill_atan2", {a(0), a(1)});
-    case Op::BitAnd: return "(" + a(0) + " & " + a(1) + ")";
-    case Op::BitOr: return "(" + a(0) + " | " + a(1) + ")";
-    case Op::BitXor: return "(" + a(0) + " ^ " + a(1) + ")";
-    case Op::BitNot: return "(~" + a(0) + ")";
-    case Op::Shl: return call("rill_shl", {a(0), a(1)});
-    case Op::Shr: return call("rill_shr", {a(0), a(1)});
-    case Op::And: return "(" + a(0) + " && " + a(1) + ")";
-    case Op::Or: return "(" + a(0) + " || " + a(1) + ")";
-    case Op::Not: return "(!" + a(0) + ")";
-    case Op::Lt: return d_.compare(k, "<", a(0), a(1));
-    case Op::Le: return d_.compare(k, "<=", a(0), a(1));
-    case Op::Gt: return d_.compare(k, ">", a(0), a(1));
-    case Op::Ge: return d_.compare(k, ">=", a(0), a(1));
-    case Op::Eq: return d_.compare(k, "==", a(0), a(1));
-    case Op::Ne: return d_.compare(k, "!=", a(0), a(1));
-    case Op::Select: return d_.select(s.args[1].type.kind, a(0), a(1), a(2));
-    case Op::IntToFloat: return call("rill_i2f", {a(0)});
-    case Op::FloatToInt: return call("rill_f2i", {a(0)});
-    case Op::FloatBitsToInt: return call("rill_fbits", {a(0)});
-    case Op::IntBitsToFloat: return call("rill_ibits", {a(0)});
-    case Op::Dot: {
-      // ((a.x*b.x + a.y*b.y) + a.z*b.z) + a.w*b.w: one fixed order everywhere.
-      std::string sum;
-      for (int i = 0; i < s.args[0].width(); ++i) {
-        std::string p = "(" + operand(s.args[0], i) + " * " + operand(s.args[1], i) + ")";
-        sum = i == 0 ? p : "(" + sum + " + " + p + ")";
-      }
-      return sum;
-    }
-    case Op::Cross: {
-      int i = (c + 1) % 3, j = (c + 2) % 3;
-      return "((" + operand(s.args[0], i) + " * " + operand(s.args[1], j) + ") - (" +
-             operand(s.args[0], j) + " * " + operand(s.args[1], i) + "))";
-    }
-    case Op::Construct: {
-      int k2 = c;
-      for (const Operand& o : s.args) {
-        if (k2 < o.width()) return operand(o, k2);
-        k2 -= o.width();
-      }
-      throw Error("internal: construct has too few components");
-    }
-    case Op::ElementIndex: return d_.element_index();
-    case Op::ElementCoord: return d_.element_coord(c);
-    case Op::Gather: break;
+    case Op::Add:
+      return k == ScalarKind::Int ? call("rill_add_i", {a(0), a(1)})
+                                  : "(" + a(0) + " + " + a(1) + ")";
+    case Op::Sub:
+      return k == ScalarKind::Int ? call("rill_sub_i", {a(0), a(1)})
+                                  : "(" + a(0) + " - " + a(1) + ")";
+    case Op::Mul:
+      return k == ScalarKind::Int ? call("rill_mul_i", {a(0), a(1)})
+                                  : "(" + a(0) + " * " + a(1) + ")";
+    case Op::Div:
+      return k == ScalarKind::Int ? call("rill_div_i", {a(0), a(1)}) : d_.float_div(a(0), a(1));
+    case Op::Mod:
+      return call("rill_mod" + sx, {a(0), a(1)});
+    case Op::Min:
+      return call("rill_min" + sx, {a(0), a(1)});
+    case Op::Max:
+      return call("rill_max" + sx, {a(0), a(1)});
+    case Op::Abs:
+      return call("rill_abs" + sx, {a(0)});
+    case Op::Sign:
+      return call("rill_sign" + sx, {a(0)});
+    case Op::Floor:
+      return call("rill_floor", {a(0)});
+    case Op::Ceil:
+      return call("rill_ceil", {a(0)});
+    case Op::Fract:
+      return call("rill_fract", {a(0)});
+    case Op::Sqrt:
+      return call("rill_sqrt", {a(0)});
+    case Op::Rsqrt:
+      return call("rill_rsqrt", {a(0)});
+    case Op::Exp:
+      return call("rill_exp", {a(0)});
+    case Op::Log:
+      return call("rill_log", {a(0)});
+    case Op::Exp2:
+      return call("rill_exp2", {a(0)});
+    case Op::Log2:
+      return call("rill_log2", {a(0)});
+    case Op::Sin:
+      return call("rill_sin", {a(0)});
+    case Op::Cos:
+      return call("rill_cos", {a(0)});
+    case Op::Tan:
+      return call("rill_tan", {a(0)});
+    case Op::Atan:
+      return call("rill_atan", {a(0)});
+    case Op::Pow:
+      return call("rill_pow", {a(0), a(1)});
+    case Op::Atan2:
+      return call("rill_atan2", {a(0), a(1)});
+    case Op::BitAnd:
+      return "(" + a(0) + " & " + a(1) + ")";
+    case Op::BitOr:
+      return "(" + a(0) + " | " + a(1) + ")";
+    case Op::BitXor:
+      return "(" + a(0) + " ^ " + a(1) + ")";
+    case Op::BitNot:
+      return "(~" + a(0) + ")";
+    case Op::Shl:
+      return call("rill_shl", {a(0), a(1)});
+    case Op::Shr:
+      return call("rill_shr", {a(0), a(1)});
+    case Op::And:
+      return "(" + a(0) + " && " + a(1) + ")";
+    case Op::Or:
+      return "(" + a(0) + " || " + a(1) + ")";
+    case Op::Not:
+      return "(!" + a(0) + ")";
+    case Op::Lt:
+      return d_.compare(k, "<", a(0), a(1));
+    case Op::Le:
+      return d_.compare(k, "<=", a(0), a(1));
+    case Op::Gt:
+      return d_.compare(k, ">", a(0), a(1));
+    case Op::Ge:
+      return d_.compare(k, ">=", a(0), a(1));
+    case Op::Eq:
+      return d_.compare(k, "==", a(0), a(1));
+    case Op::Ne:
+      return d_.compare(k, "!=", a(0), a(1));
+    case Op::Select:
+      return d_.select(s.args[1].type.kind, a(0), a(1), a(2));
+    case Op::IntToFloat:
+      return call("rill_i2f", {a(0)});
+    case Op::FloatToInt:
+      return call("rill_f2i", {a(0)});
+    case Op::FloatBitsToInt:
+      return call("rill_fbits", {a(0)});
+    case Op::IntBitsToFloat:
+      return call("rill_ibits", {a(0)});
+    case Op::Dot:
+    case Op::Cross:
+    case Op::Construct:
+      return fixed_form_expr(s, c, [&](const Operand& o, int i) { return operand(o, i); });
+    case Op::ElementIndex:
+      return d_.element_index();
+    case Op::ElementCoord:
+      return d_.element_coord(c);
+    case Op::Gather:
+      break;
   }
   throw Error(std::string("internal: no C-family form for op ") + op_name(s.op));
 }

@@ -13,6 +13,7 @@
 // dialect's prelude gives with the same semantics.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,12 @@ class Dialect {
     return "(" + c + " ? " + a + " : " + b + ")";
   }
 };
+
+// Component c of Dot, Cross or Construct, the operations that combine components, spelled in
+// one fixed order for every C-family printer (scalar or lockstep): `operand(o, i)` names
+// component i of an operand.
+std::string fixed_form_expr(const ir::Stmt& s, int c,
+                            const std::function<std::string(const ir::Operand&, int)>& operand);
 
 class CFamilyPrinter {
  public:

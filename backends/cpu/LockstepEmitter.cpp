@@ -98,7 +98,7 @@ RILL_FN rill_vi rill_gather_i(const int32_t* base, rill_vi i) {
 #include <immintrin.h>
 /* Three or four consecutive floats per lane (a vec3/vec4 element): one 16-byte load per lane
    (masked to three floats for vec3, so the last element never reads past the array) and a
-   transpose, instead of one hardware gather per component. */
+   transpose, instead of eight scalar loads per component. */
 RILL_FN void rill_transpose_lanes(const __m128 q[8], rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
   __m256 r0 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[0]), q[4], 1);
   __m256 r1 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[1]), q[5], 1);
@@ -471,6 +471,14 @@ class Lockstep {
     }
   }
 
+  // `v` as the new value of `dst` (a component of s.dst) for the lanes in `mask`: the other
+  // lanes keep their value, unless none of them can read it (see unblended_vars()).
+  std::string blended(const Stmt& s, const std::string& mask, const std::string& dst,
+                      const std::string& v) const {
+    if (mask.empty() || unblended_[s.dst]) return v;
+    return call(f_.var(s.dst).type.is_float() ? "rill_sel_r" : "rill_sel_i", {mask, v, dst});
+  }
+
   void assign(std::string& out, const Stmt& s, const std::string& mask, const std::string& pad) {
     const Type dst_type = f_.var(s.dst).type;
     const int width = s.mask.full() ? dst_type.width : s.mask.count;
@@ -480,8 +488,7 @@ class Lockstep {
     std::vector<std::string> values;
     for (int c = 0; c < width; ++c) values.push_back(expr(s, c));
     auto blend = [&](const std::string& dst, const std::string& v) {
-      if (mask.empty() || unblended_[s.dst]) return v;
-      return call(dst_type.is_float() ? "rill_sel_r" : "rill_sel_i", {mask, v, dst});
+      return blended(s, mask, dst, v);
     };
     bool aliased = false;
     if (width > 1)
@@ -506,9 +513,10 @@ class Lockstep {
 
   // Each lane loads its own element at the scalar gather's clamped index. The index is
   // computed on vectors in 32 bits (the backend refuses arrays of 2^31 words or more, see
-  // CpuBackend.cpp), then one hardware gather per component loads the lanes (AVX2), or a
-  // vector initializer from scalar loads does: writing lanes one by one to memory and
-  // reading the vector back would stall on store forwarding.
+  // CpuBackend.cpp). A whole vec3/vec4/ivec2 element is loaded once per lane and transposed
+  // (rill_gather3_r and kin, AVX2); otherwise each component is a vector initializer from
+  // scalar loads (rill_gather_r): writing lanes one by one to memory and reading the vector
+  // back would stall on store forwarding.
   void gather(std::string& out, const Stmt& s, const std::string& mask, const std::string& pad) {
     const ArrayDecl& a = f_.arrays.at(static_cast<size_t>(s.array));
     const Type dst_type = f_.var(s.dst).type;
@@ -528,42 +536,32 @@ class Lockstep {
     out += pad + "{\n";
     out += pad + "  const rill_vi rill_g = rill_v_mul_i(" + lin + ", rill_splat_i(" +
            std::to_string(a.elem.width) + "));\n";
-    // A whole vec3/vec4 element per lane: one load and a transpose (rill_gather3_r).
     const bool whole =
         lanes_ == 8 && width >= 2 &&
         (a.elem.is_float() ? a.elem.width == 3 || a.elem.width == 4 : a.elem.width == 2);
-    if (whole && !a.elem.is_float()) {
+    const std::string kind = a.elem.is_float() ? "_r" : "_i";
+    if (whole) {
+      const std::string vt = vtype(a.elem.kind);
+      std::string q, fallback;
+      for (int c = 0; c < a.elem.width; ++c) {
+        std::string qc = "rill_q" + std::to_string(c);
+        q += ", &" + qc;
+        fallback += pad + "  const " + vt + " " + qc + " = rill_gather" + kind + "(arr" + id +
+                    " + " + std::to_string(c) + ", rill_g);\n";
+      }
       out += "#ifdef RILL_HAVE_GATHER34\n";
-      out += pad + "  rill_vi rill_q0, rill_q1;\n";
-      out += pad + "  rill_gather2_i(arr" + id + ", rill_g, &rill_q0, &rill_q1);\n";
-      out += "#else\n";
-      for (int c = 0; c < 2; ++c)
-        out += pad + "  const rill_vi rill_q" + std::to_string(c) + " = rill_gather_i(arr" + id +
-               " + " + std::to_string(c) + ", rill_g);\n";
-      out += "#endif\n";
-    } else if (whole) {
-      out += "#ifdef RILL_HAVE_GATHER34\n";
-      out += pad + "  rill_vr rill_q0, rill_q1, rill_q2, rill_q3;\n";
-      out += pad + "  rill_gather" + std::to_string(a.elem.width) + "_r(arr" + id +
-             ", rill_g, &rill_q0, &rill_q1, &rill_q2" + (a.elem.width == 4 ? ", &rill_q3" : "") +
-             ");\n";
-      out += "#else\n";
-      for (int c = 0; c < a.elem.width; ++c)
-        out += pad + "  const rill_vr rill_q" + std::to_string(c) + " = rill_gather_r(arr" + id +
-               " + " + std::to_string(c) + ", rill_g);\n";
-      out += "#endif\n";
+      out += pad + "  " + vt + " rill_q0, rill_q1, rill_q2, rill_q3;\n";
+      out += pad + "  rill_gather" + std::to_string(a.elem.width) + kind + "(arr" + id +
+             ", rill_g" + q + ");\n";
+      out += "#else\n" + fallback + "#endif\n";
     }
     for (int c = 0; c < width; ++c) {
-      std::string v = whole ? "rill_q" + std::to_string(c)
-                            : std::string(a.elem.is_float() ? "rill_gather_r" : "rill_gather_i") +
-                                  "(arr" + id + " + " + std::to_string(c) + ", rill_g)";
+      std::string v =
+          whole ? "rill_q" + std::to_string(c)
+                : "rill_gather" + kind + "(arr" + id + " + " + std::to_string(c) + ", rill_g)";
       int dc = s.mask.full() ? c : s.mask.comps[static_cast<size_t>(c)];
       std::string dst = component(s.dst, dc);
-      out += pad + "  " + dst + " = " +
-             (mask.empty() || unblended_[s.dst]
-                  ? v
-                  : call(dst_type.is_float() ? "rill_sel_r" : "rill_sel_i", {mask, v, dst})) +
-             ";\n";
+      out += pad + "  " + dst + " = " + blended(s, mask, dst, v) + ";\n";
     }
     out += pad + "}\n";
   }
@@ -665,28 +663,11 @@ class Lockstep {
         return call("rill_v_fbits", {a(0)});
       case Op::IntBitsToFloat:
         return call("rill_v_ibits", {a(0)});
-      case Op::Dot: {
-        // The scalar code's order: ((a.x*b.x + a.y*b.y) + a.z*b.z) + a.w*b.w.
-        std::string sum;
-        for (int i = 0; i < s.args[0].width(); ++i) {
-          std::string p = "(" + operand(s.args[0], i) + " * " + operand(s.args[1], i) + ")";
-          sum = i == 0 ? p : "(" + sum + " + " + p + ")";
-        }
-        return sum;
-      }
-      case Op::Cross: {
-        int i = (c + 1) % 3, j = (c + 2) % 3;
-        return "((" + operand(s.args[0], i) + " * " + operand(s.args[1], j) + ") - (" +
-               operand(s.args[0], j) + " * " + operand(s.args[1], i) + "))";
-      }
-      case Op::Construct: {
-        int k2 = c;
-        for (const Operand& o : s.args) {
-          if (k2 < o.width()) return operand(o, k2);
-          k2 -= o.width();
-        }
-        throw Error("internal: construct has too few components");
-      }
+      case Op::Dot:
+      case Op::Cross:
+      case Op::Construct:
+        return codegen::fixed_form_expr(s, c,
+                                        [&](const Operand& o, int i) { return operand(o, i); });
       case Op::ElementIndex:
         return "rill_element";
       case Op::ElementCoord:
