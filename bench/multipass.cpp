@@ -165,8 +165,7 @@ int main(int argc, char** argv) {
       Setup s;
       s.name = name;
       s.scene = rt::load_scene("builtin:" + name);
-      s.grid = std::make_unique<rt::Grid>(
-          rt::build_grid(s.scene, s.scene.options.grid, s.scene.options.subgrid_min));
+      s.grid = std::make_unique<rt::Grid>(rt::build_grid_for(s.scene));
       s.tracer = std::make_unique<rt::Tracer>(s.scene, *s.grid);
       setups.push_back(std::move(s));
     }

@@ -2,7 +2,8 @@
 //
 //   rill-bench-trace [--sections throughput,embree,grid,depth,spec] [--size WxH]
 //                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends all|cpu,simd,opencl,glsl]
-//                    [--repeats R] [--subgrids N|off] [--grid-scene S] [--grids auto,16,32,...]
+//                    [--repeats R] [--subgrids N|off] [--grid-density D] [--grid-scene S] [--grids
+//                    auto,16,32,...]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu] [--md F] [--csv F]
 //
 // Sections (each a table; all timings are medians of R interleaved repeats, after an
@@ -109,7 +110,8 @@ struct Options {
   int repeats = 3;
   std::string grid_scene = "builtin:thesis-c";
   std::string grids = "auto,16,20,32,48,64,96,128";
-  std::string subgrids;  // empty: the scene's (default off)
+  std::string subgrids;      // empty: the scene's (default off)
+  std::string grid_density;  // empty: the scene's (default 4)
   std::string depth_scene = "builtin:thesis-b,builtin:glass";
   std::string depths = "1-8";
   std::string sweep_backends = "cpu";
@@ -155,6 +157,7 @@ rt::Scene load(const std::string& spec, const Options& o) {
   s.height = o.height;
   s.options.spp = 1;
   if (!o.subgrids.empty()) s.options.subgrid_min = rt::parse_subgrid_min(o.subgrids);
+  if (!o.grid_density.empty()) s.options.grid_density = rt::parse_grid_density(o.grid_density);
   s.validate();
   return s;
 }
@@ -175,14 +178,18 @@ struct PrimaryRun {
   rill::Stream<rill::Float3> origins, dirs;
   rill::Stream<rill::Int> prim;
   rill::Stream<rill::Float> dist;
+  // The rays of a width x height image, as 2D streams (a backend may use the shape: simd
+  // runs tiles of neighbouring pixels together).
   PrimaryRun(rt::Tracer& tracer, const std::string& be, const std::vector<glm::vec3>& o,
-             const std::vector<glm::vec3>& d)
+             const std::vector<glm::vec3>& d, int width, int height)
       : backend(be),
         kernel(tracer.intersect_kernel(be)),
-        origins(o),
-        dirs(d),
-        prim(origins.size()),
-        dist(origins.size()) {
+        origins(width, height),
+        dirs(width, height),
+        prim(width, height),
+        dist(width, height) {
+    origins.upload(o);
+    dirs.upload(d);
     kernel.inputs(origins, dirs).outputs(prim, dist);
   }
   double run() {
@@ -241,7 +248,7 @@ class Bench {
              {}};
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
-      rt::Grid grid = rt::build_grid(scene, scene.options.grid, scene.options.subgrid_min);
+      rt::Grid grid = rt::build_grid_for(scene);
       rt::Tracer tracer(scene, grid);
       const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
       const std::vector<glm::vec3> dirs =
@@ -253,7 +260,8 @@ class Bench {
 
       std::vector<std::unique_ptr<PrimaryRun>> runs;
       for (const auto& be : bes) {
-        runs.push_back(std::make_unique<PrimaryRun>(tracer, be, origins, dirs));
+        runs.push_back(
+            std::make_unique<PrimaryRun>(tracer, be, origins, dirs, scene.width, scene.height));
         runs.back()->run();  // warm-up: uploads, driver compiles
       }
 #ifdef RILL_BENCH_HAVE_EMBREE
@@ -383,13 +391,15 @@ class Bench {
       if (g != "auto" && (*end != '\0' || p.res < 1 || p.res > 512))
         throw rt::SceneError("--grids: 'auto' or 1..512 (got " + g + ")");
       for (int r = 0; r < o_.repeats; ++r) {  // the build time is a median too
-        p.grid = rt::build_grid(scene, p.res, scene.options.subgrid_min);
+        p.grid =
+            rt::build_grid(scene, p.res, scene.options.subgrid_min, scene.options.grid_density);
         p.build.push_back(p.grid.build_ms);
       }
       p.tracer = std::make_unique<rt::Tracer>(scene, p.grid);
       const auto dirs = p.tracer->camera_rays("cpu", scene.camera, scene.width, scene.height);
       for (const auto& be : bes) {
-        p.runs.push_back(std::make_unique<PrimaryRun>(*p.tracer, be, origins, dirs));
+        p.runs.push_back(
+            std::make_unique<PrimaryRun>(*p.tracer, be, origins, dirs, scene.width, scene.height));
         p.runs.back()->run();                                 // warm-up
         p.tracer->render(settings(be, scene), scene.camera);  // compile, warm-up
       }
@@ -430,7 +440,7 @@ class Bench {
     int d0 = 1, d1 = 8;
     if (std::sscanf(o_.depths.c_str(), "%d-%d", &d0, &d1) != 2 || d0 < 0 || d1 < d0 || d1 > 64)
       throw rt::SceneError("--depths expects FIRST-LAST within 0..64 (got '" + o_.depths + "')");
-    rt::Grid grid = rt::build_grid(scene, scene.options.grid, scene.options.subgrid_min);
+    rt::Grid grid = rt::build_grid_for(scene);
     rt::Tracer tracer(scene, grid);
     const double n = static_cast<double>(scene.width) * scene.height;
     Table t{"Reflection depth sweep: " + scene.name + " (" +
@@ -476,7 +486,7 @@ class Bench {
     every.stack = rt::kRayStack;
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
-      rt::Grid grid = rt::build_grid(scene, scene.options.grid, scene.options.subgrid_min);
+      rt::Grid grid = rt::build_grid_for(scene);
       rt::Tracer special(scene, grid), generic(scene, grid, all);
       for (const auto& be : bes) {
         rt::RenderResult a = special.render(settings(be, scene), scene.camera);
@@ -560,6 +570,8 @@ int main(int argc, char** argv) {
       "--subgrids", o.subgrids,
       "voxels listing more triangles than this get a subgrid (12 is a good value), or off "
       "(default)");
+  app.add_option("--grid-density", o.grid_density,
+                 "voxels per triangle of the auto grid, 0.125..256 (default: the scene's, 4)");
   app.add_option("--grids", o.grids, "grid resolutions of the sweep: auto or N (N^3 voxels)")
       ->default_str(o.grids);
   app.add_option("--depth-scene", o.depth_scene, "scenes of the depth sweep (comma list)")

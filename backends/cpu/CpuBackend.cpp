@@ -5,6 +5,9 @@
 #include <tbb/info.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
+#include <functional>
+
 #include "CEmitter.h"
 #include "LockstepEmitter.h"
 #include "SharedObjectCache.h"
@@ -93,6 +96,21 @@ class CpuKernel : public CompiledKernel {
       int64_t written = 0, selected = 0;
     };
     const int64_t grain = 1024;
+    // The lockstep kernel runs a 2D stream in tiles of two rows (rill_next_group): give it
+    // ranges of whole row pairs, about `grain` elements or more each.
+    if (lockstep_ && !mask && a.height >= 2 && a.width >= kLockstepLanes / 2 &&
+        a.count == a.width * a.height) {
+      const int64_t pair = 2 * a.width, pairs = (a.height + 1) / 2;
+      const int64_t written = tbb::parallel_reduce(
+          tbb::blocked_range<int64_t>(0, pairs, std::max<int64_t>(1, grain / pair)), int64_t{0},
+          [&](const tbb::blocked_range<int64_t>& r, int64_t acc) {
+            return acc + run_(&L, r.begin() * pair, std::min(r.end() * pair, a.count));
+          },
+          std::plus<int64_t>());
+      selected = a.count;
+      for (auto* s : a.outputs) s->host_written();
+      return written;
+    }
     Counts total = tbb::parallel_reduce(
         tbb::blocked_range<int64_t>(0, a.count, grain), Counts{},
         [&](const tbb::blocked_range<int64_t>& r, Counts acc) {

@@ -18,8 +18,10 @@
 // must be harmless on any input: the rill_* helpers already are (integer division by zero
 // gives 0, conversions saturate). Each lane computes exactly the operations of the scalar
 // code, in the same order and precision, so results are bit for bit those of emit_c().
-// A tail group shorter than W repeats its last element in the spare lanes and stores only
-// the real ones.
+// A group is W consecutive elements, or a W/2 x 2 tile of a 2D stream when the launch range
+// is whole rows (the backend hands the lockstep kernel ranges of row pairs; rill_next_group).
+// A group shorter than W repeats its last element in the spare lanes and stores only the
+// real ones.
 #include "LockstepEmitter.h"
 
 #include "../codegen/CDialect.h"
@@ -52,6 +54,37 @@ RILL_FN int rill_any(rill_vi m) {
   return r != 0;
 }
 #endif
+/* The groups of a launch range [begin, end). A range of whole rows of a 2D stream goes in
+   tiles of RILL_W/2 x 2 elements (rows paired from the range's first row, an odd last row in
+   runs of RILL_W): neighbouring pixels take similar paths through a kernel, and a tile's
+   lanes lie closer together than RILL_W along one row, so they diverge less. Any other
+   range goes in runs of RILL_W consecutive elements. The spare lanes of a short group repeat
+   its last element; the return value is the group's element count, 0 after the last. */
+typedef struct { int64_t next, end, width; int tiled; } rill_groups;
+RILL_FN rill_groups rill_groups_of(const rill_launch* L, int64_t begin, int64_t end) {
+  rill_groups g = {begin, end, L->width, 0};
+  g.tiled = RILL_W >= 4 && L->height >= 2 && L->width >= RILL_W / 2 &&
+            L->count == L->width * L->height && begin % L->width == 0 && end % L->width == 0;
+  return g;
+}
+RILL_FN int rill_next_group(rill_groups* g, int64_t lane[RILL_W]) {
+  if (g->next >= g->end) return 0;
+  int n = 0;
+  const int64_t x = g->next % g->width, row = g->next - x;
+  if (g->tiled && g->end - row >= 2 * g->width) {
+    const int64_t cols = g->width - x < RILL_W / 2 ? g->width - x : RILL_W / 2;
+    for (int j = 0; j < 2; ++j)
+      for (int64_t i = 0; i < cols; ++i) lane[n++] = row + j * g->width + x + i;
+    g->next = x + cols < g->width ? g->next + cols : row + 2 * g->width;
+  } else {
+    n = g->end - g->next < RILL_W ? (int)(g->end - g->next) : RILL_W;
+    for (int l = 0; l < n; ++l) lane[l] = g->next + l;
+    g->next += n;
+  }
+  for (int l = n; l < RILL_W; ++l) lane[l] = lane[n - 1];
+  return n;
+}
+
 RILL_FN rill_vi rill_sel_i(rill_vi c, rill_vi a, rill_vi b) { return (a & c) | (b & ~c); }
 RILL_FN rill_vr rill_sel_r(rill_vi c, rill_vr a, rill_vr b) {
   return (rill_vr)(((rill_vi)a & c) | ((rill_vi)b & ~c));
@@ -703,14 +736,11 @@ std::string emit_c_lockstep(const Function& f, Accuracy accuracy, int lanes) {
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
   src += c_entry_locals(f, d);
   src += "  int64_t rill_written = 0;\n";
-  src += "  for (int64_t rill_base = rill_begin; rill_base < rill_end; rill_base += RILL_W) {\n";
-  // Spare lanes of a short last group repeat its last element.
-  src +=
-      "    const int64_t rill_n = rill_end - rill_base < RILL_W ? rill_end - rill_base : RILL_W;\n";
-  src += "    int64_t rill_lane[RILL_W];\n";
-  src +=
-      "    for (int l = 0; l < RILL_W; ++l) rill_lane[l] = rill_base + (l < rill_n ? l : rill_n - "
-      "1);\n";
+  // Groups of RILL_W elements: tiles of a 2D stream where they fit (rill_next_group).
+  src += "  rill_groups rill_gs = rill_groups_of(L, rill_begin, rill_end);\n";
+  src += "  int64_t rill_lane[RILL_W];\n";
+  src += "  int rill_n;\n";
+  src += "  while ((rill_n = rill_next_group(&rill_gs, rill_lane)) > 0) {\n";
   if (uses_op(f.body, Op::ElementIndex)) {
     src += "    rill_vi rill_element;\n";
     src += "    for (int l = 0; l < RILL_W; ++l) rill_element[l] = (int32_t)rill_lane[l];\n";

@@ -52,11 +52,12 @@ bool triangle_usable(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
   return n.x != 0.0 || n.y != 0.0 || n.z != 0.0;
 }
 
-glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n) {
+glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n, double density) {
+  density = checked_grid_density(density);
   const double mx = std::max({extent.x, extent.y, extent.z});
   if (n == 0 || !(mx > 0)) return glm::ivec3(1);
   glm::dvec3 d = glm::max(extent, glm::dvec3(mx / 256.0));
-  double k = std::cbrt(kGridDensity * static_cast<double>(n) / (d.x * d.y * d.z));
+  double k = std::cbrt(density * static_cast<double>(n) / (d.x * d.y * d.z));
   glm::ivec3 r;
   for (int a = 0; a < 3; ++a) r[a] = static_cast<int>(std::clamp(std::lround(d[a] * k), 1l, 256l));
   while (int64_t{r.x} * r.y * r.z > (int64_t{1} << 22))
@@ -145,6 +146,27 @@ int32_t parse_subgrid_min(const std::string& s) {
   return static_cast<int32_t>(v);
 }
 
+double checked_grid_density(double d) {
+  if (!(d >= kGridDensityMin && d <= kGridDensityMax)) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%g", d);
+    throw SceneError(std::string("grid density: expected voxels per triangle in 0.125..256 (got ") +
+                     buf + ")");
+  }
+  return d;
+}
+
+double parse_grid_density(const std::string& s) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || end == s.c_str() || *end != '\0')
+    throw SceneError("grid density: expected a number of voxels per triangle in 0.125..256 (got '" +
+                     s + "')");
+  return checked_grid_density(v);
+}
+
+static_assert(kGridDensity == SceneOptions{}.grid_density,
+              "SceneOptions::grid_density's default is kGridDensity");
 static_assert(kNoSubgrids == 0, "SceneOptions::subgrid_min's default (0) is kNoSubgrids");
 
 void build_subgrids(Grid& g, const Scene& s, int32_t min_count) {
@@ -247,7 +269,11 @@ void compute_empty_distances(Grid& g) {
       }
 }
 
-Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min) {
+Grid build_grid_for(const Scene& s) {
+  return build_grid(s, s.options.grid, s.options.subgrid_min, s.options.grid_density);
+}
+
+Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double density) {
   const auto start = std::chrono::steady_clock::now();
   Grid g;
   const size_t n = s.triangle_count();
@@ -284,7 +310,8 @@ Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min) {
   const double pad = 1e-4 * mx + 1e-6 * mag + 1e-30;
   lo -= glm::dvec3(pad);
   hi += glm::dvec3(pad);
-  g.res = resolution > 0 ? glm::ivec3(resolution) : auto_grid_resolution(hi - lo, g.usable);
+  g.res =
+      resolution > 0 ? glm::ivec3(resolution) : auto_grid_resolution(hi - lo, g.usable, density);
   g.lo = glm::vec3(lo);
   for (int a = 0; a < 3; ++a) {
     // The float cell size must cover the padded box: round up.

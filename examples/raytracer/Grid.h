@@ -32,9 +32,11 @@
 // (count 0: empty).
 //
 // Resolution: --grid N gives N^3 voxels. "auto" chooses cells of equal size, about
-// kDensity = 4 voxels per triangle: with the box extents d and n triangles,
-// res_a = round(d_a * cbrt(kDensity * n / (d_x d_y d_z))), each clamped to 1..256 and the
-// total to 2^22 voxels (flat extents are taken as 1/256 of the largest).
+// `density` voxels per triangle (--grid-density, kGridDensity = 4 by default): with the box
+// extents d and n triangles, res_a = round(d_a * cbrt(density * n / (d_x d_y d_z))), each
+// clamped to 1..256 and the total to 2^22 voxels (flat extents are taken as 1/256 of the
+// largest). Denser grids trade memory for fewer triangle tests per ray: measured in
+// docs/raytracer.md, 16 suits the CPU backends on large meshes.
 //
 // Triangles with a non-finite vertex or zero area (in double precision) are left out of the
 // grid: they are never hit, but keep their primitive ids.
@@ -51,6 +53,7 @@
 namespace rt {
 
 constexpr double kGridDensity = 4.0;
+constexpr double kGridDensityMin = 0.125, kGridDensityMax = 256.0;
 // The suggested threshold when subgrids are on (--subgrids 12): more triangles than this in a
 // voxel, a subgrid. Off by default (kNoSubgrids): measured in docs/raytracer.md, they help
 // the CPU backend here and GLSL on thesis C but cost NVIDIA's OpenCL 16-35%, and take 2.5x
@@ -80,7 +83,7 @@ bool triangle_box_overlap(const glm::dvec3& c, const glm::dvec3& h, const glm::d
 // Non-finite or zero-area triangles are not traced.
 bool triangle_usable(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
 // The automatic resolution for n triangles in a box of extent d.
-glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n);
+glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n, double density = kGridDensity);
 
 // Replaces each voxel listing more than min_count triangles by a subgrid (above).
 void build_subgrids(Grid& g, const Scene& s, int32_t min_count = kSubgridMin);
@@ -92,9 +95,17 @@ constexpr int32_t kMaxSkip = 1 << 16;
 // The --subgrids / "subgrids" value: "off" (kNoSubgrids) or a triangle count in 1..2^20;
 // throws SceneError naming the bad value.
 int32_t parse_subgrid_min(const std::string& s);
+// The --grid-density / "grid_density" value: voxels per triangle in kGridDensityMin..Max;
+// throws SceneError naming the bad value.
+double parse_grid_density(const std::string& s);
+double checked_grid_density(double d);  // the same range check on a number
 
-// resolution: voxels per axis, 0 = auto. subgrid_min: voxels listing more triangles than
-// this get a subgrid (kNoSubgrids, or any value <= 0: a one-level grid).
-Grid build_grid(const Scene& s, int resolution = 0, int32_t subgrid_min = kNoSubgrids);
+// resolution: voxels per axis, 0 = auto (at `density` voxels per triangle). subgrid_min:
+// voxels listing more triangles than this get a subgrid (kNoSubgrids, or any value <= 0: a
+// one-level grid).
+Grid build_grid(const Scene& s, int resolution = 0, int32_t subgrid_min = kNoSubgrids,
+                double density = kGridDensity);
+// The grid the scene's options ask for (grid, subgrid_min, grid_density).
+Grid build_grid_for(const Scene& s);
 
 }  // namespace rt

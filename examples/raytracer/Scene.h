@@ -51,6 +51,7 @@ struct SceneOptions {
   int max_depth = 5;           // reflection / refraction bounces after the primary ray
   int grid = 0;                // grid cells per axis; 0 = automatic (see Grid.h)
   int subgrid_min = 0;         // voxels listing more triangles get a subgrid; 0 = none (Grid.h)
+  double grid_density = 4.0;   // voxels per triangle of the automatic resolution (Grid.h)
   int spp = 1;                 // samples per pixel
   bool smooth_normals = true;  // interpolate vertex normals where the mesh has them
 };

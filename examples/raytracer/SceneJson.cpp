@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "Grid.h"
 #include "Scene.h"
 
 namespace rt {
@@ -244,7 +245,8 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     if (j.contains("options")) {
       const json& o = j["options"];
       check_keys(c, o, "options",
-                 {"shadows", "ambient", "max_depth", "grid", "subgrids", "spp", "smooth_normals"});
+                 {"shadows", "ambient", "max_depth", "grid", "grid_density", "subgrids", "spp",
+                  "smooth_normals"});
       if (o.contains("shadows")) s.options.shadows = boolean(c, o["shadows"], "options.shadows");
       if (o.contains("ambient")) s.options.ambient = num(c, o["ambient"], "options.ambient");
       if (o.contains("max_depth"))
@@ -257,6 +259,12 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
           s.options.grid = 0;
         else
           s.options.grid = integer(c, o["grid"], "options.grid", 1, 512);
+      }
+      if (o.contains("grid_density")) {
+        const double d = num(c, o["grid_density"], "options.grid_density");
+        if (!(d >= kGridDensityMin && d <= kGridDensityMax))
+          fail(c, "options.grid_density must be in [0.125, 256] (voxels per triangle)");
+        s.options.grid_density = d;
       }
       if (o.contains("subgrids")) {
         if (o["subgrids"].is_string() && o["subgrids"].get<std::string>() == "off")

@@ -7,8 +7,9 @@
 // - a loop's value read after the loop by lanes that left it in earlier iterations, while the
 //   other lanes kept iterating;
 // - break, continue and discard taken by some lanes of a group, with statements after them;
-// - streams whose length is not a multiple of the lane count (the last group is short), and
-//   runs of selected elements in masked launches.
+// - streams whose length is not a multiple of the lane count (the last group is short),
+//   runs of selected elements in masked launches, and 2D streams of every shape (simd runs
+//   them in tiles of two rows).
 //
 // Every test runs on every backend and compares with the same control flow in C++.
 #include "BackendTest.h"
@@ -168,6 +169,62 @@ TEST_P(DivergenceTest, EveryStreamLengthAroundTheLaneCount) {
                 std::bit_cast<uint32_t>(v + static_cast<float>(i)))
           << "length " << n << ", element " << i;
     }
+  }
+}
+
+TEST_P(DivergenceTest, EveryImageShapeInTiles) {
+  // 2D streams: simd runs whole rows in tiles of two rows (4 x 2 lanes), with narrow images,
+  // partial tiles at the right edge, an odd last row and several threads' ranges. Each
+  // element's results depend on its own input, index and coordinates, and some elements
+  // discard, so a lane reading, computing or storing another element's value is caught.
+  Program p = program("shapes", [] {
+    Input<Int> n("n");
+    Output<Int> id("id");
+    Output<Int> xy("xy");
+    Int2 c = element_coord();
+    Int i = 0, v = n;
+    RILL_WHILE(i < n % 13) {
+      v = v * 3 + c.x() - c.y();
+      i += 1;
+    }
+    RILL_ENDWHILE;
+    RILL_IF(n % 29 == 5) {
+      RILL_DISCARD;
+    }
+    RILL_ENDIF;
+    id = element_index() * 7 + v;
+    xy = c.x() * 4096 + c.y();
+  });
+  Kernel k = compile(p);
+  const std::vector<std::pair<int, int>> shapes{
+      {1, 1}, {1, 5}, {2, 3}, {3, 2},  {4, 1},  {4, 2},   {4, 3},    {5, 2},   {5, 5},
+      {7, 4}, {8, 2}, {9, 3}, {11, 6}, {16, 1}, {37, 61}, {1024, 3}, {3, 1024}};
+  for (auto [w, h] : shapes) {
+    const int64_t count = int64_t{w} * h;
+    std::vector<int32_t> ns(static_cast<size_t>(count));
+    for (int64_t e = 0; e < count; ++e)
+      ns[static_cast<size_t>(e)] = static_cast<int32_t>((e * 37 + 11) % 101);
+    Stream<Int> in(w, h), id(w, h), xy(w, h);
+    in.upload(ns);
+    id.fill(-1);
+    xy.fill(-1);
+    k.inputs(in).outputs(id, xy);
+    int64_t want_written = 0;
+    const int64_t written = k.execute();
+    const std::vector<int32_t> got_id = id.download(), got_xy = xy.download();
+    for (int64_t e = 0; e < count; ++e) {
+      const int32_t n = ns[static_cast<size_t>(e)], x = static_cast<int32_t>(e % w),
+                    y = static_cast<int32_t>(e / w);
+      int32_t v = n;
+      for (int32_t i = 0; i < n % 13; ++i) v = v * 3 + x - y;
+      const bool discarded = n % 29 == 5;
+      want_written += discarded ? 0 : 1;
+      ASSERT_EQ(got_id[static_cast<size_t>(e)], discarded ? -1 : static_cast<int32_t>(e) * 7 + v)
+          << w << "x" << h << " element " << e;
+      ASSERT_EQ(got_xy[static_cast<size_t>(e)], discarded ? -1 : x * 4096 + y)
+          << w << "x" << h << " element " << e;
+    }
+    EXPECT_EQ(written, want_written) << w << "x" << h;
   }
 }
 

@@ -248,6 +248,10 @@ TEST(BadInput, MalformedJson) {
   EXPECT_NE(err("{\"options\": {\"subgrids\": \"on\"}}").find("options.subgrids"),
             std::string::npos);
   EXPECT_NE(err("{\"options\": {\"subgrids\": 0}}").find("options.subgrids"), std::string::npos);
+  EXPECT_NE(err("{\"options\": {\"grid_density\": 0}}").find("options.grid_density"),
+            std::string::npos);
+  EXPECT_NE(err("{\"options\": {\"grid_density\": \"dense\"}}").find("options.grid_density"),
+            std::string::npos);
   EXPECT_NE(err("{\"options\": {\"max_depth\": 65}}").find("max_depth"), std::string::npos);
   EXPECT_NE(err("{\"builtin\": \"nope\"}").find("unknown built-in"), std::string::npos);
   // Deep nesting: an error, not a stack overflow.

@@ -67,6 +67,8 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --grid 99999", "--grid");
   expect_clean_failure("render builtin:thesis-a --subgrids 0", "subgrids");
   expect_clean_failure("render builtin:thesis-a --subgrids some", "subgrids");
+  expect_clean_failure("render builtin:thesis-a --grid-density 0", "grid density");
+  expect_clean_failure("render builtin:thesis-a --grid-density lots", "grid density");
   expect_clean_failure("render builtin:thesis-a --spp 0");
   expect_clean_failure("render builtin:thesis-a --max-depth -3");
   expect_clean_failure("render builtin:thesis-a --accuracy sloppy --size 4x4");

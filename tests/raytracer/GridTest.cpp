@@ -196,6 +196,42 @@ TEST(Grid, ResolutionHeuristic) {
   EXPECT_EQ(build_grid(builtin_scene("thesis-a"), 9).res, glm::ivec3(9));
 }
 
+TEST(Grid, DensitySetsVoxelsPerTriangle) {
+  // The automatic resolution gives about `density` voxels per triangle, in cubic cells.
+  for (double density : {0.125, 1.0, 4.0, 16.0, 64.0}) {
+    const glm::ivec3 r = auto_grid_resolution(glm::dvec3(30.0, 20.0, 10.0), 50000, density);
+    const double per_tri = static_cast<double>(int64_t{r.x} * r.y * r.z) / 50000.0;
+    EXPECT_GT(per_tri, density * 0.8) << density;
+    EXPECT_LT(per_tri, density * 1.25) << density;
+    EXPECT_NEAR(static_cast<double>(r.x) / r.z, 3.0, 0.1) << density;
+  }
+  EXPECT_EQ(auto_grid_resolution(glm::dvec3(1.0), 1000, kGridDensity),
+            auto_grid_resolution(glm::dvec3(1.0), 1000));
+  // The scene's options choose the grid; a denser one lists fewer triangles per voxel.
+  Scene s = builtin_scene("thesis-c");
+  const Grid g4 = build_grid_for(s);
+  s.options.grid_density = 32.0;
+  const Grid g32 = build_grid_for(s);
+  EXPECT_GT(g32.voxel_count(), 6 * g4.voxel_count());
+  EXPECT_EQ(g32.voxel_count(), build_grid(s, 0, kNoSubgrids, 32.0).voxel_count());
+  // Out of range or not a number: a SceneError that names the setting.
+  for (const char* bad : {"0", "-4", "0.1", "300", "nan", "inf", "4x", ""})
+    EXPECT_THROW(
+        {
+          try {
+            parse_grid_density(bad);
+          } catch (const SceneError& e) {
+            EXPECT_NE(std::string(e.what()).find("grid density"), std::string::npos) << bad;
+            throw;
+          }
+        },
+        SceneError)
+        << bad;
+  EXPECT_EQ(parse_grid_density("16"), 16.0);
+  EXPECT_EQ(parse_grid_density("0.125"), 0.125);
+  EXPECT_THROW(auto_grid_resolution(glm::dvec3(1.0), 10, 0.0), SceneError);
+}
+
 // ---- the kernel's traversal against brute force --------------------------------------------
 
 class GridTraversal : public ::testing::TestWithParam<std::string> {};

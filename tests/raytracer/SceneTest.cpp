@@ -222,7 +222,7 @@ TEST(Scene, JsonShapesOptionsAndBuiltinBase) {
                {"shape": "quad", "vertices": [[0,0,0],[1,0,0],[1,0,1],[0,0,1]]},
                {"shape": "triangle", "vertices": [[0,0,0],[1,0,0],[0,0,1]]}],
     "options": {"shadows": false, "max_depth": 3, "grid": 7, "spp": 4, "ambient": 0.2,
-                "smooth_normals": false, "subgrids": 30}
+                "smooth_normals": false, "subgrids": 30, "grid_density": 12.5}
   })",
                              ".", "inline.json");
   EXPECT_EQ(s.triangle_count(), 12u + 2u * 8u * 3u + 64u * 4u + 2u + 1u);
@@ -230,6 +230,8 @@ TEST(Scene, JsonShapesOptionsAndBuiltinBase) {
   EXPECT_EQ(s.options.max_depth, 3);
   EXPECT_EQ(s.options.grid, 7);
   EXPECT_EQ(s.options.subgrid_min, 30);
+  EXPECT_EQ(s.options.grid_density, 12.5);
+  EXPECT_EQ(parse_json_scene("{}", ".", "default.json").options.grid_density, kGridDensity);
   EXPECT_EQ(
       parse_json_scene(R"({"options": {"subgrids": "off"}})", ".", "off.json").options.subgrid_min,
       kNoSubgrids);
