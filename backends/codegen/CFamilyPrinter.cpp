@@ -61,6 +61,37 @@ std::string fixed_form_expr(const Stmt& s, int c,
   }
 }
 
+std::string helper_function(Op op, ScalarKind k) {
+  switch (op) {
+    case Op::Mod:
+    case Op::Min:
+    case Op::Max:
+    case Op::Abs:
+    case Op::Sign:
+      return std::string(op_name(op)) + suffix(k);
+    case Op::Floor:
+    case Op::Ceil:
+    case Op::Fract:
+    case Op::Sqrt:
+    case Op::Rsqrt:
+    case Op::Exp:
+    case Op::Log:
+    case Op::Exp2:
+    case Op::Log2:
+    case Op::Sin:
+    case Op::Cos:
+    case Op::Tan:
+    case Op::Atan:
+    case Op::Pow:
+    case Op::Atan2:
+    case Op::Shl:
+    case Op::Shr:
+      return op_name(op);
+    default:
+      return "";
+  }
+}
+
 std::string CFamilyPrinter::component(VarId v, int c) const {
   std::string n = f_.var_name(v);
   if (f_.var(v).type.width == 1) return n;
@@ -206,7 +237,8 @@ void CFamilyPrinter::assign(std::string& out, const Stmt& s, const std::string& 
 std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
   auto a = [&](size_t i) { return operand(s.args[i], c); };
   ScalarKind k = s.args.empty() ? ScalarKind::Int : s.args[0].type.kind;
-  std::string sx = suffix(k);
+  if (std::string fn = helper_function(s.op, k); !fn.empty())
+    return op_info(s.op).arity == 1 ? call("rill_" + fn, {a(0)}) : call("rill_" + fn, {a(0), a(1)});
   switch (s.op) {
     case Op::Copy:
       return a(0);
@@ -226,46 +258,6 @@ std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
                                   : "(" + a(0) + " * " + a(1) + ")";
     case Op::Div:
       return k == ScalarKind::Int ? call("rill_div_i", {a(0), a(1)}) : d_.float_div(a(0), a(1));
-    case Op::Mod:
-      return call("rill_mod" + sx, {a(0), a(1)});
-    case Op::Min:
-      return call("rill_min" + sx, {a(0), a(1)});
-    case Op::Max:
-      return call("rill_max" + sx, {a(0), a(1)});
-    case Op::Abs:
-      return call("rill_abs" + sx, {a(0)});
-    case Op::Sign:
-      return call("rill_sign" + sx, {a(0)});
-    case Op::Floor:
-      return call("rill_floor", {a(0)});
-    case Op::Ceil:
-      return call("rill_ceil", {a(0)});
-    case Op::Fract:
-      return call("rill_fract", {a(0)});
-    case Op::Sqrt:
-      return call("rill_sqrt", {a(0)});
-    case Op::Rsqrt:
-      return call("rill_rsqrt", {a(0)});
-    case Op::Exp:
-      return call("rill_exp", {a(0)});
-    case Op::Log:
-      return call("rill_log", {a(0)});
-    case Op::Exp2:
-      return call("rill_exp2", {a(0)});
-    case Op::Log2:
-      return call("rill_log2", {a(0)});
-    case Op::Sin:
-      return call("rill_sin", {a(0)});
-    case Op::Cos:
-      return call("rill_cos", {a(0)});
-    case Op::Tan:
-      return call("rill_tan", {a(0)});
-    case Op::Atan:
-      return call("rill_atan", {a(0)});
-    case Op::Pow:
-      return call("rill_pow", {a(0), a(1)});
-    case Op::Atan2:
-      return call("rill_atan2", {a(0), a(1)});
     case Op::BitAnd:
       return "(" + a(0) + " & " + a(1) + ")";
     case Op::BitOr:
@@ -274,10 +266,6 @@ std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
       return "(" + a(0) + " ^ " + a(1) + ")";
     case Op::BitNot:
       return "(~" + a(0) + ")";
-    case Op::Shl:
-      return call("rill_shl", {a(0), a(1)});
-    case Op::Shr:
-      return call("rill_shr", {a(0), a(1)});
     case Op::And:
       return "(" + a(0) + " && " + a(1) + ")";
     case Op::Or:
@@ -314,7 +302,8 @@ std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
       return d_.element_index();
     case Op::ElementCoord:
       return d_.element_coord(c);
-    case Op::Gather:
+    case Op::Gather:  // a statement of its own, not an expression
+    default:          // the helper calls, handled above (helper_function)
       break;
   }
   throw Error(std::string("internal: no C-family form for op ") + op_name(s.op));

@@ -74,6 +74,11 @@ class Dialect {
 std::string fixed_form_expr(const ir::Stmt& s, int c,
                             const std::function<std::string(const ir::Operand&, int)>& operand);
 
+// The operations every C-family printer spells as a call to a helper of the prelude, one
+// argument per operand: the helper's name after its prefix ("min_f", "floor", "shl"; the
+// scalar printer calls rill_NAME, the lockstep printer rill_v_NAME), or "" for the others.
+std::string helper_function(ir::Op op, ir::ScalarKind k);
+
 class CFamilyPrinter {
  public:
   CFamilyPrinter(const ir::Function& f, const Dialect& d) : f_(f), d_(d) {}

@@ -6,7 +6,6 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
-#include <functional>
 
 #include "CEmitter.h"
 #include "LockstepEmitter.h"
@@ -96,27 +95,20 @@ class CpuKernel : public CompiledKernel {
       int64_t written = 0, selected = 0;
     };
     const int64_t grain = 1024;
-    // The lockstep kernel runs a 2D stream in tiles of two rows (rill_next_group): give it
-    // ranges of whole row pairs, about `grain` elements or more each.
-    if (lockstep_ && !mask && a.height >= 2 && a.width >= kLockstepLanes / 2 &&
-        a.count == a.width * a.height) {
-      const int64_t pair = 2 * a.width, pairs = (a.height + 1) / 2;
-      const int64_t written = tbb::parallel_reduce(
-          tbb::blocked_range<int64_t>(0, pairs, std::max<int64_t>(1, grain / pair)), int64_t{0},
-          [&](const tbb::blocked_range<int64_t>& r, int64_t acc) {
-            return acc + run_(&L, r.begin() * pair, std::min(r.end() * pair, a.count));
-          },
-          std::plus<int64_t>());
-      selected = a.count;
-      for (auto* s : a.outputs) s->host_written();
-      return written;
-    }
+    // Ranges count units of `unit` elements: single elements, or, for the lockstep kernel on
+    // an unmasked 2D stream, whole row pairs, which it runs in tiles of two rows
+    // (rill_next_group).
+    const bool row_pairs = lockstep_ && !mask && a.height >= 2 && a.width >= kLockstepLanes / 2 &&
+                           a.count == a.width * a.height;
+    const int64_t unit = row_pairs ? 2 * a.width : 1;
+    const int64_t units = (a.count + unit - 1) / unit;
     Counts total = tbb::parallel_reduce(
-        tbb::blocked_range<int64_t>(0, a.count, grain), Counts{},
+        tbb::blocked_range<int64_t>(0, units, std::max<int64_t>(1, grain / unit)), Counts{},
         [&](const tbb::blocked_range<int64_t>& r, Counts acc) {
           if (!mask) {
-            acc.written += run_(&L, r.begin(), r.end());
-            acc.selected += static_cast<int64_t>(r.size());
+            const int64_t begin = r.begin() * unit, end = std::min(r.end() * unit, a.count);
+            acc.written += run_(&L, begin, end);
+            acc.selected += end - begin;
             return acc;
           }
           for (int64_t i = r.begin(); i < r.end();) {

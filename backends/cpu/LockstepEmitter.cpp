@@ -603,9 +603,11 @@ class Lockstep {
     auto a = [&](size_t i) { return operand(s.args[i], c); };
     ScalarKind k = s.args.empty() ? ScalarKind::Int : s.args[0].type.kind;
     bool fl = k == ScalarKind::Float;
-    std::string sx = fl ? "_f" : "_i";
     auto bin = [&](const char* op) { return "(" + a(0) + " " + op + " " + a(1) + ")"; };
     auto cmp = [&](const char* op) { return "RILL_CMP(" + a(0) + " " + op + " " + a(1) + ")"; };
+    if (std::string fn = codegen::helper_function(s.op, k); !fn.empty())
+      return op_info(s.op).arity == 1 ? call("rill_v_" + fn, {a(0)})
+                                      : call("rill_v_" + fn, {a(0), a(1)});
     switch (s.op) {
       case Op::Copy:
         return a(0);
@@ -619,46 +621,6 @@ class Lockstep {
         return fl ? bin("*") : call("rill_v_mul_i", {a(0), a(1)});
       case Op::Div:
         return fl ? bin("/") : call("rill_v_div_i", {a(0), a(1)});
-      case Op::Mod:
-        return call("rill_v_mod" + sx, {a(0), a(1)});
-      case Op::Min:
-        return call("rill_v_min" + sx, {a(0), a(1)});
-      case Op::Max:
-        return call("rill_v_max" + sx, {a(0), a(1)});
-      case Op::Abs:
-        return call("rill_v_abs" + sx, {a(0)});
-      case Op::Sign:
-        return call("rill_v_sign" + sx, {a(0)});
-      case Op::Floor:
-        return call("rill_v_floor", {a(0)});
-      case Op::Ceil:
-        return call("rill_v_ceil", {a(0)});
-      case Op::Fract:
-        return call("rill_v_fract", {a(0)});
-      case Op::Sqrt:
-        return call("rill_v_sqrt", {a(0)});
-      case Op::Rsqrt:
-        return call("rill_v_rsqrt", {a(0)});
-      case Op::Exp:
-        return call("rill_v_exp", {a(0)});
-      case Op::Log:
-        return call("rill_v_log", {a(0)});
-      case Op::Exp2:
-        return call("rill_v_exp2", {a(0)});
-      case Op::Log2:
-        return call("rill_v_log2", {a(0)});
-      case Op::Sin:
-        return call("rill_v_sin", {a(0)});
-      case Op::Cos:
-        return call("rill_v_cos", {a(0)});
-      case Op::Tan:
-        return call("rill_v_tan", {a(0)});
-      case Op::Atan:
-        return call("rill_v_atan", {a(0)});
-      case Op::Pow:
-        return call("rill_v_pow", {a(0), a(1)});
-      case Op::Atan2:
-        return call("rill_v_atan2", {a(0), a(1)});
       case Op::BitAnd:
       case Op::And:
         return bin("&");
@@ -670,10 +632,6 @@ class Lockstep {
       case Op::BitNot:
       case Op::Not:
         return "(~" + a(0) + ")";
-      case Op::Shl:
-        return call("rill_v_shl", {a(0), a(1)});
-      case Op::Shr:
-        return call("rill_v_shr", {a(0), a(1)});
       case Op::Lt:
         return cmp("<");
       case Op::Le:
@@ -705,7 +663,8 @@ class Lockstep {
         return "rill_element";
       case Op::ElementCoord:
         return c == 0 ? "rill_coord_x" : "rill_coord_y";
-      case Op::Gather:
+      case Op::Gather:  // a statement of its own, not an expression
+      default:          // the helper calls, handled above (helper_function)
         break;
     }
     throw Error(std::string("internal: no lockstep form for op ") + op_name(s.op));
