@@ -112,6 +112,8 @@ struct Options {
   std::string grids = "auto,16,20,32,48,64,96,128";
   std::string subgrids;      // empty: the scene's (default off)
   std::string grid_density;  // empty: the scene's (default 4)
+  std::string triangle_data; // empty: the tracer's default
+  std::string accuracy = "strict";
   std::string depth_scene = "builtin:thesis-b,builtin:glass";
   std::string depths = "1-8";
   std::string sweep_backends = "cpu";
@@ -162,9 +164,19 @@ rt::Scene load(const std::string& spec, const Options& o) {
   return s;
 }
 
-int64_t grid_bytes(const rt::Grid& g) {
-  return static_cast<int64_t>(g.voxels.size() * sizeof(glm::ivec2) +
-                              g.elements.size() * sizeof(int32_t));
+// The tracer's options: the defaults, with --triangle-data.
+rt::TracerOptions knobs(const Options& o) {
+  rt::TracerOptions k;
+  if (!o.triangle_data.empty()) k.data = rt::parse_triangle_data(o.triangle_data);
+  return k;
+}
+
+// The grid's memory: voxel entries, element list and, with inline triangle data, the
+// copies of the test's three vectors per entry.
+int64_t grid_bytes(const rt::Grid& g, const rt::TracerOptions& k) {
+  const size_t per_entry =
+      sizeof(int32_t) + (k.data == rt::TriangleData::Inline ? 3 * sizeof(glm::vec3) : 0);
+  return static_cast<int64_t>(g.voxels.size() * sizeof(glm::ivec2) + g.elements.size() * per_entry);
 }
 
 std::string res_str(const rt::Grid& g) {
@@ -181,9 +193,10 @@ struct PrimaryRun {
   // The rays of a width x height image, as 2D streams (a backend may use the shape: simd
   // runs tiles of neighbouring pixels together).
   PrimaryRun(rt::Tracer& tracer, const std::string& be, const std::vector<glm::vec3>& o,
-             const std::vector<glm::vec3>& d, int width, int height)
+             const std::vector<glm::vec3>& d, int width, int height,
+             rill::Accuracy accuracy = rill::Accuracy::Strict)
       : backend(be),
-        kernel(tracer.intersect_kernel(be)),
+        kernel(tracer.intersect_kernel(be, getenv("XFAST") ? rill::Accuracy::Fast : accuracy)),
         origins(width, height),
         dirs(width, height),
         prim(width, height),
@@ -249,7 +262,7 @@ class Bench {
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
       rt::Grid grid = rt::build_grid_for(scene);
-      rt::Tracer tracer(scene, grid);
+      rt::Tracer tracer(scene, grid, knobs(o_));
       const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
       const std::vector<glm::vec3> dirs =
           tracer.camera_rays("cpu", scene.camera, scene.width, scene.height);
@@ -299,7 +312,7 @@ class Bench {
       }
       const std::vector<int32_t> cpu_prim = runs[0]->hits(n);
       const double build_ms = grid.build_ms;
-      const double bpt = static_cast<double>(grid_bytes(grid)) /
+      const double bpt = static_cast<double>(grid_bytes(grid, knobs(o_))) /
                          static_cast<double>(std::max<size_t>(scene.triangle_count(), 1));
       for (size_t b = 0; b < bes.size(); ++b) {
         std::string vs = "-";
@@ -395,7 +408,7 @@ class Bench {
             rt::build_grid(scene, p.res, scene.options.subgrid_min, scene.options.grid_density);
         p.build.push_back(p.grid.build_ms);
       }
-      p.tracer = std::make_unique<rt::Tracer>(scene, p.grid);
+      p.tracer = std::make_unique<rt::Tracer>(scene, p.grid, knobs(o_));
       const auto dirs = p.tracer->camera_rays("cpu", scene.camera, scene.width, scene.height);
       for (const auto& be : bes) {
         p.runs.push_back(
@@ -423,7 +436,7 @@ class Bench {
                           std::to_string(p.grid.voxel_count()),
                           fmt("%.2f", static_cast<double>(p.grid.elements.size()) / tris),
                           fmt("%.1f", median(p.build)),
-                          fmt("%.1f", static_cast<double>(grid_bytes(p.grid)) / tris), bes[b],
+                          fmt("%.1f", static_cast<double>(grid_bytes(p.grid, knobs(o_))) / tris), bes[b],
                           fmt("%.3f", mrays(static_cast<double>(n), median(p.prim_ms[b]))),
                           fmt("%.1f", fm), fmt("%.3f", mrays(static_cast<double>(p.rays[b]), fm))});
       }
@@ -441,7 +454,7 @@ class Bench {
     if (std::sscanf(o_.depths.c_str(), "%d-%d", &d0, &d1) != 2 || d0 < 0 || d1 < d0 || d1 > 64)
       throw rt::SceneError("--depths expects FIRST-LAST within 0..64 (got '" + o_.depths + "')");
     rt::Grid grid = rt::build_grid_for(scene);
-    rt::Tracer tracer(scene, grid);
+    rt::Tracer tracer(scene, grid, knobs(o_));
     const double n = static_cast<double>(scene.width) * scene.height;
     Table t{"Reflection depth sweep: " + scene.name + " (" +
                 std::to_string(scene.triangle_count()) +
@@ -479,7 +492,7 @@ class Bench {
             {"scene", "scene's features", "backend", "specialized ms", "all-on ms", "time saved",
              "pixels differing"},
             {}};
-    rt::TracerOptions all;
+    rt::TracerOptions all = knobs(o_);
     rt::Features& every = all.extra_features;
     every.specular = every.reflection = every.refraction = true;
     every.vertex_normals = every.vertex_colors = true;
@@ -487,7 +500,7 @@ class Bench {
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
       rt::Grid grid = rt::build_grid_for(scene);
-      rt::Tracer special(scene, grid), generic(scene, grid, all);
+      rt::Tracer special(scene, grid, knobs(o_)), generic(scene, grid, all);
       for (const auto& be : bes) {
         rt::RenderResult a = special.render(settings(be, scene), scene.camera);
         rt::RenderResult b = generic.render(settings(be, scene), scene.camera);
@@ -572,6 +585,9 @@ int main(int argc, char** argv) {
       "(default)");
   app.add_option("--grid-density", o.grid_density,
                  "voxels per triangle of the auto grid, 0.125..256 (default: the scene's, 4)");
+  app.add_option("--triangle-data", o.triangle_data,
+                 "where the triangle test reads the vertices: indexed or inline (default: the "
+                 "tracer's)");
   app.add_option("--grids", o.grids, "grid resolutions of the sweep: auto or N (N^3 voxels)")
       ->default_str(o.grids);
   app.add_option("--depth-scene", o.depth_scene, "scenes of the depth sweep (comma list)")

@@ -180,10 +180,23 @@ RILL_LANES1(rill_v_abs_i, rill_vi, rill_vi, rill_abs_i)
 RILL_LANES1(rill_v_sign_i, rill_vi, rill_vi, rill_sign_i)
 RILL_LANES1(rill_v_sign_f, rill_vr, rill_vr, rill_sign_f)
 RILL_LANES2(rill_v_mod_f, rill_vr, rill_vr, rill_mod_f)
+#if defined(__AVX2__) && RILL_W == 8
+/* Exact in every mode, so the same bits as the scalar helpers (NaN, infinities, -0 included):
+   rounding to an integer and the square root are correctly rounded instructions. Strict code
+   would otherwise call floorf, ceilf and sqrtf lane by lane. */
+RILL_FN rill_vr rill_v_floor(rill_vr a) {
+  return (rill_vr)_mm256_round_ps((__m256)a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+}
+RILL_FN rill_vr rill_v_ceil(rill_vr a) {
+  return (rill_vr)_mm256_round_ps((__m256)a, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC);
+}
+RILL_FN rill_vr rill_v_sqrt(rill_vr a) { return (rill_vr)_mm256_sqrt_ps((__m256)a); }
+#else
 RILL_LANES1(rill_v_floor, rill_vr, rill_vr, rill_floor)
 RILL_LANES1(rill_v_ceil, rill_vr, rill_vr, rill_ceil)
-RILL_LANES1(rill_v_fract, rill_vr, rill_vr, rill_fract)
 RILL_LANES1(rill_v_sqrt, rill_vr, rill_vr, rill_sqrt)
+#endif
+RILL_LANES1(rill_v_fract, rill_vr, rill_vr, rill_fract)
 RILL_LANES1(rill_v_rsqrt, rill_vr, rill_vr, rill_rsqrt)
 RILL_LANES1(rill_v_exp, rill_vr, rill_vr, rill_exp)
 RILL_LANES1(rill_v_log, rill_vr, rill_vr, rill_log)

@@ -125,7 +125,7 @@ void Multipass::capture(const Tracer::Impl& I) {
                                   Float& best_v) {
     if (I.grid.subgrids == 0) return;
     RILL_IF(end < 0) {
-      I.walk_subgrid(o, d, t_exit, any_hit, Int2(c, end), vox, tmx, best_t, best_id, best_u,
+      I.walk_subgrid(o, I.ray_steps(d), t_exit, any_hit, Int2(c, end), vox, tmx, best_t, best_id, best_u,
                      best_v);
       c = 0;
       end = 0;
@@ -201,7 +201,7 @@ void Multipass::capture(const Tracer::Impl& I) {
         found = true;
       }
       RILL_ELSE {
-        I.leave_voxel(d, t_exit, best_t, best_id, any_hit, range, vox, tmx, steps, done);
+        I.leave_voxel(I.ray_steps(d), t_exit, best_t, best_id, any_hit, range, vox, tmx, steps, done);
       }
       RILL_ENDIF;
     }
@@ -242,7 +242,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     walk_pending_subgrid(o, d, tin.w(), (w & kAnyHit) != 0, vox, tmx, c, end, best_t, best_id,
                          best_u, best_v);
     RILL_FOR(Int k = 0, k < kBatch && c < end, k += 1) {
-      I.test_triangle(o, d, I.elements[c], best_t, best_id, best_u, best_v);
+      I.test_triangle(o, d, c, best_t, best_id, best_u, best_v);
       c += 1;
     }
     RILL_ENDFOR;
@@ -251,7 +251,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     RILL_IF(c >= end) {  // the voxel's list is done
       Bool done = false;
       // A voxel with triangles: a plain step.
-      I.leave_voxel(d, tin.w(), best_t, best_id, (w & kAnyHit) != 0, Int2(0), vox, tmx, steps,
+      I.leave_voxel(I.ray_steps(d), tin.w(), best_t, best_id, (w & kAnyHit) != 0, Int2(0), vox, tmx, steps,
                     done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
@@ -305,12 +305,12 @@ void Multipass::capture(const Tracer::Impl& I) {
       walk_pending_subgrid(o, d, tin.w(), any_hit, vox, tmx, c, end, best_t, best_id, best_u,
                            best_v);
       RILL_WHILE(c < end) {
-        I.test_triangle(o, d, I.elements[c], best_t, best_id, best_u, best_v);
+        I.test_triangle(o, d, c, best_t, best_id, best_u, best_v);
         c += 1;
       }
       RILL_ENDWHILE;
       Bool done = false;
-      I.leave_voxel(d, tin.w(), best_t, best_id, any_hit, entry, vox, tmx, steps, done);
+      I.leave_voxel(I.ray_steps(d), tin.w(), best_t, best_id, any_hit, entry, vox, tmx, steps, done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDWHILE;

@@ -85,6 +85,12 @@ Traversal parse_traversal(const std::string& s) {
   throw std::invalid_argument("--traversal expects incremental or recompute (got '" + s + "')");
 }
 
+TriangleData parse_triangle_data(const std::string& s) {
+  if (s == "indexed") return TriangleData::Indexed;
+  if (s == "inline") return TriangleData::Inline;
+  throw std::invalid_argument("--triangle-data expects indexed or inline (got '" + s + "')");
+}
+
 glm::vec2 sample_offset(int k) {
   if (k == 0) return glm::vec2(0.5f);
   // Halton (2, 3): a low-discrepancy sequence, the same on every machine.
@@ -184,6 +190,21 @@ void Tracer::Impl::upload() {
   auto vox = padded<Int2>(grid.voxels);
   voxels.resize(static_cast<int64_t>(vox.size()));
   voxels.upload(vox);
+  if (K.data == TriangleData::Inline) {
+    const bool wt = K.triangle == TriangleTest::Watertight;
+    const size_t r = grid.elements.size();
+    std::vector<glm::vec3> a(r), b(r), c(r);
+    for (size_t j = 0; j < r; ++j) {
+      const size_t t = static_cast<size_t>(grid.elements[j]);
+      const glm::vec3* p = &scene.positions[3 * t];
+      a[j] = v0[t];
+      b[j] = wt ? p[1] : e1[t];
+      c[j] = wt ? p[2] : e2[t];
+    }
+    up3(ref_a, a);
+    up3(ref_b, b);
+    up3(ref_c, c);
+  }
   auto el = padded<Int>(grid.elements);
   elements.resize(static_cast<int64_t>(el.size()));
   elements.upload(el);
@@ -316,12 +337,15 @@ struct WatertightRay {
 
 }  // namespace
 
-void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& tri, Float& best_t,
+void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& ref, Float& best_t,
                                  Int& best_id, Float& best_u, Float& best_v) const {
+  Int tri = elements[ref];
+  const bool in = K.data == TriangleData::Inline;
   if (K.triangle == TriangleTest::Watertight) {
     WatertightRay r(d);
-    Float3 a = r.permute(tri_v0[tri] - o, true), b = r.permute(tri_v1[tri] - o, true),
-           c = r.permute(tri_v2[tri] - o, true);
+    Float3 a = r.permute((in ? ref_a[ref] : tri_v0[tri]) - o, true),
+           b = r.permute((in ? ref_b[ref] : tri_v1[tri]) - o, true),
+           c = r.permute((in ? ref_c[ref] : tri_v2[tri]) - o, true);
     Float ax = a.x() - r.sx * a.z(), ay = a.y() - r.sy * a.z();
     Float bx = b.x() - r.sx * b.z(), by = b.y() - r.sy * b.z();
     Float cx = c.x() - r.sx * c.z(), cy = c.y() - r.sy * c.z();
@@ -344,7 +368,8 @@ void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& tr
     RILL_ENDIF;
     return;
   }
-  Float3 v0 = tri_v0[tri], e1 = tri_e1[tri], e2 = tri_e2[tri];
+  Float3 v0 = in ? ref_a[ref] : tri_v0[tri], e1 = in ? ref_b[ref] : tri_e1[tri],
+         e2 = in ? ref_c[ref] : tri_e2[tri];
   Float3 pv = cross(d, e2);
   Float det = dot(e1, pv);
   Float3 tv = o - v0;
@@ -364,10 +389,20 @@ void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& tr
   RILL_ENDIF;
 }
 
-Float3 Tracer::Impl::voxel_exits(const Float3& d, const Int3& vox, const Float3& tmx) const {
+RaySteps Tracer::Impl::ray_steps(const Float3& d) const {
+  RaySteps r;
+  r.d = d;
+  r.flat = flat_axes(d);
+  r.inv = inverse_dir(d);
+  r.step = step_dir(d);
+  r.tdl = select(r.flat, Float3(kBig), grid_cell * abs(r.inv));
+  return r;
+}
+
+Float3 Tracer::Impl::voxel_exits(const RaySteps& r, const Int3& vox, const Float3& tmx) const {
   if (K.traversal == Traversal::Incremental) return tmx;
-  Float3 plane = (to_float(vox) + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * grid_cell;
-  return select(flat_axes(d), Float3(kBig), (plane - tmx) * inverse_dir(d));
+  Float3 plane = (to_float(vox) + select(r.d > 0.0f, Float3(1.0f), Float3(0.0f))) * grid_cell;
+  return select(r.flat, Float3(kBig), (plane - tmx) * r.inv);
 }
 
 // A second 3D-DDA, over the voxel's m^3 subgrid, from where the ray enters the voxel (or its
@@ -376,13 +411,14 @@ Float3 Tracer::Impl::voxel_exits(const Float3& d, const Int3& vox, const Float3&
 // level; a hit beyond the voxel stays the best so far and the top-level walk goes on. Where
 // rounding makes the entry point or the last exit fall within ulps of a sub-voxel face, the
 // sub-voxels' margin (Grid.cpp) holds the triangles near it, as on the top level.
-void Tracer::Impl::walk_subgrid(const Float3& o, const Float3& d, const Float& t_exit,
+void Tracer::Impl::walk_subgrid(const Float3& o, const RaySteps& r, const Float& t_exit,
                                 const Bool& any_hit, const Int2& entry, const Int3& vox,
                                 const Float3& tmx, Float& best_t, Int& best_id, Float& best_u,
                                 Float& best_v) const {
-  Bool3 dz = flat_axes(d);
-  Float3 inv = inverse_dir(d);
-  Int3 step = step_dir(d);
+  const Float3& d = r.d;
+  const Bool3& dz = r.flat;
+  const Float3& inv = r.inv;
+  const Int3& step = r.step;
   Int m = -entry.y();
   Float fm = to_float(m);
   Float3 sub = grid_cell / Float3(fm);
@@ -390,7 +426,7 @@ void Tracer::Impl::walk_subgrid(const Float3& o, const Float3& d, const Float& t
   Float3 entry_plane = corner + select(d > 0.0f, Float3(0.0f), grid_cell);
   Float3 t_in3 = select(dz, Float3(-kBig), (entry_plane - o) * inv);
   Float t_in = max(max(t_in3.x(), t_in3.y()), max(t_in3.z(), 0.0f));
-  Float3 tb = voxel_exits(d, vox, tmx);
+  Float3 tb = voxel_exits(r, vox, tmx);
   Float t_out = min(min(tb.x(), tb.y()), min(tb.z(), t_exit));
   Int3 sv(0);
   Float3 smx(0.0f);
@@ -401,7 +437,7 @@ void Tracer::Impl::walk_subgrid(const Float3& o, const Float3& d, const Float& t
   RILL_DO {
     Int2 range = voxels[entry.x() + sv.x() + m * (sv.y() + m * sv.z())];
     RILL_FOR(Int k = 0, k < range.y(), k += 1) {
-      test_triangle(o, d, elements[range.x() + k], best_t, best_id, best_u, best_v);
+      test_triangle(o, d, range.x() + k, best_t, best_id, best_u, best_v);
     }
     RILL_ENDFOR;
     Float s_leave = min(min(smx.x(), smx.y()), smx.z());
@@ -417,13 +453,13 @@ void Tracer::Impl::walk_subgrid(const Float3& o, const Float3& d, const Float& t
   RILL_UNTIL(done);
 }
 
-void Tracer::Impl::leave_voxel(const Float3& d, const Float& t_exit, const Float& best_t,
+void Tracer::Impl::leave_voxel(const RaySteps& r, const Float& t_exit, const Float& best_t,
                                const Int& best_id, const Bool& any_hit, const Int2& entry,
                                Int3& vox, Float3& tmx, Int& steps, Bool& done) const {
-  Bool3 dz = flat_axes(d);
-  Int3 step = step_dir(d);
-  Float3 tdl = select(dz, Float3(kBig), grid_cell * abs(inverse_dir(d)));
-  Float3 tb = voxel_exits(d, vox, tmx);
+  const Bool3& dz = r.flat;
+  const Int3& step = r.step;
+  const Float3& tdl = r.tdl;
+  Float3 tb = voxel_exits(r, vox, tmx);
   Float t_leave = min(min(tb.x(), tb.y()), tb.z());
   done = best_id >= 0 && (best_t <= t_leave || any_hit);
   done = done || t_leave >= t_exit;  // the ray ends inside this voxel
@@ -479,22 +515,23 @@ void Tracer::Impl::intersect(const Float3& o, const Float3& d, const Float& tmax
     Float3 tmx(0.0f);
     dda_init(o, d, t_enter, vox, tmx);
     const Bool no(false);
+    const RaySteps rs = ray_steps(d);
     Int steps = 0;
     Bool done = false;
     RILL_DO {
       Int2 range = voxel_range(vox);
       RILL_FOR(Int k = 0, k < range.y(), k += 1) {
-        test_triangle(o, d, elements[range.x() + k], best_t, best_id, best_u, best_v);
+        test_triangle(o, d, range.x() + k, best_t, best_id, best_u, best_v);
       }
       RILL_ENDFOR;
       if (grid.subgrids > 0) {  // the second level's code only where the grid has one
         RILL_IF(range.y() < 0) {
-          walk_subgrid(o, d, t_exit, any_hit != nullptr ? *any_hit : no, range, vox, tmx, best_t,
+          walk_subgrid(o, rs, t_exit, any_hit != nullptr ? *any_hit : no, range, vox, tmx, best_t,
                        best_id, best_u, best_v);
         }
         RILL_ENDIF;
       }
-      leave_voxel(d, t_exit, best_t, best_id, any_hit != nullptr ? *any_hit : no, range, vox, tmx,
+      leave_voxel(rs, t_exit, best_t, best_id, any_hit != nullptr ? *any_hit : no, range, vox, tmx,
                   steps, done);
     }
     RILL_UNTIL(done);

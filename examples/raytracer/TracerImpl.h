@@ -24,6 +24,16 @@ struct Surface {
   Bool entering = true;
 };
 
+// What a 3D-DDA step needs of a ray's direction, computed once per ray (not per step): the
+// flat axes, the reciprocal, the step sign and the distance between voxel boundaries.
+struct RaySteps {
+  Float3 d{0.0f};
+  Bool3 flat{false};
+  Float3 inv{0.0f};
+  Int3 step{0};
+  Float3 tdl{0.0f};
+};
+
 // The traversal state of a ray between kernels of the multipass strategy is the same as the
 // single kernel's loop variables: the current voxel, the distances to the next boundaries,
 // where the ray leaves the grid, the steps taken, the best hit so far.
@@ -45,6 +55,10 @@ struct Tracer::Impl {
   // The watertight test needs the vertices themselves: v0 + e1 rounds, and a shared edge
   // must be computed from the same bits in both of its triangles.
   Array<Float3> tri_v1{1, "tri_v1"}, tri_v2{1, "tri_v2"};
+  // TriangleData::Inline: the test's three vectors (v0, e1, e2; watertight: v0, v1, v2) once
+  // per element-list entry, in list order, so that a voxel's triangles lie side by side and
+  // their loads need not wait for the ids.
+  Array<Float3> ref_a{1, "ref_a"}, ref_b{1, "ref_b"}, ref_c{1, "ref_c"};
   Array<Float3> tri_n0{1, "tri_n0"}, tri_n1{1, "tri_n1"}, tri_n2{1, "tri_n2"};
   Array<Float3> tri_c0{1, "tri_c0"}, tri_c1{1, "tri_c1"}, tri_c2{1, "tri_c2"};
   Array<Int> tri_mat{1, "tri_mat"};
@@ -110,15 +124,17 @@ struct Tracer::Impl {
   // The voxel's entry: the index range (start, count) of its triangles, (distance to the
   // nearest non-empty voxel, 0) when it is empty, or (base, -m) for a subgrid (Grid.h).
   Int2 voxel_range(const Int3& vox) const;
-  // The knob's triangle test (Moller-Trumbore or watertight) against one triangle; keeps
-  // the closest hit (ties: the smaller id).
-  void test_triangle(const Float3& o, const Float3& d, const Int& tri, Float& best_t, Int& best_id,
+  // The knob's triangle test (Moller-Trumbore or watertight) against the triangle of
+  // element-list entry ref; keeps the closest hit (ties: the smaller id).
+  void test_triangle(const Float3& o, const Float3& d, const Int& ref, Float& best_t, Int& best_id,
                      Float& best_u, Float& best_v) const;
+  // The direction's per-ray traversal constants (RaySteps).
+  RaySteps ray_steps(const Float3& d) const;
   // The distances along the ray to the voxel's exit planes (tmx itself when incremental).
-  Float3 voxel_exits(const Float3& d, const Int3& vox, const Float3& tmx) const;
+  Float3 voxel_exits(const RaySteps& r, const Int3& vox, const Float3& tmx) const;
   // The triangles of a voxel with a subgrid (entry (base, -m), Grid.h): a 3D-DDA over its
   // sub-voxels, within the voxel.
-  void walk_subgrid(const Float3& o, const Float3& d, const Float& t_exit, const Bool& any_hit,
+  void walk_subgrid(const Float3& o, const RaySteps& r, const Float& t_exit, const Bool& any_hit,
                     const Int2& entry, const Int3& vox, const Float3& tmx, Float& best_t,
                     Int& best_id, Float& best_u, Float& best_v) const;
   // After a voxel's triangles: done when the best hit lies within the voxel (or any hit,
@@ -126,7 +142,7 @@ struct Tracer::Impl {
   // otherwise steps to the next voxel (the axis with the nearest boundary), or, from an
   // empty voxel far from any triangle, jumps over the empty voxels around it. entry is the
   // voxel's entry (voxel_range; (0, 0) where the caller has not loaded it: a plain step).
-  void leave_voxel(const Float3& d, const Float& t_exit, const Float& best_t, const Int& best_id,
+  void leave_voxel(const RaySteps& r, const Float& t_exit, const Float& best_t, const Int& best_id,
                    const Bool& any_hit, const Int2& entry, Int3& vox, Float3& tmx, Int& steps,
                    Bool& done) const;
   // The whole closest-hit (or any-hit) search, for the single kernel.
