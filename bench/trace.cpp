@@ -110,9 +110,8 @@ struct Options {
   int repeats = 3;
   std::string grid_scene = "builtin:thesis-c";
   std::string grids = "auto,16,20,32,48,64,96,128";
-  std::string subgrids;      // empty: the scene's (default off)
-  std::string grid_density;  // empty: the scene's (default 4)
-  std::string triangle_data; // empty: the tracer's default
+  std::string subgrids;             // empty: the scene's (default off)
+  std::string grid_density;         // empty: the scene's (default 4)
   std::string accuracy = "strict";  // of the throughput and Embree sections
   rill::Accuracy acc = rill::Accuracy::Strict;
   std::string depth_scene = "builtin:thesis-b,builtin:glass";
@@ -165,19 +164,9 @@ rt::Scene load(const std::string& spec, const Options& o) {
   return s;
 }
 
-// The tracer's options: the defaults, with --triangle-data.
-rt::TracerOptions knobs(const Options& o) {
-  rt::TracerOptions k;
-  if (!o.triangle_data.empty()) k.data = rt::parse_triangle_data(o.triangle_data);
-  return k;
-}
-
-// The grid's memory: voxel entries, element list and, with inline triangle data, the
-// copies of the test's three vectors per entry.
-int64_t grid_bytes(const rt::Grid& g, const rt::TracerOptions& k) {
-  const size_t per_entry =
-      sizeof(int32_t) + (k.data == rt::TriangleData::Inline ? 3 * sizeof(glm::vec3) : 0);
-  return static_cast<int64_t>(g.voxels.size() * sizeof(glm::ivec2) + g.elements.size() * per_entry);
+int64_t grid_bytes(const rt::Grid& g) {
+  return static_cast<int64_t>(g.voxels.size() * sizeof(glm::ivec2) +
+                              g.elements.size() * sizeof(int32_t));
 }
 
 std::string res_str(const rt::Grid& g) {
@@ -251,14 +240,15 @@ class Bench {
       bes.insert(bes.begin(), "simd");
     if (embree || throughput) bes.insert(bes.begin(), "cpu");
     const std::string acc = rill::accuracy_name(o_.acc);
-    Table tp{"Throughput, " + size_str() + ", " + acc + ", median of " + std::to_string(o_.repeats) +
-                 " (Mrays/s)",
+    Table tp{"Throughput, " + size_str() + ", " + acc + ", median of " +
+                 std::to_string(o_.repeats) + " (Mrays/s)",
              {"scene", "triangles", "grid", "build ms", "grid B/tri", "backend", "primary ms",
               "primary Mrays/s", "full ms", "rays/pixel", "full Mrays/s", "hits vs cpu"},
              {}};
     Table em{"Rill's CPU backends against Embree " + embree_version() + ", primary rays, " +
                  size_str() + ", Rill " + acc + ", " +
-                 std::to_string(tbb::info::default_concurrency()) + " threads, median of " + std::to_string(o_.repeats),
+                 std::to_string(tbb::info::default_concurrency()) + " threads, median of " +
+                 std::to_string(o_.repeats),
              {"scene", "triangles", "backend", "Rill ms", "Rill Mrays/s", "Embree ms",
               "Embree Mrays/s", "Rill/Embree", "same prim", "agree", "grid build ms", "grid B/tri",
               "Embree build ms", "Embree B/tri"},
@@ -266,7 +256,7 @@ class Bench {
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
       rt::Grid grid = rt::build_grid_for(scene);
-      rt::Tracer tracer(scene, grid, knobs(o_));
+      rt::Tracer tracer(scene, grid);
       const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
       const std::vector<glm::vec3> dirs =
           tracer.camera_rays("cpu", scene.camera, scene.width, scene.height);
@@ -277,8 +267,8 @@ class Bench {
 
       std::vector<std::unique_ptr<PrimaryRun>> runs;
       for (const auto& be : bes) {
-        runs.push_back(
-            std::make_unique<PrimaryRun>(tracer, be, origins, dirs, scene.width, scene.height, o_.acc));
+        runs.push_back(std::make_unique<PrimaryRun>(tracer, be, origins, dirs, scene.width,
+                                                    scene.height, o_.acc));
         runs.back()->run();  // warm-up: uploads, driver compiles
       }
 #ifdef RILL_BENCH_HAVE_EMBREE
@@ -316,7 +306,7 @@ class Bench {
       }
       const std::vector<int32_t> cpu_prim = runs[0]->hits(n);
       const double build_ms = grid.build_ms;
-      const double bpt = static_cast<double>(grid_bytes(grid, knobs(o_))) /
+      const double bpt = static_cast<double>(grid_bytes(grid)) /
                          static_cast<double>(std::max<size_t>(scene.triangle_count(), 1));
       for (size_t b = 0; b < bes.size(); ++b) {
         std::string vs = "-";
@@ -413,7 +403,7 @@ class Bench {
             rt::build_grid(scene, p.res, scene.options.subgrid_min, scene.options.grid_density);
         p.build.push_back(p.grid.build_ms);
       }
-      p.tracer = std::make_unique<rt::Tracer>(scene, p.grid, knobs(o_));
+      p.tracer = std::make_unique<rt::Tracer>(scene, p.grid);
       const auto dirs = p.tracer->camera_rays("cpu", scene.camera, scene.width, scene.height);
       for (const auto& be : bes) {
         p.runs.push_back(
@@ -441,7 +431,7 @@ class Bench {
                           std::to_string(p.grid.voxel_count()),
                           fmt("%.2f", static_cast<double>(p.grid.elements.size()) / tris),
                           fmt("%.1f", median(p.build)),
-                          fmt("%.1f", static_cast<double>(grid_bytes(p.grid, knobs(o_))) / tris), bes[b],
+                          fmt("%.1f", static_cast<double>(grid_bytes(p.grid)) / tris), bes[b],
                           fmt("%.3f", mrays(static_cast<double>(n), median(p.prim_ms[b]))),
                           fmt("%.1f", fm), fmt("%.3f", mrays(static_cast<double>(p.rays[b]), fm))});
       }
@@ -459,7 +449,7 @@ class Bench {
     if (std::sscanf(o_.depths.c_str(), "%d-%d", &d0, &d1) != 2 || d0 < 0 || d1 < d0 || d1 > 64)
       throw rt::SceneError("--depths expects FIRST-LAST within 0..64 (got '" + o_.depths + "')");
     rt::Grid grid = rt::build_grid_for(scene);
-    rt::Tracer tracer(scene, grid, knobs(o_));
+    rt::Tracer tracer(scene, grid);
     const double n = static_cast<double>(scene.width) * scene.height;
     Table t{"Reflection depth sweep: " + scene.name + " (" +
                 std::to_string(scene.triangle_count()) +
@@ -497,7 +487,7 @@ class Bench {
             {"scene", "scene's features", "backend", "specialized ms", "all-on ms", "time saved",
              "pixels differing"},
             {}};
-    rt::TracerOptions all = knobs(o_);
+    rt::TracerOptions all;
     rt::Features& every = all.extra_features;
     every.specular = every.reflection = every.refraction = true;
     every.vertex_normals = every.vertex_colors = true;
@@ -505,7 +495,7 @@ class Bench {
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
       rt::Grid grid = rt::build_grid_for(scene);
-      rt::Tracer special(scene, grid, knobs(o_)), generic(scene, grid, all);
+      rt::Tracer special(scene, grid), generic(scene, grid, all);
       for (const auto& be : bes) {
         rt::RenderResult a = special.render(settings(be, scene), scene.camera);
         rt::RenderResult b = generic.render(settings(be, scene), scene.camera);
@@ -590,9 +580,6 @@ int main(int argc, char** argv) {
       "(default)");
   app.add_option("--grid-density", o.grid_density,
                  "voxels per triangle of the auto grid, 0.125..256 (default: the scene's, 4)");
-  app.add_option("--triangle-data", o.triangle_data,
-                 "where the triangle test reads the vertices: indexed or inline (default: the "
-                 "tracer's)");
   app.add_option("--accuracy", o.accuracy,
                  "accuracy of the throughput and Embree sections: strict or fast (fast: hits "
                  "may differ between backends, and are reported, not checked)")

@@ -125,8 +125,8 @@ void Multipass::capture(const Tracer::Impl& I) {
                                   Float& best_v) {
     if (I.grid.subgrids == 0) return;
     RILL_IF(end < 0) {
-      I.walk_subgrid(o, I.ray_steps(d), t_exit, any_hit, Int2(c, end), vox, tmx, best_t, best_id, best_u,
-                     best_v);
+      I.walk_subgrid(o, I.ray_steps(d), t_exit, any_hit, Int2(c, end), vox, tmx, best_t, best_id,
+                     best_u, best_v);
       c = 0;
       end = 0;
     }
@@ -201,7 +201,8 @@ void Multipass::capture(const Tracer::Impl& I) {
         found = true;
       }
       RILL_ELSE {
-        I.leave_voxel(I.ray_steps(d), t_exit, best_t, best_id, any_hit, range, vox, tmx, steps, done);
+        I.leave_voxel(I.ray_steps(d), t_exit, best_t, best_id, any_hit, range, vox, tmx, steps,
+                      done);
       }
       RILL_ENDIF;
     }
@@ -251,8 +252,8 @@ void Multipass::capture(const Tracer::Impl& I) {
     RILL_IF(c >= end) {  // the voxel's list is done
       Bool done = false;
       // A voxel with triangles: a plain step.
-      I.leave_voxel(I.ray_steps(d), tin.w(), best_t, best_id, (w & kAnyHit) != 0, Int2(0), vox, tmx, steps,
-                    done);
+      I.leave_voxel(I.ray_steps(d), tin.w(), best_t, best_id, (w & kAnyHit) != 0, Int2(0), vox, tmx,
+                    steps, done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDIF;
@@ -310,7 +311,8 @@ void Multipass::capture(const Tracer::Impl& I) {
       }
       RILL_ENDWHILE;
       Bool done = false;
-      I.leave_voxel(I.ray_steps(d), tin.w(), best_t, best_id, any_hit, entry, vox, tmx, steps, done);
+      I.leave_voxel(I.ray_steps(d), tin.w(), best_t, best_id, any_hit, entry, vox, tmx, steps,
+                    done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDWHILE;

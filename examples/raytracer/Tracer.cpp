@@ -85,12 +85,6 @@ Traversal parse_traversal(const std::string& s) {
   throw std::invalid_argument("--traversal expects incremental or recompute (got '" + s + "')");
 }
 
-TriangleData parse_triangle_data(const std::string& s) {
-  if (s == "indexed") return TriangleData::Indexed;
-  if (s == "inline") return TriangleData::Inline;
-  throw std::invalid_argument("--triangle-data expects indexed or inline (got '" + s + "')");
-}
-
 glm::vec2 sample_offset(int k) {
   if (k == 0) return glm::vec2(0.5f);
   // Halton (2, 3): a low-discrepancy sequence, the same on every machine.
@@ -190,21 +184,6 @@ void Tracer::Impl::upload() {
   auto vox = padded<Int2>(grid.voxels);
   voxels.resize(static_cast<int64_t>(vox.size()));
   voxels.upload(vox);
-  if (K.data == TriangleData::Inline) {
-    const bool wt = K.triangle == TriangleTest::Watertight;
-    const size_t r = grid.elements.size();
-    std::vector<glm::vec3> a(r), b(r), c(r);
-    for (size_t j = 0; j < r; ++j) {
-      const size_t t = static_cast<size_t>(grid.elements[j]);
-      const glm::vec3* p = &scene.positions[3 * t];
-      a[j] = v0[t];
-      b[j] = wt ? p[1] : e1[t];
-      c[j] = wt ? p[2] : e2[t];
-    }
-    up3(ref_a, a);
-    up3(ref_b, b);
-    up3(ref_c, c);
-  }
   auto el = padded<Int>(grid.elements);
   elements.resize(static_cast<int64_t>(el.size()));
   elements.upload(el);
@@ -340,12 +319,10 @@ struct WatertightRay {
 void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& ref, Float& best_t,
                                  Int& best_id, Float& best_u, Float& best_v) const {
   Int tri = elements[ref];
-  const bool in = K.data == TriangleData::Inline;
   if (K.triangle == TriangleTest::Watertight) {
     WatertightRay r(d);
-    Float3 a = r.permute((in ? ref_a[ref] : tri_v0[tri]) - o, true),
-           b = r.permute((in ? ref_b[ref] : tri_v1[tri]) - o, true),
-           c = r.permute((in ? ref_c[ref] : tri_v2[tri]) - o, true);
+    Float3 a = r.permute(tri_v0[tri] - o, true), b = r.permute(tri_v1[tri] - o, true),
+           c = r.permute(tri_v2[tri] - o, true);
     Float ax = a.x() - r.sx * a.z(), ay = a.y() - r.sy * a.z();
     Float bx = b.x() - r.sx * b.z(), by = b.y() - r.sy * b.z();
     Float cx = c.x() - r.sx * c.z(), cy = c.y() - r.sy * c.z();
@@ -368,8 +345,7 @@ void Tracer::Impl::test_triangle(const Float3& o, const Float3& d, const Int& re
     RILL_ENDIF;
     return;
   }
-  Float3 v0 = in ? ref_a[ref] : tri_v0[tri], e1 = in ? ref_b[ref] : tri_e1[tri],
-         e2 = in ? ref_c[ref] : tri_e2[tri];
+  Float3 v0 = tri_v0[tri], e1 = tri_e1[tri], e2 = tri_e2[tri];
   Float3 pv = cross(d, e2);
   Float det = dot(e1, pv);
   Float3 tv = o - v0;

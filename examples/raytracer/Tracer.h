@@ -68,12 +68,6 @@ enum class Traversal {
   Incremental,  // 3D-DDA: tMax += tDelta at each step (Amanatides & Woo)
   Recompute,    // tMax recomputed from the cell index at each step (no accumulated error)
 };
-// Where the triangle test reads a triangle's vertex data (not an accuracy knob: the same
-// bits either way, so the same image).
-enum class TriangleData {
-  Indexed,  // the thesis's: the element list holds triangle ids, the data is per triangle
-  Inline,   // a copy per element-list entry, in list order: no load waits for the id
-};
 // Defaults as measured (docs/accuracy.md): the scaled offset is far more accurate at no
 // measurable cost; the watertight test costs 5-20% on the CPU for the rare hole; the
 // recomputed traversal costs 5-30% and gains nothing measurable.
@@ -81,7 +75,6 @@ struct TracerOptions {
   TriangleTest triangle = TriangleTest::MollerTrumbore;
   SelfIntersection offset = SelfIntersection::Scaled;
   Traversal traversal = Traversal::Incremental;
-  TriangleData data = TriangleData::Indexed;
   Features extra_features;  // kernel features forced on (see the Tracer constructor)
   std::string str() const;  // "moller epsilon incremental"
 };
@@ -90,7 +83,6 @@ struct TracerOptions {
 TriangleTest parse_triangle_test(const std::string& s);
 SelfIntersection parse_self_intersection(const std::string& s);
 Traversal parse_traversal(const std::string& s);
-TriangleData parse_triangle_data(const std::string& s);  // indexed|inline
 
 struct RenderSettings {
   std::string backend = "cpu";

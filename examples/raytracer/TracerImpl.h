@@ -55,10 +55,6 @@ struct Tracer::Impl {
   // The watertight test needs the vertices themselves: v0 + e1 rounds, and a shared edge
   // must be computed from the same bits in both of its triangles.
   Array<Float3> tri_v1{1, "tri_v1"}, tri_v2{1, "tri_v2"};
-  // TriangleData::Inline: the test's three vectors (v0, e1, e2; watertight: v0, v1, v2) once
-  // per element-list entry, in list order, so that a voxel's triangles lie side by side and
-  // their loads need not wait for the ids.
-  Array<Float3> ref_a{1, "ref_a"}, ref_b{1, "ref_b"}, ref_c{1, "ref_c"};
   Array<Float3> tri_n0{1, "tri_n0"}, tri_n1{1, "tri_n1"}, tri_n2{1, "tri_n2"};
   Array<Float3> tri_c0{1, "tri_c0"}, tri_c1{1, "tri_c1"}, tri_c2{1, "tri_c2"};
   Array<Int> tri_mat{1, "tri_mat"};
