@@ -119,14 +119,14 @@ void Multipass::capture(const Tracer::Impl& I) {
   // A voxel's cursor (c, end) is a subgrid's entry (base, -m) when end < 0: the intersector
   // walks the whole subgrid in one pass (then the cursor is empty). Generated only when the
   // grid has subgrids.
-  auto walk_pending_subgrid = [&](const Float3& o, const Float3& d, const Float& t_exit,
+  auto walk_pending_subgrid = [&](const Float3& o, const RaySteps& r, const Float& t_exit,
                                   const Bool& any_hit, const Int3& vox, const Float3& tmx, Int& c,
                                   Int& end, Float& best_t, Int& best_id, Float& best_u,
                                   Float& best_v) {
     if (I.grid.subgrids == 0) return;
     RILL_IF(end < 0) {
-      I.walk_subgrid(o, I.ray_steps(d), t_exit, any_hit, Int2(c, end), vox, tmx, best_t, best_id,
-                     best_u, best_v);
+      I.walk_subgrid(o, r, t_exit, any_hit, Int2(c, end), vox, tmx, best_t, best_id, best_u,
+                     best_v);
       c = 0;
       end = 0;
     }
@@ -190,6 +190,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     Float t_exit = tin.w();
     Int steps = w >> 4;
     Bool any_hit = (w & kAnyHit) != 0;
+    const RaySteps rs = I.ray_steps(d);  // once, not per step
     Float best_t = tuv.x();
     Int best_id = id;
     Bool done = false, found = false;
@@ -201,8 +202,7 @@ void Multipass::capture(const Tracer::Impl& I) {
         found = true;
       }
       RILL_ELSE {
-        I.leave_voxel(I.ray_steps(d), t_exit, best_t, best_id, any_hit, range, vox, tmx, steps,
-                      done);
+        I.leave_voxel(rs, t_exit, best_t, best_id, any_hit, range, vox, tmx, steps, done);
       }
       RILL_ENDIF;
     }
@@ -234,13 +234,14 @@ void Multipass::capture(const Tracer::Impl& I) {
     }
     RILL_ENDIF;
     Float3 o = o4(0, 1, 2);
+    const RaySteps rs = I.ray_steps(d);
     Float best_t = tuv_in.x(), best_u = tuv_in.y(), best_v = tuv_in.z();
     Int best_id = id_in;
     Int c = cin.x();
     Int end = cin.y();
     Int3 vox = vin(0, 1, 2);
     Float3 tmx = tin(0, 1, 2);
-    walk_pending_subgrid(o, d, tin.w(), (w & kAnyHit) != 0, vox, tmx, c, end, best_t, best_id,
+    walk_pending_subgrid(o, rs, tin.w(), (w & kAnyHit) != 0, vox, tmx, c, end, best_t, best_id,
                          best_u, best_v);
     RILL_FOR(Int k = 0, k < kBatch && c < end, k += 1) {
       I.test_triangle(o, d, c, best_t, best_id, best_u, best_v);
@@ -252,8 +253,8 @@ void Multipass::capture(const Tracer::Impl& I) {
     RILL_IF(c >= end) {  // the voxel's list is done
       Bool done = false;
       // A voxel with triangles: a plain step.
-      I.leave_voxel(I.ray_steps(d), tin.w(), best_t, best_id, (w & kAnyHit) != 0, Int2(0), vox, tmx,
-                    steps, done);
+      I.leave_voxel(rs, tin.w(), best_t, best_id, (w & kAnyHit) != 0, Int2(0), vox, tmx, steps,
+                    done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDIF;
@@ -286,6 +287,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     }
     RILL_ENDIF;
     Float3 o = o4(0, 1, 2);
+    const RaySteps rs = I.ray_steps(d);
     Float best_t = tuv_in.x(), best_u = tuv_in.y(), best_v = tuv_in.z();
     Int best_id = id_in;
     Int c = cin.x();
@@ -303,7 +305,7 @@ void Multipass::capture(const Tracer::Impl& I) {
       }
       RILL_ENDIF;
       // A subgrid entered here or by the traverser.
-      walk_pending_subgrid(o, d, tin.w(), any_hit, vox, tmx, c, end, best_t, best_id, best_u,
+      walk_pending_subgrid(o, rs, tin.w(), any_hit, vox, tmx, c, end, best_t, best_id, best_u,
                            best_v);
       RILL_WHILE(c < end) {
         I.test_triangle(o, d, c, best_t, best_id, best_u, best_v);
@@ -311,8 +313,7 @@ void Multipass::capture(const Tracer::Impl& I) {
       }
       RILL_ENDWHILE;
       Bool done = false;
-      I.leave_voxel(I.ray_steps(d), tin.w(), best_t, best_id, any_hit, entry, vox, tmx, steps,
-                    done);
+      I.leave_voxel(rs, tin.w(), best_t, best_id, any_hit, entry, vox, tmx, steps, done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDWHILE;
