@@ -1,4 +1,4 @@
-// The camera of design.md section 4, exactly: every quantity in float32, in the documented
+// The camera of docs/camera.md, exactly: every quantity in float32, in the documented
 // order, so that another renderer can cast the same rays.
 //
 //   forward = normalize(look_at - eye); right = normalize(cross(forward, up));

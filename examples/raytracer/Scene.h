@@ -2,10 +2,10 @@
 //
 // A Scene is a flat triangle soup. Triangles keep the order in which they were added (file
 // order: shape by shape, face by face, polygons fanned as (v0, vk, vk+1)); that index is the
-// primitive id of the AOV outputs.
+// primitive id of the AOV outputs (docs/primitive-ids.md).
 //
 // Scenes come from OBJ + MTL files (load_obj), JSON scene files (load_json, format in
-// docs/raytracer.md), or the built-in generators (builtin_scene).
+// docs/scene-format.md), or the built-in generators (builtin_scene).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -37,7 +37,7 @@ struct Light {
   glm::vec3 color{1.0f};
 };
 
-// Pinhole camera (design.md section 4): vertical field of view in degrees.
+// Pinhole camera (docs/camera.md): vertical field of view in degrees.
 struct Camera {
   glm::vec3 eye{0.0f, 0.0f, 5.0f};
   glm::vec3 look_at{0.0f};
@@ -106,7 +106,7 @@ struct Transform {
 };
 
 // OBJ + MTL. Polygons are fanned (v0, vk, vk+1). Materials come from the MTL files the OBJ
-// names (Kd, Ks, Ns, Ni, d, illum: see docs/raytracer.md); faces without one get
+// names (Kd, Ks, Ns, Ni, d, illum: see docs/scene-format.md); faces without one get
 // `fallback` (or a default grey). If `override_material` is set, every face gets it.
 struct ObjLoadOptions {
   Transform transform;
@@ -114,7 +114,7 @@ struct ObjLoadOptions {
 };
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
 
-// A JSON scene file (design.md section 5, extended in docs/raytracer.md).
+// A JSON scene file (format: docs/scene-format.md).
 Scene load_json(const std::string& path);
 Scene parse_json_scene(const std::string& text, const std::string& base_dir,
                        const std::string& name = "scene");

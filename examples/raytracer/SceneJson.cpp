@@ -1,4 +1,4 @@
-// The JSON scene format (design.md section 5; extensions in docs/raytracer.md).
+// The JSON scene format (docs/scene-format.md).
 #include <nlohmann/json.hpp>
 
 #include <cmath>

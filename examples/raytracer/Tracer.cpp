@@ -852,7 +852,7 @@ Program Tracer::Impl::capture_tracer() const {
   });
 }
 
-// The camera ray through pixel pix (design.md section 4, float32, in this order).
+// The camera ray through pixel pix (docs/camera.md, float32, in this order).
 Float3 Tracer::Impl::camera_ray(const Int2& pix) const {
   Float sx = ((to_float(pix.x()) + offset.x()) / size.x() * 2.0f - 1.0f) * tan_half * aspect;
   Float sy = (1.0f - (to_float(pix.y()) + offset.y()) / size.y() * 2.0f) * tan_half;

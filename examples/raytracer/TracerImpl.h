@@ -93,7 +93,7 @@ struct Tracer::Impl {
 
   // ---- DSL building blocks (called inside program bodies) ----------------------------------
 
-  // The camera ray through pixel pix (design.md section 4).
+  // The camera ray through pixel pix (docs/camera.md).
   Float3 camera_ray(const Int2& pix) const;
 
   // The ray against the grid's box: inside, and the parameter range [t_enter, t_exit]

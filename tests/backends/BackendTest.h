@@ -91,7 +91,7 @@ std::vector<H> unflatten(const std::vector<S>& v) {
 }
 
 // ---- the denormal rule ----------------------------------------------------------------------
-// design.md: a backend may flush denormals to zero (llvmpipe's GLSL does); results are then
+// docs/accuracy.md: a backend may flush denormals to zero (llvmpipe's GLSL does); results are then
 // compared after flushing both sides, and inputs carry no denormals (a flushing backend reads
 // them as zero, the C++ reference would not). Set per test by BackendTest::SetUp.
 inline bool& flushes_denormals() {

@@ -1,4 +1,4 @@
-// Renders, per backend: camera rays bit for bit as design.md defines them, depth and
+// Renders, per backend: camera rays bit for bit as docs/camera.md defines them, depth and
 // primitive-id AOVs against a brute-force double-precision reference, every output
 // bitwise identical to the CPU backend's (strict mode), and scenes with bad geometry.
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@ namespace {
 
 class Render : public ::testing::TestWithParam<std::string> {};
 
-// design.md section 4, written out again here, independently of Camera.cpp.
+// docs/camera.md, written out again here, independently of Camera.cpp.
 glm::vec3 design_ray(const Camera& c, int W, int H, int i, int j) {
   auto dot = [](glm::vec3 a, glm::vec3 b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; };
   auto normalize = [&](glm::vec3 v) {
@@ -179,7 +179,8 @@ RenderResult render_checked(const Scene& s, const std::string& backend, int W, i
   return r;
 }
 
-// Bitwise equality, flushing denormals on both sides (design.md: a backend may flush them).
+// Bitwise equality, flushing denormals on both sides (docs/accuracy.md: a backend may flush
+// them).
 float flush(float x) {
   return std::fpclassify(x) == FP_SUBNORMAL ? std::copysign(0.0f, x) : x;
 }
