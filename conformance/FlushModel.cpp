@@ -6,6 +6,7 @@
 // flush_model() rewrites an optimized function that way, so that the reference interpreter
 // computes what such a backend must compute, intermediate values included.
 #include "Suite.h"
+#include "rill/ir/Visitor.h"
 
 namespace rill::conformance {
 
@@ -13,99 +14,49 @@ namespace {
 
 using namespace ir;
 
-bool flushes(Op op) {
-  switch (op) {
-    case Op::Add:
-    case Op::Sub:
-    case Op::Mul:
-    case Op::Div:
-    case Op::Mod:
-    case Op::Min:
-    case Op::Max:
-    case Op::Sign:
-    case Op::Floor:
-    case Op::Ceil:
-    case Op::Fract:
-    case Op::Sqrt:
-    case Op::Rsqrt:
-    case Op::Exp:
-    case Op::Log:
-    case Op::Exp2:
-    case Op::Log2:
-    case Op::Sin:
-    case Op::Cos:
-    case Op::Tan:
-    case Op::Atan:
-    case Op::Pow:
-    case Op::Atan2:
-    case Op::Lt:
-    case Op::Le:
-    case Op::Gt:
-    case Op::Ge:
-    case Op::Eq:
-    case Op::Ne:
-    case Op::Dot:
-    case Op::Cross:
-    case Op::FloatToInt:
-      return true;
-    default:
-      return false;
-  }
-}
-
 Operand int_const(uint32_t bits) {
   Constant c = Constant::of_int(static_cast<int32_t>(bits));
   return Operand::of_const(c);
 }
 
-class Rewriter {
+class Rewriter : public Mutator {
  public:
   explicit Rewriter(Function& f) : f_(f) {}
+  using Mutator::mutate;
 
-  void block(Block& b) {
-    Block out;
-    for (Stmt& s : b) {
-      block(s.then_body);
-      block(s.else_body);
-      block(s.cond_body);
-      block(s.body);
-      block(s.step);
-      if (s.kind != StmtKind::Assign || !flushes(s.op)) {
-        out.push_back(std::move(s));
-        continue;
-      }
-      for (Operand& a : s.args) a = flushed(out, a);
-      // Operations made of several roundings flush after each of them.
-      if (s.op == Op::Dot || s.op == Op::Cross ||
-          (s.op == Op::Mod && f_.var(s.dst).type.is_float())) {
-        Operand r = s.op == Op::Dot ? dot(out, s.args[0], s.args[1])
-                    : s.op == Op::Cross
-                        ? cross(out, s.args[0], s.args[1])
-                        : mod(out, s.args[0], s.args[1],
-                              s.mask.full() ? f_.var(s.dst).type.width : s.mask.count);
-        Stmt back = Stmt::assign(s.dst, Op::Copy, {r});
-        back.mask = s.mask;
-        out.push_back(std::move(back));
-        continue;
-      }
-      const VarId dst = s.dst;
-      const Mask mask = s.mask;
-      out.push_back(std::move(s));
-      const Type vt = f_.var(dst).type;
-      if (!vt.is_float()) continue;
-      // dst[.mask] = flush(dst[.mask])
-      Operand written = Operand::of_var(dst, vt);
-      if (!mask.full()) {
-        written.type = vt.with_width(mask.count);
-        for (int k = 0; k < mask.count; ++k)
-          written.swizzle[static_cast<size_t>(k)] = mask.comps[static_cast<size_t>(k)];
-      }
-      Operand r = flushed(out, written);
-      Stmt back = Stmt::assign(dst, Op::Copy, {r});
-      back.mask = mask;
+  void mutate(Stmt&& s, Block& out) override {
+    if (s.kind != StmtKind::Assign || !flushes_denormals(s.op))
+      return Mutator::mutate(std::move(s), out);
+    for (Operand& a : s.args) a = flushed(out, a);
+    // Operations made of several roundings flush after each of them.
+    if (s.op == Op::Dot || s.op == Op::Cross ||
+        (s.op == Op::Mod && f_.var(s.dst).type.is_float())) {
+      Operand r = s.op == Op::Dot ? dot(out, s.args[0], s.args[1])
+                  : s.op == Op::Cross
+                      ? cross(out, s.args[0], s.args[1])
+                      : mod(out, s.args[0], s.args[1],
+                            s.mask.full() ? f_.var(s.dst).type.width : s.mask.count);
+      Stmt back = Stmt::assign(s.dst, Op::Copy, {r});
+      back.mask = s.mask;
       out.push_back(std::move(back));
+      return;
     }
-    b = std::move(out);
+    const VarId dst = s.dst;
+    const Mask mask = s.mask;
+    out.push_back(std::move(s));
+    const Type vt = f_.var(dst).type;
+    if (!vt.is_float()) return;
+    // dst[.mask] = flush(dst[.mask])
+    Operand written = Operand::of_var(dst, vt);
+    if (!mask.full()) {
+      written.type = vt.with_width(mask.count);
+      for (int k = 0; k < mask.count; ++k)
+        written.swizzle[static_cast<size_t>(k)] = mask.comps[static_cast<size_t>(k)];
+    }
+    Operand r = flushed(out, written);
+    Stmt back = Stmt::assign(dst, Op::Copy, {r});
+    back.mask = mask;
+    out.push_back(std::move(back));
   }
 
  private:
@@ -191,7 +142,7 @@ class Rewriter {
 ir::Function flush_model(const ir::Function& f) {
   ir::Function out = f;
   Rewriter r(out);
-  r.block(out.body);
+  r.mutate(out.body);
   return out;
 }
 

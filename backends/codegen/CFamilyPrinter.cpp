@@ -14,21 +14,6 @@ std::string pad_of(int indent) {
   return std::string(static_cast<size_t>(indent) * 2, ' ');
 }
 
-// Suffix of the rill_* helper for a scalar kind: rill_min_f, rill_min_i.
-const char* suffix(ScalarKind k) {
-  return k == ScalarKind::Float ? "_f" : k == ScalarKind::Int ? "_i" : "_b";
-}
-
-std::string call(const std::string& fn, std::initializer_list<std::string> args) {
-  std::string s = fn + "(";
-  bool first = true;
-  for (const auto& a : args) {
-    if (!first) s += ", ";
-    s += a;
-    first = false;
-  }
-  return s + ")";
-}
 }  // namespace
 
 std::string fixed_form_expr(const Stmt& s, int c,
@@ -58,37 +43,6 @@ std::string fixed_form_expr(const Stmt& s, int c,
     }
     default:
       throw Error(std::string("internal: ") + op_name(s.op) + " has no fixed form");
-  }
-}
-
-std::string helper_function(Op op, ScalarKind k) {
-  switch (op) {
-    case Op::Mod:
-    case Op::Min:
-    case Op::Max:
-    case Op::Abs:
-    case Op::Sign:
-      return std::string(op_name(op)) + suffix(k);
-    case Op::Floor:
-    case Op::Ceil:
-    case Op::Fract:
-    case Op::Sqrt:
-    case Op::Rsqrt:
-    case Op::Exp:
-    case Op::Log:
-    case Op::Exp2:
-    case Op::Log2:
-    case Op::Sin:
-    case Op::Cos:
-    case Op::Tan:
-    case Op::Atan:
-    case Op::Pow:
-    case Op::Atan2:
-    case Op::Shl:
-    case Op::Shr:
-      return op_name(op);
-    default:
-      return "";
   }
 }
 
@@ -153,7 +107,13 @@ void CFamilyPrinter::stmt(std::string& out, const Stmt& s, int indent) const {
       assign(out, s, pad);
       return;
     case StmtKind::If:
-      out += pad + "if (" + operand(s.cond, 0) + ") {\n";
+      if (s.then_body.empty()) {  // if (!c) { else }
+        out += pad + "if (!" + d_.branch_condition(operand(s.cond, 0)) + ") {\n";
+        block(out, s.else_body, indent + 1);
+        out += pad + "}\n";
+        return;
+      }
+      out += pad + "if (" + d_.branch_condition(operand(s.cond, 0)) + ") {\n";
       block(out, s.then_body, indent + 1);
       if (!s.else_body.empty()) {
         out += pad + "} else {\n";
@@ -166,13 +126,13 @@ void CFamilyPrinter::stmt(std::string& out, const Stmt& s, int indent) const {
       out += pad + d_.loop_header() + " {\n";
       if (s.loop != LoopKind::DoUntil) {
         block(out, s.cond_body, indent + 1);
-        out += pad + "  if (!" + operand(s.cond, 0) + ") break;\n";
+        out += pad + "  if (!" + d_.branch_condition(operand(s.cond, 0)) + ") break;\n";
       }
       block(out, s.body, indent + 1);
       block(out, s.step, indent + 1);
       if (s.loop == LoopKind::DoUntil) {
         block(out, s.cond_body, indent + 1);
-        out += pad + "  if (" + operand(s.cond, 0) + ") break;\n";
+        out += pad + "  if (" + d_.branch_condition(operand(s.cond, 0)) + ") break;\n";
       }
       out += pad + "}\n";
       return;
@@ -234,79 +194,48 @@ void CFamilyPrinter::assign(std::string& out, const Stmt& s, const std::string& 
   out += pad + "}\n";
 }
 
+// Component c of an assignment's value, spelled as Ops.def's form column says.
 std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
   auto a = [&](size_t i) { return operand(s.args[i], c); };
-  ScalarKind k = s.args.empty() ? ScalarKind::Int : s.args[0].type.kind;
-  if (std::string fn = helper_function(s.op, k); !fn.empty())
-    return op_info(s.op).arity == 1 ? call("rill_" + fn, {a(0)}) : call("rill_" + fn, {a(0), a(1)});
-  switch (s.op) {
-    case Op::Copy:
+  // The kind the op computes on: its operands' (select: its branches').
+  const ScalarKind k = s.args.empty() ? ScalarKind::Int : s.args[s.op == Op::Select ? 1 : 0].type.kind;
+  const OpForm& form = op_info(s.op).form(k);
+  switch (form.kind) {
+    case FormKind::Copy:
       return a(0);
-    case Op::Neg: {
-      if (k == ScalarKind::Int) return call("rill_neg_i", {a(0)});
+    case FormKind::Negate: {
       std::string x = a(0);
       return x[0] == '-' ? "(-(" + x + "))" : "(-" + x + ")";  // never print "--"
     }
-    case Op::Add:
-      return k == ScalarKind::Int ? call("rill_add_i", {a(0), a(1)})
-                                  : "(" + a(0) + " + " + a(1) + ")";
-    case Op::Sub:
-      return k == ScalarKind::Int ? call("rill_sub_i", {a(0), a(1)})
-                                  : "(" + a(0) + " - " + a(1) + ")";
-    case Op::Mul:
-      return k == ScalarKind::Int ? call("rill_mul_i", {a(0), a(1)})
-                                  : "(" + a(0) + " * " + a(1) + ")";
-    case Op::Div:
-      return k == ScalarKind::Int ? call("rill_div_i", {a(0), a(1)}) : d_.float_div(a(0), a(1));
-    case Op::BitAnd:
-      return "(" + a(0) + " & " + a(1) + ")";
-    case Op::BitOr:
-      return "(" + a(0) + " | " + a(1) + ")";
-    case Op::BitXor:
-      return "(" + a(0) + " ^ " + a(1) + ")";
-    case Op::BitNot:
-      return "(~" + a(0) + ")";
-    case Op::And:
-      return "(" + a(0) + " && " + a(1) + ")";
-    case Op::Or:
-      return "(" + a(0) + " || " + a(1) + ")";
-    case Op::Not:
-      return "(!" + a(0) + ")";
-    case Op::Lt:
-      return d_.compare(k, "<", a(0), a(1));
-    case Op::Le:
-      return d_.compare(k, "<=", a(0), a(1));
-    case Op::Gt:
-      return d_.compare(k, ">", a(0), a(1));
-    case Op::Ge:
-      return d_.compare(k, ">=", a(0), a(1));
-    case Op::Eq:
-      return d_.compare(k, "==", a(0), a(1));
-    case Op::Ne:
-      return d_.compare(k, "!=", a(0), a(1));
-    case Op::Select:
-      return d_.select(s.args[1].type.kind, a(0), a(1), a(2));
-    case Op::IntToFloat:
-      return call("rill_i2f", {a(0)});
-    case Op::FloatToInt:
-      return call("rill_f2i", {a(0)});
-    case Op::FloatBitsToInt:
-      return call("rill_fbits", {a(0)});
-    case Op::IntBitsToFloat:
-      return call("rill_ibits", {a(0)});
-    case Op::Dot:
-    case Op::Cross:
-    case Op::Construct:
+    case FormKind::Infix:
+      return "(" + a(0) + " " + form.text + " " + a(1) + ")";
+    case FormKind::Prefix:
+      return "(" + std::string(form.text) + a(0) + ")";
+    case FormKind::Logic: {
+      const std::string op = d_.lane_masks() ? form.lanes : form.text;
+      return s.args.size() == 1 ? "(" + op + a(0) + ")" : "(" + a(0) + " " + op + " " + a(1) + ")";
+    }
+    case FormKind::Helper: {
+      std::string call = d_.helper(form.text) + "(";
+      for (size_t i = 0; i < s.args.size(); ++i) call += (i ? ", " : "") + a(i);
+      return call + ")";
+    }
+    case FormKind::Compare:
+      return d_.compare(k, form.text, a(0), a(1));
+    case FormKind::FloatDiv:
+      return d_.float_div(a(0), a(1));
+    case FormKind::Select:
+      return d_.select(k, a(0), a(1), a(2));
+    case FormKind::Fixed:
       return fixed_form_expr(s, c, [&](const Operand& o, int i) { return operand(o, i); });
-    case Op::ElementIndex:
-      return d_.element_index();
-    case Op::ElementCoord:
-      return d_.element_coord(c);
-    case Op::Gather:  // a statement of its own, not an expression
-    default:          // the helper calls, handled above (helper_function)
+    case FormKind::Element:
+      return s.op == Op::ElementIndex ? d_.element_index() : d_.element_coord(c);
+    case FormKind::Gather:  // a statement of its own (assign() prints it), not an expression
+    case FormKind::None:
       break;
   }
-  throw Error(std::string("internal: no C-family form for op ") + op_name(s.op));
+  throw Error(std::string("internal: no C-family form for op ") + op_name(s.op) + " on " +
+              kind_name(k));
 }
 
 }  // namespace rill::codegen

@@ -7,10 +7,10 @@
 // printed body in its own entry point (an element loop, an OpenCL kernel, a main()).
 //
 // Semantics are fixed here, not in the dialects: every componentwise operation is printed
-// per component, in a fixed evaluation order and fully parenthesized, and every operation
-// whose meaning the languages disagree on (min/max with NaN, integer division by zero,
-// float-to-int overflow, mod, sign, fract) calls a rill_* helper whose definition each
-// dialect's prelude gives with the same semantics.
+// per component, in a fixed evaluation order and fully parenthesized, as the form column of
+// ir/Ops.def says, and every operation whose meaning the languages disagree on (min/max with
+// NaN, integer division by zero, float-to-int overflow, mod, sign, fract) calls a rill_*
+// helper whose definition each dialect family's prelude gives with the same semantics.
 #pragma once
 
 #include <functional>
@@ -66,6 +66,13 @@ class Dialect {
                              const std::string& b) const {
     return "(" + c + " ? " + a + " : " + b + ")";
   }
+  // The function a HELPER form of Ops.def calls: rill_NAME (lockstep C: rill_v_NAME).
+  virtual std::string helper(const std::string& name) const { return "rill_" + name; }
+  // True: bools are lane masks (lockstep C), and LOGIC forms take their lane spelling.
+  virtual bool lane_masks() const { return false; }
+  // The test an `if` or a loop exit makes of a bool condition (lockstep C: whether any lane
+  // has it).
+  virtual std::string branch_condition(const std::string& c) const { return c; }
 };
 
 // Component c of Dot, Cross or Construct, the operations that combine components, spelled in
@@ -73,11 +80,6 @@ class Dialect {
 // component i of an operand.
 std::string fixed_form_expr(const ir::Stmt& s, int c,
                             const std::function<std::string(const ir::Operand&, int)>& operand);
-
-// The operations every C-family printer spells as a call to a helper of the prelude, one
-// argument per operand: the helper's name after its prefix ("min_f", "floor", "shl"; the
-// scalar printer calls rill_NAME, the lockstep printer rill_v_NAME), or "" for the others.
-std::string helper_function(ir::Op op, ir::ScalarKind k);
 
 class CFamilyPrinter {
  public:

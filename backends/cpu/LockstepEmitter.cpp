@@ -1,32 +1,31 @@
-// Lockstep SIMD C: one kernel instance runs a group of W elements at once.
+// Lockstep SIMD C, for the simd backend: one kernel instance runs a group of RILL_W elements
+// (lanes) at once, as in ISPC or a GPU's SIMT.
 //
 // The scalar C of CEmitter.cpp computes one element per iteration, so each branch the kernel
-// takes is a branch the CPU must predict, and each loop runs once per element. Here, as in
-// ISPC or a GPU's SIMT, W elements (lanes) move through the kernel together:
+// takes is a branch the CPU must predict, and each loop runs once per element. Here the
+// kernel is first lowered for lanes (passes::lower_lockstep: control flow becomes lane masks,
+// assignments under a mask blend), then printed by the shared C-family printer through the
+// lockstep dialect (VectorDialect.h): every variable component is a vector of lanes and every
+// operation applies to all of them. This file adds the vector prelude and the entry point.
 //
-// - Every variable component is a vector of W values (GCC/Clang vector extensions, which
-//   compile to SSE/AVX), and every operation is applied to all lanes at once.
-// - An `if` computes two lane masks, then runs each side only if some lane takes it, with
-//   assignments inside blended under the mask (`x = mask ? new : x`, per lane).
-// - A loop keeps a mask of lanes still looping and runs until it is empty; `break`,
-//   `continue` and `discard` clear lanes from the masks, and the statements after a
-//   statement that may have cleared lanes re-read the mask (see Lockstep::exits()).
-// - A gather loads each lane's element; indices are clamped, so lanes that are off read
-//   harmlessly (arrays are never empty).
-//
-// Lanes that are off still compute values (which are then not kept), so every operation
-// must be harmless on any input: the rill_* helpers already are (integer division by zero
-// gives 0, conversions saturate). Each lane computes exactly the operations of the scalar
-// code, in the same order and precision, so results are bit for bit those of emit_c().
-// A group is W consecutive elements, or a W/2 x 2 tile of a 2D stream when the launch range
-// is whole rows (the backend hands the lockstep kernel ranges of row pairs; rill_next_group).
-// A group shorter than W repeats its last element in the spare lanes and stores only the
-// real ones.
+// Lanes that are off still compute values (which are then not kept), so every operation must
+// be harmless on any input: the rill_* helpers already are (integer division by zero gives 0,
+// conversions saturate, gathers clamp their indices and arrays are never empty). Each lane
+// computes exactly the operations of the scalar code, in the same order and precision, so
+// results are bit for bit those of emit_c().
+// A group is RILL_W consecutive elements, or a RILL_W/2 x 2 tile of a 2D stream when the
+// launch range is whole rows (the backend hands the lockstep kernel ranges of row pairs;
+// rill_next_group). A group shorter than RILL_W repeats its last element in the spare lanes
+// and stores only the real ones.
 #include "LockstepEmitter.h"
 
-#include "../codegen/CDialect.h"
+#include <algorithm>
+
+#include "../codegen/CFamilyPrinter.h"
 #include "CEmitter.h"
+#include "VectorDialect.h"
 #include "rill/ir/Visitor.h"
+#include "rill/passes/Passes.h"
 
 namespace rill::cpu {
 
@@ -44,6 +43,24 @@ typedef uint32_t rill_vu __attribute__((vector_size(RILL_W * 4)));
 
 RILL_FN rill_vr rill_splat_r(rill_real x) { rill_vr r; for (int l = 0; l < RILL_W; ++l) r[l] = x; return r; }
 RILL_FN rill_vi rill_splat_i(int32_t x) { rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = x; return r; }
+/* Each lane's element of a stream: p[lane[l] * stride] (p points at the component). */
+#if RILL_W == 8
+RILL_FN rill_vr rill_lanes_r(const float* p, const int64_t* lane, int64_t n) {
+  return (rill_vr){p[lane[0] * n], p[lane[1] * n], p[lane[2] * n], p[lane[3] * n],
+                   p[lane[4] * n], p[lane[5] * n], p[lane[6] * n], p[lane[7] * n]};
+}
+RILL_FN rill_vi rill_lanes_i(const int32_t* p, const int64_t* lane, int64_t n) {
+  return (rill_vi){p[lane[0] * n], p[lane[1] * n], p[lane[2] * n], p[lane[3] * n],
+                   p[lane[4] * n], p[lane[5] * n], p[lane[6] * n], p[lane[7] * n]};
+}
+#else
+RILL_FN rill_vr rill_lanes_r(const float* p, const int64_t* lane, int64_t n) {
+  rill_vr r; for (int l = 0; l < RILL_W; ++l) r[l] = p[lane[l] * n]; return r;
+}
+RILL_FN rill_vi rill_lanes_i(const int32_t* p, const int64_t* lane, int64_t n) {
+  rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = p[lane[l] * n]; return r;
+}
+#endif
 #if defined(__AVX__) && RILL_W == 8
 #include <immintrin.h>
 RILL_FN int rill_any(rill_vi m) { return !_mm256_testz_si256((__m256i)m, (__m256i)m); }
@@ -169,17 +186,11 @@ RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi*
 #define RILL_HAVE_GATHER34 1
 #endif
 
-/* The other helpers, lane by lane through their scalar definitions. */
+/* The other helpers run lane by lane through their scalar definitions (lane_wise_helpers()). */
 #define RILL_LANES1(name, R, A, fn) \
   RILL_FN R name(A a) { R r; for (int l = 0; l < RILL_W; ++l) r[l] = fn(a[l]); return r; }
 #define RILL_LANES2(name, R, A, fn) \
   RILL_FN R name(A a, A b) { R r; for (int l = 0; l < RILL_W; ++l) r[l] = fn(a[l], b[l]); return r; }
-RILL_LANES2(rill_v_div_i, rill_vi, rill_vi, rill_div_i)
-RILL_LANES2(rill_v_mod_i, rill_vi, rill_vi, rill_mod_i)
-RILL_LANES1(rill_v_abs_i, rill_vi, rill_vi, rill_abs_i)
-RILL_LANES1(rill_v_sign_i, rill_vi, rill_vi, rill_sign_i)
-RILL_LANES1(rill_v_sign_f, rill_vr, rill_vr, rill_sign_f)
-RILL_LANES2(rill_v_mod_f, rill_vr, rill_vr, rill_mod_f)
 #if defined(__AVX2__) && RILL_W == 8
 /* Exact in every mode, so the same bits as the scalar helpers (NaN, infinities, -0 included):
    rounding to an integer and the square root are correctly rounded instructions. Strict code
@@ -196,539 +207,86 @@ RILL_LANES1(rill_v_floor, rill_vr, rill_vr, rill_floor)
 RILL_LANES1(rill_v_ceil, rill_vr, rill_vr, rill_ceil)
 RILL_LANES1(rill_v_sqrt, rill_vr, rill_vr, rill_sqrt)
 #endif
-RILL_LANES1(rill_v_fract, rill_vr, rill_vr, rill_fract)
-RILL_LANES1(rill_v_rsqrt, rill_vr, rill_vr, rill_rsqrt)
-RILL_LANES1(rill_v_exp, rill_vr, rill_vr, rill_exp)
-RILL_LANES1(rill_v_log, rill_vr, rill_vr, rill_log)
-RILL_LANES1(rill_v_exp2, rill_vr, rill_vr, rill_exp2)
-RILL_LANES1(rill_v_log2, rill_vr, rill_vr, rill_log2)
-RILL_LANES1(rill_v_sin, rill_vr, rill_vr, rill_sin)
-RILL_LANES1(rill_v_cos, rill_vr, rill_vr, rill_cos)
-RILL_LANES1(rill_v_tan, rill_vr, rill_vr, rill_tan)
-RILL_LANES1(rill_v_atan, rill_vr, rill_vr, rill_atan)
-RILL_LANES2(rill_v_pow, rill_vr, rill_vr, rill_pow)
-RILL_LANES2(rill_v_atan2, rill_vr, rill_vr, rill_atan2)
-RILL_LANES1(rill_v_f2i, rill_vi, rill_vr, rill_f2i)
 )";
 
-std::string pad_of(int indent) {
-  return std::string(static_cast<size_t>(indent) * 2, ' ');
+// Helpers with a vector definition of their own in kVectorPrelude; every other HELPER form of
+// Ops.def gets a lane-by-lane wrapper of its scalar definition (lane_wise_helpers()).
+constexpr const char* kVectorHelpers[] = {"add_i", "sub_i", "mul_i", "neg_i", "shl",   "shr",
+                                          "min_i", "max_i", "min_f", "max_f", "abs_f", "i2f",
+                                          "fbits", "ibits", "floor", "ceil",  "sqrt"};
+
+// RILL_LANES1/2(rill_v_NAME, result, operand, rill_NAME) for every helper of the op table
+// that kVectorPrelude does not define as vector code.
+std::string lane_wise_helpers() {
+  std::string out;
+  std::vector<std::string> done(std::begin(kVectorHelpers), std::end(kVectorHelpers));
+  auto vtype = [](ScalarKind k) { return k == ScalarKind::Float ? "rill_vr" : "rill_vi"; };
+  for (int o = 0; o <= static_cast<int>(Op::ElementCoord); ++o) {
+    const Op op = static_cast<Op>(o);
+    const OpInfo& info = op_info(op);
+    for (ScalarKind k : {ScalarKind::Float, ScalarKind::Int}) {
+      const OpForm& form = info.form(k);
+      if (form.kind != FormKind::Helper) continue;
+      if (std::find(done.begin(), done.end(), form.text) != done.end()) continue;
+      done.emplace_back(form.text);
+      std::vector<Type> args(static_cast<size_t>(info.arity), Type{k, 1});
+      std::optional<Type> result = result_type(op, args, nullptr);
+      if (!result || (info.arity != 1 && info.arity != 2))
+        throw Error(std::string("internal: no lane-wise form for helper rill_") + form.text);
+      out += "RILL_LANES" + std::to_string(info.arity) + "(rill_v_" + form.text + ", " +
+             vtype(result->kind) + ", " + vtype(k) + ", rill_" + form.text + ")\n";
+    }
+  }
+  return out;
 }
-
-std::string call(const std::string& fn, std::initializer_list<std::string> args) {
-  std::string s = fn + "(";
-  bool first = true;
-  for (const auto& a : args) {
-    if (!first) s += ", ";
-    s += a;
-    first = false;
-  }
-  return s + ")";
-}
-
-// Does b contain a break or continue of the loop it is in (not of a nested loop)?
-bool exits_loop(const Block& b) {
-  for (const Stmt& s : b) {
-    if (s.kind == StmtKind::Break || s.kind == StmtKind::Continue) return true;
-    if (s.kind == StmtKind::If && (exits_loop(s.then_body) || exits_loop(s.else_body))) return true;
-  }
-  return false;
-}
-
-bool has_continue(const Block& b) {
-  for (const Stmt& s : b) {
-    if (s.kind == StmtKind::Continue) return true;
-    if (s.kind == StmtKind::If && (has_continue(s.then_body) || has_continue(s.else_body)))
-      return true;
-  }
-  return false;
-}
-
-bool has_discard(const Block& b) {
-  bool found = false;
-  for_each_stmt(b, [&](const Stmt& s) { found = found || s.kind == StmtKind::Discard; });
-  return found;
-}
-
-bool uses_op(const Block& b, Op op) {
-  bool found = false;
-  for_each_stmt(
-      b, [&](const Stmt& s) { found = found || (s.kind == StmtKind::Assign && s.op == op); });
-  return found;
-}
-
-// Variables whose lanes that are off may be overwritten: written by exactly one (whole)
-// assignment and read only after it, in its block or inside what follows it there. Every
-// read then runs for a subset of the lanes the assignment ran for (masks only narrow inside a
-// block and its nested blocks), in the same loop iteration, so the value a lane that was off
-// gets is never read, and the assignment can skip the blend with the old value.
-std::vector<bool> unblended_vars(const Function& f) {
-  std::vector<int> writes(f.vars.size(), 0);
-  for_each_stmt(f.body, [&](const Stmt& s) {
-    if (s.kind == StmtKind::Assign)
-      writes[s.dst] += s.mask.full() || s.mask.count == f.var(s.dst).type.width ? 1 : 2;
-  });
-  std::vector<bool> ok(f.vars.size(), false);
-  for (VarId v = 0; v < f.vars.size(); ++v) {
-    VarRole r = f.vars[v].role;
-    ok[v] = writes[v] == 1 && (r == VarRole::Temp || r == VarRole::Local);
-  }
-  // Walk in program order with the set of candidates assigned earlier in an enclosing block;
-  // a read of a candidate outside that set disqualifies it.
-  std::vector<bool> visible(f.vars.size(), false);
-  auto read = [&](const Operand& o) {
-    if (o.is_var() && !visible[o.var]) ok[o.var] = false;
-  };
-  // A loop's condition is read at the end of its condition block, by lanes that ran it; a
-  // lane that did not is already off the loop mask, so a value it never got is harmless.
-  auto walk = [&](auto& self, const Block& b, const Operand* read_at_end) -> void {
-    std::vector<VarId> added;
-    for (const Stmt& s : b) {
-      for (const Operand& o : s.args) read(o);
-      if (s.kind == StmtKind::If) read(s.cond);
-      for (const Block* sub : {&s.then_body, &s.else_body, &s.body, &s.step})
-        self(self, *sub, nullptr);
-      if (s.kind == StmtKind::Loop) self(self, s.cond_body, &s.cond);
-      if (s.kind == StmtKind::Assign && ok[s.dst] && !visible[s.dst]) {
-        visible[s.dst] = true;
-        added.push_back(s.dst);
-      }
-    }
-    if (read_at_end) read(*read_at_end);
-    for (VarId v : added) visible[v] = false;
-  };
-  walk(walk, f.body, nullptr);
-  return ok;
-}
-
-// Prints the kernel body in lockstep form.
-class Lockstep {
- public:
-  Lockstep(const Function& f, const codegen::CDialect& d, int lanes)
-      : f_(f),
-        d_(d),
-        lanes_(lanes),
-        discards_(has_discard(f.body)),
-        unblended_(unblended_vars(f)) {}
-
-  bool discards() const { return discards_; }
-
-  // Vector type of a variable's components.
-  std::string vtype(ScalarKind k) const { return k == ScalarKind::Float ? "rill_vr" : "rill_vi"; }
-
-  std::string component(VarId v, int c) const {
-    std::string n = f_.var_name(v);
-    return f_.var(v).type.width == 1 ? n : n + "_" + std::to_string(c);
-  }
-
-  // Component c of an operand, as a vector.
-  std::string operand(const Operand& o, int c) const {
-    if (o.is_var()) return component(o.var, o.component(c));
-    uint32_t bits = o.value.bits[static_cast<size_t>(o.width() == 1 ? 0 : c)];
-    switch (o.type.kind) {
-      case ScalarKind::Float:
-        return "rill_splat_r(" + d_.literal(ScalarKind::Float, bits) + ")";
-      case ScalarKind::Int:
-        return "rill_splat_i(" + d_.literal(ScalarKind::Int, bits) + ")";
-      case ScalarKind::Bool:
-        return bits ? "rill_splat_i(-1)" : "rill_splat_i(0)";
-    }
-    return "?";
-  }
-
-  // Component c of an operand, in lane `l` (a scalar).
-  std::string operand_lane(const Operand& o, int c) const {
-    if (o.is_const())
-      return d_.literal(o.type.kind, o.value.bits[static_cast<size_t>(o.width() == 1 ? 0 : c)]);
-    return component(o.var, o.component(c)) + "[l]";
-  }
-
-  // Every variable the body uses, as vectors with their initial values. Stream inputs and
-  // outputs are read lane by lane; uniforms are broadcast; everything else starts at zero.
-  std::string declarations(int indent) const {
-    std::string out, pad = pad_of(indent), lanes;
-    std::vector<bool> used(f_.vars.size(), false);
-    for (VarId v : f_.inputs) used[v] = true;
-    for (VarId v : f_.outputs) used[v] = true;
-    for_each_operand(f_.body, [&](const Operand& o) {
-      if (o.is_var()) used[o.var] = true;
-    });
-    for_each_stmt(f_.body, [&](const Stmt& s) {
-      if (s.kind == StmtKind::Assign) used[s.dst] = true;
-    });
-    for (VarId v = 0; v < f_.vars.size(); ++v) {
-      if (!used[v]) continue;
-      const Variable& var = f_.vars[v];
-      for (int c = 0; c < var.type.width; ++c) {
-        std::string name = component(v, c), init = d_.initial_value(f_, v, c);
-        if (var.role == VarRole::Input || var.role == VarRole::Output) {
-          out += pad + vtype(var.type.kind) + " " + name + ";\n";
-          lanes += pad + "  " + name + "[l] = " + init + ";\n";
-        } else if (var.role == VarRole::Uniform) {
-          std::string value = var.type.kind == ScalarKind::Bool ? "-(" + init + " != 0)" : init;
-          out += pad + vtype(var.type.kind) + " " + name + " = " +
-                 (var.type.is_float() ? "rill_splat_r(" : "rill_splat_i(") + value + ");\n";
-        } else {
-          out += pad + vtype(var.type.kind) + " " + name + " = " +
-                 (var.type.is_float() ? "rill_splat_r(0)" : "rill_splat_i(0)") + ";\n";
-        }
-      }
-    }
-    if (!lanes.empty())
-      out += pad + "for (int l = 0; l < RILL_W; ++l) {\n" + pad +
-             "  const int64_t rill_i = rill_lane[l];\n" + lanes + pad + "}\n";
-    return out;
-  }
-
-  // The body; the top-level mask is rill_alive if the kernel can discard, else none (every
-  // lane runs every top-level statement).
-  std::string body(int indent) {
-    std::string out;
-    std::string top = discards_ ? "rill_alive" : "";
-    block(out, f_.body, top, top, indent);
-    return out;
-  }
-
- private:
-  struct LoopMasks {
-    std::string looping;  // lanes still in the loop
-    std::string running;  // lanes running this iteration's body (looping minus continued)
-  };
-
-  std::string fresh(const char* prefix) { return prefix + std::to_string(next_++); }
-
-  // May statement s turn lanes off for what follows it in its block?
-  bool exits(const Stmt& s) const {
-    switch (s.kind) {
-      case StmtKind::Break:
-      case StmtKind::Continue:
-      case StmtKind::Discard:
-        return true;
-      case StmtKind::If:
-        return exits_loop(s.then_body) || exits_loop(s.else_body) || has_discard(s.then_body) ||
-               has_discard(s.else_body);
-      case StmtKind::Loop:
-        return has_discard(s.cond_body) || has_discard(s.body) || has_discard(s.step);
-      case StmtKind::Assign:
-        return false;
-    }
-    return false;
-  }
-
-  // mask: the variable holding the lanes this block runs for ("" = all lanes). live: the
-  // mask that break, continue and discard clear lanes from, which is where the lanes still
-  // running after such a statement are read back: a loop body's running lanes, a loop
-  // condition's or step's looping lanes, the live lanes outside loops.
-  void block(std::string& out, const Block& b, const std::string& mask, const std::string& live,
-             int indent) {
-    for (const Stmt& s : b) {
-      stmt(out, s, mask, live, indent);
-      if (exits(s) && !mask.empty() && mask != live)
-        out += pad_of(indent) + mask + " &= " + live + ";\n";
-    }
-  }
-
-  void stmt(std::string& out, const Stmt& s, const std::string& mask, const std::string& live,
-            int indent) {
-    std::string pad = pad_of(indent);
-    auto in_mask = [&](const std::string& m) {
-      return mask.empty() ? m : "(" + mask + " & " + m + ")";
-    };
-    switch (s.kind) {
-      case StmtKind::Assign:
-        if (s.op == Op::Gather)
-          gather(out, s, mask, pad);
-        else
-          assign(out, s, mask, pad);
-        return;
-      case StmtKind::If: {
-        std::string cond = operand(s.cond, 0);
-        std::string then_mask = fresh("rill_m");
-        out += pad + "{\n";
-        out += pad + "  rill_vi " + then_mask + " = " + in_mask(cond) + ";\n";
-        std::string else_mask;
-        if (!s.else_body.empty()) {
-          else_mask = fresh("rill_m");
-          out += pad + "  rill_vi " + else_mask + " = " + in_mask("~" + cond) + ";\n";
-        }
-        out += pad + "  if (rill_any(" + then_mask + ")) {\n";
-        block(out, s.then_body, then_mask, live, indent + 2);
-        out += pad + "  }\n";
-        if (!s.else_body.empty()) {
-          out += pad + "  if (rill_any(" + else_mask + ")) {\n";
-          block(out, s.else_body, else_mask, live, indent + 2);
-          out += pad + "  }\n";
-        }
-        out += pad + "}\n";
-        return;
-      }
-      case StmtKind::Loop: {
-        LoopMasks m{fresh("rill_loop"), ""};
-        bool continues = has_continue(s.body);
-        m.running = continues ? fresh("rill_run") : m.looping;
-        out += pad + "{\n";
-        out += pad + "  rill_vi " + m.looping + " = " + (mask.empty() ? "rill_splat_i(-1)" : mask) +
-               ";\n";
-        if (continues) out += pad + "  rill_vi " + m.running + " = " + m.looping + ";\n";
-        out += pad + "  " + d_.loop_header() + " {\n";
-        loops_.push_back(m);
-        std::string inner = pad + "    ";
-        if (s.loop != LoopKind::DoUntil) {
-          block(out, s.cond_body, m.looping, m.looping, indent + 2);
-          out += inner + m.looping + " &= " + operand(s.cond, 0) + ";\n";
-          out += inner + "if (!rill_any(" + m.looping + ")) break;\n";
-        }
-        if (continues) out += inner + m.running + " = " + m.looping + ";\n";
-        block(out, s.body, m.running, m.running, indent + 2);
-        block(out, s.step, m.looping, m.looping, indent + 2);
-        if (s.loop == LoopKind::DoUntil) {
-          block(out, s.cond_body, m.looping, m.looping, indent + 2);
-          out += inner + m.looping + " &= ~" + operand(s.cond, 0) + ";\n";
-        }
-        out += inner + "if (!rill_any(" + m.looping + ")) break;\n";
-        loops_.pop_back();
-        out += pad + "  }\n";
-        out += pad + "}\n";
-        return;
-      }
-      case StmtKind::Break:
-      case StmtKind::Continue:
-      case StmtKind::Discard: {
-        // Copy the leaving lanes first: `mask` may be one of the masks cleared below.
-        out += pad + "{\n" + pad +
-               "  const rill_vi rill_leaving = " + (mask.empty() ? "rill_splat_i(-1)" : mask) +
-               ";\n";
-        auto clear = [&](const std::string& m) { out += pad + "  " + m + " &= ~rill_leaving;\n"; };
-        if (s.kind == StmtKind::Discard) {
-          clear("rill_alive");
-          for (const LoopMasks& l : loops_) {
-            clear(l.looping);
-            if (l.running != l.looping) clear(l.running);
-          }
-        } else {
-          if (loops_.empty()) throw Error("internal: break or continue outside a loop");
-          const LoopMasks& l = loops_.back();
-          if (s.kind == StmtKind::Break) clear(l.looping);
-          if (l.running != l.looping) clear(l.running);
-        }
-        out += pad + "}\n";
-        return;
-      }
-    }
-  }
-
-  // `v` as the new value of `dst` (a component of s.dst) for the lanes in `mask`: the other
-  // lanes keep their value, unless none of them can read it (see unblended_vars()).
-  std::string blended(const Stmt& s, const std::string& mask, const std::string& dst,
-                      const std::string& v) const {
-    if (mask.empty() || unblended_[s.dst]) return v;
-    return call(f_.var(s.dst).type.is_float() ? "rill_sel_r" : "rill_sel_i", {mask, v, dst});
-  }
-
-  void assign(std::string& out, const Stmt& s, const std::string& mask, const std::string& pad) {
-    const Type dst_type = f_.var(s.dst).type;
-    const int width = s.mask.full() ? dst_type.width : s.mask.count;
-    auto dst_comp = [&](int c) {
-      return s.mask.full() ? c : static_cast<int>(s.mask.comps[static_cast<size_t>(c)]);
-    };
-    std::vector<std::string> values;
-    for (int c = 0; c < width; ++c) values.push_back(expr(s, c));
-    auto blend = [&](const std::string& dst, const std::string& v) {
-      return blended(s, mask, dst, v);
-    };
-    bool aliased = false;
-    if (width > 1)
-      for (const Operand& a : s.args) aliased = aliased || (a.is_var() && a.var == s.dst);
-    if (!aliased) {
-      for (int c = 0; c < width; ++c) {
-        std::string dst = component(s.dst, dst_comp(c));
-        out += pad + dst + " = " + blend(dst, values[static_cast<size_t>(c)]) + ";\n";
-      }
-      return;
-    }
-    out += pad + "{\n";
-    for (int c = 0; c < width; ++c)
-      out += pad + "  const " + vtype(dst_type.kind) + " r" + std::to_string(c) + " = " +
-             values[static_cast<size_t>(c)] + ";\n";
-    for (int c = 0; c < width; ++c) {
-      std::string dst = component(s.dst, dst_comp(c));
-      out += pad + "  " + dst + " = " + blend(dst, "r" + std::to_string(c)) + ";\n";
-    }
-    out += pad + "}\n";
-  }
-
-  // Each lane loads its own element at the scalar gather's clamped index. The index is
-  // computed on vectors in 32 bits (the backend refuses arrays of 2^31 words or more, see
-  // CpuBackend.cpp). A whole vec3/vec4/ivec2 element is loaded once per lane and transposed
-  // (rill_gather3_r and kin, AVX2); otherwise each component is a vector initializer from
-  // scalar loads (rill_gather_r): writing lanes one by one to memory and reading the vector
-  // back would stall on store forwarding.
-  void gather(std::string& out, const Stmt& s, const std::string& mask, const std::string& pad) {
-    const ArrayDecl& a = f_.arrays.at(static_cast<size_t>(s.array));
-    const Type dst_type = f_.var(s.dst).type;
-    const int width = s.mask.full() ? dst_type.width : s.mask.count;
-    const std::string id = std::to_string(s.array), shape = "arr" + id + "_shape";
-    auto clamped = [&](size_t d) {
-      return "rill_v_clamp_index(" + operand(s.args[d], 0) + ", " + shape + "[" +
-             std::to_string(d) + "])";
-    };
-    std::string lin = clamped(0);
-    if (s.args.size() > 1)
-      lin = "rill_v_add_i(" + lin + ", rill_v_mul_i(rill_splat_i((int32_t)" + shape + "[0]), " +
-            clamped(1) + "))";
-    if (s.args.size() > 2)
-      lin = "rill_v_add_i(" + lin + ", rill_v_mul_i(rill_splat_i((int32_t)(" + shape + "[0] * " +
-            shape + "[1])), " + clamped(2) + "))";
-    out += pad + "{\n";
-    out += pad + "  const rill_vi rill_g = rill_v_mul_i(" + lin + ", rill_splat_i(" +
-           std::to_string(a.elem.width) + "));\n";
-    const bool whole =
-        lanes_ == 8 && width >= 2 &&
-        (a.elem.is_float() ? a.elem.width == 3 || a.elem.width == 4 : a.elem.width == 2);
-    const std::string kind = a.elem.is_float() ? "_r" : "_i";
-    if (whole) {
-      const std::string vt = vtype(a.elem.kind);
-      std::string q, fallback;
-      for (int c = 0; c < a.elem.width; ++c) {
-        std::string qc = "rill_q" + std::to_string(c);
-        q += ", &" + qc;
-        fallback += pad + "  const " + vt + " " + qc + " = rill_gather" + kind + "(arr" + id +
-                    " + " + std::to_string(c) + ", rill_g);\n";
-      }
-      out += "#ifdef RILL_HAVE_GATHER34\n";
-      out += pad + "  " + vt + " rill_q0, rill_q1, rill_q2, rill_q3;\n";
-      out += pad + "  rill_gather" + std::to_string(a.elem.width) + kind + "(arr" + id +
-             ", rill_g" + q + ");\n";
-      out += "#else\n" + fallback + "#endif\n";
-    }
-    for (int c = 0; c < width; ++c) {
-      std::string v =
-          whole ? "rill_q" + std::to_string(c)
-                : "rill_gather" + kind + "(arr" + id + " + " + std::to_string(c) + ", rill_g)";
-      int dc = s.mask.full() ? c : s.mask.comps[static_cast<size_t>(c)];
-      std::string dst = component(s.dst, dc);
-      out += pad + "  " + dst + " = " + blended(s, mask, dst, v) + ";\n";
-    }
-    out += pad + "}\n";
-  }
-
-  std::string expr(const Stmt& s, int c) const {
-    auto a = [&](size_t i) { return operand(s.args[i], c); };
-    ScalarKind k = s.args.empty() ? ScalarKind::Int : s.args[0].type.kind;
-    bool fl = k == ScalarKind::Float;
-    auto bin = [&](const char* op) { return "(" + a(0) + " " + op + " " + a(1) + ")"; };
-    auto cmp = [&](const char* op) { return "RILL_CMP(" + a(0) + " " + op + " " + a(1) + ")"; };
-    if (std::string fn = codegen::helper_function(s.op, k); !fn.empty())
-      return op_info(s.op).arity == 1 ? call("rill_v_" + fn, {a(0)})
-                                      : call("rill_v_" + fn, {a(0), a(1)});
-    switch (s.op) {
-      case Op::Copy:
-        return a(0);
-      case Op::Neg:
-        return fl ? "(-" + a(0) + ")" : call("rill_v_neg_i", {a(0)});
-      case Op::Add:
-        return fl ? bin("+") : call("rill_v_add_i", {a(0), a(1)});
-      case Op::Sub:
-        return fl ? bin("-") : call("rill_v_sub_i", {a(0), a(1)});
-      case Op::Mul:
-        return fl ? bin("*") : call("rill_v_mul_i", {a(0), a(1)});
-      case Op::Div:
-        return fl ? bin("/") : call("rill_v_div_i", {a(0), a(1)});
-      case Op::BitAnd:
-      case Op::And:
-        return bin("&");
-      case Op::BitOr:
-      case Op::Or:
-        return bin("|");
-      case Op::BitXor:
-        return bin("^");
-      case Op::BitNot:
-      case Op::Not:
-        return "(~" + a(0) + ")";
-      case Op::Lt:
-        return cmp("<");
-      case Op::Le:
-        return cmp("<=");
-      case Op::Gt:
-        return cmp(">");
-      case Op::Ge:
-        return cmp(">=");
-      case Op::Eq:
-        return cmp("==");
-      case Op::Ne:
-        return cmp("!=");
-      case Op::Select:
-        return call(s.args[1].type.is_float() ? "rill_sel_r" : "rill_sel_i", {a(0), a(1), a(2)});
-      case Op::IntToFloat:
-        return call("rill_v_i2f", {a(0)});
-      case Op::FloatToInt:
-        return call("rill_v_f2i", {a(0)});
-      case Op::FloatBitsToInt:
-        return call("rill_v_fbits", {a(0)});
-      case Op::IntBitsToFloat:
-        return call("rill_v_ibits", {a(0)});
-      case Op::Dot:
-      case Op::Cross:
-      case Op::Construct:
-        return codegen::fixed_form_expr(s, c,
-                                        [&](const Operand& o, int i) { return operand(o, i); });
-      case Op::ElementIndex:
-        return "rill_element";
-      case Op::ElementCoord:
-        return c == 0 ? "rill_coord_x" : "rill_coord_y";
-      case Op::Gather:  // a statement of its own, not an expression
-      default:          // the helper calls, handled above (helper_function)
-        break;
-    }
-    throw Error(std::string("internal: no lockstep form for op ") + op_name(s.op));
-  }
-
-  const Function& f_;
-  const codegen::CDialect& d_;
-  int lanes_;
-  bool discards_;
-  std::vector<bool> unblended_;  // see unblended_vars()
-  std::vector<LoopMasks> loops_;
-  int next_ = 0;
-};
 
 }  // namespace
 
-std::string emit_c_lockstep(const Function& f, Accuracy accuracy, int lanes) {
+std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int lanes) {
   if (accuracy == Accuracy::Double)
     throw Error(
         "lockstep C: the double mode has no lockstep form (the simd backend runs it as scalar C)");
   if (lanes < 2 || lanes > 16 || (lanes & (lanes - 1)))
     throw Error("lockstep C: lanes must be a power of two from 2 to 16, not " +
                 std::to_string(lanes));
-  codegen::CDialect d(accuracy, "", "L->width");
-  Lockstep p(f, d, lanes);
+  const passes::LockstepFunction lowered = passes::lower_lockstep(optimized);
+  const Function& f = lowered.f;
+  VectorDialect d(accuracy, lanes);
+  codegen::CFamilyPrinter p(f, d);
   std::string src = "#define RILL_W " + std::to_string(lanes) + "\n" + c_head(f, accuracy);
   src += kVectorPrelude;
+  src += lane_wise_helpers();
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
-  src += c_entry_locals(f, d);
+  src += c_entry_locals(f, codegen::CDialect(accuracy, "", "L->width"));  // scalar locals
   src += "  int64_t rill_written = 0;\n";
   // Groups of RILL_W elements: tiles of a 2D stream where they fit (rill_next_group).
   src += "  rill_groups rill_gs = rill_groups_of(L, rill_begin, rill_end);\n";
   src += "  int64_t rill_lane[RILL_W];\n";
   src += "  int rill_n;\n";
   src += "  while ((rill_n = rill_next_group(&rill_gs, rill_lane)) > 0) {\n";
-  if (uses_op(f.body, Op::ElementIndex)) {
+  auto uses = [&](Op op) {
+    bool found = false;
+    for_each_stmt(f.body, [&](const Stmt& s) {
+      found = found || (s.kind == StmtKind::Assign && s.op == op);
+    });
+    return found;
+  };
+  if (uses(Op::ElementIndex)) {
     src += "    rill_vi rill_element;\n";
     src += "    for (int l = 0; l < RILL_W; ++l) rill_element[l] = (int32_t)rill_lane[l];\n";
   }
-  if (uses_op(f.body, Op::ElementCoord)) {
+  if (uses(Op::ElementCoord)) {
     src += "    rill_vi rill_coord_x, rill_coord_y;\n";
     src += "    for (int l = 0; l < RILL_W; ++l) {\n";
     src += "      rill_coord_x[l] = (int32_t)(rill_lane[l] % L->width);\n";
     src += "      rill_coord_y[l] = (int32_t)(rill_lane[l] / L->width);\n";
     src += "    }\n";
   }
-  if (p.discards()) src += "    rill_vi rill_alive = rill_splat_i(-1);\n";
   src += p.declarations(2);
   src += p.body(2);
+  // Each real lane that is still alive stores its outputs.
   src += "    for (int l = 0; l < rill_n; ++l) {\n";
-  if (p.discards()) src += "      if (!rill_alive[l]) continue;\n";
+  if (lowered.alive != kNoVar) src += "      if (!" + f.var_name(lowered.alive) + "[l]) continue;\n";
   src += "      const int64_t rill_i = rill_lane[l];\n";
   for (size_t i = 0; i < f.outputs.size(); ++i) {
     VarId v = f.outputs[i];

@@ -1,5 +1,7 @@
 #include "rill/ir/IR.h"
 
+#include "rill/ir/Visitor.h"
+
 #include <bit>
 
 namespace rill::ir {
@@ -106,22 +108,30 @@ std::string Function::var_name(VarId v) const {
 
 int count_statements(const Block& b) {
   int n = 0;
-  for (const Stmt& s : b) {
-    ++n;
-    n += count_statements(s.then_body) + count_statements(s.else_body) +
-         count_statements(s.cond_body) + count_statements(s.body) + count_statements(s.step);
-  }
+  for_each_stmt(b, [&](const Stmt&) { ++n; });
   return n;
 }
 
 int count_loops(const Block& b) {
   int n = 0;
-  for (const Stmt& s : b) {
-    if (s.kind == StmtKind::Loop) ++n;
-    n += count_loops(s.then_body) + count_loops(s.else_body) + count_loops(s.cond_body) +
-         count_loops(s.body) + count_loops(s.step);
-  }
+  for_each_stmt(b, [&](const Stmt& s) { n += s.kind == StmtKind::Loop; });
   return n;
+}
+
+bool contains(const Block& b, StmtKind kind) {
+  bool found = false;
+  for_each_stmt(b, [&](const Stmt& s) { found = found || s.kind == kind; });
+  return found;
+}
+
+bool jumps_out_of_loop(const Block& b, StmtKind jump) {
+  for (const Stmt& s : b) {
+    if (s.kind == jump) return true;
+    if (s.kind == StmtKind::If &&
+        (jumps_out_of_loop(s.then_body, jump) || jumps_out_of_loop(s.else_body, jump)))
+      return true;
+  }
+  return false;
 }
 
 }  // namespace rill::ir

@@ -1,5 +1,6 @@
 #include "rill/ir/Interpreter.h"
 
+#include "rill/ir/Visitor.h"
 #include "rill/passes/Passes.h"
 
 namespace rill::ir {
@@ -8,8 +9,11 @@ namespace {
 
 enum class Flow { Normal, Break, Continue, Discard };
 
-class Machine {
+// Runs one element at a time: a Visitor whose walk stops at a jump (flow_ says which) and
+// whose ifs and loops follow the values they read.
+class Machine : public Visitor {
  public:
+  using Visitor::visit;
   Machine(const Function& f, const InterpreterLaunch& l) : f_(f), l_(l), vals_(f.vars.size()) {}
 
   bool element(int64_t i) {
@@ -28,7 +32,9 @@ class Machine {
       }
       vals_[v] = c;
     }
-    if (block(f_.body) == Flow::Discard) return false;
+    flow_ = Flow::Normal;
+    visit(f_.body);
+    if (flow_ == Flow::Discard) return false;
     for (size_t o = 0; o < f_.outputs.size(); ++o) {
       const Constant& c = vals_[f_.outputs[o]];
       int w = c.type.width;
@@ -46,43 +52,40 @@ class Machine {
     return c;
   }
 
-  Flow block(const Block& b) {
-    for (const Stmt& s : b) {
-      Flow fl = stmt(s);
-      if (fl != Flow::Normal) return fl;
+  // Runs b until it ends or a jump leaves it (flow_ then says which).
+  void visit(const Block& b) override {
+    for (const Stmt& st : b) {
+      Visitor::visit(st);
+      if (flow_ != Flow::Normal) return;
     }
-    return Flow::Normal;
   }
-
-  Flow loop(const Stmt& s) {
+  void visit_assign(const Stmt& s) override { assign(s); }
+  void visit_if(const Stmt& s) override { visit(read(s.cond).b(0) ? s.then_body : s.else_body); }
+  void visit_jump(const Stmt& s) override {
+    flow_ = s.kind == StmtKind::Break      ? Flow::Break
+            : s.kind == StmtKind::Continue ? Flow::Continue
+                                           : Flow::Discard;
+  }
+  void visit_loop(const Stmt& s) override {
     for (;;) {
       if (s.loop != LoopKind::DoUntil) {
-        block(s.cond_body);
-        if (!read(s.cond).b(0)) return Flow::Normal;
+        visit(s.cond_body);
+        if (flow_ != Flow::Normal || !read(s.cond).b(0)) return;
       }
-      Flow fl = block(s.body);
-      if (fl == Flow::Discard) return fl;
-      if (fl == Flow::Break) return Flow::Normal;
-      if (fl == Flow::Continue && s.loop == LoopKind::While) continue;
+      visit(s.body);
+      if (flow_ == Flow::Discard) return;
+      const Flow body_flow = flow_;
+      flow_ = Flow::Normal;  // break and continue end here
+      if (body_flow == Flow::Break) return;
+      if (body_flow == Flow::Continue && s.loop == LoopKind::While) continue;
       // For and do-until: continue still runs the step / the condition.
-      block(s.step);
+      visit(s.step);
+      if (flow_ != Flow::Normal) return;
       if (s.loop == LoopKind::DoUntil) {
-        block(s.cond_body);
-        if (read(s.cond).b(0)) return Flow::Normal;
+        visit(s.cond_body);
+        if (flow_ != Flow::Normal || read(s.cond).b(0)) return;
       }
     }
-  }
-
-  Flow stmt(const Stmt& s) {
-    switch (s.kind) {
-      case StmtKind::Assign: assign(s); return Flow::Normal;
-      case StmtKind::If: return block(read(s.cond).b(0) ? s.then_body : s.else_body);
-      case StmtKind::Loop: return loop(s);
-      case StmtKind::Break: return Flow::Break;
-      case StmtKind::Continue: return Flow::Continue;
-      case StmtKind::Discard: return Flow::Discard;
-    }
-    return Flow::Normal;
   }
 
   static int64_t clamp_index(int32_t i, int64_t n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
@@ -123,6 +126,7 @@ class Machine {
   const InterpreterLaunch& l_;
   std::vector<Constant> vals_;
   int64_t i_ = 0;
+  Flow flow_ = Flow::Normal;
 };
 
 }  // namespace

@@ -6,11 +6,45 @@
 namespace rill::ir {
 
 namespace {
+// The spellings of Ops.def's columns, as OpInfo fields.
+#define COMMUTES kCommutes
+#define FLUSHES kFlushes
+#define TRANSCENDENTAL kTranscendental
+#define NONE OpForm{}
+#define COPY OpForm{FormKind::Copy}
+#define NEGATE OpForm{FormKind::Negate}
+#define INFIX(t) OpForm{FormKind::Infix, t}
+#define PREFIX(t) OpForm{FormKind::Prefix, t}
+#define LOGIC(t, lanes) OpForm{FormKind::Logic, t, lanes}
+#define HELPER(t) OpForm{FormKind::Helper, t}
+#define COMPARE(t) OpForm{FormKind::Compare, t}
+#define FLOAT_DIV OpForm{FormKind::FloatDiv}
+#define SELECT OpForm{FormKind::Select}
+#define FIXED OpForm{FormKind::Fixed}
+#define GATHER OpForm{FormKind::Gather}
+#define ELEMENT OpForm{FormKind::Element}
 constexpr OpInfo kOps[] = {
-#define RILL_OP(name, spelling, arity, cls) {spelling, arity, OpClass::cls},
+#define RILL_OP(name, spelling, arity, cls, traits, ff, fi, fb, eval) \
+  {spelling, arity, OpClass::cls, static_cast<uint8_t>(traits), {ff, fi, fb}},
 #include "rill/ir/Ops.def"
 #undef RILL_OP
 };
+#undef COMMUTES
+#undef FLUSHES
+#undef TRANSCENDENTAL
+#undef NONE
+#undef COPY
+#undef NEGATE
+#undef INFIX
+#undef PREFIX
+#undef LOGIC
+#undef HELPER
+#undef COMPARE
+#undef FLOAT_DIV
+#undef SELECT
+#undef FIXED
+#undef GATHER
+#undef ELEMENT
 
 // Operands of a componentwise op must have the result's width or width 1 (broadcast).
 std::optional<int> common_width(std::span<const Type> args, std::string* why) {
@@ -42,16 +76,6 @@ const OpInfo& op_info(Op op) { return kOps[static_cast<size_t>(op)]; }
 
 bool is_componentwise(Op op) { return op_info(op).cls != OpClass::Special; }
 bool is_pure(Op) { return true; }
-
-bool is_commutative(Op op) {
-  switch (op) {
-    case Op::Add: case Op::Mul: case Op::Min: case Op::Max: case Op::BitAnd: case Op::BitOr:
-    case Op::BitXor: case Op::And: case Op::Or: case Op::Eq: case Op::Ne:
-      return true;
-    default:
-      return false;
-  }
-}
 
 std::optional<Type> result_type(Op op, std::span<const Type> args, std::string* why) {
   const OpInfo& info = op_info(op);

@@ -18,29 +18,20 @@ namespace {
 
 using Key = std::vector<uint32_t>;
 
-class Cse {
+class Cse : public Mutator {
  public:
   explicit Cse(Function& f) : f_(f), defs_(count_definitions(f)) {}
   bool changed = false;
 
-  void block(Block& b) {
+  // Every block is a scope: what it computes is available in it and in what it nests.
+  void mutate(Block& b) override {
     scopes_.emplace_back();
-    for (Stmt& s : b) {
-      switch (s.kind) {
-        case StmtKind::Assign: assign(s); break;
-        case StmtKind::If:
-          block(s.then_body);
-          block(s.else_body);
-          break;
-        case StmtKind::Loop:
-          block(s.cond_body);
-          block(s.body);
-          block(s.step);
-          break;
-        default: break;
-      }
-    }
+    Mutator::mutate(b);
     scopes_.pop_back();
+  }
+  void mutate(Stmt&& s, Block& out) override {
+    if (s.kind == StmtKind::Assign) assign(s);
+    Mutator::mutate(std::move(s), out);
   }
 
  private:
@@ -94,7 +85,7 @@ class Cse {
 
 bool eliminate_common_subexpressions(Function& f) {
   Cse cse(f);
-  cse.block(f.body);
+  cse.mutate(f.body);
   return cse.changed;
 }
 

@@ -14,32 +14,23 @@ using namespace ir;
 
 namespace {
 
-class Lowering {
+class Lowering : public Mutator {
  public:
   explicit Lowering(Function& f) : f_(f) {}
+  using Mutator::mutate;
   bool changed = false;
 
-  void visit_blocks(Block& b) {
-    for (Stmt& s : b) {
-      visit_blocks(s.then_body);
-      visit_blocks(s.else_body);
-      visit_blocks(s.cond_body);
-      visit_blocks(s.body);
-      visit_blocks(s.step);
-      if (s.kind == StmtKind::Loop && s.loop != LoopKind::While && has_continue(s.body))
-        lower_loop(s);
-    }
+  // Inner loops first, then this one.
+  void mutate(Stmt&& s, Block& out) override {
+    Mutator::mutate(std::move(s), out);
+    Stmt& done = out.back();
+    if (done.kind == StmtKind::Loop && done.loop != LoopKind::While && has_continue(done.body))
+      lower_loop(done);
   }
 
  private:
   // Does b contain a continue of the loop whose body it is (not of a nested loop)?
-  static bool has_continue(const Block& b) {
-    for (const Stmt& s : b) {
-      if (s.kind == StmtKind::Continue) return true;
-      if (s.kind == StmtKind::If && (has_continue(s.then_body) || has_continue(s.else_body))) return true;
-    }
-    return false;
-  }
+  static bool has_continue(const Block& b) { return jumps_out_of_loop(b, StmtKind::Continue); }
 
   void lower_loop(Stmt& loop) {
     changed = true;
@@ -87,7 +78,7 @@ class Lowering {
 
 bool lower_continue(Function& f) {
   Lowering l(f);
-  l.visit_blocks(f.body);
+  l.mutate(f.body);
   return l.changed;
 }
 

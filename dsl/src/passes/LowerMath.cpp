@@ -5,6 +5,7 @@
 // backends give the same bits. The routines are DSL code, recorded into the function with
 // an ExtendScope.
 #include "rill/StrictMath.h"
+#include "rill/ir/Visitor.h"
 #include "rill/passes/Passes.h"
 
 namespace rill::passes {
@@ -12,16 +13,6 @@ namespace rill::passes {
 using namespace ir;
 
 namespace {
-
-bool is_transcendental(Op op) {
-  switch (op) {
-    case Op::Exp: case Op::Exp2: case Op::Log: case Op::Log2: case Op::Pow: case Op::Sin:
-    case Op::Cos: case Op::Tan: case Op::Atan: case Op::Atan2:
-      return true;
-    default:
-      return false;
-  }
-}
 
 Float scalar_operand(const Operand& o, int c) {
   if (o.is_const()) return Float(o.value.f(o.width() == 1 ? 0 : c));
@@ -31,6 +22,7 @@ Float scalar_operand(const Operand& o, int c) {
   return Float(detail::emit(Op::Copy, float_type(1), {one}), detail::AdoptTag{});
 }
 
+// Rill's routine for each transcendental op (the ops Ops.def marks TRANSCENDENTAL).
 Float routine(Op op, const Float& a, const Float& b) {
   switch (op) {
     case Op::Exp: return strict::exp(a);
@@ -47,28 +39,16 @@ Float routine(Op op, const Float& a, const Float& b) {
   }
 }
 
-class Lowering {
+class Lowering : public Mutator {
  public:
   explicit Lowering(Function& f) : f_(f) {}
+  using Mutator::mutate;
   bool changed = false;
 
-  void block(Block& b) {
-    Block out;
-    out.reserve(b.size());
-    for (Stmt& s : b) {
-      block(s.then_body);
-      block(s.else_body);
-      block(s.cond_body);
-      block(s.body);
-      block(s.step);
-      if (s.kind == StmtKind::Assign && is_transcendental(s.op)) {
-        for (Stmt& t : expand(s)) out.push_back(std::move(t));
-        changed = true;
-      } else {
-        out.push_back(std::move(s));
-      }
-    }
-    b = std::move(out);
+  void mutate(Stmt&& s, Block& out) override {
+    if (s.kind != StmtKind::Assign || !is_transcendental(s.op)) return Mutator::mutate(std::move(s), out);
+    for (Stmt& t : expand(s)) out.push_back(std::move(t));
+    changed = true;
   }
 
  private:
@@ -99,7 +79,7 @@ class Lowering {
 
 bool lower_math(Function& f) {
   Lowering l(f);
-  l.block(f.body);
+  l.mutate(f.body);
   return l.changed;
 }
 

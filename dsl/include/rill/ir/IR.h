@@ -142,8 +142,13 @@ struct Function {
   std::string var_name(VarId v) const;
 };
 
-// Structural helpers shared by passes, emitters and tests.
+// Structural queries shared by passes, emitters and tests.
 int count_statements(const Block& b);  // all statements, nested ones included
 int count_loops(const Block& b);
+// Does b contain a statement of this kind anywhere, nested loops included?
+bool contains(const Block& b, StmtKind kind);
+// Does b contain a jump (Break or Continue) of the loop whose body it is in: searched through
+// ifs, not into nested loops, whose jumps are their own?
+bool jumps_out_of_loop(const Block& b, StmtKind jump);
 
 }  // namespace rill::ir

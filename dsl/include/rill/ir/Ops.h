@@ -1,4 +1,5 @@
-// The operation enum and what each operation accepts and returns (the table is Ops.def).
+// The operation enum and the properties of each operation, read from the one table of
+// them, Ops.def: what it accepts and returns, its traits, and how C-family printers spell it.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +12,7 @@
 namespace rill::ir {
 
 enum class Op : uint8_t {
-#define RILL_OP(name, spelling, arity, cls) name,
+#define RILL_OP(name, spelling, arity, cls, ...) name,
 #include "rill/ir/Ops.def"
 #undef RILL_OP
 };
@@ -29,10 +30,46 @@ enum class OpClass : uint8_t {
   Special,    // typed by hand (see result_type)
 };
 
+// How a C-family printer spells an op on operands of one scalar kind (the *_form columns of
+// Ops.def). `text` is the operator or the helper's name; `lanes` the lane-mask spelling of
+// a LOGIC op.
+enum class FormKind : uint8_t {
+  None,      // not defined on this kind
+  Copy,      // the operand itself
+  Negate,    // float negation: (-a)
+  Infix,     // (a text b)
+  Prefix,    // (text a)
+  Logic,     // on bools: (a text b) / (text a); lane masks use `lanes`
+  Helper,    // rill_text(a, ...) in scalar code, rill_v_text(a, ...) in lockstep code
+  Compare,   // a text b, through Dialect::compare (GLSL compares floats by bit pattern)
+  FloatDiv,  // a / b, through Dialect::float_div (GLSL may need a correctly rounded helper)
+  Select,    // c ? a : b, through Dialect::select
+  Fixed,     // combines components in one fixed order (fixed_form_expr in codegen)
+  Gather,    // a statement of its own, through Dialect::gather
+  Element,   // the element's index or coordinate, through the dialect
+};
+struct OpForm {
+  FormKind kind = FormKind::None;
+  const char* text = "";
+  const char* lanes = "";
+};
+
+// Traits (the traits column of Ops.def).
+enum OpTrait : uint8_t {
+  kCommutes = 1,        // operands may be swapped
+  kFlushes = 2,         // a flushing backend may flush its float operands and result
+  kTranscendental = 4,  // not exactly specified: lowered in strict mode, never folded
+};
+
 struct OpInfo {
   const char* spelling;
   int arity;
   OpClass cls;
+  uint8_t traits;
+  OpForm forms[3];  // by operand ScalarKind: Float, Int, Bool
+
+  bool has(OpTrait t) const { return (traits & t) != 0; }
+  const OpForm& form(ScalarKind k) const { return forms[static_cast<int>(k)]; }
 };
 
 const OpInfo& op_info(Op op);
@@ -41,7 +78,9 @@ bool is_componentwise(Op op);
 // Pure ops can be folded, deduplicated and deleted when unused (all ops are pure today; the
 // hook exists so a future op with an effect is handled in one place).
 bool is_pure(Op op);
-bool is_commutative(Op op);
+inline bool is_commutative(Op op) { return op_info(op).has(kCommutes); }
+inline bool is_transcendental(Op op) { return op_info(op).has(kTranscendental); }
+inline bool flushes_denormals(Op op) { return op_info(op).has(kFlushes); }
 
 // The result type of `op` on operands of the given types, or nullopt with `why` filled in.
 // Gather and Construct need context and are typed by their caller.

@@ -19,6 +19,11 @@
 //
 // optimize() runs lower_math (strict), the enabled passes to a fixed point, then
 // lower_continue.
+//
+// For the simd backend, after optimize():
+//
+//   lower_lockstep           control flow becomes lane masks, so that a group of elements
+//                            runs the kernel together (LowerLockstep.cpp)
 #pragma once
 
 #include <optional>
@@ -42,6 +47,15 @@ ir::Function optimize(const ir::Function& f, const PassOptions& passes, Accuracy
 // How many times each variable is assigned; inputs and uniforms count one assignment on
 // entry. Variables assigned exactly once hold one value wherever they are read.
 std::vector<int> count_definitions(const ir::Function& f);
+
+// A kernel lowered for lanes that run in lockstep: every `if` and loop condition means "some
+// lane has it", and `alive` (a Bool variable, kNoVar when the kernel never discards) says at
+// the end which lanes write their outputs.
+struct LockstepFunction {
+  ir::Function f;
+  ir::VarId alive = ir::kNoVar;
+};
+LockstepFunction lower_lockstep(const ir::Function& optimized);
 
 // Folds one operation on constants; nullopt when the op cannot be folded exactly.
 std::optional<ir::Constant> fold(ir::Op op, ir::Type result, const std::vector<ir::Constant>& args);
