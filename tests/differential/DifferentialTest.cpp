@@ -97,6 +97,7 @@ struct Campaign {
   std::vector<std::string> backends;
   int passes_off_every = 4;  // every n-th kernel is compiled with the optimizer passes off
   bool check_unoptimized = false;
+  bool check_lockstep = false;
 };
 
 void run_campaign(const Campaign& c) {
@@ -165,6 +166,7 @@ void run_campaign(const Campaign& c) {
       std::printf("capturing the program threw: %s\n", e.what());
     }
     opt.check_unoptimized = true;
+    opt.check_lockstep = true;
     for (bool off : {false, true}) {
       opt.targets = with_passes(off);
       check(subs);
@@ -183,6 +185,7 @@ void run_campaign(const Campaign& c) {
       opt.targets =
           with_passes(c.passes_off_every > 0 && b % c.passes_off_every == c.passes_off_every - 1);
       opt.check_unoptimized = c.check_unoptimized;
+      opt.check_lockstep = c.check_lockstep;
       check(subs);
       done += n;
     }
@@ -213,7 +216,8 @@ TEST_P(Differential, RandomPrograms) {
   const std::string& b = GetParam();
   std::string why = rill::backend(b).unavailable_reason();
   if (!why.empty()) GTEST_SKIP() << "backend '" << b << "' is not available: " << why;
-  run_campaign(Campaign{b, {b}, 4, false});
+  // simd's campaign also checks its lowering on the reference interpreter.
+  run_campaign(Campaign{b, {b}, 4, false, b == "simd"});
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Differential, ::testing::ValuesIn(backend_names()),
@@ -238,7 +242,7 @@ TEST(DifferentialCross, AllBackends) {
     GTEST_SKIP() << "the cross-check needs two available backends; unavailable:" << unavailable;
   if (!unavailable.empty())
     std::printf("[differential cross] not available:%s\n", unavailable.c_str());
-  run_campaign(Campaign{"cross", available, 3, true});
+  run_campaign(Campaign{"cross", available, 3, true, true});
 }
 
 }  // namespace

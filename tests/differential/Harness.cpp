@@ -497,11 +497,22 @@ std::vector<Failure> run_batch(const std::vector<ProgramSpec>& subs, const Optio
   t = Clock::now();
   bool need_taint = false;
   for (const Target& tg : opt.targets) need_taint = need_taint || tg.ftz;
-  ir::Function ref, ref_off, taint;
+  ir::Function ref, ref_off, ref_lockstep, taint;
   try {
     ref = passes::optimize(p.ir(), PassOptions{}, Accuracy::Strict);
     if (opt.check_unoptimized)
       ref_off = passes::optimize(p.ir(), PassOptions{false, false, false, false}, Accuracy::Strict);
+    if (opt.check_lockstep) {
+      // Read as a scalar kernel, the lowered one computes what ref does once it drops the
+      // lanes that are no longer alive.
+      passes::LockstepFunction lowered = passes::lower_lockstep(ref);
+      ref_lockstep = std::move(lowered.f);
+      if (lowered.alive != ir::kNoVar) {
+        ir::Stmt drop = ir::Stmt::make_if(ir::Operand::of_var(lowered.alive, ir::bool_type(1)));
+        drop.else_body.push_back(ir::Stmt::make(ir::StmtKind::Discard));
+        ref_lockstep.body.push_back(std::move(drop));
+      }
+    }
     if (need_taint) taint = DenormalTracker::instrument(ref);
   } catch (const std::exception& e) {
     size_t sub = locate(subs, [](const ProgramSpec& s) {
@@ -543,6 +554,11 @@ std::vector<Failure> run_batch(const std::vector<ProgramSpec>& subs, const Optio
         Outcome off = interpret(ref_off, p, d, nullptr);
         std::string diff = compare(want, off, d, false, flags, st);
         if (!diff.empty()) return failure("mismatch", "reference (passes off)", k, diff);
+      }
+      if (opt.check_lockstep) {
+        Outcome lanes = interpret(ref_lockstep, p, d, nullptr);
+        std::string diff = compare(want, lanes, d, false, flags, st);
+        if (!diff.empty()) return failure("mismatch", "reference (lockstep lowering)", k, diff);
       }
     } catch (const std::exception& e) {
       return failure("interpret", "reference", k,
@@ -622,6 +638,7 @@ class Shrinker {
     for (const Target& t : opt.targets)
       if (t.name() == goal.target) opt_.targets.push_back(t);
     opt_.check_unoptimized = goal.target == "reference (passes off)";
+    opt_.check_lockstep = goal.target == "reference (lockstep lowering)";
   }
 
   int attempts() const { return attempts_; }

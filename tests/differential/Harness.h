@@ -27,6 +27,9 @@ struct Options {
   // Also interpret the program optimized with every pass off, and compare with the reference
   // (the optimizer must not change results; costs no compile).
   bool check_unoptimized = false;
+  // Also interpret the reference lowered for lockstep lanes (passes::lower_lockstep, read as a
+  // scalar kernel), and compare (the simd backend's lowering must not change results).
+  bool check_lockstep = false;
   bool denormals = true;       // launch data may contain denormals
   bool verbose = false;        // print every program's IR
   bool stop_at_first = false;  // stop a batch at its first failure
