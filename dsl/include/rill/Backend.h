@@ -1,4 +1,4 @@
-// The interface every backend implements, and the options a compile takes.
+// The interface every backend implements (the options a compile takes are in Options.h).
 //
 // A backend turns an optimized Function into something it can launch (CompiledKernel), and
 // moves stream and array data between the host and its device. Backends register by name;
@@ -11,34 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "rill/Options.h"
 #include "rill/Stream.h"
 #include "rill/ir/IR.h"
 
 namespace rill {
-
-enum class Accuracy : uint8_t {
-  Strict,  // IEEE binary32, no contraction, same bits on every backend
-  Fast,    // native builtins, contraction and relaxed math allowed
-  Double,  // binary64 arithmetic where the backend has it (the reference)
-};
-const char* accuracy_name(Accuracy a);
-Accuracy parse_accuracy(const std::string& s);  // "strict" | "fast" | "double"
-
-// Which optimizer passes run; each can be switched off (for debugging or comparison).
-struct PassOptions {
-  bool constant_folding = true;
-  bool copy_propagation = true;
-  bool common_subexpressions = true;
-  bool dead_code = true;
-  bool operator==(const PassOptions&) const = default;
-};
-
-struct CompileOptions {
-  Accuracy accuracy = Accuracy::Strict;
-  PassOptions passes;
-  bool operator==(const CompileOptions&) const = default;
-  uint64_t hash() const;
-};
 
 namespace detail {
 struct UniformState;
