@@ -95,7 +95,7 @@ class GLSLKernel : public CompiledKernel {
     for (const Pass& p : passes_) source_ += p.source;
   }
   ~GLSLKernel() override;
-  int64_t run(const LaunchArgs& a) override;
+  LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
 
  private:
@@ -149,20 +149,20 @@ class GLSLBackend : public Backend {
     return std::make_unique<GLSLKernel>(*this, f, std::move(passes));
   }
 
-  void read_back(detail::Storage& s) override {
+  void read_back(const detail::Storage& s, uint32_t* host) override {
     std::lock_guard<std::recursive_mutex> lock(mutex_);
     const GL& gl = current();
-    auto* t = static_cast<Texture*>(s.device.get());
+    auto* t = s.device_buffer<Texture>(this);
     std::vector<uint32_t> padded(static_cast<size_t>(t->shape.row) * static_cast<size_t>(t->shape.rows) *
                                  static_cast<size_t>(t->fmt.channels));
     gl.glBindTexture(GL_TEXTURE_2D, t->tex);
     gl.glPixelStorei(GL_PACK_ALIGNMENT, 4);
     gl.glGetTexImage(GL_TEXTURE_2D, 0, t->fmt.format, t->fmt.type, padded.data());
     check(gl, "reading a texture back");
-    int w = s.type.width;
-    for (int64_t i = 0; i < s.count; ++i)
+    int w = s.type().width;
+    for (int64_t i = 0; i < s.count(); ++i)
       for (int c = 0; c < w; ++c)
-        s.host[static_cast<size_t>(i * w + c)] = padded[static_cast<size_t>(i * t->fmt.channels + c)];
+        host[static_cast<size_t>(i * w + c)] = padded[static_cast<size_t>(i * t->fmt.channels + c)];
   }
 
   // --- used by GLSLKernel::run, under the lock --------------------------------------------
@@ -183,11 +183,11 @@ class GLSLBackend : public Backend {
 
   // The texture holding s, current with the host copy.
   Texture& to_device(const GL& gl, detail::Storage& s) {
-    auto* t = s.device_owner == this ? static_cast<Texture*>(s.device.get()) : nullptr;
-    if (t && s.device_valid) return *t;
-    s.sync_to_host();
-    Format fmt = format_of(s.type);
-    Shape shape = shape_of(s.count);
+    auto* t = s.device_buffer<Texture>(this);
+    if (t && s.is_device_current(this)) return *t;
+    const uint32_t* host = s.host_data_for_read();
+    Format fmt = format_of(s.type());
+    Shape shape = shape_of(s.count());
     if (!t || t->fmt.internal != fmt.internal || t->shape.row != shape.row || t->shape.rows != shape.rows) {
       auto fresh = std::make_unique<Texture>();
       fresh->owner = this;
@@ -195,20 +195,19 @@ class GLSLBackend : public Backend {
       fresh->shape = shape;
       fresh->tex = new_texture(gl, fmt, shape);
       t = fresh.get();
-      s.device = std::move(fresh);
-      s.device_owner = this;
+      s.set_device_buffer(this, std::move(fresh));
     }
     std::vector<uint32_t> padded(static_cast<size_t>(shape.row) * static_cast<size_t>(shape.rows) *
                                  static_cast<size_t>(fmt.channels));
-    int w = s.type.width;
-    for (int64_t i = 0; i < s.count; ++i)
+    int w = s.type().width;
+    for (int64_t i = 0; i < s.count(); ++i)
       for (int c = 0; c < w; ++c)
-        padded[static_cast<size_t>(i * fmt.channels + c)] = s.host[static_cast<size_t>(i * w + c)];
+        padded[static_cast<size_t>(i * fmt.channels + c)] = host[static_cast<size_t>(i * w + c)];
     gl.glBindTexture(GL_TEXTURE_2D, t->tex);
     gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     gl.glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, shape.row, shape.rows, fmt.format, fmt.type, padded.data());
     check(gl, "uploading a texture");
-    s.device_valid = true;
+    s.mark_device_current(this);
     return *t;
   }
 
@@ -415,8 +414,8 @@ GLuint GLSLKernel::draw_mask(const GL& gl, const LaunchArgs& a, const Shape& sha
   return selected;
 }
 
-int64_t GLSLKernel::run(const LaunchArgs& a) {
-  if (a.count == 0) return 0;
+LaunchResult GLSLKernel::run(const LaunchArgs& a) {
+  if (a.count == 0) return {0, 0};
   if (a.count > kMaxRow * kMaxRow) throw Error("GLSL backend: streams are limited to 4096 x 4096 elements");
   std::lock_guard<std::recursive_mutex> lock(be_.mutex_);
   const GL& gl = be_.current();
@@ -474,7 +473,7 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
       gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
   } stencil_off{gl, be_.fbo(), a.mask != nullptr};
-  if (a.mask) selected = draw_mask(gl, a, shape);
+  const int64_t selected = a.mask ? draw_mask(gl, a, shape) : a.count;
   for (size_t pi = 0; pi < passes_.size(); ++pi) {
     const Pass& p = passes_[pi];
     std::vector<GLenum> bufs;
@@ -534,11 +533,9 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
   gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
   gl.glDeleteTextures(static_cast<GLsizei>(prev.size()), prev.data());
   be_.check(gl, "running a kernel");
-  for (auto* s : a.outputs) {
-    s->host_valid = false;
-    s->device_valid = true;
-  }
-  return written;
+  // The draws wrote the outputs' textures: their host copies are stale until read back.
+  for (auto* s : a.outputs) s->mark_device_written(&be_);
+  return {written, selected};
 }
 
 }  // namespace
