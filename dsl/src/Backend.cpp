@@ -11,10 +11,18 @@ void register_builtin_backends();
 }  // namespace detail
 
 namespace {
+// Owns every backend until exit. Backends are destroyed last-registered first (the reverse of
+// the order they were made in), in the registry's destructor, not in whatever order the
+// vector would choose. A backend holding driver state shuts it down explicitly before that
+// (the GLSL backend from an exit handler, see GLSLBackend.cpp), so no backend's destructor
+// depends on when the registry, a static, is destroyed relative to the drivers.
 struct Registry {
   std::mutex mutex;
   std::vector<std::unique_ptr<Backend>> list;
   bool builtins = false;
+  ~Registry() {
+    while (!list.empty()) list.pop_back();
+  }
 };
 Registry& registry() {
   static Registry r;

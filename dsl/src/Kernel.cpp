@@ -52,8 +52,10 @@ void clear_kernel_cache() {
 
 Kernel compile(const Program& p, const std::string& backend_name, const CompileOptions& options) {
   if (!p.valid()) throw Error("compile(): the program is empty (default-constructed)");
-  // The cache exists before any backend starts its driver, so it is destroyed after the
-  // backends' exit handlers have run (see GLSLBackend.cpp).
+  // The cache exists before any backend starts its driver, so at exit it is destroyed after
+  // the exit handlers the drivers register. Kernels destroyed then must not call into a
+  // driver that has shut down: GLSL kernels check that their context still exists (Session
+  // in GLSLBackend.cpp).
   Cache& c = cache();
   Backend& be = backend(backend_name);
   std::string why = be.unavailable_reason();
