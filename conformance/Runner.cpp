@@ -116,8 +116,7 @@ Launched run_interpreter(const Program& p, const Shape& shape, const std::vector
   for (Words& w : outs) L.outputs.push_back(w.data());
   for (const auto& a : p.captured().arrays) {
     ir::InterpreterArray ia;
-    a->sync_to_host();
-    ia.data = a->host.data();
+    ia.data = a->host_data_for_read();
     for (int d = 0; d < 3; ++d) ia.shape[d] = a->shape[d];
     L.arrays.push_back(ia);
   }

@@ -47,45 +47,41 @@ class CpuKernel : public CompiledKernel {
  public:
   // lockstep: the kernel is emit_c_lockstep()'s, which indexes arrays with 32-bit lanes.
   CpuKernel(std::string source, SharedObject so, bool lockstep)
-      : source_(std::move(source)), so_(std::move(so)), lockstep_(lockstep) {
+      : CompiledKernel(so.from_disk_cache),
+        source_(std::move(source)),
+        so_(std::move(so)),
+        lockstep_(lockstep) {
     run_ = reinterpret_cast<RunFn>(so_.symbol);
-    from_disk_cache = so_.from_disk_cache;
   }
   ~CpuKernel() override {
     if (so_.handle) dlclose(so_.handle);
   }
 
-  int64_t run(const LaunchArgs& a) override {
+  LaunchResult run(const LaunchArgs& a) override {
     std::vector<void*> in, out;
     std::vector<const void*> arrays;
     std::vector<int64_t> shapes;
     std::vector<uint32_t> uniforms;
-    for (auto* s : a.inputs) {
-      s->sync_to_host();
-      in.push_back(s->host.data());
-    }
-    for (auto* s : a.outputs) {
-      s->sync_to_host();
-      out.push_back(s->host.data());
-    }
+    // The kernel only reads its inputs (rill_launch declares them void*, like the outputs).
+    for (auto* s : a.inputs) in.push_back(const_cast<uint32_t*>(s->host_data_for_read()));
     for (auto* arr : a.arrays) {
-      if (lockstep_ && arr->host.size() >= (size_t{1} << 31))
+      if (lockstep_ && arr->words() >= (size_t{1} << 31))
         throw Error("simd backend: array '" + arr->name + "' holds " +
-                    std::to_string(arr->host.size()) +
+                    std::to_string(arr->words()) +
                     " words; the lockstep kernels index arrays in 32 bits (under 2^31 words). Use "
                     "the cpu backend for arrays this large");
-      arr->sync_to_host();
-      arrays.push_back(arr->host.data());
+      arrays.push_back(arr->host_data_for_read());
       shapes.insert(shapes.end(), {arr->shape[0], arr->shape[1], arr->shape[2]});
     }
+    const int32_t* mask = nullptr;
+    if (a.mask) mask = reinterpret_cast<const int32_t*>(a.mask->host_data_for_read());
+    // Last, once nothing can throw before the kernel runs: asking for an output's host copy
+    // to write makes its device copy stale. (A stream that is also an input was read back
+    // above and stays current on the host.)
+    for (auto* s : a.outputs) out.push_back(s->host_data_for_write());
     for (auto* u : a.uniforms) uniforms.insert(uniforms.end(), u->bits.begin(), u->bits.end());
     Launch L{in.data(),     out.data(), uniforms.data(), arrays.data(),
              shapes.data(), a.count,    a.width,         a.height};
-    const int32_t* mask = nullptr;
-    if (a.mask) {
-      a.mask->sync_to_host();
-      mask = reinterpret_cast<const int32_t*>(a.mask->host.data());
-    }
     const Selection selected_at{mask, a.mask_values};
 
     // Ranges of a few thousand elements amortize the call and let TBB balance uneven work
@@ -126,9 +122,7 @@ class CpuKernel : public CompiledKernel {
         [](Counts x, Counts y) {
           return Counts{x.written + y.written, x.selected + y.selected};
         });
-    selected = total.selected;
-    for (auto* s : a.outputs) s->host_written();
-    return total.written;
+    return {total.written, total.selected};
   }
 
   const std::string& source() const override { return source_; }

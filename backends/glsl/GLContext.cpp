@@ -63,6 +63,7 @@ class OSMesaContext : public GLContext {
     describe(*this, gl_);
   }
   ~OSMesaContext() override {
+    // Called from GLSLBackend's explicit shutdown (before Mesa's own exit handlers run).
     if (ctx_) destroy_(ctx_);
     // lib_ stays loaded: Mesa does not support being unloaded and reloaded.
   }
@@ -102,6 +103,7 @@ class EGLDeviceContext : public GLContext {
     auto choose = reinterpret_cast<PFNEGLCHOOSECONFIGPROC>(get_proc_("eglChooseConfig"));
     auto create = reinterpret_cast<PFNEGLCREATECONTEXTPROC>(get_proc_("eglCreateContext"));
     make_current_ = reinterpret_cast<PFNEGLMAKECURRENTPROC>(get_proc_("eglMakeCurrent"));
+    destroy_ = reinterpret_cast<PFNEGLDESTROYCONTEXTPROC>(get_proc_("eglDestroyContext"));
     if (!query_devices || !platform_display || !initialize_ || !bind_api || !choose || !create || !make_current_)
       throw Error("GLSL backend: EGL lacks EGL_EXT_device_enumeration / EGL_EXT_platform_device");
     EGLDeviceEXT devices[16];
@@ -144,6 +146,15 @@ class EGLDeviceContext : public GLContext {
     return ext && std::strstr(ext, name) != nullptr;
   }
 
+  ~EGLDeviceContext() override {
+    // Not current any more on this thread, then destroyed (GLSLBackend.cpp destroys contexts
+    // before EGL's own exit handlers run). The display stays initialized: EGL has one per
+    // device and process, which other code in the process may be using.
+    if (ctx_ == EGL_NO_CONTEXT) return;
+    make_current_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (destroy_) destroy_(display_, ctx_);
+  }
+
   void make_current() override {
     if (!make_current_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
       throw Error("GLSL backend: eglMakeCurrent failed (surfaceless contexts unsupported?)");
@@ -155,6 +166,7 @@ class EGLDeviceContext : public GLContext {
   PFNEGLGETPROCADDRESSPROC get_proc_ = nullptr;
   PFNEGLINITIALIZEPROC initialize_ = nullptr;
   PFNEGLMAKECURRENTPROC make_current_ = nullptr;
+  PFNEGLDESTROYCONTEXTPROC destroy_ = nullptr;
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext ctx_ = EGL_NO_CONTEXT;
 };

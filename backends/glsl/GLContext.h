@@ -23,6 +23,8 @@ struct GL {
 
 class GLContext {
  public:
+  // Destroys the context and, with it, every GL object made in it. GLSLBackend.cpp does this
+  // explicitly, before the GL library's own exit handlers run (see Session there).
   virtual ~GLContext() = default;
   // Makes the context current on the calling thread.
   virtual void make_current() = 0;

@@ -24,11 +24,12 @@
 #include "GLSLBackend.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <vector>
 
 #include "../codegen/SourceText.h"
 #include "GLContext.h"
@@ -41,11 +42,6 @@ namespace rill::glsl {
 namespace {
 
 constexpr int64_t kMaxRow = 4096;
-
-// Set when the process exits: the GL library may already be torn down by the time static
-// objects holding kernels or textures are destroyed, so those then skip their GL calls.
-std::atomic<bool> g_exiting{false};
-void mark_exiting() { g_exiting = true; }
 
 struct Format {
   GLenum internal, format, type;
@@ -72,10 +68,44 @@ Shape shape_of(int64_t count) {
   return s;
 }
 
+// The GL context and its lock, shared (std::shared_ptr) by the backend, its kernels and the
+// textures of streams and arrays.
+//
+// Why shared, and why the backend shuts down explicitly: at exit, static destructors run in
+// an order of their own (the kernel cache, the backend registry, streams and arrays kept in
+// statics), and the GL library, loaded with dlopen at first use, tears itself down from its
+// own exit handlers. So:
+//   - right after the backend makes its context (the library is loaded by then), it registers
+//     an exit handler (std::atexit). Exit handlers run last-registered first, so this one runs
+//     before the library's own; it calls GLSLBackend::shutdown(), which deletes the backend's
+//     GL objects and destroys the context while GL still works;
+//   - a texture or kernel destroyed after that (or after the backend itself) holds this
+//     session, not the backend: it finds `context` null under the lock and skips its GL
+//     calls. Destroying the context already freed every object made in it;
+//   - the backend's destructor calls shutdown() as well; the second call does nothing.
+struct Session {
+  // Recursive: replacing a stream's texture inside a launch releases the old one.
+  std::recursive_mutex mutex;
+  std::unique_ptr<GLContext> context;  // null before the first use and after shutdown
+
+  // Under the lock: the context, made current on this thread; null after shutdown. Never
+  // throws (for destructors): null also when the context cannot be made current here.
+  const GL* current_if_alive() noexcept {
+    if (!context) return nullptr;
+    try {
+      context->make_current();
+    } catch (const Error&) {
+      return nullptr;
+    }
+    return &context->gl();
+  }
+};
+
 class GLSLBackend;
+void shut_down_at_exit(GLSLBackend* b);
 
 struct Texture : detail::DeviceBuffer {
-  GLSLBackend* owner = nullptr;
+  std::shared_ptr<Session> session;
   GLuint tex = 0;
   Format fmt{};
   Shape shape;
@@ -90,19 +120,21 @@ class GLSLKernel : public CompiledKernel {
     std::string source;
     std::vector<uint32_t> constants;
   };
-  GLSLKernel(GLSLBackend& be, ir::Function f, std::vector<Pass> passes)
-      : be_(be), fn_(std::move(f)), passes_(std::move(passes)) {
+  GLSLKernel(GLSLBackend& be, std::shared_ptr<Session> session, ir::Function f,
+             std::vector<Pass> passes)
+      : be_(be), session_(std::move(session)), fn_(std::move(f)), passes_(std::move(passes)) {
     for (const Pass& p : passes_) source_ += p.source;
   }
   ~GLSLKernel() override;
-  int64_t run(const LaunchArgs& a) override;
+  LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
 
  private:
   // Masked launches: fills the stencil buffer from a.mask; returns the elements selected.
   GLuint draw_mask(const GL& gl, const LaunchArgs& a, const Shape& shape);
 
-  GLSLBackend& be_;
+  GLSLBackend& be_;                   // run() is only called while the backend exists
+  std::shared_ptr<Session> session_;  // the destructor may run after the backend's
   ir::Function fn_;
   std::vector<Pass> passes_;
   std::string source_;
@@ -110,6 +142,10 @@ class GLSLKernel : public CompiledKernel {
 
 class GLSLBackend : public Backend {
  public:
+  // Backends live in the registry until exit; the exit handler has normally shut this one
+  // down by then.
+  ~GLSLBackend() override;
+
   std::string name() const override { return "glsl"; }
 
   std::string unavailable_reason() const override {
@@ -130,7 +166,7 @@ class GLSLBackend : public Backend {
   bool supports(Accuracy a) const override { return a != Accuracy::Double; }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
-    std::lock_guard<std::recursive_mutex> lock(mutex_);
+    std::lock_guard<std::recursive_mutex> lock(mutex());
     const GL& gl = current();
     if (o.accuracy == Accuracy::Double)
       throw Error("GLSL backend: accuracy mode 'double' is not supported (GLSL kernels compute in binary32)");
@@ -146,29 +182,28 @@ class GLSLBackend : public Backend {
       p.program = link(gl, f.name, p.source);
       passes.push_back(std::move(p));
     }
-    return std::make_unique<GLSLKernel>(*this, f, std::move(passes));
+    return std::make_unique<GLSLKernel>(*this, session_, f, std::move(passes));
   }
 
-  void read_back(detail::Storage& s) override {
-    std::lock_guard<std::recursive_mutex> lock(mutex_);
+  void read_back(const detail::Storage& s, uint32_t* host) override {
+    std::lock_guard<std::recursive_mutex> lock(mutex());
     const GL& gl = current();
-    auto* t = static_cast<Texture*>(s.device.get());
+    auto* t = s.device_buffer<Texture>(this);
     std::vector<uint32_t> padded(static_cast<size_t>(t->shape.row) * static_cast<size_t>(t->shape.rows) *
                                  static_cast<size_t>(t->fmt.channels));
     gl.glBindTexture(GL_TEXTURE_2D, t->tex);
     gl.glPixelStorei(GL_PACK_ALIGNMENT, 4);
     gl.glGetTexImage(GL_TEXTURE_2D, 0, t->fmt.format, t->fmt.type, padded.data());
     check(gl, "reading a texture back");
-    int w = s.type.width;
-    for (int64_t i = 0; i < s.count; ++i)
+    int w = s.type().width;
+    for (int64_t i = 0; i < s.count(); ++i)
       for (int c = 0; c < w; ++c)
-        s.host[static_cast<size_t>(i * w + c)] = padded[static_cast<size_t>(i * t->fmt.channels + c)];
+        host[static_cast<size_t>(i * w + c)] = padded[static_cast<size_t>(i * t->fmt.channels + c)];
   }
 
   // --- used by GLSLKernel::run, under the lock --------------------------------------------
 
-  // Recursive: replacing a stream's texture inside a launch releases the old one.
-  std::recursive_mutex mutex_;
+  std::recursive_mutex& mutex() { return session_->mutex; }
 
   const GL& current() {
     GLContext& c = context_locked();
@@ -183,32 +218,31 @@ class GLSLBackend : public Backend {
 
   // The texture holding s, current with the host copy.
   Texture& to_device(const GL& gl, detail::Storage& s) {
-    auto* t = s.device_owner == this ? static_cast<Texture*>(s.device.get()) : nullptr;
-    if (t && s.device_valid) return *t;
-    s.sync_to_host();
-    Format fmt = format_of(s.type);
-    Shape shape = shape_of(s.count);
+    auto* t = s.device_buffer<Texture>(this);
+    if (t && s.is_device_current(this)) return *t;
+    const uint32_t* host = s.host_data_for_read();
+    Format fmt = format_of(s.type());
+    Shape shape = shape_of(s.count());
     if (!t || t->fmt.internal != fmt.internal || t->shape.row != shape.row || t->shape.rows != shape.rows) {
       auto fresh = std::make_unique<Texture>();
-      fresh->owner = this;
+      fresh->session = session_;
       fresh->fmt = fmt;
       fresh->shape = shape;
       fresh->tex = new_texture(gl, fmt, shape);
       t = fresh.get();
-      s.device = std::move(fresh);
-      s.device_owner = this;
+      s.set_device_buffer(this, std::move(fresh));
     }
     std::vector<uint32_t> padded(static_cast<size_t>(shape.row) * static_cast<size_t>(shape.rows) *
                                  static_cast<size_t>(fmt.channels));
-    int w = s.type.width;
-    for (int64_t i = 0; i < s.count; ++i)
+    int w = s.type().width;
+    for (int64_t i = 0; i < s.count(); ++i)
       for (int c = 0; c < w; ++c)
-        padded[static_cast<size_t>(i * fmt.channels + c)] = s.host[static_cast<size_t>(i * w + c)];
+        padded[static_cast<size_t>(i * fmt.channels + c)] = host[static_cast<size_t>(i * w + c)];
     gl.glBindTexture(GL_TEXTURE_2D, t->tex);
     gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     gl.glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, shape.row, shape.rows, fmt.format, fmt.type, padded.data());
     check(gl, "uploading a texture");
-    s.device_valid = true;
+    s.mark_device_current(this);
     return *t;
   }
 
@@ -223,14 +257,6 @@ class GLSLBackend : public Backend {
                     fmt.type, nullptr);
     check(gl, "allocating a texture");
     return tex;
-  }
-
-  void release(GLuint tex) {
-    // Called from Texture destructors, possibly after the backend is gone at exit.
-    if (!context_ || g_exiting) return;
-    std::lock_guard<std::recursive_mutex> lock(mutex_);
-    const GL& gl = current();
-    gl.glDeleteTextures(1, &tex);
   }
 
   // A depth-stencil renderbuffer of this size, for masked launches (kept for reuse).
@@ -294,8 +320,9 @@ class GLSLBackend : public Backend {
         std::string log(static_cast<size_t>(std::max(n, 1)), '\0');
         gl.glGetShaderInfoLog(sh, n, nullptr, log.data());
         gl.glDeleteShader(sh);
-        throw Error("GLSL backend: the driver (" + context_->renderer + ") rejected the shader of kernel '" + name +
-                    "':\n" + log + "\ngenerated source:\n" + codegen::numbered(src));
+        throw Error("GLSL backend: the driver (" + session_->context->renderer +
+                    ") rejected the shader of kernel '" + name + "':\n" + log +
+                    "\ngenerated source:\n" + codegen::numbered(src));
       }
       return sh;
     };
@@ -322,17 +349,37 @@ class GLSLBackend : public Backend {
   }
 
   GLContext& context() {
-    std::lock_guard<std::recursive_mutex> lock(mutex_);
+    std::lock_guard<std::recursive_mutex> lock(mutex());
     return context_locked();
   }
 
+ public:
+  // Deletes the backend's GL objects and destroys the context (see Session): called by the
+  // exit handler and the destructor, from any thread; the second call does nothing. Objects
+  // it cannot delete (the context not current here) go with the context.
+  void shutdown() noexcept {
+    std::lock_guard<std::recursive_mutex> lock(mutex());
+    if (const GL* gl = session_->current_if_alive()) {
+      for (auto& [size, rb] : stencils_) gl->glDeleteRenderbuffers(1, &rb);
+      if (mask_program_) gl->glDeleteProgram(mask_program_);
+      gl->glDeleteQueries(1, &query_);
+      gl->glDeleteVertexArrays(1, &vao_);
+      gl->glDeleteFramebuffers(1, &fbo_);
+    }
+    stencils_.clear();
+    fbo_ = vao_ = query_ = mask_program_ = 0;
+    session_->context.reset();  // destroys the GL context (GLContext.cpp)
+  }
+
+ private:
   GLContext& context_locked() {
-    if (context_) return *context_;
+    Session& ss = *session_;
+    if (ss.context) return *ss.context;
     if (!init_error_.empty()) throw Error(init_error_);
+    if (started_)
+      throw Error("GLSL backend: the OpenGL context was shut down (the process is exiting)");
     try {
       auto c = create_context();
-      // Registered after the kernel cache exists, so it runs before the cache is destroyed.
-      std::atexit(mark_exiting);
       const GL& gl = c->gl();
       GLint draw = 1, attach = 1, units = 16;
       gl.glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw);
@@ -350,15 +397,21 @@ class GLSLBackend : public Backend {
       gl.glDisable(GL_BLEND);
       gl.glDisable(GL_DEPTH_TEST);
       check(gl, "setting up the context");
-      context_ = std::move(c);
+      ss.context = std::move(c);
+      started_ = true;
+      // The GL library is loaded now: an exit handler registered after it runs before the
+      // library's own (see Session).
+      shut_down_at_exit(this);
     } catch (const Error& e) {
       init_error_ = e.what();
       throw;
     }
-    return *context_;
+    return *ss.context;
   }
 
-  std::unique_ptr<GLContext> context_;  // kept until exit: textures of live streams refer to it
+  // The context and its lock, shared with kernels and textures (see Session).
+  std::shared_ptr<Session> session_ = std::make_shared<Session>();
+  bool started_ = false;  // a context was made (and, if session_ has none now, shut down)
   std::string init_error_;
   int max_draw_buffers_ = 1, max_units_ = 16;
   DivSqrt divsqrt_ = DivSqrt::Native;  // how strict kernels divide (DivSqrt.h)
@@ -367,15 +420,49 @@ class GLSLBackend : public Backend {
   std::map<std::pair<int, int>, GLuint> stencils_;
 };
 
-Texture::~Texture() {
-  if (owner && tex) owner->release(tex);
+// The backends that have made a context, for the exit handler. Globals, constructed before
+// main: they are destroyed after every exit handler registered later has run.
+std::mutex g_live_mutex;
+std::vector<GLSLBackend*> g_live;
+
+void shut_down_live_backends() {
+  std::vector<GLSLBackend*> live;
+  {
+    std::lock_guard<std::mutex> lock(g_live_mutex);
+    live.swap(g_live);
+  }
+  for (GLSLBackend* b : live) b->shutdown();
 }
 
+void shut_down_at_exit(GLSLBackend* b) {
+  static std::once_flag registered;
+  {
+    std::lock_guard<std::mutex> lock(g_live_mutex);
+    g_live.push_back(b);
+  }
+  std::call_once(registered, [] { std::atexit(shut_down_live_backends); });
+}
+
+GLSLBackend::~GLSLBackend() {
+  {
+    std::lock_guard<std::mutex> lock(g_live_mutex);
+    g_live.erase(std::remove(g_live.begin(), g_live.end(), this), g_live.end());
+  }
+  shutdown();
+}
+
+// Destroyed with its stream or array, possibly after the backend and the context are gone.
+Texture::~Texture() {
+  if (!tex) return;
+  std::lock_guard<std::recursive_mutex> lock(session->mutex);
+  if (const GL* gl = session->current_if_alive()) gl->glDeleteTextures(1, &tex);
+}
+
+// Destroyed with the kernel cache, possibly after the backend and the context are gone.
 GLSLKernel::~GLSLKernel() {
-  if (g_exiting) return;
-  std::lock_guard<std::recursive_mutex> lock(be_.mutex_);
-  const GL& gl = be_.current();
-  for (Pass& p : passes_) gl.glDeleteProgram(p.program);
+  std::lock_guard<std::recursive_mutex> lock(session_->mutex);
+  if (const GL* gl = session_->current_if_alive())
+    for (Pass& p : passes_) gl->glDeleteProgram(p.program);
 }
 
 GLuint GLSLKernel::draw_mask(const GL& gl, const LaunchArgs& a, const Shape& shape) {
@@ -415,10 +502,10 @@ GLuint GLSLKernel::draw_mask(const GL& gl, const LaunchArgs& a, const Shape& sha
   return selected;
 }
 
-int64_t GLSLKernel::run(const LaunchArgs& a) {
-  if (a.count == 0) return 0;
+LaunchResult GLSLKernel::run(const LaunchArgs& a) {
+  if (a.count == 0) return {0, 0};
   if (a.count > kMaxRow * kMaxRow) throw Error("GLSL backend: streams are limited to 4096 x 4096 elements");
-  std::lock_guard<std::recursive_mutex> lock(be_.mutex_);
+  std::lock_guard<std::recursive_mutex> lock(be_.mutex());
   const GL& gl = be_.current();
   size_t widest = 0;
   for (const Pass& p : passes_) widest = std::max(widest, p.outputs.size());
@@ -474,7 +561,7 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
       gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
   } stencil_off{gl, be_.fbo(), a.mask != nullptr};
-  if (a.mask) selected = draw_mask(gl, a, shape);
+  const int64_t selected = a.mask ? draw_mask(gl, a, shape) : a.count;
   for (size_t pi = 0; pi < passes_.size(); ++pi) {
     const Pass& p = passes_[pi];
     std::vector<GLenum> bufs;
@@ -534,11 +621,9 @@ int64_t GLSLKernel::run(const LaunchArgs& a) {
   gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
   gl.glDeleteTextures(static_cast<GLsizei>(prev.size()), prev.data());
   be_.check(gl, "running a kernel");
-  for (auto* s : a.outputs) {
-    s->host_valid = false;
-    s->device_valid = true;
-  }
-  return written;
+  // The draws wrote the outputs' textures: their host copies are stale until read back.
+  for (auto* s : a.outputs) s->mark_device_written(&be_);
+  return {written, selected};
 }
 
 }  // namespace

@@ -147,7 +147,7 @@ class ClKernel : public CompiledKernel {
     clReleaseKernel(kernel_);
     clReleaseProgram(program_);
   }
-  int64_t run(const LaunchArgs& a) override;
+  LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
 
  private:
@@ -215,10 +215,10 @@ class OpenCLBackend : public Backend {
   // Makes the device copy of s current and returns its buffer.
   cl_mem to_device(detail::Storage& s) {
     Device& d = device();
-    auto* buf = s.device_owner == this ? static_cast<ClBuffer*>(s.device.get()) : nullptr;
-    if (buf && s.device_valid) return buf->mem;
-    s.sync_to_host();
-    size_t bytes = std::max<size_t>(4, s.host.size() * 4);
+    auto* buf = s.device_buffer<ClBuffer>(this);
+    if (buf && s.is_device_current(this)) return buf->mem;
+    const uint32_t* host = s.host_data_for_read();
+    size_t bytes = std::max<size_t>(4, s.words() * 4);
     if (!buf || buf->bytes != bytes) {
       auto fresh = std::make_unique<ClBuffer>();
       cl_int e = CL_SUCCESS;
@@ -226,27 +226,21 @@ class OpenCLBackend : public Backend {
       check(e, "clCreateBuffer");
       fresh->bytes = bytes;
       buf = fresh.get();
-      s.device = std::move(fresh);
-      s.device_owner = this;
+      s.set_device_buffer(this, std::move(fresh));
     }
-    if (!s.host.empty())
-      check(clEnqueueWriteBuffer(d.queue, buf->mem, CL_TRUE, 0, s.host.size() * 4, s.host.data(), 0, nullptr, nullptr),
+    if (s.words() != 0)
+      check(clEnqueueWriteBuffer(d.queue, buf->mem, CL_TRUE, 0, s.words() * 4, host, 0, nullptr,
+                                 nullptr),
             "clEnqueueWriteBuffer");
-    s.device_valid = true;
+    s.mark_device_current(this);
     return buf->mem;
   }
 
-  // The device wrote s: the host copy is stale until read back.
-  void device_written(detail::Storage& s) {
-    s.host_valid = false;
-    s.device_valid = true;
-  }
-
-  void read_back(detail::Storage& s) override {
-    auto* buf = static_cast<ClBuffer*>(s.device.get());
-    if (!s.host.empty())
-      check(clEnqueueReadBuffer(device().queue, buf->mem, CL_TRUE, 0, s.host.size() * 4, s.host.data(), 0, nullptr,
-                                nullptr),
+  void read_back(const detail::Storage& s, uint32_t* host) override {
+    auto* buf = s.device_buffer<ClBuffer>(this);
+    if (s.words() != 0)
+      check(clEnqueueReadBuffer(device().queue, buf->mem, CL_TRUE, 0, s.words() * 4, host, 0,
+                                nullptr, nullptr),
             "clEnqueueReadBuffer");
   }
 
@@ -302,7 +296,7 @@ class OpenCLBackend : public Backend {
 
 OpenCLBackend* g_backend = nullptr;
 
-int64_t ClKernel::run(const LaunchArgs& a) {
+LaunchResult ClKernel::run(const LaunchArgs& a) {
   Device& d = be_.device();
   cl_uint arg = 0;
   auto set_mem = [&](cl_mem m) { check(clSetKernelArg(kernel_, arg++, sizeof(cl_mem), &m), "clSetKernelArg"); };
@@ -344,14 +338,15 @@ int64_t ClKernel::run(const LaunchArgs& a) {
     if (e == CL_SUCCESS)
       e = clEnqueueReadBuffer(d.queue, counter, CL_TRUE, 0, sizeof written, written, 0, nullptr, nullptr);
   }
-  selected = a.mask ? written[1] : a.count;
+  const int64_t selected = a.mask ? written[1] : a.count;
   clReleaseMemObject(values_buf);
   clReleaseMemObject(shape_buf);
   clReleaseMemObject(uniform_buf);
   clReleaseMemObject(counter);
   check(e, "running the kernel");
-  for (auto* s : a.outputs) be_.device_written(*s);
-  return written[0];
+  // The device wrote the outputs: their host copies are stale until read back.
+  for (auto* s : a.outputs) s->mark_device_written(&be_);
+  return {written[0], selected};
 }
 
 }  // namespace

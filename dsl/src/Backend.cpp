@@ -3,34 +3,7 @@
 #include <map>
 #include <mutex>
 
-#include "rill/ir/Hash.h"
-
 namespace rill {
-
-const char* accuracy_name(Accuracy a) {
-  switch (a) {
-    case Accuracy::Strict: return "strict";
-    case Accuracy::Fast: return "fast";
-    case Accuracy::Double: return "double";
-  }
-  return "?";
-}
-
-Accuracy parse_accuracy(const std::string& s) {
-  if (s == "strict") return Accuracy::Strict;
-  if (s == "fast") return Accuracy::Fast;
-  if (s == "double") return Accuracy::Double;
-  throw Error("unknown accuracy mode '" + s + "' (expected strict, fast or double)");
-}
-
-uint64_t CompileOptions::hash() const {
-  std::string key = accuracy_name(accuracy);
-  key += passes.constant_folding ? 'F' : 'f';
-  key += passes.copy_propagation ? 'P' : 'p';
-  key += passes.common_subexpressions ? 'C' : 'c';
-  key += passes.dead_code ? 'D' : 'd';
-  return ir::hash_bytes(key);
-}
 
 namespace detail {
 // Defined by the library that bundles the backends (backends/Registry.cpp).
@@ -38,10 +11,18 @@ void register_builtin_backends();
 }  // namespace detail
 
 namespace {
+// Owns every backend until exit. Backends are destroyed last-registered first (the reverse of
+// the order they were made in), in the registry's destructor, not in whatever order the
+// vector would choose. A backend holding driver state shuts it down explicitly before that
+// (the GLSL backend from an exit handler, see GLSLBackend.cpp), so no backend's destructor
+// depends on when the registry, a static, is destroyed relative to the drivers.
 struct Registry {
   std::mutex mutex;
   std::vector<std::unique_ptr<Backend>> list;
   bool builtins = false;
+  ~Registry() {
+    while (!list.empty()) list.pop_back();
+  }
 };
 Registry& registry() {
   static Registry r;

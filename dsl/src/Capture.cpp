@@ -191,11 +191,12 @@ Ref emit_gather(const std::shared_ptr<ArrayState>& array, std::vector<ir::Operan
   auto it = b.array_ids.find(array.get());
   if (it == b.array_ids.end()) {
     int id = static_cast<int>(b.fn->arrays.size());
-    b.fn->arrays.push_back(ir::ArrayDecl{array->name, array->type.with_width(array->type.width), array->dims});
+    b.fn->arrays.push_back(
+        ir::ArrayDecl{array->name, array->type().with_width(array->type().width), array->dims});
     b.arrays.push_back(array);
     it = b.array_ids.emplace(array.get(), id).first;
   }
-  ir::VarId v = b.fn->add_var(array->type);
+  ir::VarId v = b.fn->add_var(array->type());
   ir::Stmt s = ir::Stmt::assign(v, ir::Op::Gather, std::move(index), loc);
   s.array = it->second;
   b.current().push_back(std::move(s));

@@ -52,8 +52,10 @@ void clear_kernel_cache() {
 
 Kernel compile(const Program& p, const std::string& backend_name, const CompileOptions& options) {
   if (!p.valid()) throw Error("compile(): the program is empty (default-constructed)");
-  // The cache exists before any backend starts its driver, so it is destroyed after the
-  // backends' exit handlers have run (see GLSLBackend.cpp).
+  // The cache exists before any backend starts its driver, so at exit it is destroyed after
+  // the exit handlers the drivers register. Kernels destroyed then must not call into a
+  // driver that has shut down: GLSL kernels check that their context still exists (Session
+  // in GLSLBackend.cpp).
   Cache& c = cache();
   Backend& be = backend(backend_name);
   std::string why = be.unavailable_reason();
@@ -86,9 +88,8 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
   shared->compiled = be.compile(shared->optimized, options);
   double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  shared->compiled->compile_ms = ms;
   k.info_.compile_ms = ms;
-  k.info_.from_disk_cache = shared->compiled->from_disk_cache;
+  k.info_.from_disk_cache = shared->compiled->from_disk_cache();
 
   lock.lock();
   auto [pos, inserted] = c.entries.emplace(key, shared);
@@ -133,28 +134,28 @@ LaunchArgs Kernel::prepare() {
     if (!s)
       throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) +
                   " is not bound to a stream");
-    if (s->type != f.var(v).type)
+    if (s->type() != f.var(v).type)
       throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) +
-                  " is bound to a stream of " + s->type.str());
+                  " is bound to a stream of " + s->type().str());
   };
   for (size_t i = 0; i < out_.size(); ++i) {
     check(out_[i], f.outputs[i], "output");
     if (i == 0) {
-      a.count = out_[0]->count;
+      a.count = out_[0]->count();
       a.width = out_[0]->width;
       a.height = out_[0]->height;
-    } else if (out_[i]->count != a.count) {
+    } else if (out_[i]->count() != a.count) {
       throw Error("kernel '" + f.name + "': " + describe_param(f, f.outputs[i], "output") +
-                  " has " + std::to_string(out_[i]->count) + " elements but output '" +
+                  " has " + std::to_string(out_[i]->count()) + " elements but output '" +
                   f.var(f.outputs[0]).name + "' has " + std::to_string(a.count));
     }
     a.outputs.push_back(out_[i].get());
   }
   for (size_t i = 0; i < in_.size(); ++i) {
     check(in_[i], f.inputs[i], "input");
-    if (in_[i]->count != a.count)
+    if (in_[i]->count() != a.count)
       throw Error("kernel '" + f.name + "': " + describe_param(f, f.inputs[i], "input") + " has " +
-                  std::to_string(in_[i]->count) + " elements but the kernel runs over " +
+                  std::to_string(in_[i]->count()) + " elements but the kernel runs over " +
                   std::to_string(a.count) + " (the size of its outputs)");
     a.inputs.push_back(in_[i].get());
   }
@@ -165,10 +166,9 @@ LaunchArgs Kernel::prepare() {
 
 int64_t Kernel::launch(LaunchArgs& a) {
   std::lock_guard<std::mutex> lock(shared_->run_mutex);
-  CompiledKernel& c = *shared_->compiled;
-  c.selected = a.count;
-  last_.written = c.run(a);
-  last_.processed = a.mask ? c.selected : a.count;
+  const LaunchResult r = shared_->compiled->run(a);
+  last_.written = r.written;
+  last_.processed = a.mask ? r.selected : a.count;
   return last_.written;
 }
 
@@ -181,11 +181,11 @@ int64_t Kernel::execute(const StateMask& mask) {
   LaunchArgs a = prepare();
   const std::string& name = program_.name();
   detail::StreamState& s = mask.state().state();
-  if (s.type != ir::int_type(1))
+  if (s.type() != ir::int_type(1))
     throw Error("kernel '" + name + "': the mask stream must be a Stream<Int>, not a stream of " +
-                s.type.str());
-  if (s.count != a.count)
-    throw Error("kernel '" + name + "': the mask stream has " + std::to_string(s.count) +
+                s.type().str());
+  if (s.count() != a.count)
+    throw Error("kernel '" + name + "': the mask stream has " + std::to_string(s.count()) +
                 " elements but the kernel runs over " + std::to_string(a.count));
   if (mask.values().empty() || mask.values().size() > StateMask::kMaxValues)
     throw Error("kernel '" + name + "': a mask selects 1 to " +

@@ -5,25 +5,68 @@
 namespace rill::detail {
 
 void Storage::init(ir::Type t, int64_t n) {
-  type = t;
-  count = n;
-  host.assign(static_cast<size_t>(n) * t.width, 0u);
-  host_valid = true;
-  device_valid = false;
-  ++version;
+  type_ = t;
+  count_ = n;
+  host_.assign(static_cast<size_t>(n) * t.width, 0u);
+  host_valid_ = true;
+  device_valid_ = false;
+  ++version_;
 }
 
 void Storage::sync_to_host() {
-  if (host_valid) return;
-  if (!device_owner) throw Error("internal: stream has no valid copy");
-  device_owner->read_back(*this);
-  host_valid = true;
+  if (host_valid_) return;
+  if (!device_owner_ || !device_) throw Error("internal: stream has no valid copy");
+  device_owner_->read_back(*this, host_.data());
+  host_valid_ = true;
 }
 
-void Storage::host_written() {
-  host_valid = true;
-  device_valid = false;
-  ++version;
+const uint32_t* Storage::host_data_for_read() {
+  sync_to_host();
+  return host_.data();
+}
+
+uint32_t* Storage::host_data_for_write() {
+  sync_to_host();
+  return host_data_for_overwrite();
+}
+
+uint32_t* Storage::host_data_for_overwrite() {
+  host_valid_ = true;
+  device_valid_ = false;
+  ++version_;
+  return host_.data();
+}
+
+void Storage::require_device(const Backend* b, const char* what) const {
+  if (!b || device_owner_ != b || !device_)
+    throw Error(std::string("internal: ") + what +
+                " by a backend that does not hold the device copy");
+}
+
+void Storage::set_device_buffer(Backend* b, std::unique_ptr<DeviceBuffer> buffer) {
+  sync_to_host();
+  device_ = std::move(buffer);
+  device_owner_ = b;
+  device_valid_ = false;
+}
+
+void Storage::mark_device_current(const Backend* b) {
+  require_device(b, "mark_device_current");
+  if (!host_valid_) throw Error("internal: a device copy was filled from a stale host copy");
+  device_valid_ = true;
+}
+
+void Storage::mark_device_written(const Backend* b) {
+  require_device(b, "mark_device_written");
+  host_valid_ = false;
+  device_valid_ = true;
+}
+
+void Storage::release_device_copy() {
+  sync_to_host();
+  device_.reset();
+  device_owner_ = nullptr;
+  device_valid_ = false;
 }
 
 }  // namespace rill::detail

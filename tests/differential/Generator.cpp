@@ -32,10 +32,7 @@ Interface& Interface::get() {
 void Interface::release_device_copies() {
   for (detail::ArrayState* st : {af1.state().get(), af4.state().get(), af2d.state().get(),
                                  ai1.state().get(), ai2d.state().get()}) {
-    st->sync_to_host();
-    st->device.reset();
-    st->device_owner = nullptr;
-    st->device_valid = false;
+    st->release_device_copy();
   }
 }
 

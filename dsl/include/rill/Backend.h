@@ -1,4 +1,4 @@
-// The interface every backend implements, and the options a compile takes.
+// The interface every backend implements (the options a compile takes are in Options.h).
 //
 // A backend turns an optimized Function into something it can launch (CompiledKernel), and
 // moves stream and array data between the host and its device. Backends register by name;
@@ -11,34 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "rill/Options.h"
 #include "rill/Stream.h"
 #include "rill/ir/IR.h"
 
 namespace rill {
-
-enum class Accuracy : uint8_t {
-  Strict,  // IEEE binary32, no contraction, same bits on every backend
-  Fast,    // native builtins, contraction and relaxed math allowed
-  Double,  // binary64 arithmetic where the backend has it (the reference)
-};
-const char* accuracy_name(Accuracy a);
-Accuracy parse_accuracy(const std::string& s);  // "strict" | "fast" | "double"
-
-// Which optimizer passes run; each can be switched off (for debugging or comparison).
-struct PassOptions {
-  bool constant_folding = true;
-  bool copy_propagation = true;
-  bool common_subexpressions = true;
-  bool dead_code = true;
-  bool operator==(const PassOptions&) const = default;
-};
-
-struct CompileOptions {
-  Accuracy accuracy = Accuracy::Strict;
-  PassOptions passes;
-  bool operator==(const CompileOptions&) const = default;
-  uint64_t hash() const;
-};
 
 namespace detail {
 struct UniformState;
@@ -59,18 +36,27 @@ struct LaunchArgs {
   std::vector<int32_t> mask_values;
 };
 
+// What one run() did, returned to Kernel (which reports it as LaunchStats).
+struct LaunchResult {
+  int64_t written = 0;   // elements written (not discarded)
+  int64_t selected = 0;  // elements run: those the mask selected, or count without a mask
+};
+
 class CompiledKernel {
  public:
   virtual ~CompiledKernel() = default;
-  // Runs the kernel over all elements; returns how many were written (not discarded).
-  virtual int64_t run(const LaunchArgs& args) = 0;
+  // Runs the kernel over all elements (or those args.mask selects).
+  virtual LaunchResult run(const LaunchArgs& args) = 0;
   // The generated source (C, OpenCL C, GLSL...).
   virtual const std::string& source() const = 0;
+  // Whether the backend reused a binary compiled earlier (a disk cache) instead of compiling.
+  bool from_disk_cache() const { return from_disk_cache_; }
 
-  // Elements the last run() processed: those its mask selected, or count without a mask.
-  int64_t selected = 0;
-  double compile_ms = 0;         // time this compile took
-  bool from_disk_cache = false;  // the backend reused a binary compiled earlier
+ protected:
+  explicit CompiledKernel(bool from_disk_cache = false) : from_disk_cache_(from_disk_cache) {}
+
+ private:
+  bool from_disk_cache_;
 };
 
 class Backend {
@@ -84,9 +70,11 @@ class Backend {
   virtual bool supports(Accuracy a) const { return a != Accuracy::Double; }
   virtual std::unique_ptr<CompiledKernel> compile(const ir::Function& optimized,
                                                   const CompileOptions& options) = 0;
-  // Copies a stream or array from this backend's device to the host (called by
-  // Storage::sync_to_host when this backend holds the freshest copy).
-  virtual void read_back(detail::Storage&) {}
+  // Copies the device copy of a stream or array, which this backend holds, into `host`
+  // (s.words() words). Called by Storage when its host copy is read while this backend's
+  // copy is newer; Storage then marks the host copy current. Backends that keep no device
+  // copies (cpu) need not implement it.
+  virtual void read_back(const detail::Storage& /*s*/, uint32_t* /*host*/) {}
 };
 
 // Backends by name. The CPU backend is always present.

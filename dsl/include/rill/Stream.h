@@ -33,23 +33,72 @@ struct DeviceBuffer {
   virtual ~DeviceBuffer() = default;
 };
 
-// Element data of a stream or array: `count` elements of `type`, 4 bytes per component.
-struct Storage {
-  ir::Type type;
-  int64_t count = 0;
-  std::vector<uint32_t> host;  // count * width words
-  bool host_valid = true;
-  // The backend holding the freshest copy when !host_valid, and its buffer.
-  Backend* device_owner = nullptr;
-  std::unique_ptr<DeviceBuffer> device;
-  bool device_valid = false;
-  uint64_t version = 0;  // bumped on every host write, so backends can cache uploads
+// Element data of a stream or array: `count` elements of `type`, 4 bytes per component, with
+// a host copy and at most one device copy (held by one backend at a time).
+//
+// Its methods keep the copies coherent, so no backend has to:
+//   - at least one copy is current: the host copy, or the device copy of owner();
+//   - reading the host (host_data_for_read) first reads the device copy back if it is newer;
+//   - writing the host (host_data_for_write / _for_overwrite) makes the device copy stale;
+//   - a backend that writes its device copy says so (mark_device_written), which makes the
+//     host copy stale until the next host read;
+//   - version() grows on every host write, so a backend can tell whether its copy is old.
+// A backend gets its own buffer back with device_buffer<T>(this): null when another backend
+// (or none) holds the device copy.
+class Storage {
+ public:
+  ir::Type type() const { return type_; }
+  int64_t count() const { return count_; }
+  // Words (4-byte components) of the host copy: count() * type().width.
+  size_t words() const { return host_.size(); }
+  uint64_t version() const { return version_; }
 
+  // Sizes the data to n elements of t, all zero on the host; a device copy becomes stale.
   void init(ir::Type t, int64_t n);
-  // Makes the host copy current (reading back from the device if it is newer).
+
+  // The host copy, current (read back from the device first if the device copy is newer).
+  const uint32_t* host_data_for_read();
+  // The host copy, current, for changing in place (a kernel writing some elements and
+  // keeping the others): the device copy becomes stale.
+  uint32_t* host_data_for_write();
+  // The host copy for replacing every word: nothing is read back, the device copy becomes
+  // stale.
+  uint32_t* host_data_for_overwrite();
+
+  // Backend b's buffer if b holds the device copy (current or stale), else null.
+  template <class T>
+  T* device_buffer(const Backend* b) const {
+    return device_owner_ == b ? static_cast<T*>(device_.get()) : nullptr;
+  }
+  // Whether b holds the device copy and it is current.
+  bool is_device_current(const Backend* b) const {
+    return device_owner_ == b && device_ && device_valid_;
+  }
+  // b's new (not yet filled) buffer takes the place of any device copy; the host copy is
+  // made current first, since the copy replaced may have been the only current one.
+  void set_device_buffer(Backend* b, std::unique_ptr<DeviceBuffer> buffer);
+  // b filled its buffer from the host copy: both copies are current.
+  void mark_device_current(const Backend* b);
+  // b's kernel wrote its buffer: the host copy is stale until read back.
+  void mark_device_written(const Backend* b);
+  // Makes the host copy current and drops the device copy (its buffer is destroyed).
+  void release_device_copy();
+
+ private:
+  // Makes the host copy current, reading the device copy back if it is newer.
   void sync_to_host();
-  // The host copy is about to be written: device copies become stale.
-  void host_written();
+  // Throws an internal error unless b holds the device copy.
+  void require_device(const Backend* b, const char* what) const;
+
+  ir::Type type_;
+  int64_t count_ = 0;
+  std::vector<uint32_t> host_;  // count_ * type_.width words
+  bool host_valid_ = true;
+  // The backend holding the device copy, its buffer, and whether that copy is current.
+  Backend* device_owner_ = nullptr;
+  std::unique_ptr<DeviceBuffer> device_;
+  bool device_valid_ = false;
+  uint64_t version_ = 0;  // bumped on every host write, so backends can cache uploads
 };
 
 struct StreamState : Storage {
@@ -67,19 +116,18 @@ using HostOf = typename V::host_type;
 
 template <class V>
 void copy_in(Storage& s, std::span<const HostOf<V>> data) {
-  if (static_cast<int64_t>(data.size()) != s.count)
+  if (static_cast<int64_t>(data.size()) != s.count())
     throw Error("upload of " + std::to_string(data.size()) + " elements into a stream of " +
-                std::to_string(s.count));
-  s.host.resize(static_cast<size_t>(s.count) * V::width);
-  if (!s.host.empty()) std::memcpy(s.host.data(), data.data(), s.host.size() * 4);
-  s.host_written();
+                std::to_string(s.count()));
+  uint32_t* host = s.host_data_for_overwrite();
+  if (s.words() != 0) std::memcpy(host, data.data(), s.words() * 4);
 }
 
 template <class V>
 std::vector<HostOf<V>> copy_out(Storage& s) {
-  s.sync_to_host();
-  std::vector<HostOf<V>> out(static_cast<size_t>(s.count));
-  if (!out.empty()) std::memcpy(out.data(), s.host.data(), s.host.size() * 4);
+  const uint32_t* host = s.host_data_for_read();
+  std::vector<HostOf<V>> out(static_cast<size_t>(s.count()));
+  if (!out.empty()) std::memcpy(out.data(), host, s.words() * 4);
   return out;
 }
 
@@ -115,7 +163,7 @@ class Stream {
   }
   Stream(const std::vector<host_type>& data) : Stream(std::span<const host_type>(data)) {}
 
-  int64_t size() const { return s_->count; }
+  int64_t size() const { return s_->count(); }
   int64_t width() const { return s_->width; }
   int64_t height() const { return s_->height; }
 
@@ -154,7 +202,7 @@ class Array {
     upload(data);
   }
 
-  int64_t size() const { return s_->count; }
+  int64_t size() const { return s_->count(); }
   void upload(std::span<const host_type> data) { detail::copy_in<V>(*s_, data); }
   void upload(const std::vector<host_type>& data) { upload(std::span<const host_type>(data)); }
   std::vector<host_type> download() const { return detail::copy_out<V>(*s_); }

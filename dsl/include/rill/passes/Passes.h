@@ -29,7 +29,7 @@
 #include <optional>
 #include <vector>
 
-#include "rill/Backend.h"
+#include "rill/Options.h"
 #include "rill/ir/IR.h"
 
 namespace rill::passes {

@@ -1,0 +1,36 @@
+// The options a compile takes: the accuracy mode and which optimizer passes run.
+//
+// Kept apart from Backend.h so that the passes (rill/passes/Passes.h) and the emitters can
+// name an accuracy mode without pulling in streams, storage and GLM.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace rill {
+
+enum class Accuracy : uint8_t {
+  Strict,  // IEEE binary32, no contraction, same bits on every backend
+  Fast,    // native builtins, contraction and relaxed math allowed
+  Double,  // binary64 arithmetic where the backend has it (the reference)
+};
+const char* accuracy_name(Accuracy a);
+Accuracy parse_accuracy(const std::string& s);  // "strict" | "fast" | "double"
+
+// Which optimizer passes run; each can be switched off (for debugging or comparison).
+struct PassOptions {
+  bool constant_folding = true;
+  bool copy_propagation = true;
+  bool common_subexpressions = true;
+  bool dead_code = true;
+  bool operator==(const PassOptions&) const = default;
+};
+
+struct CompileOptions {
+  Accuracy accuracy = Accuracy::Strict;
+  PassOptions passes;
+  bool operator==(const CompileOptions&) const = default;
+  uint64_t hash() const;
+};
+
+}  // namespace rill
