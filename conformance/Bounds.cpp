@@ -30,6 +30,7 @@ const std::map<std::string, Bound>& table() {
       {"sign", {0, 0, 0, 0}},
       {"floor", {0, 0, 0, 0}},
       {"ceil", {0, 0, 0, 0}},
+      {"trunc", {0, 0, 0, 0}},
       {"min", {0, 0, 0, 0}},
       {"max", {0, 0, 0, 0}},
       {"clamp", {0, 0, 0, 0}},

@@ -240,6 +240,8 @@ Case float_exact_unary() {
       unary<float, float>(
           "ceil", [](const auto& x) { return ceil(x); }, [](double x) { return std::ceil(x); }),
       unary<float, float>(
+          "trunc", [](const auto& x) { return trunc(x); }, [](double x) { return std::trunc(x); }),
+      unary<float, float>(
           "fract", [](const auto& x) { return fract(x); }, r_fract),
       unary<float, float>(
           "sqrt", [](const auto& x) { return sqrt(x); }, [](double x) { return std::sqrt(x); }),
@@ -957,7 +959,7 @@ Case swizzle_case() {
 }  // namespace
 
 bool exact_reference(const std::string& op) {
-  static const char* const kExact[] = {"neg",      "abs",   "sign",    "floor",     "ceil",
+  static const char* const kExact[] = {"neg",      "abs",   "sign",    "floor",     "ceil",  "trunc",
                                        "fract",    "sqrt",  "add",     "sub",       "mul",
                                        "div",      "min",   "max",     "select",    "to_float",
                                        "as_float", "clamp", "swizzle", "write mask"};

@@ -32,6 +32,7 @@ RILL_FN rill_real rill_sign_f(rill_real x) { return x > 0 ? (rill_real)1 : (x < 
 RILL_FN rill_real rill_abs_f(rill_real x) { return RILL_M(fabs)(x); }
 RILL_FN rill_real rill_floor(rill_real x) { return RILL_M(floor)(x); }
 RILL_FN rill_real rill_ceil(rill_real x) { return RILL_M(ceil)(x); }
+RILL_FN rill_real rill_trunc(rill_real x) { return RILL_M(trunc)(x); }
 RILL_FN rill_real rill_fract(rill_real x) { rill_real f = RILL_M(floor)(x); return x - f; }
 RILL_FN rill_real rill_mod_f(rill_real a, rill_real b) {
   rill_real q = a / b;

@@ -201,8 +201,12 @@ RILL_FN rill_vr rill_v_floor(rill_vr a) {
 RILL_FN rill_vr rill_v_ceil(rill_vr a) {
   return (rill_vr)_mm256_round_ps((__m256)a, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC);
 }
+RILL_FN rill_vr rill_v_trunc(rill_vr a) {
+  return (rill_vr)_mm256_round_ps((__m256)a, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
+}
 RILL_FN rill_vr rill_v_sqrt(rill_vr a) { return (rill_vr)_mm256_sqrt_ps((__m256)a); }
 #else
+RILL_LANES1(rill_v_trunc, rill_vr, rill_vr, rill_trunc)
 RILL_LANES1(rill_v_floor, rill_vr, rill_vr, rill_floor)
 RILL_LANES1(rill_v_ceil, rill_vr, rill_vr, rill_ceil)
 RILL_LANES1(rill_v_sqrt, rill_vr, rill_vr, rill_sqrt)
@@ -213,7 +217,7 @@ RILL_LANES1(rill_v_sqrt, rill_vr, rill_vr, rill_sqrt)
 // Ops.def gets a lane-by-lane wrapper of its scalar definition (lane_wise_helpers()).
 constexpr const char* kVectorHelpers[] = {"add_i", "sub_i", "mul_i", "neg_i", "shl",   "shr",
                                           "min_i", "max_i", "min_f", "max_f", "abs_f", "i2f",
-                                          "fbits", "ibits", "floor", "ceil",  "sqrt"};
+                                          "fbits", "ibits", "floor", "ceil",  "trunc", "sqrt"};
 
 // RILL_LANES1/2(rill_v_NAME, result, operand, rill_NAME) for every helper of the op table
 // that kVectorPrelude does not define as vector code.

@@ -74,6 +74,7 @@ float rill_sign_f(float x) {
 float rill_abs_f(float x) { return abs(x); }
 float rill_floor(float x) { return floor(x); }
 float rill_ceil(float x) { return ceil(x); }
+float rill_trunc(float x) { return trunc(x); }
 float rill_fract(float x) { RILL_PRECISE float f = floor(x); RILL_PRECISE float r = x - f; return r; }
 float rill_mod_f(float a, float b) {
   RILL_PRECISE float q = rill_div_f(a, b);

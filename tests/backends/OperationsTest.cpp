@@ -128,6 +128,7 @@ constexpr auto op_plus = [](const auto& x) { return +x; };
 constexpr auto op_abs = [](const auto& x) { return abs(x); };
 constexpr auto op_sign = [](const auto& x) { return sign(x); };
 constexpr auto op_floor = [](const auto& x) { return floor(x); };
+constexpr auto op_trunc = [](const auto& x) { return trunc(x); };
 constexpr auto op_ceil = [](const auto& x) { return ceil(x); };
 constexpr auto op_fract = [](const auto& x) { return fract(x); };
 constexpr auto op_sqrt = [](const auto& x) { return sqrt(x); };
@@ -381,6 +382,9 @@ TEST_P(OperationsTest, FloatSign) {
 }
 TEST_P(OperationsTest, Floor) {
   float_unary("floor", op_floor, [](float x) { return std::floor(x); });
+}
+TEST_P(OperationsTest, Trunc) {
+  float_unary("trunc", op_trunc, [](float x) { return std::trunc(x); });
 }
 TEST_P(OperationsTest, Ceil) {
   float_unary("ceil", op_ceil, [](float x) { return std::ceil(x); });
@@ -745,6 +749,7 @@ TEST_P(ConstantsTest, FloatUnary) {
                 {"sign", un(op_sign), unary_ref(ref_sign), 0},
                 {"floor", un(op_floor), unary_ref([](float x) { return std::floor(x); }), 0},
                 {"ceil", un(op_ceil), unary_ref([](float x) { return std::ceil(x); }), 0},
+                {"trunc", un(op_trunc), unary_ref([](float x) { return std::trunc(x); }), 0},
                 {"fract", un(op_fract), unary_ref(ref_fract), 0},
                 {"sqrt", un(op_sqrt), unary_ref([](float x) { return std::sqrt(x); }), 0},
                 {"rsqrt", un(op_rsqrt), unary_ref(ref_rsqrt), 0}};

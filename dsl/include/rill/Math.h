@@ -26,6 +26,7 @@ Value<T, N> lift(const S& s) {
 
 RILL_FLOAT_UNARY(floor, Floor)
 RILL_FLOAT_UNARY(ceil, Ceil)
+RILL_FLOAT_UNARY(trunc, Trunc)  // toward zero
 RILL_FLOAT_UNARY(fract, Fract)  // x - floor(x)
 RILL_FLOAT_UNARY(sqrt, Sqrt)
 RILL_FLOAT_UNARY(rsqrt, Rsqrt)  // 1 / sqrt(x)

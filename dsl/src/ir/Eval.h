@@ -71,6 +71,8 @@ inline int32_t sign(int32_t a) { return a > 0 ? 1 : (a < 0 ? -1 : 0); }
 
 inline float floor(float a) { return std::floor(a); }
 inline float ceil(float a) { return std::ceil(a); }
+// Rounds toward zero (-0.5 gives -0).
+inline float trunc(float a) { return std::trunc(a); }
 inline float fract(float a) {
   float fl = std::floor(a);
   return a - fl;

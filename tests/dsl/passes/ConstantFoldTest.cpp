@@ -400,7 +400,8 @@ const std::vector<float> kFloatCases = {0.0f,
 
 const std::vector<Op> kFloatOps = {Op::Add,  Op::Sub,   Op::Mul,  Op::Div,   Op::Mod,
                                    Op::Min,  Op::Max,   Op::Sqrt, Op::Rsqrt, Op::Floor,
-                                   Op::Ceil, Op::Fract, Op::Abs,  Op::Sign,  Op::Neg};
+                                   Op::Ceil, Op::Fract, Op::Abs,  Op::Sign,  Op::Neg,
+                                   Op::Trunc};
 
 Float apply(Op op, const Float& a, const Float& b) {
   switch (op) {
@@ -426,6 +427,8 @@ Float apply(Op op, const Float& a, const Float& b) {
       return floor(a);
     case Op::Ceil:
       return ceil(a);
+    case Op::Trunc:
+      return trunc(a);
     case Op::Fract:
       return fract(a);
     case Op::Abs:

@@ -39,7 +39,7 @@ ir::InterpreterLaunch launch_of(const Program& p, const Data& d, Data& result) {
   for (const auto& u : p.captured().uniforms) l.uniforms.push_back(u->bits);
   for (const auto& a : p.captured().arrays) {
     ir::InterpreterArray ia;
-    ia.data = a->host.data();
+    ia.data = a->host_data_for_read();
     for (int i = 0; i < 3; ++i) ia.shape[i] = a->shape[i];
     l.arrays.push_back(ia);
   }
