@@ -225,7 +225,7 @@ std::string lane_wise_helpers() {
   std::string out;
   std::vector<std::string> done(std::begin(kVectorHelpers), std::end(kVectorHelpers));
   auto vtype = [](ScalarKind k) { return k == ScalarKind::Float ? "rill_vr" : "rill_vi"; };
-  for (int o = 0; o <= static_cast<int>(Op::ElementCoord); ++o) {
+  for (int o = 0; o < kOpCount; ++o) {
     const Op op = static_cast<Op>(o);
     const OpInfo& info = op_info(op);
     for (ScalarKind k : {ScalarKind::Float, ScalarKind::Int}) {

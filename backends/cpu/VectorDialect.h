@@ -39,8 +39,8 @@ class VectorDialect : public codegen::CDialect {
   std::string initial_value(const ir::Function& f, ir::VarId v, int c) const override {
     const ir::Variable& var = f.var(v);
     const std::string lanes = var.type.is_float() ? "rill_lanes_r(" : "rill_lanes_i(";
-    const std::string at = " + " + std::to_string(c) + ", rill_lane, " +
-                           std::to_string(var.type.width) + ")";
+    const std::string at =
+        " + " + std::to_string(c) + ", rill_lane, " + std::to_string(var.type.width) + ")";
     switch (var.role) {
       case ir::VarRole::Input:
         return lanes + "in" + std::to_string(var.slot) + at;
@@ -121,9 +121,9 @@ class VectorDialect : public codegen::CDialect {
       out += "#else\n" + fallback + "#endif\n";
     }
     for (size_t c = 0; c < dst.size(); ++c) {
-      std::string v = whole ? "rill_q" + std::to_string(c)
-                            : "rill_gather" + kind + "(arr" + id + " + " + std::to_string(c) +
-                                  ", rill_g)";
+      std::string v =
+          whole ? "rill_q" + std::to_string(c)
+                : "rill_gather" + kind + "(arr" + id + " + " + std::to_string(c) + ", rill_g)";
       out += "  " + dst[c] + " = " + v + ";\n";
     }
     return out + "}\n";

@@ -660,8 +660,8 @@ class Generator {
             return rill::abs(a);
           case 2:
             return rill::sign(a);
-          case 3:
-            return rill::floor(a);
+          case 3:  // one draw more, at the end: the node's other choices stay as they were
+            return r.percent(50) ? rill::floor(a) : rill::trunc(a);
           case 4:
             return rill::ceil(a);
           case 5:

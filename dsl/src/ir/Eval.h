@@ -36,17 +36,37 @@ T copy(T a) {
   return a;
 }
 
-inline float neg(float a) { return -a; }
-inline int32_t neg(int32_t a) { return wrap(-static_cast<int64_t>(a)); }
-inline float add(float a, float b) { return a + b; }
-inline int32_t add(int32_t a, int32_t b) { return wrap(static_cast<int64_t>(a) + b); }
-inline float sub(float a, float b) { return a - b; }
-inline int32_t sub(int32_t a, int32_t b) { return wrap(static_cast<int64_t>(a) - b); }
-inline float mul(float a, float b) { return a * b; }
-inline int32_t mul(int32_t a, int32_t b) { return wrap(static_cast<int64_t>(a) * b); }
-inline float div(float a, float b) { return a / b; }
+inline float neg(float a) {
+  return -a;
+}
+inline int32_t neg(int32_t a) {
+  return wrap(-static_cast<int64_t>(a));
+}
+inline float add(float a, float b) {
+  return a + b;
+}
+inline int32_t add(int32_t a, int32_t b) {
+  return wrap(static_cast<int64_t>(a) + b);
+}
+inline float sub(float a, float b) {
+  return a - b;
+}
+inline int32_t sub(int32_t a, int32_t b) {
+  return wrap(static_cast<int64_t>(a) - b);
+}
+inline float mul(float a, float b) {
+  return a * b;
+}
+inline int32_t mul(int32_t a, int32_t b) {
+  return wrap(static_cast<int64_t>(a) * b);
+}
+inline float div(float a, float b) {
+  return a / b;
+}
 // Division by zero gives 0; INT_MIN / -1 wraps.
-inline int32_t div(int32_t a, int32_t b) { return b == 0 ? 0 : wrap(static_cast<int64_t>(a) / b); }
+inline int32_t div(int32_t a, int32_t b) {
+  return b == 0 ? 0 : wrap(static_cast<int64_t>(a) / b);
+}
 // a - b * floor(a / b), one rounding per step (GLSL's mod).
 inline float mod(float a, float b) {
   float q = a / b;
@@ -60,62 +80,116 @@ inline int32_t mod(int32_t a, int32_t b) {
 }
 // min and max return the first operand unless the second is strictly smaller (larger), so a
 // NaN second operand is ignored and a NaN first one returned.
-inline float min(float a, float b) { return b < a ? b : a; }
-inline int32_t min(int32_t a, int32_t b) { return b < a ? b : a; }
-inline float max(float a, float b) { return a < b ? b : a; }
-inline int32_t max(int32_t a, int32_t b) { return a < b ? b : a; }
-inline float abs(float a) { return std::bit_cast<float>(std::bit_cast<uint32_t>(a) & 0x7fffffffu); }
-inline int32_t abs(int32_t a) { return wrap(a < 0 ? -static_cast<int64_t>(a) : a); }
-inline float sign(float x) { return x > 0.0f ? 1.0f : (x < 0.0f ? -1.0f : 0.0f); }
-inline int32_t sign(int32_t a) { return a > 0 ? 1 : (a < 0 ? -1 : 0); }
+inline float min(float a, float b) {
+  return b < a ? b : a;
+}
+inline int32_t min(int32_t a, int32_t b) {
+  return b < a ? b : a;
+}
+inline float max(float a, float b) {
+  return a < b ? b : a;
+}
+inline int32_t max(int32_t a, int32_t b) {
+  return a < b ? b : a;
+}
+inline float abs(float a) {
+  return std::bit_cast<float>(std::bit_cast<uint32_t>(a) & 0x7fffffffu);
+}
+inline int32_t abs(int32_t a) {
+  return wrap(a < 0 ? -static_cast<int64_t>(a) : a);
+}
+inline float sign(float x) {
+  return x > 0.0f ? 1.0f : (x < 0.0f ? -1.0f : 0.0f);
+}
+inline int32_t sign(int32_t a) {
+  return a > 0 ? 1 : (a < 0 ? -1 : 0);
+}
 
-inline float floor(float a) { return std::floor(a); }
-inline float ceil(float a) { return std::ceil(a); }
+inline float floor(float a) {
+  return std::floor(a);
+}
+inline float ceil(float a) {
+  return std::ceil(a);
+}
 // Rounds toward zero (-0.5 gives -0).
-inline float trunc(float a) { return std::trunc(a); }
+inline float trunc(float a) {
+  return std::trunc(a);
+}
 inline float fract(float a) {
   float fl = std::floor(a);
   return a - fl;
 }
-inline float sqrt(float a) { return std::sqrt(a); }
+inline float sqrt(float a) {
+  return std::sqrt(a);
+}
 inline float rsqrt(float a) {
   float s = std::sqrt(a);
   return 1.0f / s;
 }
 
-inline int32_t bit_and(int32_t a, int32_t b) { return a & b; }
-inline int32_t bit_or(int32_t a, int32_t b) { return a | b; }
-inline int32_t bit_xor(int32_t a, int32_t b) { return a ^ b; }
-inline int32_t bit_not(int32_t a) { return ~a; }
+inline int32_t bit_and(int32_t a, int32_t b) {
+  return a & b;
+}
+inline int32_t bit_or(int32_t a, int32_t b) {
+  return a | b;
+}
+inline int32_t bit_xor(int32_t a, int32_t b) {
+  return a ^ b;
+}
+inline int32_t bit_not(int32_t a) {
+  return ~a;
+}
 // Shift counts are taken modulo 32.
 inline int32_t shl(int32_t a, int32_t b) {
   return static_cast<int32_t>(static_cast<uint32_t>(a) << (b & 31));
 }
-inline int32_t shr(int32_t a, int32_t b) { return a >> (b & 31); }
+inline int32_t shr(int32_t a, int32_t b) {
+  return a >> (b & 31);
+}
 
-inline bool logic_and(bool a, bool b) { return a && b; }
-inline bool logic_or(bool a, bool b) { return a || b; }
-inline bool logic_not(bool a) { return !a; }
+inline bool logic_and(bool a, bool b) {
+  return a && b;
+}
+inline bool logic_or(bool a, bool b) {
+  return a || b;
+}
+inline bool logic_not(bool a) {
+  return !a;
+}
 
 template <class T>
-bool lt(T a, T b) requires(!std::is_same_v<T, bool>) { return a < b; }
+bool lt(T a, T b) requires(!std::is_same_v<T, bool>) {
+  return a < b;
+}
 template <class T>
-bool le(T a, T b) requires(!std::is_same_v<T, bool>) { return a <= b; }
+bool le(T a, T b) requires(!std::is_same_v<T, bool>) {
+  return a <= b;
+}
 template <class T>
-bool gt(T a, T b) requires(!std::is_same_v<T, bool>) { return a > b; }
+bool gt(T a, T b) requires(!std::is_same_v<T, bool>) {
+  return a > b;
+}
 template <class T>
-bool ge(T a, T b) requires(!std::is_same_v<T, bool>) { return a >= b; }
+bool ge(T a, T b) requires(!std::is_same_v<T, bool>) {
+  return a >= b;
+}
 template <class T>
-bool eq(T a, T b) { return a == b; }
+bool eq(T a, T b) {
+  return a == b;
+}
 template <class T>
-bool ne(T a, T b) { return a != b; }
+bool ne(T a, T b) {
+  return a != b;
+}
 
 template <class T>
 T select(bool c, T a, T b) {
   return c ? a : b;
 }
 
-inline float int_to_float(int32_t i) { return static_cast<float>(i); }
+inline float int_to_float(int32_t i) {
+  return static_cast<float>(i);
+}
 // Truncation toward zero; NaN gives 0, out-of-range values saturate.
 inline int32_t float_to_int(float x) {
   if (x != x) return 0;
@@ -123,8 +197,12 @@ inline int32_t float_to_int(float x) {
   if (x < -2147483648.0f) return std::numeric_limits<int32_t>::min();
   return static_cast<int32_t>(x);
 }
-inline int32_t float_bits(float x) { return std::bit_cast<int32_t>(x); }
-inline float int_bits(int32_t i) { return std::bit_cast<float>(i); }
+inline int32_t float_bits(float x) {
+  return std::bit_cast<int32_t>(x);
+}
+inline float int_bits(int32_t i) {
+  return std::bit_cast<float>(i);
+}
 
 // Whole-value ops: (result type, operands) -> result.
 using Constants = std::vector<Constant>;

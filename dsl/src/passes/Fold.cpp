@@ -17,15 +17,21 @@ using ir::ScalarKind;
 // A component's bits as the C++ value of its kind, and back.
 template <class T>
 T unpack(uint32_t bits) {
-  if constexpr (std::is_same_v<T, float>) return std::bit_cast<float>(bits);
-  else if constexpr (std::is_same_v<T, int32_t>) return static_cast<int32_t>(bits);
-  else return bits != 0;
+  if constexpr (std::is_same_v<T, float>)
+    return std::bit_cast<float>(bits);
+  else if constexpr (std::is_same_v<T, int32_t>)
+    return static_cast<int32_t>(bits);
+  else
+    return bits != 0;
 }
 template <class T>
 uint32_t pack(T v) {
-  if constexpr (std::is_same_v<T, float>) return std::bit_cast<uint32_t>(v);
-  else if constexpr (std::is_same_v<T, int32_t>) return static_cast<uint32_t>(v);
-  else return v ? 1u : 0u;
+  if constexpr (std::is_same_v<T, float>)
+    return std::bit_cast<uint32_t>(v);
+  else if constexpr (std::is_same_v<T, int32_t>)
+    return static_cast<uint32_t>(v);
+  else
+    return v ? 1u : 0u;
 }
 
 // Applies a componentwise eval function to the operands, each component read as T (select's
@@ -45,12 +51,17 @@ std::optional<Constant> componentwise(Op op, Eval eval, ir::Type result,
       if constexpr (std::is_invocable_v<Eval, decltype(x)...>) bits = pack(eval(x...));
     };
     switch (args.size()) {
-      case 1: apply(unpack<T>(comp(0, c))); break;
-      case 2: apply(unpack<T>(comp(0, c)), unpack<T>(comp(1, c))); break;
+      case 1:
+        apply(unpack<T>(comp(0, c)));
+        break;
+      case 2:
+        apply(unpack<T>(comp(0, c)), unpack<T>(comp(1, c)));
+        break;
       case 3:
         if (op == Op::Select) apply(comp(0, c) != 0, unpack<T>(comp(1, c)), unpack<T>(comp(2, c)));
         break;
-      default: break;
+      default:
+        break;
     }
     if (!bits) return std::nullopt;
     out.bits[static_cast<size_t>(c)] = *bits;
@@ -67,9 +78,12 @@ std::optional<Constant> evaluate(Op op, Eval eval, ir::Type result,
     if (args.empty()) return std::nullopt;
     // The kind the op computes on: its operands' (select: its branches').
     switch (args[op == Op::Select ? 1 : 0].type.kind) {
-      case ScalarKind::Float: return componentwise<float>(op, eval, result, args);
-      case ScalarKind::Int: return componentwise<int32_t>(op, eval, result, args);
-      case ScalarKind::Bool: return componentwise<bool>(op, eval, result, args);
+      case ScalarKind::Float:
+        return componentwise<float>(op, eval, result, args);
+      case ScalarKind::Int:
+        return componentwise<int32_t>(op, eval, result, args);
+      case ScalarKind::Bool:
+        return componentwise<bool>(op, eval, result, args);
     }
     return std::nullopt;
   }
@@ -82,8 +96,9 @@ std::optional<Constant> fold(Op op, ir::Type result, const std::vector<Constant>
   switch (op) {
     // Each eval name is an overload set; the lambda makes it one callable object.
 #define RILL_OP(name, spelling, arity, cls, traits, ff, fi, fb, fn) \
-  case Op::name:                                                   \
-    return evaluate(op, [](auto&&... x) -> decltype(fn(x...)) { return fn(x...); }, result, args);
+  case Op::name:                                                    \
+    return evaluate(                                                \
+        op, [](auto&&... x) -> decltype(fn(x...)) { return fn(x...); }, result, args);
 #include "rill/ir/Ops.def"
 #undef RILL_OP
   }

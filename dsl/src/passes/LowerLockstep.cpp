@@ -203,8 +203,8 @@ class Lowering {
     for (int c = 0; c < width; ++c)
       old.swizzle[static_cast<size_t>(c)] =
           static_cast<uint8_t>(s.mask.full() ? c : s.mask.comps[static_cast<size_t>(c)]);
-    Stmt blend = Stmt::assign(s.dst, Op::Select,
-                              {use(mask), Operand::of_var(t, dst_type.with_width(width)), old}, s.loc);
+    Stmt blend = Stmt::assign(
+        s.dst, Op::Select, {use(mask), Operand::of_var(t, dst_type.with_width(width)), old}, s.loc);
     blend.mask = s.mask;
     out.push_back(std::move(blend));
   }

@@ -37,6 +37,34 @@ TEST(CommonSubexpressions, RepeatedExpressionBecomesACopy) {
   EXPECT_LINE(text, "t# = add(t#, t#)");
 }
 
+// min and max pick by order: min(NaN, 1) is NaN but min(1, NaN) is 1, and min(-0, +0) is -0
+// but min(+0, -0) is +0. So swapped operands are a different expression.
+TEST(CommonSubexpressions, MinAndMaxOperandsAreNotSwapped) {
+  Program p = program("minmax", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    Output<Float> z("z");
+    y = min(x, 1.0f) + max(x, 1.0f);
+    z = min(1.0f, x) + max(1.0f, x);
+  });
+  ir::Function f = cse(p, false);
+  EXPECT_EQ(count_ops(f, Op::Min), 2) << ir::print(f);
+  EXPECT_EQ(count_ops(f, Op::Max), 2) << ir::print(f);
+}
+
+TEST(CommonSubexpressionsCpu, MinAndMaxOfNaNAndSignedZerosKeepTheirOrder) {
+  Program p = program("minmax_nan", [] {
+    Input<Float> x("x");
+    Input<Float> w("w");
+    Output<Float4> y("y");
+    y = Float4(min(x, w), min(w, x), max(x, w), max(w, x));
+  });
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  test::expect_passes_preserve_results<Float4, Float, Float>(
+      p, std::vector<float>{nan, 1.0f, -0.0f, 0.0f, nan},
+      std::vector<float>{1.0f, nan, 0.0f, -0.0f, nan});
+}
+
 TEST(CommonSubexpressions, OperandsMustMatchExactly) {
   Program p = program("exact", [] {
     Input<Float3> v("v");

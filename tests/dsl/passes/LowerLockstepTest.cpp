@@ -61,7 +61,8 @@ class LockstepMachine {
     for (int64_t g = 0; g < l_.count; g += w_) {
       const int n = static_cast<int>(std::min<int64_t>(w_, l_.count - g));
       element_.assign(static_cast<size_t>(w_), 0);
-      for (int lane = 0; lane < w_; ++lane) element_[static_cast<size_t>(lane)] = g + std::min(lane, n - 1);
+      for (int lane = 0; lane < w_; ++lane)
+        element_[static_cast<size_t>(lane)] = g + std::min(lane, n - 1);
       start_group();
       EXPECT_FALSE(block(f_.body)) << "a break outside a loop";
       for (int lane = 0; lane < n; ++lane) {
@@ -239,8 +240,8 @@ std::vector<uint32_t> small_ints(int64_t n, uint32_t seed, int lo, int hi) {
   return v;
 }
 
-Data ints(std::initializer_list<int> widths_in, std::initializer_list<int> widths_out,
-          int64_t n, uint32_t seed) {
+Data ints(std::initializer_list<int> widths_in, std::initializer_list<int> widths_out, int64_t n,
+          uint32_t seed) {
   Data d;
   d.count = d.width = n;
   for (int w : widths_in) d.in.push_back(small_ints(n * w, seed++, -20, 20));

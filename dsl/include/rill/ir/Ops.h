@@ -16,6 +16,12 @@ enum class Op : uint8_t {
 #include "rill/ir/Ops.def"
 #undef RILL_OP
 };
+// How many ops there are: Op values are 0 .. kOpCount - 1.
+constexpr int kOpCount = 0
+#define RILL_OP(...) +1
+#include "rill/ir/Ops.def"
+#undef RILL_OP
+    ;
 
 enum class OpClass : uint8_t {
   Any,        // any type in, same type out
