@@ -77,8 +77,12 @@ Shape shape_of(int64_t count) {
 // own exit handlers. So:
 //   - right after the backend makes its context (the library is loaded by then), it registers
 //     an exit handler (std::atexit). Exit handlers run last-registered first, so this one runs
-//     before the library's own; it calls GLSLBackend::shutdown(), which deletes the backend's
-//     GL objects and destroys the context while GL still works;
+//     before every handler the library registered while loading and making the context; it
+//     calls GLSLBackend::shutdown(), which deletes the backend's GL objects and destroys the
+//     context while GL still works. A handler the driver registers later still runs first:
+//     Mesa's thread queues register theirs at their first use (a shader compile, say) and only
+//     stop their threads there, after which destroying the context is still safe (every glsl
+//     test process, and the NVIDIA EGL runs, exit cleanly);
 //   - a texture or kernel destroyed after that (or after the backend itself) holds this
 //     session, not the backend: it finds `context` null under the lock and skips its GL
 //     calls. Destroying the context already freed every object made in it;
