@@ -238,8 +238,8 @@ Material from_mtl(const tinyobj::material_t& m) {
   r.specular = glm::vec3(m.specular[0], m.specular[1], m.specular[2]);
   r.shininess = std::clamp(m.shininess, 0.0f, 10000.0f);
   r.ior = (m.ior > 0.0f && m.ior <= 100.0f) ? m.ior : 1.5f;
-  // illum 3 and 5: ray-traced reflection (strength = max Ks); 4, 6, 7, 9: glass; d < 1 also
-  // means transparency (transmit = 1 - d).
+  // illum 3, 5, 6 and 7 (the MTL models with ray-traced reflection): reflection of strength
+  // max Ks. Transparency comes from d alone (transmit = 1 - d), whatever the model.
   const float ks = std::max({r.specular.x, r.specular.y, r.specular.z});
   if (m.illum == 3 || m.illum == 5 || m.illum == 6 || m.illum == 7)
     r.reflect = std::clamp(ks, 0.0f, 1.0f);

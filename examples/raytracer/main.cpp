@@ -1,6 +1,6 @@
 // rill-trace: the Rill ray tracer's command line.
 //
-//   rill-trace render SCENE [--backend cpu|opencl|glsl] [--accuracy strict|fast|double]
+//   rill-trace render SCENE [--backend cpu|simd|opencl|glsl] [--accuracy strict|fast|double]
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
 //                           [--grid N|auto] [--grid-density D] [--subgrids N|off]
