@@ -1,4 +1,5 @@
 // Runs cases on a backend and compares the results (see Conformance.h for the rules).
+#include <rill/Reference.h>
 #include <rill/ir/Interpreter.h>
 #include <rill/passes/Passes.h>
 
@@ -111,22 +112,15 @@ Launched run_interpreter(const Program& p, const Shape& shape, const std::vector
   ir::Function f = passes::optimize(p.ir(), PassOptions{}, Accuracy::Strict);
   if (flushing) f = flush_model(f);
   std::vector<Words> outs = prefill;
-  ir::InterpreterLaunch L;
+  ir::InterpreterLaunch L = reference_launch(p);
   for (const Words& w : inputs) L.inputs.push_back(w.data());
   for (Words& w : outs) L.outputs.push_back(w.data());
-  for (const auto& a : p.captured().arrays) {
-    ir::InterpreterArray ia;
-    ia.data = a->host_data_for_read();
-    for (int d = 0; d < 3; ++d) ia.shape[d] = a->shape[d];
-    L.arrays.push_back(ia);
-  }
   L.count = shape.n;
   L.width = shape.width;
   Launched r;
   for (int l = 0; l < c.launches; ++l) {
     if (c.set_launch) c.set_launch(l);
-    L.uniforms.clear();
-    for (const auto& u : p.captured().uniforms) L.uniforms.push_back(u->bits);
+    L.uniforms = reference_launch(p).uniforms;  // as this launch set them
     r.written.push_back(ir::interpret(f, L));
     for (const Words& w : outs) r.outputs.push_back(w);
   }

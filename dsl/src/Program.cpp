@@ -1,5 +1,8 @@
 #include "rill/Program.h"
 
+#include "rill/Parameters.h"
+#include "rill/Reference.h"
+#include "rill/Stream.h"
 #include "rill/ir/Hash.h"
 #include "rill/ir/Printer.h"
 
@@ -10,5 +13,17 @@ Program::Program(detail::CapturedProgram captured)
       hash_(ir::hash(*d_->fn)) {}
 
 std::string Program::print() const { return ir::print(*d_->fn); }
+
+ir::InterpreterLaunch reference_launch(const Program& p) {
+  ir::InterpreterLaunch l;
+  for (const auto& u : p.captured().uniforms) l.uniforms.push_back(u->bits);
+  for (const auto& a : p.captured().arrays) {
+    ir::InterpreterArray ia;
+    ia.data = a->host_data_for_read();
+    for (int d = 0; d < 3; ++d) ia.shape[d] = a->shape[d];
+    l.arrays.push_back(ia);
+  }
+  return l;
+}
 
 }  // namespace rill

@@ -1,5 +1,6 @@
 #include "Harness.h"
 
+#include <rill/Reference.h>
 #include <rill/ir/Interpreter.h>
 #include <rill/ir/Printer.h>
 #include <rill/passes/Passes.h>
@@ -309,7 +310,7 @@ Outcome run_kernel(Kernel& k, const LaunchData& d) {
 // given, receives the instrumented function's extra output.
 Outcome interpret(const ir::Function& f, const Program& p, const LaunchData& d,
                   std::vector<uint32_t>* flags) {
-  ir::InterpreterLaunch l;
+  ir::InterpreterLaunch l = reference_launch(p);
   Outcome o;
   o.out = d.out;
   for (int k = 0; k < kStreams; ++k) {
@@ -319,13 +320,6 @@ Outcome interpret(const ir::Function& f, const Program& p, const LaunchData& d,
   if (flags) {
     flags->assign(static_cast<size_t>(d.count), 0u);
     l.outputs.push_back(flags->data());
-  }
-  for (const auto& u : p.captured().uniforms) l.uniforms.push_back(u->bits);
-  for (const auto& a : p.captured().arrays) {
-    ir::InterpreterArray ia;
-    ia.data = a->host_data_for_read();
-    for (int i = 0; i < 3; ++i) ia.shape[i] = a->shape[i];
-    l.arrays.push_back(ia);
   }
   l.count = d.count;
   l.width = d.width;

@@ -14,7 +14,7 @@
 #include <random>
 
 #include "TestUtil.h"
-#include "rill/ir/Interpreter.h"
+#include "rill/Reference.h"
 
 namespace rill {
 namespace {
@@ -32,17 +32,10 @@ struct Data {
 };
 
 ir::InterpreterLaunch launch_of(const Program& p, const Data& d, Data& result) {
-  ir::InterpreterLaunch l;
+  ir::InterpreterLaunch l = reference_launch(p);
   result = d;
   for (const auto& v : d.in) l.inputs.push_back(v.data());
   for (auto& v : result.out) l.outputs.push_back(v.data());
-  for (const auto& u : p.captured().uniforms) l.uniforms.push_back(u->bits);
-  for (const auto& a : p.captured().arrays) {
-    ir::InterpreterArray ia;
-    ia.data = a->host_data_for_read();
-    for (int i = 0; i < 3; ++i) ia.shape[i] = a->shape[i];
-    l.arrays.push_back(ia);
-  }
   l.count = d.count;
   l.width = d.width;
   return l;
