@@ -20,6 +20,7 @@
 #include "LockstepEmitter.h"
 
 #include <algorithm>
+#include <string_view>
 
 #include "../codegen/CFamilyPrinter.h"
 #include "CEmitter.h"
@@ -213,35 +214,43 @@ RILL_LANES1(rill_v_sqrt, rill_vr, rill_vr, rill_sqrt)
 #endif
 )";
 
-// Helpers with a vector definition of their own in kVectorPrelude; every other HELPER form of
-// Ops.def gets a lane-by-lane wrapper of its scalar definition (lane_wise_helpers()).
-constexpr const char* kVectorHelpers[] = {"add_i", "sub_i", "mul_i", "neg_i", "shl",   "shr",
-                                          "min_i", "max_i", "min_f", "max_f", "abs_f", "i2f",
-                                          "fbits", "ibits", "floor", "ceil",  "trunc", "sqrt"};
+// Whether kVectorPrelude defines rill_v_NAME as vector code: a definition's first parameter
+// is a lane vector, "rill_v_NAME(rill_vr a" (a use such as rill_v_min_i(rill_v_max_i(...))
+// does not match). The prelude is then the one place that says which helpers are vector code.
+bool prelude_defines(const std::string& name) {
+  const std::string_view prelude(kVectorPrelude);
+  for (const char* first : {"(rill_vr ", "(rill_vi "})
+    if (prelude.find("rill_v_" + name + first) != std::string_view::npos) return true;
+  return false;
+}
 
-// RILL_LANES1/2(rill_v_NAME, result, operand, rill_NAME) for every helper of the op table
-// that kVectorPrelude does not define as vector code.
-std::string lane_wise_helpers() {
-  std::string out;
-  std::vector<std::string> done(std::begin(kVectorHelpers), std::end(kVectorHelpers));
-  auto vtype = [](ScalarKind k) { return k == ScalarKind::Float ? "rill_vr" : "rill_vi"; };
-  for (int o = 0; o < kOpCount; ++o) {
-    const Op op = static_cast<Op>(o);
-    const OpInfo& info = op_info(op);
-    for (ScalarKind k : {ScalarKind::Float, ScalarKind::Int}) {
-      const OpForm& form = info.form(k);
-      if (form.kind != FormKind::Helper) continue;
-      if (std::find(done.begin(), done.end(), form.text) != done.end()) continue;
-      done.emplace_back(form.text);
-      std::vector<Type> args(static_cast<size_t>(info.arity), Type{k, 1});
-      std::optional<Type> result = result_type(op, args, nullptr);
-      if (!result || (info.arity != 1 && info.arity != 2))
-        throw Error(std::string("internal: no lane-wise form for helper rill_") + form.text);
-      out += "RILL_LANES" + std::to_string(info.arity) + "(rill_v_" + form.text + ", " +
-             vtype(result->kind) + ", " + vtype(k) + ", rill_" + form.text + ")\n";
+// RILL_LANES1/2(rill_v_NAME, result, operand, rill_NAME) for every HELPER form of the op table
+// that kVectorPrelude does not define as vector code: lane by lane through its scalar
+// definition. The same for every kernel, so made once.
+const std::string& lane_wise_helpers() {
+  static const std::string text = [] {
+    std::string out;
+    std::vector<std::string> done;
+    auto vtype = [](ScalarKind k) { return k == ScalarKind::Float ? "rill_vr" : "rill_vi"; };
+    for (int o = 0; o < kOpCount; ++o) {
+      const Op op = static_cast<Op>(o);
+      const OpInfo& info = op_info(op);
+      for (ScalarKind k : {ScalarKind::Float, ScalarKind::Int}) {
+        const OpForm& form = info.form(k);
+        if (form.kind != FormKind::Helper || prelude_defines(form.text)) continue;
+        if (std::find(done.begin(), done.end(), form.text) != done.end()) continue;
+        done.emplace_back(form.text);
+        std::vector<Type> args(static_cast<size_t>(info.arity), Type{k, 1});
+        std::optional<Type> result = result_type(op, args, nullptr);
+        if (!result || (info.arity != 1 && info.arity != 2))
+          throw Error(std::string("internal: no lane-wise form for helper rill_") + form.text);
+        out += "RILL_LANES" + std::to_string(info.arity) + "(rill_v_" + form.text + ", " +
+               vtype(result->kind) + ", " + vtype(k) + ", rill_" + form.text + ")\n";
+      }
     }
-  }
-  return out;
+    return out;
+  }();
+  return text;
 }
 
 }  // namespace
@@ -290,7 +299,8 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   src += p.body(2);
   // Each real lane that is still alive stores its outputs.
   src += "    for (int l = 0; l < rill_n; ++l) {\n";
-  if (lowered.alive != kNoVar) src += "      if (!" + f.var_name(lowered.alive) + "[l]) continue;\n";
+  if (lowered.alive != kNoVar)
+    src += "      if (!" + f.var_name(lowered.alive) + "[l]) continue;\n";
   src += "      const int64_t rill_i = rill_lane[l];\n";
   for (size_t i = 0; i < f.outputs.size(); ++i) {
     VarId v = f.outputs[i];
