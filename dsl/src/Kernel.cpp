@@ -160,7 +160,18 @@ LaunchArgs Kernel::prepare() {
     a.inputs.push_back(in_[i].get());
   }
   for (const auto& u : program_.captured().uniforms) a.uniforms.push_back(u.get());
-  for (const auto& arr : program_.captured().arrays) a.arrays.push_back(arr.get());
+  for (const auto& arr : program_.captured().arrays) {
+    // A gather reads other elements than its own, which a launch may be rewriting in any
+    // order: the result would depend on the schedule. (Reading the element's own value
+    // through an input bound to the same stream is well defined, and allowed.)
+    for (size_t i = 0; i < out_.size(); ++i)
+      if (out_[i].get() == arr.get())
+        throw Error("kernel '" + f.name + "' gathers from stream '" + arr->name +
+                    "' while writing it as " + describe_param(f, f.outputs[i], "output") +
+                    "; write to another stream (ping-pong between two), or read the element's "
+                    "own value through an input bound to the same stream");
+    a.arrays.push_back(arr.get());
+  }
   return a;
 }
 

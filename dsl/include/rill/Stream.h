@@ -101,14 +101,18 @@ class Storage {
   uint64_t version_ = 0;  // bumped on every host write, so backends can cache uploads
 };
 
-struct StreamState : Storage {
-  int64_t width = 0, height = 1;  // shape; width * height == count
-};
-
+// Data a kernel can gather from at any index: an Array, or a Stream (a stream is an array
+// whose shape is fixed when it is made). `dims` is how many indices a gather takes.
 struct ArrayState : Storage {
   std::string name;
   int dims = 1;
   int64_t shape[3] = {0, 1, 1};
+};
+
+// A stream: the elements a kernel runs over. Stream(n) is 1D (gathered as s[i]); Stream(w, h)
+// is 2D (gathered as s(x, y)), even when h is 1.
+struct StreamState : ArrayState {
+  int64_t width = 0, height = 1;  // shape; width * height == count
 };
 
 template <class V>
@@ -154,9 +158,13 @@ class Stream {
  public:
   using host_type = detail::HostOf<V>;
 
-  explicit Stream(int64_t n) : s_(std::make_shared<detail::StreamState>()) { init(n, 1); }
-  Stream(int64_t width, int64_t height) : s_(std::make_shared<detail::StreamState>()) {
-    init(width, height);
+  explicit Stream(int64_t n, std::string name = "stream")
+      : s_(std::make_shared<detail::StreamState>()) {
+    init(n, 1, 1, std::move(name));
+  }
+  Stream(int64_t width, int64_t height, std::string name = "stream")
+      : s_(std::make_shared<detail::StreamState>()) {
+    init(width, height, 2, std::move(name));
   }
   Stream(std::span<const host_type> data) : Stream(static_cast<int64_t>(data.size())) {
     upload(data);
@@ -173,14 +181,40 @@ class Stream {
   // Sets every element to v.
   void fill(const host_type& v) { upload(std::vector<host_type>(static_cast<size_t>(size()), v)); }
 
+  const std::string& name() const { return s_->name; }
+
+  // Gathers inside a kernel, from what an earlier launch wrote (no host round trip): s[i] on a
+  // 1D stream, s(x, y) on a 2D one. Indices outside are clamped, as for arrays. A launch may
+  // not gather from a stream it writes (Kernel checks); reading the element's own value
+  // through an Input stays the way to update in place.
+  V operator[](const Int& i) const { return gather({i.operand()}, 1); }
+  V operator()(const Int& i) const { return gather({i.operand()}, 1); }
+  V operator()(const Int& x, const Int& y) const { return gather({x.operand(), y.operand()}, 2); }
+  V operator()(const Int2& xy) const { return (*this)(Int(xy.x()), Int(xy.y())); }
+
   operator StreamRef() const { return StreamRef(s_); }
 
  private:
-  void init(int64_t w, int64_t h) {
-    if (w < 0 || h < 1) throw Error("stream shape must be non-negative");
+  void init(int64_t w, int64_t h, int dims, std::string name) {
+    if (w < 0 || h < 1)
+      throw Error("stream '" + name + "': shape " + std::to_string(w) + " x " + std::to_string(h) +
+                  " (the width must be >= 0 and the height >= 1)");
     s_->init(V::type(), w * h);
     s_->width = w;
     s_->height = h;
+    s_->name = std::move(name);
+    s_->dims = dims;
+    s_->shape[0] = w;
+    s_->shape[1] = dims == 2 ? h : 1;
+    s_->shape[2] = 1;
+  }
+  V gather(std::vector<ir::Operand> idx, int dims) const {
+    if (dims != s_->dims)
+      throw Error("stream '" + s_->name + "' is " + std::to_string(s_->dims) +
+                  "D but was gathered with " + std::to_string(dims) + " indices" +
+                  (s_->dims == 2 ? " (gather a 2D stream as s(x, y))"
+                                 : " (a 1D stream is gathered as s[i])"));
+    return V(detail::emit_gather(s_, std::move(idx)), detail::AdoptTag{});
   }
   std::shared_ptr<detail::StreamState> s_;
 };
