@@ -110,30 +110,91 @@ void Kernel::bind_all(bool inputs, std::initializer_list<StreamRef> s) {
   for (const StreamRef& r : s) slots[i++] = r.shared();
 }
 
+namespace {
+
+// "inputs x (float), y (float3); outputs out (float)": what a kernel can bind, for errors.
+std::string describe_interface(const ir::Function& f) {
+  auto list = [&](const std::vector<ir::VarId>& vs) {
+    std::string out;
+    for (ir::VarId v : vs)
+      out += (out.empty() ? "" : ", ") + f.var(v).name + " (" + f.var(v).type.str() + ")";
+    return out.empty() ? std::string("none") : out;
+  };
+  return "inputs " + list(f.inputs) + "; outputs " + list(f.outputs);
+}
+
+}  // namespace
+
 Kernel& Kernel::bind(const std::string& name, StreamRef s) {
   if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
   const ir::Function& f = program_.ir();
-  for (size_t i = 0; i < f.inputs.size(); ++i)
-    if (f.var(f.inputs[i]).name == name) {
-      in_[i] = s.shared();
-      return *this;
+  bool found = false;
+  auto bind_to = [&](const std::vector<ir::VarId>& params, auto& slots, const char* dir) {
+    for (size_t i = 0; i < params.size(); ++i) {
+      if (f.var(params[i]).name != name) continue;
+      if (s.state().type() != f.var(params[i]).type)
+        throw Error("kernel '" + f.name + "': " + describe_param(f, params[i], dir) +
+                    " cannot be bound to stream '" + s.state().name + "' of " +
+                    s.state().type().str() + " elements");
+      slots[i] = s.shared();
+      found = true;
     }
-  for (size_t i = 0; i < f.outputs.size(); ++i)
-    if (f.var(f.outputs[i]).name == name) {
-      out_[i] = s.shared();
-      return *this;
-    }
-  throw Error("kernel '" + f.name + "' has no input or output named '" + name + "'");
+  };
+  bind_to(f.inputs, in_, "input");
+  bind_to(f.outputs, out_, "output");
+  if (!found)
+    throw Error("kernel '" + f.name + "' has no input or output named '" + name +
+                "' (it has " + describe_interface(f) + ")");
+  return *this;
+}
+
+void Kernel::bind_record(const std::string& name, const std::string& stream,
+                         const std::vector<std::pair<std::string, StreamRef>>& leaves) {
+  if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
+  const ir::Function& f = program_.ir();
+  auto full = [&](const std::string& path) { return name.empty() ? path : name + "." + path; };
+  auto declared = [&](const std::string& n) {
+    for (const auto* params : {&f.inputs, &f.outputs})
+      for (ir::VarId v : *params)
+        if (f.var(v).name == n) return true;
+    return false;
+  };
+  // Check the whole record first: a partial binding would leave the kernel half rebound.
+  std::string missing, extra;
+  for (const auto& [path, ref] : leaves)
+    if (!declared(full(path))) missing += (missing.empty() ? "" : ", ") + full(path);
+  if (!name.empty())
+    for (const auto* params : {&f.inputs, &f.outputs})
+      for (ir::VarId v : *params) {
+        const std::string& n = f.var(v).name;
+        if (n.rfind(name + ".", 0) != 0) continue;
+        bool provided = false;
+        for (const auto& [path, ref] : leaves) provided = provided || full(path) == n;
+        if (!provided) extra += (extra.empty() ? "" : ", ") + n;
+      }
+  if (!missing.empty() || !extra.empty())
+    throw Error("kernel '" + f.name + "': record stream '" + stream + "' does not match '" +
+                (name.empty() ? std::string("(unnamed)") : name) + "'" +
+                (missing.empty() ? "" : "; the kernel has no " + missing) +
+                (extra.empty() ? "" : "; the stream has no field for " + extra) + " (kernel " +
+                describe_interface(f) + ")");
+  for (const auto& [path, ref] : leaves) bind(full(path), ref);
 }
 
 LaunchArgs Kernel::prepare() {
   if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
   const ir::Function& f = program_.ir();
   LaunchArgs a;
+  std::string unbound;
+  for (size_t i = 0; i < in_.size(); ++i)
+    if (!in_[i]) unbound += (unbound.empty() ? "" : ", ") + describe_param(f, f.inputs[i], "input");
+  for (size_t i = 0; i < out_.size(); ++i)
+    if (!out_[i])
+      unbound += (unbound.empty() ? "" : ", ") + describe_param(f, f.outputs[i], "output");
+  if (!unbound.empty())
+    throw Error("kernel '" + f.name + "': not bound to a stream: " + unbound +
+                " (bind them with bind(name, stream), or inputs(...) and outputs(...))");
   auto check = [&](const std::shared_ptr<detail::StreamState>& s, ir::VarId v, const char* dir) {
-    if (!s)
-      throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) +
-                  " is not bound to a stream");
     if (s->type() != f.var(v).type)
       throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) +
                   " is bound to a stream of " + s->type().str());

@@ -13,6 +13,20 @@ void Storage::init(ir::Type t, int64_t n) {
   ++version_;
 }
 
+void init_stream(StreamState& s, ir::Type t, int64_t w, int64_t h, int dims, std::string name) {
+  if (w < 0 || h < 1)
+    throw Error("stream '" + name + "': shape " + std::to_string(w) + " x " + std::to_string(h) +
+                " (the width must be >= 0 and the height >= 1)");
+  s.init(t, w * h);
+  s.width = w;
+  s.height = h;
+  s.name = std::move(name);
+  s.dims = dims;
+  s.shape[0] = w;
+  s.shape[1] = dims == 2 ? h : 1;
+  s.shape[2] = 1;
+}
+
 void Storage::sync_to_host() {
   if (host_valid_) return;
   if (!device_owner_ || !device_) throw Error("internal: stream has no valid copy");

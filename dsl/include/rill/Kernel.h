@@ -49,8 +49,18 @@ class Kernel {
     bind_all(false, {StreamRef(s)...});
     return *this;
   }
-  // Binds one input or output by the name it was declared with.
+  // Binds one input or output by the name it was declared with. A name declared both as an
+  // input and as an output binds both (an in-place update). Unknown names and streams of
+  // another element type are errors that name both sides.
   Kernel& bind(const std::string& name, StreamRef s);
+  // Binds a stream of records (Record.h) field by field: the leaf "pos" of the stream binds
+  // the kernel's "<name>.pos" (or "pos" when name is empty, for unnamed record parameters).
+  template <class S>
+    requires requires(const S& s) { s.leaves(); }
+  Kernel& bind(const std::string& name, const S& s) {
+    bind_record(name, s.name(), s.leaves());
+    return *this;
+  }
 
   // Runs once over every element; returns the number of elements written.
   int64_t execute();
@@ -76,6 +86,8 @@ class Kernel {
  private:
   friend Kernel compile(const Program&, const std::string&, const CompileOptions&);
   void bind_all(bool inputs, std::initializer_list<StreamRef> s);
+  void bind_record(const std::string& name, const std::string& stream,
+                   const std::vector<std::pair<std::string, StreamRef>>& leaves);
   LaunchArgs prepare();
   int64_t launch(LaunchArgs& a);
 

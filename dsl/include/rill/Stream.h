@@ -118,6 +118,9 @@ struct StreamState : ArrayState {
 template <class V>
 using HostOf = typename V::host_type;
 
+// Shapes s as a stream of w x h elements of t (dims 1: gathered as s[i]; 2: as s(x, y)).
+void init_stream(StreamState& s, ir::Type t, int64_t w, int64_t h, int dims, std::string name);
+
 template <class V>
 void copy_in(Storage& s, std::span<const HostOf<V>> data) {
   if (static_cast<int64_t>(data.size()) != s.count())
@@ -170,6 +173,13 @@ class Stream {
     upload(data);
   }
   Stream(const std::vector<host_type>& data) : Stream(std::span<const host_type>(data)) {}
+  // Another handle on an existing stream (a field of a record stream, a stream bound
+  // elsewhere), checked to hold elements of V.
+  explicit Stream(const StreamRef& r) : s_(r.shared()) {
+    if (s_->type() != V::type())
+      throw Error("stream '" + s_->name + "' holds " + s_->type().str() + " elements, not " +
+                  V::type().str());
+  }
 
   int64_t size() const { return s_->count(); }
   int64_t width() const { return s_->width; }
@@ -196,17 +206,7 @@ class Stream {
 
  private:
   void init(int64_t w, int64_t h, int dims, std::string name) {
-    if (w < 0 || h < 1)
-      throw Error("stream '" + name + "': shape " + std::to_string(w) + " x " + std::to_string(h) +
-                  " (the width must be >= 0 and the height >= 1)");
-    s_->init(V::type(), w * h);
-    s_->width = w;
-    s_->height = h;
-    s_->name = std::move(name);
-    s_->dims = dims;
-    s_->shape[0] = w;
-    s_->shape[1] = dims == 2 ? h : 1;
-    s_->shape[2] = 1;
+    detail::init_stream(*s_, V::type(), w, h, dims, std::move(name));
   }
   V gather(std::vector<ir::Operand> idx, int dims) const {
     if (dims != s_->dims)

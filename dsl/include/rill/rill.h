@@ -3,7 +3,7 @@
 // This umbrella header is all a user needs:
 //   values (Value.h), operators and math (Operators.h, Math.h), control flow
 //   (ControlFlow.h), kernel interfaces (Parameters.h), streams and arrays (Stream.h),
-//   programs (Program.h), and compiling and launching kernels (Kernel.h).
+//   records (Record.h), programs (Program.h), and compiling and launching kernels (Kernel.h).
 #pragma once
 
 #include "rill/Backend.h"
@@ -13,5 +13,6 @@
 #include "rill/Operators.h"
 #include "rill/Parameters.h"
 #include "rill/Program.h"
+#include "rill/Record.h"
 #include "rill/Stream.h"
 #include "rill/Value.h"
