@@ -140,7 +140,10 @@ TEST(Algebra, UniformsAndArraysAreMergedOnce) {
     Input<Float> v("v");
     Input<Int> i("i");
     Output<Float> w("w");
-    w = v + table[i + 1] * gain + to_float(other[i] + offset);
+    // b gathers from `other` first: its array 0 is the fused program's array 1.
+    // (separate statements: C++ leaves the order of operands unspecified).
+    Int o = other[i] + offset;
+    w = to_float(o) + v + table[i + 1] * gain;
   });
   for (const Program& p : {connect(a, b), combine(a, b, "ab")}) {
     const ir::Function& f = p.ir();
@@ -226,6 +229,32 @@ TEST(Algebra, ResultsConnectAndCombineAgain) {
   EXPECT_EQ(signature(c.ir(), c.ir().inputs), "x:float n:int z:float2");
   EXPECT_EQ(signature(c.ir(), c.ir().outputs), "q:float s:int extra:int3");
   EXPECT_EQ(test::problems(c.ir()), "");
+}
+
+// The example of docs/programming-model.md, "Program algebra".
+TEST(Algebra, DocumentationExample) {
+  Uniform<Float3> light(glm::vec3(0.0f, 0.0f, 1.0f), "light");
+  Program shade = program("shade", [&] {
+    Input<Float3> n("n");
+    Output<Float3> rgb("rgb");
+    rgb = Float3(max(dot(n, light), 0.0f));
+  });
+  Program luma = program("luma", [&] {
+    Input<Float3> rgb("rgb");
+    Output<Float> y("y");
+    y = dot(rgb, Float3(0.2126f, 0.7152f, 0.0722f));
+  });
+  Program facing = program("facing", [&] {
+    Input<Float3> n("n");
+    Output<Int> front("front");
+    front = to_int(sign(n.z()));
+  });
+  Program both = shade >> luma;
+  Program side = shade & facing;
+  EXPECT_EQ(signature(both.ir(), both.ir().inputs), "n:float3");
+  EXPECT_EQ(signature(both.ir(), both.ir().outputs), "y:float");
+  EXPECT_EQ(signature(side.ir(), side.ir().inputs), "n:float3");
+  EXPECT_EQ(signature(side.ir(), side.ir().outputs), "rgb:float3 front:int");
 }
 
 // ---- errors -----------------------------------------------------------------------------------
