@@ -7,10 +7,8 @@
 #include "rill/Algebra.h"
 
 #include <algorithm>
-#include <map>
 
 #include "rill/Parameters.h"
-#include "rill/Stream.h"
 #include "rill/ir/Verifier.h"
 #include "rill/ir/Visitor.h"
 
@@ -105,23 +103,51 @@ class Fusion {
 
   Program run() {
     reject_discards();
+    match_inputs();
     const ir::Function& fa = a_.ir();
     const ir::Function& fb = b_.ir();
-    std::vector<VarId> consumed;  // a's outputs that b reads (connect)
-    std::vector<VarId> b_inputs;  // b's inputs that stay inputs
-    ir::Block prologue;           // copies of inputs a writes, for b
+    if (kind_ == Kind::Connect && consumed_.empty())
+      fail("nothing to connect: no input of '" + fb.name + "' is named like an output of '" +
+           fa.name + "' (outputs of '" + fa.name + "': " + names_of(fa, fa.outputs) +
+           "; inputs of '" + fb.name + "': " + names_of(fb, fb.inputs) + ")");
+    for (VarId o : consumed_) require_written_everywhere(o);
+    if (kind_ == Kind::Connect && consumed_.size() < fa.outputs.size() &&
+        ir::contains(fb.body, ir::StmtKind::Discard))
+      fail("'" + fb.name + "' contains RILL_DISCARD and '" + fa.name +
+           "' has outputs it does not read (" + names_of(fa, unconsumed()) + "): where '" +
+           fb.name + "' discards, the fused kernel would not write them, but the launch of '" +
+           fa.name +
+           "' does; connect only programs whose second half reads all of the "
+           "first's outputs, or remove the discard");
+    merge_uniforms();
+    merge_arrays();
+    for (VarId v = 0; v < fb.vars.size(); ++v)  // the rest of b's variables, in order
+      if (bmap_[v] == ir::kNoVar)
+        bmap_[v] = fn_->add_var(fb.vars[v].type, fb.vars[v].role, fb.vars[v].name);
+    append_body();
+    set_interface();
+    ir::verify_or_throw(*fn_, std::string(op()) + " of '" + fa.name + "' and '" + fb.name + "'");
+    return Program(std::move(out_));
+  }
+
+ private:
+  // Decides what each input of b becomes: a's output of that name (connect), a's input of
+  // that name, a copy of it, or an input of its own.
+  void match_inputs() {
+    const ir::Function& fa = a_.ir();
+    const ir::Function& fb = b_.ir();
     for (VarId in : fb.inputs) {
       const ir::Variable& bv = fb.var(in);
       VarId from = kind_ == Kind::Connect ? find_named(fa, fa.outputs, bv.name) : ir::kNoVar;
       if (from != ir::kNoVar) {
         check_types("output", from, "input", in);
         bmap_[in] = from;
-        consumed.push_back(from);
+        consumed_.push_back(from);
         continue;
       }
       VarId shared = find_named(fa, fa.inputs, bv.name);
       if (shared == ir::kNoVar) {
-        b_inputs.push_back(in);
+        b_inputs_.push_back(in);
         continue;
       }
       check_types("input", shared, "input", in);
@@ -131,45 +157,37 @@ class Fusion {
       }
       // a overwrites its copy of the input; b must see the element as the stream holds it.
       bmap_[in] = fn_->add_var(bv.type, ir::VarRole::Local, bv.name);
-      prologue.push_back(
+      prologue_.push_back(
           ir::Stmt::assign(bmap_[in], ir::Op::Copy, {ir::Operand::of_var(shared, bv.type)}, loc_));
     }
-    if (kind_ == Kind::Connect && consumed.empty())
-      fail("nothing to connect: no input of '" + fb.name + "' is named like an output of '" +
-           fa.name + "' (outputs of '" + fa.name + "': " + names_of(fa, fa.outputs) +
-           "; inputs of '" + fb.name + "': " + names_of(fb, fb.inputs) + ")");
-    for (VarId o : consumed) require_written_everywhere(o);
-    if (kind_ == Kind::Connect && consumed.size() < fa.outputs.size() &&
-        ir::contains(fb.body, ir::StmtKind::Discard))
-      fail("'" + fb.name + "' contains RILL_DISCARD and '" + fa.name +
-           "' has outputs it does not read (" + names_of(fa, unconsumed(consumed)) +
-           "): where b discards, the fused kernel would not write them, but a's own launch "
-           "does; connect only programs whose second half reads all of the first's outputs, "
-           "or remove the discard");
-    merge_uniforms();
-    merge_arrays();
-    for (VarId v = 0; v < fb.vars.size(); ++v)  // the rest of b's variables, in order
-      if (bmap_[v] == ir::kNoVar)
-        bmap_[v] = fn_->add_var(fb.vars[v].type, fb.vars[v].role, fb.vars[v].name);
+  }
 
-    ir::Block body = fb.body;
+  // The body: the copies of inputs a overwrites, a's body, b's body remapped.
+  void append_body() {
+    ir::Block body = b_.ir().body;
     remap(body);
-    prologue.insert(prologue.end(), std::make_move_iterator(fn_->body.begin()),
-                    std::make_move_iterator(fn_->body.end()));
-    prologue.insert(prologue.end(), std::make_move_iterator(body.begin()),
-                    std::make_move_iterator(body.end()));
-    fn_->body = std::move(prologue);
+    ir::Block& all = prologue_;
+    all.insert(all.end(), std::make_move_iterator(fn_->body.begin()),
+               std::make_move_iterator(fn_->body.end()));
+    all.insert(all.end(), std::make_move_iterator(body.begin()),
+               std::make_move_iterator(body.end()));
+    fn_->body = std::move(all);
+  }
 
-    // The interface. a's outputs that b consumed become a's locals.
+  // Inputs: a's, then b's own. Outputs: connect b's, then a's kept; combine a's, then b's.
+  // a's outputs that b reads become locals of the fused program.
+  void set_interface() {
+    const ir::Function& fa = a_.ir();
+    const ir::Function& fb = b_.ir();
     for (VarId v : fa.inputs) fn_->inputs.push_back(v);
-    for (VarId v : b_inputs) fn_->inputs.push_back(bmap_[v]);
-    for (VarId v : consumed) {
+    for (VarId v : b_inputs_) fn_->inputs.push_back(bmap_[v]);
+    for (VarId v : consumed_) {
       fn_->vars[v].role = ir::VarRole::Local;
       fn_->vars[v].slot = -1;
     }
     std::vector<VarId> outs;
     for (VarId v : fb.outputs) outs.push_back(bmap_[v]);
-    std::vector<VarId> kept = unconsumed(consumed);
+    std::vector<VarId> kept = unconsumed();
     outs.insert(kind_ == Kind::Connect ? outs.end() : outs.begin(), kept.begin(), kept.end());
     for (VarId v : outs) {
       VarId same = find_named(*fn_, fn_->outputs, fn_->vars[v].name);
@@ -186,12 +204,8 @@ class Fusion {
       fn_->vars[fn_->inputs[i]].slot = static_cast<int>(i);
     for (size_t i = 0; i < fn_->outputs.size(); ++i)
       fn_->vars[fn_->outputs[i]].slot = static_cast<int>(i);
-
-    ir::verify_or_throw(*fn_, std::string(op()) + " of '" + fa.name + "' and '" + fb.name + "'");
-    return Program(std::move(out_));
   }
 
- private:
   const char* op() const { return kind_ == Kind::Connect ? "connect" : "combine"; }
 
   [[noreturn]] void fail(const std::string& what) const {
@@ -253,10 +267,11 @@ class Fusion {
          "have; write the output on every path (e.g. assign a default first)");
   }
 
-  std::vector<VarId> unconsumed(const std::vector<VarId>& consumed) const {
+  // a's outputs that b does not read (all of them for combine).
+  std::vector<VarId> unconsumed() const {
     std::vector<VarId> out;
     for (VarId v : a_.ir().outputs)
-      if (std::find(consumed.begin(), consumed.end(), v) == consumed.end()) out.push_back(v);
+      if (std::find(consumed_.begin(), consumed_.end(), v) == consumed_.end()) out.push_back(v);
     return out;
   }
 
@@ -317,8 +332,11 @@ class Fusion {
   SourceLoc loc_;
   std::shared_ptr<ir::Function> fn_;
   detail::CapturedProgram out_;
-  std::vector<VarId> bmap_;     // b's variable -> the fused program's
-  std::vector<int> array_map_;  // b's array index -> the fused program's
+  std::vector<VarId> consumed_;  // a's outputs that b reads (connect)
+  std::vector<VarId> b_inputs_;  // b's inputs that stay inputs
+  ir::Block prologue_;           // copies of inputs a overwrites, for b
+  std::vector<VarId> bmap_;      // b's variable -> the fused program's
+  std::vector<int> array_map_;   // b's array index -> the fused program's
 };
 
 }  // namespace
