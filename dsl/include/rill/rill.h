@@ -3,9 +3,11 @@
 // This umbrella header is all a user needs:
 //   values (Value.h), operators and math (Operators.h, Math.h), control flow
 //   (ControlFlow.h), kernel interfaces (Parameters.h), streams and arrays (Stream.h),
-//   records (Record.h), programs (Program.h), and compiling and launching kernels (Kernel.h).
+//   records (Record.h), programs (Program.h), connecting and combining them (Algebra.h), and
+//   compiling and launching kernels (Kernel.h).
 #pragma once
 
+#include "rill/Algebra.h"
 #include "rill/Backend.h"
 #include "rill/ControlFlow.h"
 #include "rill/Kernel.h"
