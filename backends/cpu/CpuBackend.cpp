@@ -180,7 +180,11 @@ class CpuBackend : public Backend {
 std::vector<std::string> compiler_flags(Accuracy a) {
   std::vector<std::string> f{
       "-std=c99", "-O2", "-fPIC", "-shared", "-fno-math-errno", "-fwrapv", "-fno-strict-aliasing",
-      "-w"};
+      // GCC 12.2 (Debian 12) miscompiles long chains of int max over selects with its SLP
+      // vectorizer at -O2: the unrolled block fold of rill::any returned 0 for a block whose
+      // first element was set (ReduceTest.IntegersWrapAndTruthValuesCount). Kernels are
+      // scalar code per element, so SLP gains little; clang accepts the flag too.
+      "-fno-tree-slp-vectorize", "-w"};
   if (a == Accuracy::Fast) {
     // -ffast-math's parts, spelled out: the option itself would also link crtfastmath.o,
     // which turns on flush-to-zero for the whole process, strict kernels included.

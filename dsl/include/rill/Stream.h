@@ -70,6 +70,10 @@ class Storage {
   T* device_buffer(const Backend* b) const {
     return device_owner_ == b ? static_cast<T*>(device_.get()) : nullptr;
   }
+  // The backend holding the device copy (current or stale), or null.
+  Backend* device_owner() const { return device_ ? device_owner_ : nullptr; }
+  // Whether the device copy is the current one (the host copy is stale until read back).
+  bool device_is_newer() const { return !host_valid_; }
   // Whether b holds the device copy and it is current.
   bool is_device_current(const Backend* b) const {
     return device_owner_ == b && device_ && device_valid_;

@@ -3,7 +3,7 @@
 // This umbrella header is all a user needs:
 //   values (Value.h), operators and math (Operators.h, Math.h), control flow
 //   (ControlFlow.h), kernel interfaces (Parameters.h), streams and arrays (Stream.h),
-//   records (Record.h), programs (Program.h), connecting and combining them (Algebra.h), and
+//   records (Record.h), reductions (Reduce.h), programs (Program.h), connecting and combining them (Algebra.h), and
 //   compiling and launching kernels (Kernel.h).
 #pragma once
 
@@ -16,5 +16,6 @@
 #include "rill/Parameters.h"
 #include "rill/Program.h"
 #include "rill/Record.h"
+#include "rill/Reduce.h"
 #include "rill/Stream.h"
 #include "rill/Value.h"

@@ -17,9 +17,12 @@ uint64_t hash_bytes(std::string_view bytes, uint64_t h) {
 uint64_t hash(const Function& f) {
   // The printed form is complete (types, interface, body, every constant's exact bits) and
   // independent of pointers and process state, which makes the hash stable. The kernel's
-  // name is left out: renaming a kernel does not change what it computes.
+  // name and its arrays' names are left out: renaming does not change what it computes, and
+  // the generated code refers to arrays by position. (Library kernels such as reductions
+  // gather from streams of any name and must not recompile for each.)
   Function unnamed = f;
   unnamed.name.clear();
+  for (ArrayDecl& a : unnamed.arrays) a.name.clear();
   return hash_bytes(print(unnamed));
 }
 

@@ -1,0 +1,190 @@
+// Reductions (Reduce.h): a fixed tree of Rill kernels, each folding blocks of kReduceBlock
+// elements that it gathers from the level before. Being ordinary kernels, they run on every
+// backend and give the same bits wherever the kernels do.
+#include "rill/Reduce.h"
+
+#include <cmath>
+#include <limits>
+
+#include "rill/ControlFlow.h"
+#include "rill/Kernel.h"
+#include "rill/Math.h"
+#include "rill/Operators.h"
+#include "rill/Parameters.h"
+
+namespace rill::detail {
+
+namespace {
+
+const char* op_name(ReduceOp op) {
+  switch (op) {
+    case ReduceOp::Sum:
+      return "sum";
+    case ReduceOp::Min:
+      return "minimum";
+    case ReduceOp::Max:
+      return "maximum";
+    case ReduceOp::Count:
+      return "count";
+    case ReduceOp::Any:
+      return "any";
+    case ReduceOp::All:
+      return "all";
+  }
+  return "?";
+}
+
+// count, any and all first turn each element into 0 or 1, then sum, max or min those.
+bool reads_truth(ReduceOp op) {
+  return op == ReduceOp::Count || op == ReduceOp::Any || op == ReduceOp::All;
+}
+
+template <class V>
+V combine(ReduceOp op, const V& a, const V& b) {
+  switch (op) {
+    case ReduceOp::Sum:
+    case ReduceOp::Count:
+      return a + b;
+    case ReduceOp::Min:
+    case ReduceOp::All:
+      return min(a, b);
+    case ReduceOp::Max:
+    case ReduceOp::Any:
+      return max(a, b);
+  }
+  return a;
+}
+
+template <class V>
+std::array<uint32_t, 4> identity(ReduceOp op) {
+  using T = typename V::scalar_type;
+  T v{};
+  if (op == ReduceOp::Min)
+    v = std::numeric_limits<T>::has_infinity ? std::numeric_limits<T>::infinity()
+                                             : std::numeric_limits<T>::max();
+  if (op == ReduceOp::Max)
+    v = std::numeric_limits<T>::has_infinity ? -std::numeric_limits<T>::infinity()
+                                             : std::numeric_limits<T>::min();
+  if (op == ReduceOp::All) v = T(1);
+  std::array<uint32_t, 4> out{};
+  for (int c = 0; c < V::width; ++c) out[static_cast<size_t>(c)] = scalar_bits<T>(v);
+  return out;
+}
+
+// One level: element j folds block j of `src` (len elements, or rows of len elements split
+// into row_blocks blocks each for a 2D source).
+template <class V>
+Program level_program(ReduceOp op, const Stream<V>& src, bool two_d, bool map_truth,
+                      const Uniform<Int>& len, const Uniform<Int>& row_blocks) {
+  std::string name = std::string("rill_") + op_name(op) + "_" + V::type().str() +
+                     (two_d ? "_rows" : "") + (map_truth ? "_first" : "");
+  return program(name, [&] {
+    Output<V> out("partial");
+    Int j = element_index();
+    Int bx = j, y = 0;
+    if (two_d) {
+      bx = j % row_blocks;
+      y = j / row_blocks;
+    }
+    Int first = bx * kReduceBlock;
+    auto at = [&](const Int& k) {
+      V x = two_d ? src(k, y) : src[k];
+      if constexpr (std::is_same_v<V, Int>)
+        if (map_truth) x = select(x != 0, Int(1), Int(0));
+      return x;
+    };
+    V acc = at(first);
+    RILL_IF(first + kReduceBlock <= len) {
+      for (int k = 1; k < kReduceBlock; ++k) acc = combine(op, acc, at(first + k));
+    }
+    RILL_ELSE {
+      // The last block of a row may be short: elements past the end leave acc as it is.
+      for (int k = 1; k < kReduceBlock; ++k) {
+        Int i = first + k;
+        acc = select(i < len, combine(op, acc, at(i)), acc);
+      }
+    }
+    RILL_ENDIF;
+    out = acc;
+  });
+}
+
+int64_t blocks(int64_t n) {
+  return (n + kReduceBlock - 1) / kReduceBlock;
+}
+
+template <class V>
+std::array<uint32_t, 4> reduce_typed(const StreamRef& s, ReduceOp op, const std::string& backend) {
+  StreamState& st = s.state();
+  if (st.count() == 0) return identity<V>(op);
+  if (st.width > std::numeric_limits<int32_t>::max() ||
+      st.count() > std::numeric_limits<int32_t>::max())
+    throw Error(std::string(op_name(op)) + " of stream '" + st.name +
+                "': " + std::to_string(st.count()) + " elements; reductions take under 2^31");
+  CompileOptions options;
+  options.accuracy = Accuracy::Strict;
+  Stream<V> src(s);
+  bool two_d = st.dims == 2 && st.height > 1;
+  bool first_level = true;
+  int64_t len = two_d ? st.width : st.count();
+  int64_t count = two_d ? blocks(st.width) * st.height : blocks(len);
+  for (;;) {
+    Uniform<Int> u_len(static_cast<int32_t>(len), "rill_len");
+    Uniform<Int> u_row_blocks(static_cast<int32_t>(blocks(len)), "rill_row_blocks");
+    Program p = level_program(op, src, two_d, first_level && reads_truth(op), u_len, u_row_blocks);
+    Stream<V> partial(count, "rill_partial");
+    compile(p, backend, options).bind("partial", partial).execute();
+    if (count == 1) {
+      std::array<uint32_t, 4> out{};
+      const uint32_t* w =
+          static_cast<StreamState&>(StreamRef(partial).state()).host_data_for_read();
+      for (int c = 0; c < V::width; ++c) out[static_cast<size_t>(c)] = w[c];
+      return out;
+    }
+    src = partial;
+    two_d = false;
+    first_level = false;
+    len = count;
+    count = blocks(len);
+  }
+}
+
+}  // namespace
+
+std::array<uint32_t, 4> reduce(const StreamRef& s, ReduceOp op, const std::string& backend_name) {
+  StreamState& st = s.state();
+  std::string where = backend_name;
+  if (where.empty()) {
+    // Where the newest copy is: reducing there moves only the result.
+    Backend* owner = st.device_owner();
+    where = owner && st.is_device_current(owner) ? owner->name() : "cpu";
+  }
+  const ir::Type t = st.type();
+  if (reads_truth(op) && t != ir::int_type(1))
+    throw Error(std::string(op_name(op)) + " of stream '" + st.name + "': needs a Stream<Int> " +
+                "of truth values (0 is false), not a stream of " + t.str());
+  if (t.kind == ir::ScalarKind::Float) {
+    switch (t.width) {
+      case 1:
+        return reduce_typed<Float>(s, op, where);
+      case 2:
+        return reduce_typed<Float2>(s, op, where);
+      case 3:
+        return reduce_typed<Float3>(s, op, where);
+      default:
+        return reduce_typed<Float4>(s, op, where);
+    }
+  }
+  switch (t.width) {
+    case 1:
+      return reduce_typed<Int>(s, op, where);
+    case 2:
+      return reduce_typed<Int2>(s, op, where);
+    case 3:
+      return reduce_typed<Int3>(s, op, where);
+    default:
+      return reduce_typed<Int4>(s, op, where);
+  }
+}
+
+}  // namespace rill::detail
