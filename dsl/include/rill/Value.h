@@ -179,6 +179,20 @@ class Value {
   Swizzle<T, 1> y() const { return (*this)(1); }
   Swizzle<T, 1> z() const { return (*this)(2); }
   Swizzle<T, 1> w() const { return (*this)(3); }
+  // Named swizzles, GLSL's spellings, as far as the width allows (v.xyz() on a Float2 does not
+  // compile). Like v(0, 1), they can be assigned to: v.xy() = w;
+  Swizzle<T, 2> xy() const requires(N >= 2) { return (*this)(0, 1); }
+  Swizzle<T, 2> xz() const requires(N >= 3) { return (*this)(0, 2); }
+  Swizzle<T, 2> yz() const requires(N >= 3) { return (*this)(1, 2); }
+  Swizzle<T, 3> xyz() const requires(N >= 3) { return (*this)(0, 1, 2); }
+  Swizzle<T, 4> xyzw() const requires(N == 4) { return (*this)(0, 1, 2, 3); }
+  Swizzle<T, 1> r() const { return (*this)(0); }
+  Swizzle<T, 1> g() const requires(N >= 2) { return (*this)(1); }
+  Swizzle<T, 1> b() const requires(N >= 3) { return (*this)(2); }
+  Swizzle<T, 1> a() const requires(N == 4) { return (*this)(3); }
+  Swizzle<T, 2> rg() const requires(N >= 2) { return (*this)(0, 1); }
+  Swizzle<T, 3> rgb() const requires(N >= 3) { return (*this)(0, 1, 2); }
+  Swizzle<T, 4> rgba() const requires(N == 4) { return (*this)(0, 1, 2, 3); }
 
   template <class O>
   Value& operator+=(const O& o) {
