@@ -379,5 +379,23 @@ TEST(Capture, ProgramIrIsTheUnoptimizedCapture) {
   EXPECT_EQ(test::problems(p.ir()), "");
 }
 
+// ---- printing ----------------------------------------------------------------------
+
+TEST(Capture, DumpAndStreamOperatorWriteTheIrText) {
+  Program p = program("dumped", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    y = x * 2.0f;
+  });
+  std::ostringstream dumped, streamed;
+  p.dump(dumped);
+  streamed << p;
+  EXPECT_EQ(dumped.str(), p.print());
+  EXPECT_EQ(streamed.str(), p.print());
+  std::ostringstream empty;
+  empty << Program();
+  EXPECT_EQ(empty.str(), "(empty program)\n");
+}
+
 }  // namespace
 }  // namespace rill
