@@ -207,6 +207,31 @@ Ref emit_gather(const std::shared_ptr<ArrayState>& array, std::vector<ir::Operan
   return r;
 }
 
+void label(const Ref& r, std::string name, SourceLoc loc) {
+  if (name.empty()) throw Error("rill::label: the name is empty", loc);
+  if (r.kind == Ref::Kind::Uniform)
+    throw Error("rill::label('" + name + "'): a uniform keeps the name it was declared with ('" +
+                    r.uniform->name + "')",
+                loc);
+  if (r.kind == Ref::Kind::Const)
+    throw Error("rill::label('" + name +
+                    "'): this value is a constant made outside any program, not a variable of "
+                    "one; only values created inside a program body can be named",
+                loc);
+  Builder& b = builder("rill::label", loc);
+  if (r.program != b.serial)
+    throw Error("rill::label('" + name + "'): the value belongs to program '" +
+                    program_name(r.program) + "', not to '" + b.fn->name + "'",
+                loc);
+  ir::Variable& v = b.fn->vars.at(r.var);
+  if (v.role == ir::VarRole::Input || v.role == ir::VarRole::Output)
+    throw Error("rill::label('" + name +
+                    "'): " + (v.role == ir::VarRole::Input ? "input '" : "output '") + v.name +
+                    "' keeps the name it was declared with (kernels bind streams by it)",
+                loc);
+  v.name = std::move(name);
+}
+
 Ref new_var(ir::Type t, ir::VarRole role, std::string name, SourceLoc loc) {
   const char* what = role == ir::VarRole::Input    ? "declaring an Input"
                      : role == ir::VarRole::Output ? "declaring an Output"

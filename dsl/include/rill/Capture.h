@@ -51,6 +51,9 @@ Ref emit(ir::Op op, ir::Type result, std::vector<ir::Operand> args, SourceLoc lo
 // Appends a gather from `array` (registering it with the program on first use).
 Ref emit_gather(const std::shared_ptr<ArrayState>& array, std::vector<ir::Operand> index,
                 SourceLoc loc = {});
+// Names the variable `r` refers to (rill::label): the name then appears in printed IR and
+// generated code. Throws for constants, uniforms, inputs and outputs.
+void label(const Ref& r, std::string name, SourceLoc loc = {});
 // A new variable of the current program.
 Ref new_var(ir::Type t, ir::VarRole role, std::string name = {}, SourceLoc loc = {});
 // Appends `dst[.mask] = src`. dst must be a variable of the current program.

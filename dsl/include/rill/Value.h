@@ -374,6 +374,21 @@ class Swizzle : public Value<T, M> {
   ir::Mask mask_;
 };
 
+// Names the variable behind a value of the program being captured, so that printed IR
+// (Program::print, Kernel::ir) and generated code (Kernel::source) call it by that name:
+//
+//   Float t = dot(n, l);
+//   rill::label(t, "ndotl");     // printed as ndotl_12 (the variable id keeps names unique)
+//
+// Printers keep only identifier characters. Throws rill::Error for a constant made outside
+// any program, a uniform, an input or an output (which keep their declared names), or a value
+// of another program. The optimizer keeps the name while the variable survives; a named copy
+// of an unnamed temporary passes its name on when copy propagation removes it.
+template <class T, int N>
+void label(const Value<T, N>& v, std::string name, SourceLoc loc = RILL_HERE) {
+  detail::label(v.ref(), std::move(name), loc);
+}
+
 // The value types users write kernels with.
 using Float = Value<float, 1>;
 using Float2 = Value<float, 2>;
