@@ -379,6 +379,38 @@ TEST(Capture, ProgramIrIsTheUnoptimizedCapture) {
   EXPECT_EQ(test::problems(p.ir()), "");
 }
 
+// ---- arrays with a shape and data -------------------------------------------------------------
+
+TEST(ArrayShape, ConstructorsWithDataAndShapeLayXFastest) {
+  std::vector<float> d2 = {0, 1, 2, 10, 11, 12};  // 3 x 2
+  Array<Float> a2(3, 2, d2, "plane");
+  EXPECT_EQ(a2.size(), 6);
+  EXPECT_EQ(a2.download(), d2);
+  EXPECT_EQ(a2.state()->dims, 2);
+  EXPECT_EQ(a2.state()->shape[0], 3);
+  EXPECT_EQ(a2.state()->shape[1], 2);
+  std::vector<glm::ivec2> d3(2 * 3 * 4);
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 2; ++x)
+        d3[static_cast<size_t>(x + 2 * (y + 3 * z))] = glm::ivec2(x + 10 * y, z);
+  Array<Int2> a3(2, 3, 4, d3);
+  EXPECT_EQ(a3.state()->dims, 3);
+  EXPECT_EQ(a3.state()->shape[2], 4);
+  EXPECT_EQ(a3.state()->name, "array");
+  EXPECT_EQ(a3.download(), d3);
+}
+
+TEST(ArrayShape, DataOfTheWrongSizeIsAnErrorNamingTheShape) {
+  std::vector<float> five(5);
+  EXPECT_HAS(test::error_of([&] { Array<Float>(3, 2, five, "plane"); }),
+             "array 'plane': 5 elements given for a 3 x 2 array, which holds 6");
+  EXPECT_HAS(test::error_of([&] { Array<Float>(1, 2, 3, five, "vol"); }),
+             "array 'vol': 5 elements given for a 1 x 2 x 3 array, which holds 6");
+  EXPECT_HAS(test::error_of([&] { Array<Float>(0, 2, five, "empty"); }),
+             "every dimension must be at least 1");
+}
+
 // ---- printing and names ----------------------------------------------------------------------
 
 TEST(Capture, DumpAndStreamOperatorWriteTheIrText) {

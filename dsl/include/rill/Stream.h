@@ -6,8 +6,9 @@
 // width * height either way.
 //
 // An Array<V> is read-only data that a kernel gathers from at any index: arr[i], or arr(x, y)
-// and arr(x, y, z) for 2D and 3D shapes. An index outside the array is clamped to the
-// nearest element on every backend (reads never fault).
+// and arr(x, y, z) for 2D and 3D shapes. Its data is laid out x fastest, then y, then z:
+// element (x, y, z) of an nx x ny x nz array is data[x + nx * (y + ny * z)]. An index outside
+// the array is clamped to the nearest element on every backend (reads never fault).
 //
 // Both keep a host copy and, per backend, a device copy; upload() and download() move data
 // between host and whichever backend last wrote it, only when needed.
@@ -201,6 +202,17 @@ class Array {
       : Array(static_cast<int64_t>(data.size()), std::move(name)) {
     upload(data);
   }
+  // A 2D or 3D array with its data, laid out x fastest: element (x, y, z) is
+  // data[x + nx * (y + ny * z)]. data must hold exactly nx * ny (* nz) elements.
+  Array(int64_t nx, int64_t ny, const std::vector<host_type>& data, std::string name = "array")
+      : Array(2, {nx, ny, 1}, std::move(name)) {
+    upload_shaped(data);
+  }
+  Array(int64_t nx, int64_t ny, int64_t nz, const std::vector<host_type>& data,
+        std::string name = "array")
+      : Array(3, {nx, ny, nz}, std::move(name)) {
+    upload_shaped(data);
+  }
 
   int64_t size() const { return s_->count(); }
   void upload(std::span<const host_type> data) { detail::copy_in<V>(*s_, data); }
@@ -238,6 +250,17 @@ class Array {
       throw Error("array '" + s_->name + "' is " + std::to_string(s_->dims) + "D but was indexed with " +
                   std::to_string(dims) + " indices");
     return V(detail::emit_gather(s_, std::move(idx)), detail::AdoptTag{});
+  }
+  void upload_shaped(const std::vector<host_type>& data) {
+    if (static_cast<int64_t>(data.size()) != size()) {
+      std::string shape = std::to_string(s_->shape[0]) + " x " + std::to_string(s_->shape[1]);
+      if (s_->dims == 3) shape += " x " + std::to_string(s_->shape[2]);
+      throw Error("array '" + s_->name + "': " + std::to_string(data.size()) +
+                  " elements given for a " + shape + " array, which holds " +
+                  std::to_string(size()) +
+                  " (laid out x fastest: element (x, y, z) at x + nx * (y + ny * z))");
+    }
+    upload(data);
   }
   std::shared_ptr<detail::ArrayState> s_;
 };
