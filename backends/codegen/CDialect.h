@@ -89,18 +89,30 @@ class CDialect : public Dialect {
     const ir::ArrayDecl& a = f.arrays.at(static_cast<size_t>(s.array));
     std::string id = std::to_string(s.array);
     std::string shape = "arr" + id + "_shape";
-    // Clamp each index into its dimension, then linearize (x fastest).
-    std::string lin = "rill_clamp_index(" + index[0] + ", " + shape + "[0])";
-    if (index.size() > 1)
-      lin += " + " + shape + "[0] * rill_clamp_index(" + index[1] + ", " + shape + "[1])";
+    // Map each index into its dimension under the array's boundary mode, then linearize (x
+    // fastest), in 64 bits.
+    const std::string fn = "rill_" + boundary_index_helper(a.boundary);
+    auto dim = [&](size_t d) { return shape + "[" + std::to_string(d) + "]"; };
+    std::string lin = fn + "(" + index[0] + ", " + dim(0) + ")";
+    if (index.size() > 1) lin += " + " + dim(0) + " * " + fn + "(" + index[1] + ", " + dim(1) + ")";
     if (index.size() > 2)
-      lin += " + " + shape + "[0] * " + shape + "[1] * rill_clamp_index(" + index[2] + ", " +
-             shape + "[2])";
+      lin += " + " + dim(0) + " * " + dim(1) + " * " + fn + "(" + index[2] + ", " + dim(2) + ")";
     std::string out =
         "{\n  const int64_t g = (" + lin + ") * " + std::to_string(a.elem.width) + ";\n";
+    const bool border = a.boundary == ir::Boundary::Constant;
+    if (border) {
+      std::string inside;
+      for (size_t d = 0; d < index.size(); ++d)
+        inside +=
+            (d ? " && " : "") + std::string("rill_index_inside(") + index[d] + ", " + dim(d) + ")";
+      out += "  const int rill_inside = " + inside + ";\n";
+    }
     for (size_t c = 0; c < dst.size(); ++c) {
-      std::string load = "arr" + id + "[g + " + std::to_string(c) + "]";
-      out += "  " + dst[c] + " = " + (a.elem.is_float() ? "(rill_real)" : "") + load + ";\n";
+      std::string load = (a.elem.is_float() ? "(rill_real)" : "") + std::string("arr") + id +
+                         "[g + " + std::to_string(c) + "]";
+      if (border)
+        load = select(a.elem.kind, "rill_inside", load, literal(a.elem.kind, a.border.bits[c]));
+      out += "  " + dst[c] + " = " + load + ";\n";
     }
     return out + "}\n";
   }

@@ -75,6 +75,25 @@ class Dialect {
   virtual std::string branch_condition(const std::string& c) const { return c; }
 };
 
+// The helper mapping one gather index into its dimension under an array's boundary mode
+// (ir::Boundary; ir::boundary_index is its reference): rill_clamp_index, rill_wrap_index or
+// rill_mirror_index, defined by each dialect family's prelude (lockstep C: rill_v_*). A
+// Constant-mode gather loads at the clamped index, so the load never leaves the array, and
+// its dialect replaces the result by the border value unless rill_index_inside holds for
+// every index.
+inline std::string boundary_index_helper(ir::Boundary b) {
+  switch (b) {
+    case ir::Boundary::Wrap:
+      return "wrap_index";
+    case ir::Boundary::Mirror:
+      return "mirror_index";
+    case ir::Boundary::Clamp:
+    case ir::Boundary::Constant:
+      break;
+  }
+  return "clamp_index";
+}
+
 // Component c of Dot, Cross or Construct, the operations that combine components, spelled in
 // one fixed order for every C-family printer (scalar or lockstep): `operand(o, i)` names
 // component i of an operand.

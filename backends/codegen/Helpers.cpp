@@ -60,8 +60,20 @@ RILL_FN int32_t rill_f2i(rill_real x) {
   if (x < (rill_real)-2147483648.0) return (int32_t)(-2147483647 - 1);
   return (int32_t)x;
 }
-/* Array index, clamped into [0, n). */
+/* Array index in [0, n) under each boundary mode (ir::Boundary states them; ir::boundary_index
+   is the reference). Wrap and mirror map a negative i through -1 - i, which never overflows,
+   so no remainder of a negative number is taken. Computed in 64 bits. */
 RILL_FN int64_t rill_clamp_index(int32_t i, int64_t n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
+RILL_FN int64_t rill_wrap_index(int32_t i, int64_t n) {
+  const int64_t j = i >= 0 ? (int64_t)i : -1 - (int64_t)i;
+  return i >= 0 ? j % n : n - 1 - j % n;
+}
+RILL_FN int64_t rill_mirror_index(int32_t i, int64_t n) {
+  const int64_t j = i >= 0 ? (int64_t)i : -1 - (int64_t)i;
+  const int64_t r = j % n;
+  return (j / n) % 2 == 0 ? r : n - 1 - r;
+}
+RILL_FN int rill_index_inside(int32_t i, int64_t n) { return i >= 0 && i < n; }
 )";
   return text;
 }

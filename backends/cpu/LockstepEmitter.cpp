@@ -128,6 +128,17 @@ RILL_FN rill_vr rill_v_ibits(rill_vi a) { return (rill_vr)a; }
 RILL_FN rill_vi rill_v_clamp_index(rill_vi i, int64_t n) {
   return rill_v_min_i(rill_v_max_i(i, rill_splat_i(0)), rill_splat_i((int32_t)(n - 1)));
 }
+/* The other boundary modes lane by lane through the scalar helpers (n < 2^31, so each result
+   fits a lane), and the lanes whose index is inside [0, n) as a lane mask. */
+RILL_FN rill_vi rill_v_wrap_index(rill_vi i, int64_t n) {
+  rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = (int32_t)rill_wrap_index(i[l], n); return r;
+}
+RILL_FN rill_vi rill_v_mirror_index(rill_vi i, int64_t n) {
+  rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = (int32_t)rill_mirror_index(i[l], n); return r;
+}
+RILL_FN rill_vi rill_v_index_inside(rill_vi i, int64_t n) {
+  return RILL_CMP(i >= rill_splat_i(0)) & RILL_CMP(i < rill_splat_i((int32_t)n));
+}
 /* Gathers: each lane loads base[i]. Built from scalar loads (a vector initializer), which
    measured as fast as AVX2's microcoded gather instructions on the reference machine. */
 #if RILL_W == 8

@@ -89,8 +89,11 @@ class VectorDialect : public codegen::CDialect {
                      const std::vector<std::string>& dst) const override {
     const ir::ArrayDecl& a = f.arrays.at(static_cast<size_t>(s.array));
     const std::string id = std::to_string(s.array), shape = "arr" + id + "_shape";
+    // Each index mapped into its dimension under the array's boundary mode (CDialect's
+    // gather says how; Constant also keeps a lane mask of the lanes whose indices are inside).
+    const std::string fn = "rill_v_" + codegen::boundary_index_helper(a.boundary);
     auto clamped = [&](size_t d) {
-      return "rill_v_clamp_index(" + index[d] + ", " + shape + "[" + std::to_string(d) + "])";
+      return fn + "(" + index[d] + ", " + shape + "[" + std::to_string(d) + "])";
     };
     std::string lin = clamped(0);
     if (index.size() > 1)
@@ -101,6 +104,14 @@ class VectorDialect : public codegen::CDialect {
             shape + "[1])), " + clamped(2) + "))";
     std::string out = "{\n  const rill_vi rill_g = rill_v_mul_i(" + lin + ", rill_splat_i(" +
                       std::to_string(a.elem.width) + "));\n";
+    const bool border = a.boundary == ir::Boundary::Constant;
+    if (border) {
+      std::string inside;
+      for (size_t d = 0; d < index.size(); ++d)
+        inside += (d ? " & " : "") + std::string("rill_v_index_inside(") + index[d] + ", " + shape +
+                  "[" + std::to_string(d) + "])";
+      out += "  const rill_vi rill_inside = " + inside + ";\n";
+    }
     const bool whole =
         lanes_ == 8 && dst.size() >= 2 &&
         (a.elem.is_float() ? a.elem.width == 3 || a.elem.width == 4 : a.elem.width == 2);
@@ -124,6 +135,7 @@ class VectorDialect : public codegen::CDialect {
       std::string v =
           whole ? "rill_q" + std::to_string(c)
                 : "rill_gather" + kind + "(arr" + id + " + " + std::to_string(c) + ", rill_g)";
+      if (border) v = select(a.elem.kind, "rill_inside", v, literal(a.elem.kind, a.border.bits[c]));
       out += "  " + dst[c] + " = " + v + ";\n";
     }
     return out + "}\n";

@@ -103,7 +103,20 @@ int rill_f2i(float x) {
 }
 int rill_fbits(float x) { return floatBitsToInt(x); }
 float rill_ibits(int i) { return intBitsToFloat(i); }
+// Array index in [0, n) under each boundary mode (ir::boundary_index is the reference). A
+// negative i is mapped through -1 - i (~i, never negative, never overflowing), since GLSL
+// leaves % of a negative operand undefined.
 int rill_clamp_index(int i, int n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
+int rill_wrap_index(int i, int n) {
+  int j = i >= 0 ? i : ~i;
+  return i >= 0 ? j % n : n - 1 - j % n;
+}
+int rill_mirror_index(int i, int n) {
+  int j = i >= 0 ? i : ~i;
+  int r = j % n;
+  return ((j / n) & 1) == 0 ? r : n - 1 - r;
+}
+bool rill_index_inside(int i, int n) { return i >= 0 && i < n; }
 )";
 
 // Fast mode: the driver's operations as they are.
@@ -188,14 +201,31 @@ class GLSLDialect : public codegen::Dialect {
                      const std::vector<std::string>& dst) const override {
     std::string id = std::to_string(s.array);
     auto dim = [&](int d) { return "rill_shapes[" + std::to_string(s.array * 3 + d) + "]"; };
-    std::string lin = "rill_clamp_index(" + index[0] + ", " + dim(0) + ")";
-    if (index.size() > 1) lin += " + " + dim(0) + " * rill_clamp_index(" + index[1] + ", " + dim(1) + ")";
-    if (index.size() > 2) lin += " + " + dim(0) + " * " + dim(1) + " * rill_clamp_index(" + index[2] + ", " + dim(2) + ")";
-    const char* vec = f.arrays[static_cast<size_t>(s.array)].elem.is_float() ? "vec4" : "ivec4";
+    const ArrayDecl& a = f.arrays[static_cast<size_t>(s.array)];
+    // Each index mapped into its dimension under the array's boundary mode (see
+    // codegen::boundary_index_helper), then linearized, x fastest.
+    const std::string fn = "rill_" + codegen::boundary_index_helper(a.boundary);
+    std::string lin = fn + "(" + index[0] + ", " + dim(0) + ")";
+    if (index.size() > 1) lin += " + " + dim(0) + " * " + fn + "(" + index[1] + ", " + dim(1) + ")";
+    if (index.size() > 2)
+      lin += " + " + dim(0) + " * " + dim(1) + " * " + fn + "(" + index[2] + ", " + dim(2) + ")";
+    const char* vec = a.elem.is_float() ? "vec4" : "ivec4";
     // The array's own row length (its texture's width), not the launch's.
     std::string out = "{\n  int g = " + lin + ";\n  int w = textureSize(rill_arr" + id + ", 0).x;\n  " + vec +
                       " e = texelFetch(rill_arr" + id + ", ivec2(g % w, g / w), 0);\n";
-    for (size_t c = 0; c < dst.size(); ++c) out += "  " + dst[c] + " = e." + kComp[c] + ";\n";
+    const bool border = a.boundary == Boundary::Constant;
+    if (border) {
+      std::string inside;
+      for (size_t d = 0; d < index.size(); ++d)
+        inside += (d ? " && " : "") + std::string("rill_index_inside(") + index[d] + ", " +
+                  dim(static_cast<int>(d)) + ")";
+      out += "  bool rill_inside = " + inside + ";\n";
+    }
+    for (size_t c = 0; c < dst.size(); ++c) {
+      std::string v = std::string("e.") + kComp[c];
+      if (border) v = select(a.elem.kind, "rill_inside", v, literal(a.elem.kind, a.border.bits[c]));
+      out += "  " + dst[c] + " = " + v + ";\n";
+    }
     return out + "}\n";
   }
 

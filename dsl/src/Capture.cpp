@@ -2,9 +2,11 @@
 // that control-flow macros nest properly.
 #include "rill/Capture.h"
 
+#include <array>
 #include <atomic>
 #include <map>
 #include <mutex>
+#include <tuple>
 
 #include "rill/Math.h"
 #include "rill/Parameters.h"
@@ -36,7 +38,8 @@ struct Builder {
   bool pending_else_if = false;
   std::map<const UniformState*, ir::VarId> uniform_vars;
   std::vector<std::shared_ptr<UniformState>> uniforms;
-  std::map<const ArrayState*, int> array_ids;
+  // (data, boundary mode, border bits) -> index in fn->arrays
+  std::map<std::tuple<const ArrayState*, ir::Boundary, std::array<uint32_t, 4>>, int> array_ids;
   std::vector<std::shared_ptr<ArrayState>> arrays;
 
   ir::Block* root = nullptr;  // where top-level statements go (fn->body unless extending)
@@ -186,15 +189,25 @@ Ref emit(ir::Op op, ir::Type result, std::vector<ir::Operand> args, SourceLoc lo
 }
 
 Ref emit_gather(const std::shared_ptr<ArrayState>& array, std::vector<ir::Operand> index,
-                SourceLoc loc) {
+                ir::Boundary boundary, const ir::Constant& border, SourceLoc loc) {
   Builder& b = builder("an array gather", loc);
-  auto it = b.array_ids.find(array.get());
+  // Only Constant reads its border: other modes share one entry whatever the border holds.
+  const std::array<uint32_t, 4> border_bits =
+      boundary == ir::Boundary::Constant ? border.bits : std::array<uint32_t, 4>{};
+  const auto key =
+      std::make_tuple(static_cast<const ArrayState*>(array.get()), boundary, border_bits);
+  auto it = b.array_ids.find(key);
   if (it == b.array_ids.end()) {
     int id = static_cast<int>(b.fn->arrays.size());
-    b.fn->arrays.push_back(
-        ir::ArrayDecl{array->name, array->type().with_width(array->type().width), array->dims});
+    ir::ArrayDecl decl{array->name, array->type(), array->dims};
+    decl.boundary = boundary;
+    if (boundary == ir::Boundary::Constant) {
+      decl.border = border;
+      decl.border.type = array->type();
+    }
+    b.fn->arrays.push_back(std::move(decl));
     b.arrays.push_back(array);
-    it = b.array_ids.emplace(array.get(), id).first;
+    it = b.array_ids.emplace(key, id).first;
   }
   ir::VarId v = b.fn->add_var(array->type());
   ir::Stmt s = ir::Stmt::assign(v, ir::Op::Gather, std::move(index), loc);
@@ -205,6 +218,31 @@ Ref emit_gather(const std::shared_ptr<ArrayState>& array, std::vector<ir::Operan
   r.program = b.serial;
   r.var = v;
   return r;
+}
+
+void label(const Ref& r, std::string name, SourceLoc loc) {
+  if (name.empty()) throw Error("rill::label: the name is empty", loc);
+  if (r.kind == Ref::Kind::Uniform)
+    throw Error("rill::label('" + name + "'): a uniform keeps the name it was declared with ('" +
+                    r.uniform->name + "')",
+                loc);
+  if (r.kind == Ref::Kind::Const)
+    throw Error("rill::label('" + name +
+                    "'): this value is a constant made outside any program, not a variable of "
+                    "one; only values created inside a program body can be named",
+                loc);
+  Builder& b = builder("rill::label", loc);
+  if (r.program != b.serial)
+    throw Error("rill::label('" + name + "'): the value belongs to program '" +
+                    program_name(r.program) + "', not to '" + b.fn->name + "'",
+                loc);
+  ir::Variable& v = b.fn->vars.at(r.var);
+  if (v.role == ir::VarRole::Input || v.role == ir::VarRole::Output)
+    throw Error("rill::label('" + name +
+                    "'): " + (v.role == ir::VarRole::Input ? "input '" : "output '") + v.name +
+                    "' keeps the name it was declared with (kernels bind streams by it)",
+                loc);
+  v.name = std::move(name);
 }
 
 Ref new_var(ir::Type t, ir::VarRole role, std::string name, SourceLoc loc) {

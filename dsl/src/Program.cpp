@@ -14,6 +14,15 @@ Program::Program(detail::CapturedProgram captured)
 
 std::string Program::print() const { return ir::print(*d_->fn); }
 
+void Program::dump(std::ostream& os) const {
+  os << *this;
+}
+
+std::ostream& operator<<(std::ostream& os, const Program& p) {
+  if (!p.valid()) return os << "(empty program)\n";
+  return os << p.print();
+}
+
 ir::InterpreterLaunch reference_launch(const Program& p) {
   ir::InterpreterLaunch l;
   for (const auto& u : p.captured().uniforms) l.uniforms.push_back(u->bits);

@@ -379,5 +379,146 @@ TEST(Capture, ProgramIrIsTheUnoptimizedCapture) {
   EXPECT_EQ(test::problems(p.ir()), "");
 }
 
+// ---- arrays with a shape and data -------------------------------------------------------------
+
+TEST(ArrayShape, ConstructorsWithDataAndShapeLayXFastest) {
+  std::vector<float> d2 = {0, 1, 2, 10, 11, 12};  // 3 x 2
+  Array<Float> a2(3, 2, d2, "plane");
+  EXPECT_EQ(a2.size(), 6);
+  EXPECT_EQ(a2.download(), d2);
+  EXPECT_EQ(a2.state()->dims, 2);
+  EXPECT_EQ(a2.state()->shape[0], 3);
+  EXPECT_EQ(a2.state()->shape[1], 2);
+  std::vector<glm::ivec2> d3(2 * 3 * 4);
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 2; ++x)
+        d3[static_cast<size_t>(x + 2 * (y + 3 * z))] = glm::ivec2(x + 10 * y, z);
+  Array<Int2> a3(2, 3, 4, d3);
+  EXPECT_EQ(a3.state()->dims, 3);
+  EXPECT_EQ(a3.state()->shape[2], 4);
+  EXPECT_EQ(a3.state()->name, "array");
+  EXPECT_EQ(a3.download(), d3);
+}
+
+TEST(ArrayShape, DataOfTheWrongSizeIsAnErrorNamingTheShape) {
+  std::vector<float> five(5);
+  EXPECT_HAS(test::error_of([&] { Array<Float>(3, 2, five, "plane"); }),
+             "array 'plane': 5 elements given for a 3 x 2 array, which holds 6");
+  EXPECT_HAS(test::error_of([&] { Array<Float>(1, 2, 3, five, "vol"); }),
+             "array 'vol': 5 elements given for a 1 x 2 x 3 array, which holds 6");
+  EXPECT_HAS(test::error_of([&] { Array<Float>(0, 2, five, "empty"); }),
+             "every dimension must be at least 1");
+}
+
+// ---- printing and names ----------------------------------------------------------------------
+
+TEST(Capture, DumpAndStreamOperatorWriteTheIrText) {
+  Program p = program("dumped", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    y = x * 2.0f;
+  });
+  std::ostringstream dumped, streamed;
+  p.dump(dumped);
+  streamed << p;
+  EXPECT_EQ(dumped.str(), p.print());
+  EXPECT_EQ(streamed.str(), p.print());
+  std::ostringstream empty;
+  empty << Program();
+  EXPECT_EQ(empty.str(), "(empty program)\n");
+}
+
+TEST(Capture, LabelNamesTheVariableBehindAValue) {
+  Program p = program("labelled", [] {
+    Input<Float3> v("v");
+    Output<Float> y("y");
+    Float d = dot(v, v);  // the temporary dot() made
+    label(d, "len2");
+    Float3 n = v;  // a local of its own
+    label(n, "my n!");
+    y = d + n.x();
+  });
+  const std::string text = p.print();
+  EXPECT_HAS(text, "var float len2_");
+  EXPECT_HAS(text, "var float3 my_n__");  // printers keep identifier characters
+  EXPECT_EQ(test::count_matching(text, R"(len2_[0-9]+ = dot\(v_0, v_0\))"), 1);
+  EXPECT_EQ(test::count_matching(text, R"(my_n__[0-9]+ = copy\(v_0\))"), 1);
+}
+
+TEST(Capture, LabelRefusesValuesWithoutAVariableOfTheirOwn) {
+  const Float outside = 1.0f;
+  Uniform<Float> gain(1.0f, "gain");
+  EXPECT_HAS(test::error_of([&] {
+               program("const", [&] {
+                 Output<Float> y("y");
+                 label(outside, "c");
+                 y = outside;
+               });
+             }),
+             "rill::label('c'): this value is a constant made outside any program");
+  EXPECT_HAS(test::error_of([&] {
+               program("uniform", [&] {
+                 Output<Float> y("y");
+                 label(gain, "g");
+                 y = gain;
+               });
+             }),
+             "rill::label('g'): a uniform keeps the name it was declared with ('gain')");
+  EXPECT_HAS(test::error_of([&] {
+               program("input", [&] {
+                 Input<Float> x("x");
+                 Output<Float> y("y");
+                 label(x, "z");
+                 y = x;
+               });
+             }),
+             "rill::label('z'): input 'x' keeps the name it was declared with");
+  EXPECT_HAS(test::error_of([&] {
+               program("empty", [&] {
+                 Output<Float> y("y");
+                 Float t = 1.0f;
+                 label(t, "");
+                 y = t;
+               });
+             }),
+             "rill::label: the name is empty");
+  EXPECT_HAS(test::error_of([&] { label(outside, "c"); }), "this value is a constant");
+}
+
+TEST(CaptureCpu, LabelledNamesSurviveTheOptimizerIntoGeneratedCode) {
+  Program p = program("names", [] {
+    Input<Float4> v("v");
+    Output<Float> y("y");
+    Float s = v.x() + v.y();  // a temporary: keeps its own name
+    label(s, "sum");
+    Float4 d = v * 2.0f;  // an unnamed temporary
+    Float4 z = d;         // a local copying it: copy propagation removes the local, and the
+    label(z, "zed");      // temporary takes its name
+    Float w = 0.0f;       // a local written twice survives as itself
+    label(w, "acc");
+    w += s * z.z();
+    y = w;
+  });
+  Kernel k = compile(p, "cpu");
+  const std::string ir = k.ir(), src = k.source();
+  for (const char* name : {"sum_", "zed_", "acc_"}) {
+    EXPECT_HAS(ir, name);
+    EXPECT_HAS(src, name);
+  }
+  std::ostringstream dumped, streamed;
+  k.dump(dumped);
+  streamed << k;
+  EXPECT_EQ(dumped.str(), k.ir());
+  EXPECT_EQ(streamed.str(), k.ir());
+
+  // The names change nothing computed.
+  Stream<Float4> in(std::vector<glm::vec4>{{1, 2, 3, 4}, {-1, 0.5f, 2, 0}});
+  Stream<Float> out(2);
+  k.inputs(in).outputs(out);
+  k.execute();
+  EXPECT_EQ(out.download(), (std::vector<float>{18.0f, -2.0f}));
+}
+
 }  // namespace
 }  // namespace rill

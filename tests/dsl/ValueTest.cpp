@@ -173,6 +173,88 @@ TEST(Value, SwizzleOfASwizzleComposes) {
   EXPECT_LINE(text, "t# = copy(t#.xx)");
 }
 
+// ---- named swizzles --------------------------------------------------------------------------
+
+template <class V>
+concept HasXY = requires(const V& v) {
+  v.xy();
+};
+template <class V>
+concept HasXYZ = requires(const V& v) {
+  v.xyz();
+};
+template <class V>
+concept HasXZ = requires(const V& v) {
+  v.xz();
+};
+template <class V>
+concept HasRGBA = requires(const V& v) {
+  v.rgba();
+};
+template <class V>
+concept HasB = requires(const V& v) {
+  v.b();
+};
+template <class V>
+concept HasA = requires(const V& v) {
+  v.a();
+};
+
+// Named swizzles exist only where the width has the components they name.
+static_assert(HasXY<Float2> && HasXY<Int4> && !HasXY<Float>);
+static_assert(HasXYZ<Float3> && HasXYZ<Float4> && !HasXYZ<Float2>);
+static_assert(HasXZ<Float3> && !HasXZ<Int2>);
+static_assert(HasRGBA<Float4> && !HasRGBA<Float3>);
+static_assert(HasB<Float3> && !HasB<Float2>);
+static_assert(HasA<Float4> && !HasA<Float3>);
+static_assert(std::is_same_v<decltype(std::declval<Float4>().xyz()), Swizzle<float, 3>>);
+static_assert(std::is_same_v<decltype(std::declval<Int3>().rg()), Swizzle<int32_t, 2>>);
+
+TEST(Value, NamedSwizzlesReadTheirComponents) {
+  Program p = program("named", [] {
+    Input<Float4> v("v");
+    Output<Float3> a("a");
+    Output<Float2> b("b");
+    Output<Float4> c("c");
+    Output<Float> d("d");
+    a = v.xyz() + v.rgb();
+    b = v.xy() + v.xz() + v.yz() + v.rg();
+    c = v.xyzw() + v.rgba();
+    d = v.r() + v.g() + v.b() + v.a();
+  });
+  std::string text = normalized(p.print());
+  EXPECT_EQ(test::count_lines(text, "t# = copy(v_0.xyz)"), 2);
+  EXPECT_EQ(test::count_lines(text, "t# = copy(v_0.xy)"), 2);
+  EXPECT_LINE(text, "t# = copy(v_0.xz)");
+  EXPECT_LINE(text, "t# = copy(v_0.yz)");
+  EXPECT_EQ(test::count_lines(text, "t# = copy(v_0)"), 2);  // xyzw and rgba: the whole vector
+  for (const char* c : {"x", "y", "z", "w"})
+    EXPECT_LINE(text, std::string("t# = copy(v_0.") + c + ")");
+}
+
+TEST(Value, NamedSwizzlesAreWriteMasks) {
+  Program p = program("named_masks", [] {
+    Input<Float2> w("w");
+    Input<Float> s("s");
+    Output<Float4> y("y");
+    y = Float4(0.0f);
+    y.xy() = w;
+    y.b() = s;
+    y.a() = 1.0f;
+    y.rgb() += 2.0f;
+    Float3 t = y.xyz();
+    t.yz() = w;
+    y.xz() = t.xz();
+  });
+  std::string text = normalized(p.print());
+  EXPECT_LINE(text, "y_2.xy = copy(w_0)");
+  EXPECT_LINE(text, "y_2.z = copy(s_1)");
+  EXPECT_LINE(text, "y_2.w = copy(1.0)");
+  EXPECT_LINE(text, "y_2.xyz = copy(t#)");
+  EXPECT_LINE(text, "t#.yz = copy(w_0)");
+  EXPECT_LINE(text, "y_2.xz = copy(t#)");
+}
+
 // ---- write masks -----------------------------------------------------------------------------
 
 TEST(Value, WriteMasksAssignTheSelectedComponents) {

@@ -48,9 +48,15 @@ void require_program(const char* what, SourceLoc loc = {});
 ir::Operand operand(const Ref& r, ir::Type t, SourceLoc loc = {});
 // Appends `result = op(args)` and returns the new temporary.
 Ref emit(ir::Op op, ir::Type result, std::vector<ir::Operand> args, SourceLoc loc = {});
-// Appends a gather from `array` (registering it with the program on first use).
+// Appends a gather from `array` read with `boundary` (`border`: the value outside the array
+// for Boundary::Constant), registering the pair with the program on first use: the same data
+// read with two modes is two arrays of the program, bound to the same storage.
 Ref emit_gather(const std::shared_ptr<ArrayState>& array, std::vector<ir::Operand> index,
+                ir::Boundary boundary = ir::Boundary::Clamp, const ir::Constant& border = {},
                 SourceLoc loc = {});
+// Names the variable `r` refers to (rill::label): the name then appears in printed IR and
+// generated code. Throws for constants, uniforms, inputs and outputs.
+void label(const Ref& r, std::string name, SourceLoc loc = {});
 // A new variable of the current program.
 Ref new_var(ir::Type t, ir::VarRole role, std::string name = {}, SourceLoc loc = {});
 // Appends `dst[.mask] = src`. dst must be a variable of the current program.

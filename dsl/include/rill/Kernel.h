@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <string>
@@ -77,6 +78,8 @@ class Kernel {
 
   const std::string& source() const;  // generated code
   std::string ir() const;             // optimized IR text
+  // Writes ir() to `os` (standard error by default), for debugging: k.dump();
+  void dump(std::ostream& os = std::cerr) const { os << ir(); }
   const CompileInfo& info() const { return info_; }
   const Program& program() const { return program_; }
   std::string backend_name() const;
@@ -100,6 +103,11 @@ class Kernel {
 
 Kernel compile(const Program& p, const std::string& backend = "cpu",
                const CompileOptions& options = {});
+
+// Writes the optimized IR (ir()): std::cout << kernel;
+inline std::ostream& operator<<(std::ostream& os, const Kernel& k) {
+  return os << k.ir();
+}
 
 // The in-process kernel cache.
 struct CacheStats {

@@ -8,10 +8,11 @@
 //   });
 //
 // The body runs once, now, recording IR; afterwards the Program is an immutable value that
-// can be printed, hashed and compiled for any backend (Kernel.h).
+// can be printed (print(), dump(), <<), hashed and compiled for any backend (Kernel.h).
 #pragma once
 
 #include <functional>
+#include <iostream>
 #include <memory>
 #include <string>
 
@@ -28,8 +29,10 @@ class Program {
   const std::string& name() const { return d_->fn->name; }
   // The captured IR, before optimization.
   const ir::Function& ir() const { return *d_->fn; }
-  // Readable IR text.
+  // Readable IR text (returned, not printed: dump() prints it).
   std::string print() const;
+  // Writes print() to `os` (standard error by default), for debugging: p.dump();
+  void dump(std::ostream& os = std::cerr) const;
   // Stable hash of the IR (the kernel caches' key).
   uint64_t hash() const { return hash_; }
 
@@ -40,6 +43,9 @@ class Program {
   std::shared_ptr<const detail::CapturedProgram> d_;
   uint64_t hash_ = 0;
 };
+
+// Writes the captured IR (print()): std::cout << program;
+std::ostream& operator<<(std::ostream& os, const Program& p);
 
 // Runs `body` once inside a new program scope and returns the captured program.
 template <class F>

@@ -6,8 +6,11 @@
 // width * height either way.
 //
 // An Array<V> is read-only data that a kernel gathers from at any index: arr[i], or arr(x, y)
-// and arr(x, y, z) for 2D and 3D shapes. An index outside the array is clamped to the
-// nearest element on every backend (reads never fault).
+// and arr(x, y, z) for 2D and 3D shapes. Its data is laid out x fastest, then y, then z:
+// element (x, y, z) of an nx x ny x nz array is data[x + nx * (y + ny * z)]. An index outside
+// the array reads what the array's boundary mode says (Boundary: clamped to the nearest
+// element by default, else wrapped, mirrored or a constant), the same on every backend; reads
+// never fault.
 //
 // Both keep a host copy and, per backend, a device copy; upload() and download() move data
 // between host and whichever backend last wrote it, only when needed.
@@ -223,6 +226,9 @@ class Stream {
   std::shared_ptr<detail::StreamState> s_;
 };
 
+// How gathers read outside an array; ir::Boundary (rill/ir/IR.h) defines each mode exactly.
+using Boundary = ir::Boundary;
+
 template <class V>
 class Array {
   static_assert(!std::is_same_v<typename V::scalar_type, bool>,
@@ -238,6 +244,45 @@ class Array {
   Array(const std::vector<host_type>& data, std::string name = "array")
       : Array(static_cast<int64_t>(data.size()), std::move(name)) {
     upload(data);
+  }
+  // A 2D or 3D array with its data, laid out x fastest: element (x, y, z) is
+  // data[x + nx * (y + ny * z)]. data must hold exactly nx * ny (* nz) elements.
+  Array(int64_t nx, int64_t ny, const std::vector<host_type>& data, std::string name = "array")
+      : Array(2, {nx, ny, 1}, std::move(name)) {
+    upload_shaped(data);
+  }
+  Array(int64_t nx, int64_t ny, int64_t nz, const std::vector<host_type>& data,
+        std::string name = "array")
+      : Array(3, {nx, ny, nz}, std::move(name)) {
+    upload_shaped(data);
+  }
+
+  // How this array's gathers read outside it, captured into programs as they read it (a
+  // program keeps the mode it was captured with; changing it affects programs captured
+  // afterwards). Constant reads `outside` (zero by default) wherever any index is out of
+  // range. The mode belongs to this Array object: a copy shares the data and may read it with
+  // another mode, even in the same program.
+  //
+  //   Array<Float> a(data, "a");
+  //   a.boundary(Boundary::Wrap);               // a[-1] reads the last element
+  //   a.boundary(Boundary::Constant, 0.5f);     // a[-1] reads 0.5
+  Array& boundary(Boundary mode) { return boundary(mode, host_type{}); }
+  Array& boundary(Boundary mode, const host_type& outside) {
+    if (mode != Boundary::Constant && !(outside == host_type{}))
+      throw Error("array '" + s_->name + "': only Boundary::Constant takes a value for outside " +
+                  "the array (the mode given is " + ir::boundary_name(mode) + ")");
+    boundary_ = mode;
+    border_ = ir::Constant{};
+    border_.type = V::type();
+    std::memcpy(border_.bits.data(), &outside, sizeof outside);
+    return *this;
+  }
+  Boundary boundary() const { return boundary_; }
+  // What Boundary::Constant reads outside the array.
+  host_type outside() const {
+    host_type v;
+    std::memcpy(&v, border_.bits.data(), sizeof v);
+    return v;
   }
 
   int64_t size() const { return s_->count(); }
@@ -275,9 +320,22 @@ class Array {
     if (dims != s_->dims)
       throw Error("array '" + s_->name + "' is " + std::to_string(s_->dims) + "D but was indexed with " +
                   std::to_string(dims) + " indices");
-    return V(detail::emit_gather(s_, std::move(idx)), detail::AdoptTag{});
+    return V(detail::emit_gather(s_, std::move(idx), boundary_, border_), detail::AdoptTag{});
+  }
+  void upload_shaped(const std::vector<host_type>& data) {
+    if (static_cast<int64_t>(data.size()) != size()) {
+      std::string shape = std::to_string(s_->shape[0]) + " x " + std::to_string(s_->shape[1]);
+      if (s_->dims == 3) shape += " x " + std::to_string(s_->shape[2]);
+      throw Error("array '" + s_->name + "': " + std::to_string(data.size()) +
+                  " elements given for a " + shape + " array, which holds " +
+                  std::to_string(size()) +
+                  " (laid out x fastest: element (x, y, z) at x + nx * (y + ny * z))");
+    }
+    upload(data);
   }
   std::shared_ptr<detail::ArrayState> s_;
+  Boundary boundary_ = Boundary::Clamp;
+  ir::Constant border_{V::type(), {}};  // for Boundary::Constant
 };
 
 }  // namespace rill

@@ -179,6 +179,20 @@ class Value {
   Swizzle<T, 1> y() const { return (*this)(1); }
   Swizzle<T, 1> z() const { return (*this)(2); }
   Swizzle<T, 1> w() const { return (*this)(3); }
+  // Named swizzles, GLSL's spellings, as far as the width allows (v.xyz() on a Float2 does not
+  // compile). Like v(0, 1), they can be assigned to: v.xy() = w;
+  Swizzle<T, 2> xy() const requires(N >= 2) { return (*this)(0, 1); }
+  Swizzle<T, 2> xz() const requires(N >= 3) { return (*this)(0, 2); }
+  Swizzle<T, 2> yz() const requires(N >= 3) { return (*this)(1, 2); }
+  Swizzle<T, 3> xyz() const requires(N >= 3) { return (*this)(0, 1, 2); }
+  Swizzle<T, 4> xyzw() const requires(N == 4) { return (*this)(0, 1, 2, 3); }
+  Swizzle<T, 1> r() const { return (*this)(0); }
+  Swizzle<T, 1> g() const requires(N >= 2) { return (*this)(1); }
+  Swizzle<T, 1> b() const requires(N >= 3) { return (*this)(2); }
+  Swizzle<T, 1> a() const requires(N == 4) { return (*this)(3); }
+  Swizzle<T, 2> rg() const requires(N >= 2) { return (*this)(0, 1); }
+  Swizzle<T, 3> rgb() const requires(N >= 3) { return (*this)(0, 1, 2); }
+  Swizzle<T, 4> rgba() const requires(N == 4) { return (*this)(0, 1, 2, 3); }
 
   template <class O>
   Value& operator+=(const O& o) {
@@ -359,6 +373,21 @@ class Swizzle : public Value<T, M> {
   detail::Ref parent_;
   ir::Mask mask_;
 };
+
+// Names the variable behind a value of the program being captured, so that printed IR
+// (Program::print, Kernel::ir) and generated code (Kernel::source) call it by that name:
+//
+//   Float t = dot(n, l);
+//   rill::label(t, "ndotl");     // printed as ndotl_12 (the variable id keeps names unique)
+//
+// Printers keep only identifier characters. Throws rill::Error for a constant made outside
+// any program, a uniform, an input or an output (which keep their declared names), or a value
+// of another program. The optimizer keeps the name while the variable survives; a named copy
+// of an unnamed temporary passes its name on when copy propagation removes it.
+template <class T, int N>
+void label(const Value<T, N>& v, std::string name, SourceLoc loc = RILL_HERE) {
+  detail::label(v.ref(), std::move(name), loc);
+}
 
 // The value types users write kernels with.
 using Float = Value<float, 1>;

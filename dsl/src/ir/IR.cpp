@@ -92,6 +92,41 @@ VarId Function::add_var(Type t, VarRole role, std::string n) {
   return static_cast<VarId>(vars.size() - 1);
 }
 
+const char* boundary_name(Boundary b) {
+  switch (b) {
+    case Boundary::Clamp:
+      return "clamp";
+    case Boundary::Wrap:
+      return "wrap";
+    case Boundary::Mirror:
+      return "mirror";
+    case Boundary::Constant:
+      return "constant";
+  }
+  return "?";
+}
+
+// The reference for every backend's helpers (rill_wrap_index, rill_mirror_index: same
+// arithmetic). A negative index is mapped through -1 - i (~i), which is never negative and
+// never overflows, so no backend takes a remainder of a negative number (C truncates it,
+// GLSL leaves it undefined).
+int64_t boundary_index(Boundary b, int32_t i, int64_t n) {
+  const int64_t j = i >= 0 ? i : -1 - static_cast<int64_t>(i);
+  switch (b) {
+    case Boundary::Wrap:
+      return i >= 0 ? j % n : n - 1 - j % n;
+    case Boundary::Mirror: {
+      // mirror(i) == mirror(-1 - i); from 0 up, even periods run forwards, odd ones back.
+      const int64_t r = j % n;
+      return (j / n) % 2 == 0 ? r : n - 1 - r;
+    }
+    case Boundary::Clamp:
+    case Boundary::Constant:
+      break;
+  }
+  return i < 0 ? 0 : (i >= n ? n - 1 : i);
+}
+
 std::string Function::var_name(VarId v) const {
   const Variable& var = vars.at(v);
   if (var.name.empty()) return "t" + std::to_string(v);

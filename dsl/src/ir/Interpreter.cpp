@@ -88,8 +88,6 @@ class Machine : public Visitor {
     }
   }
 
-  static int64_t clamp_index(int32_t i, int64_t n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
-
   void assign(const Stmt& s) {
     Constant& dst = vals_[s.dst];
     const int width = s.mask.full() ? dst.type.width : s.mask.count;
@@ -97,11 +95,21 @@ class Machine : public Visitor {
     r.type = dst.type.with_width(width);
     if (s.op == Op::Gather) {
       const InterpreterArray& a = l_.arrays.at(static_cast<size_t>(s.array));
-      int64_t idx = clamp_index(read(s.args[0]).i(0), a.shape[0]);
-      if (s.args.size() > 1) idx += a.shape[0] * clamp_index(read(s.args[1]).i(0), a.shape[1]);
-      if (s.args.size() > 2) idx += a.shape[0] * a.shape[1] * clamp_index(read(s.args[2]).i(0), a.shape[2]);
-      int ew = f_.arrays[static_cast<size_t>(s.array)].elem.width;
-      for (int k = 0; k < width; ++k) r.bits[static_cast<size_t>(k)] = a.data[idx * ew + k];
+      const ArrayDecl& decl = f_.arrays[static_cast<size_t>(s.array)];
+      // Linearized with x fastest; each index mapped into its dimension by the array's mode.
+      bool inside = true;
+      int64_t idx = 0, stride = 1;
+      for (size_t d = 0; d < s.args.size(); ++d) {
+        const int32_t i = read(s.args[d]).i(0);
+        inside = inside && index_inside(i, a.shape[d]);
+        idx += stride * boundary_index(decl.boundary, i, a.shape[d]);
+        stride *= a.shape[d];
+      }
+      const int ew = decl.elem.width;
+      for (int k = 0; k < width; ++k)
+        r.bits[static_cast<size_t>(k)] = decl.boundary == Boundary::Constant && !inside
+                                             ? decl.border.bits[static_cast<size_t>(k)]
+                                             : a.data[idx * ew + k];
     } else if (s.op == Op::ElementIndex) {
       r.bits[0] = static_cast<uint32_t>(static_cast<int32_t>(i_));
     } else if (s.op == Op::ElementCoord) {

@@ -136,8 +136,14 @@ std::string print(const Function& f) {
   os << ")\n";
   for (VarId u : f.uniforms)
     os << "  uniform " << f.var(u).type.str() << ' ' << f.var_name(u) << "\n";
-  for (const ArrayDecl& a : f.arrays)
-    os << "  array" << a.dims << "d " << a.elem.str() << " a" << (&a - f.arrays.data()) << ':' << a.name << "\n";
+  for (const ArrayDecl& a : f.arrays) {
+    os << "  array" << a.dims << "d " << a.elem.str() << " a" << (&a - f.arrays.data()) << ':'
+       << a.name;
+    // Clamp, the default, prints nothing (the text of programs without modes is unchanged).
+    if (a.boundary != Boundary::Clamp) os << ' ' << boundary_name(a.boundary);
+    if (a.boundary == Boundary::Constant) os << '(' << print_constant(a.border) << ')';
+    os << "\n";
+  }
   // Locals and temporaries with their types, so the text alone determines the program.
   for (VarId v = 0; v < f.vars.size(); ++v) {
     VarRole r = f.vars[v].role;

@@ -14,6 +14,7 @@ class Checker {
 
   std::vector<std::string> run() {
     written_.assign(f_.vars.size(), false);
+    for (const ArrayDecl& a : f_.arrays) array(a);
     block(f_.body, 0);
     for (VarId v : f_.outputs)
       if (outputs_written_ && v < f_.vars.size() && !written_[v])
@@ -28,6 +29,18 @@ class Checker {
   }
   void problem(SourceLoc loc, const std::string& what) {
     problems_.push_back((loc.known() ? loc.str() + ": " : "") + what);
+  }
+
+  void array(const ArrayDecl& a) {
+    const std::string what = "array '" + a.name + "'";
+    if (a.dims < 1 || a.dims > 3)
+      problem({}, what + " has " + std::to_string(a.dims) + " dimensions (1 to 3)");
+    if (a.boundary > Boundary::Constant)
+      problem({}, what + " has an unknown boundary mode " +
+                      std::to_string(static_cast<int>(a.boundary)));
+    if (a.boundary == Boundary::Constant && a.border.type != a.elem)
+      problem({}, what + " of " + a.elem.str() + " has a constant boundary of type " +
+                      a.border.type.str());
   }
 
   bool operand(const Stmt& s, const Operand& o) {

@@ -1,6 +1,7 @@
 // copy_propagate: where `t = copy(s)` is t's only assignment and s is a constant or is itself
 // assigned only once, every read of t reads s instead (swizzles composed). The copy is then
-// dead and eliminate_dead_code removes it.
+// dead and eliminate_dead_code removes it. A name t had passes to an unnamed s it copies
+// whole.
 //
 // Why this is safe: a variable assigned once holds one value wherever it is read (reads are
 // dominated by the assignment in the structured IR), so s read anywhere t is read gives the
@@ -22,6 +23,11 @@ bool copy_propagate(Function& f) {
     if (defs[s.dst] != 1 || f.var(s.dst).role == VarRole::Output) return;
     const Operand& src = s.args[0];
     if (src.is_var() && (defs[src.var] != 1 || src.var == s.dst)) return;
+    // A named copy of an unnamed temporary (Float t = v.x(); rill::label(t, "t")) disappears
+    // here: the temporary, which holds the same value, takes the name, so it stays readable.
+    if (src.is_var() && src.identity_swizzle(f.var(src.var).type.width) &&
+        f.var(src.var).role == VarRole::Temp && f.var(src.var).name.empty())
+      f.vars[src.var].name = f.var(s.dst).name;
     sources.push_back(src);
     source[s.dst] = &sources.back();
   });

@@ -120,10 +120,30 @@ struct Variable {
   int slot = -1;  // index in Function::inputs / outputs / uniforms
 };
 
+// What a gather reads at an index outside an array, per dimension of n elements. One
+// definition for every backend (the interpreter, ir::boundary_index, is the reference):
+//   Clamp     the nearest element: i < 0 reads 0, i >= n reads n - 1.
+//   Wrap      periodic: i mod n, always in [0, n) (-1 reads n - 1).
+//   Mirror    reflected at the edges with the edge repeated, as GL's MIRRORED_REPEAT:
+//             ... 2 1 0 | 0 1 2 ... n-1 | n-1 n-2 ... (period 2n; -1 reads 0, n reads n - 1).
+//   Constant  the ArrayDecl's border value when any index is outside its dimension.
+// Indices are int32; the arithmetic never overflows (INT32_MIN and INT32_MAX included).
+enum class Boundary : uint8_t { Clamp, Wrap, Mirror, Constant };
+const char* boundary_name(Boundary b);  // "clamp", "wrap", "mirror", "constant"
+
+// The index a gather reads in a dimension of n >= 1 elements, for Clamp, Wrap and Mirror
+// (Constant reads the clamped index and replaces out-of-range results: index_inside).
+int64_t boundary_index(Boundary b, int32_t i, int64_t n);
+inline bool index_inside(int32_t i, int64_t n) {
+  return i >= 0 && i < n;
+}
+
 struct ArrayDecl {
   std::string name;
   Type elem;
   int dims = 1;  // 1, 2 or 3: how many indices a Gather takes
+  Boundary boundary = Boundary::Clamp;
+  Constant border{};  // what a Constant-boundary gather reads outside the array (type elem)
 };
 
 // A whole kernel.
