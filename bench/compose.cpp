@@ -169,7 +169,7 @@ float tbb_sum(const float* x, int64_t n) {
 }
 
 bool close(float got, double want) {
-  return std::fabs(got - want) <= 1e-5 * std::fabs(want) + 1e-3;
+  return std::fabs(got - want) <= 1e-4 * std::fabs(want) + 1e-3;
 }
 
 bool run_reduce(const Options& o) {
