@@ -93,18 +93,12 @@ Program level_program(ReduceOp op, const Stream<V>& src, bool two_d, bool map_tr
         if (map_truth) x = select(x != 0, Int(1), Int(0));
       return x;
     };
+    // A loop, not unrolled code: the fold is one dependency chain either way, and a short
+    // kernel compiles quickly on every backend. The last block of a row may be short.
+    Int here = min(len - first, Int(kReduceBlock));
     V acc = at(first);
-    RILL_IF(first + kReduceBlock <= len) {
-      for (int k = 1; k < kReduceBlock; ++k) acc = combine(op, acc, at(first + k));
-    }
-    RILL_ELSE {
-      // The last block of a row may be short: elements past the end leave acc as it is.
-      for (int k = 1; k < kReduceBlock; ++k) {
-        Int i = first + k;
-        acc = select(i < len, combine(op, acc, at(i)), acc);
-      }
-    }
-    RILL_ENDIF;
+    RILL_FOR(Int k = 1, k < here, k += 1) { acc = combine(op, acc, at(first + k)); }
+    RILL_ENDFOR;
     out = acc;
   });
 }

@@ -115,6 +115,32 @@ TEST_P(StreamGatherTest, VectorStreamsGatherWholeElements) {
   }
 }
 
+TEST_P(StreamGatherTest, BoundaryModesApplyToStreams) {
+  const int n = 10;
+  Stream<Int> ramp(n, "ramp");
+  compile(program("ramp_i", [] {
+    Output<Int> o("o");
+    o = element_index() * 10;
+  })).bind("o", ramp).execute();
+  Stream<Int> wrap_view = ramp, constant_view = ramp;  // handles on the same data
+  wrap_view.boundary(Boundary::Wrap);
+  constant_view.boundary(Boundary::Constant, -7);
+  Program p = program("read_outside", [&] {
+    Output<Int2> o("o");
+    Int i = element_index() - 3;  // -3 .. n - 4, and beyond with + n below
+    o = Int2(wrap_view[i + n * (i & 1)], constant_view[i + n * (i & 1)]);
+  });
+  Stream<Int2> out(n);
+  compile(p).bind("o", out).execute();
+  std::vector<glm::ivec2> got = out.download();
+  for (int e = 0; e < n; ++e) {
+    const int i = e - 3, j = i + n * (i & 1);
+    const int wrapped = ((j % n) + n) % n;
+    EXPECT_EQ(got[static_cast<size_t>(e)].x, wrapped * 10) << "index " << j;
+    EXPECT_EQ(got[static_cast<size_t>(e)].y, j >= 0 && j < n ? j * 10 : -7) << "index " << j;
+  }
+}
+
 TEST_P(StreamGatherTest, GatheringFromTheStreamBeingWrittenIsAnError) {
   Stream<Float> s(16, "field");
   Program p = program("smooth_in_place", [&] {

@@ -9,8 +9,8 @@
 //   });
 //
 // Unnamed inputs and outputs are called in0, in1, ... and out0, out1, ...
-// Inputs and outputs bind to streams in declaration order (Kernel::inputs/outputs) or by
-// name (Kernel::bind). Every output must be written somewhere in the program. An output that
+// Inputs and outputs bind to streams by name (Kernel::bind, checked) or in declaration order
+// (Kernel::inputs/outputs). Records (Record.h) declare one parameter per field. Every output must be written somewhere in the program. An output that
 // is not written on some path keeps the value its stream already had.
 #pragma once
 

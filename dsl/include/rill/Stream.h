@@ -147,6 +147,9 @@ std::vector<HostOf<V>> copy_out(Storage& s) {
 
 }  // namespace detail
 
+// How gathers read outside an array; ir::Boundary (rill/ir/IR.h) defines each mode exactly.
+using Boundary = ir::Boundary;
+
 // A type-erased reference to a stream, for binding to kernels.
 class StreamRef {
  public:
@@ -208,6 +211,18 @@ class Stream {
   V operator()(const Int& i) const { return gather({i.operand()}, 1); }
   V operator()(const Int& x, const Int& y) const { return gather({x.operand(), y.operand()}, 2); }
   V operator()(const Int2& xy) const { return (*this)(Int(xy.x()), Int(xy.y())); }
+  // How this handle's gathers read outside the stream, as Array::boundary (clamp by default):
+  //   Stream<Float> h(w, h); h.boundary(Boundary::Wrap);  // h(-1, y) reads h(w - 1, y)
+  Stream& boundary(Boundary mode, const host_type& outside = host_type{}) {
+    if (mode != Boundary::Constant && !(outside == host_type{}))
+      throw Error("stream '" + s_->name + "': only Boundary::Constant takes a value for outside " +
+                  "the stream (the mode given is " + ir::boundary_name(mode) + ")");
+    boundary_ = mode;
+    border_ = ir::Constant{};
+    border_.type = V::type();
+    std::memcpy(border_.bits.data(), &outside, sizeof outside);
+    return *this;
+  }
 
   operator StreamRef() const { return StreamRef(s_); }
 
@@ -221,13 +236,13 @@ class Stream {
                   "D but was gathered with " + std::to_string(dims) + " indices" +
                   (s_->dims == 2 ? " (gather a 2D stream as s(x, y))"
                                  : " (a 1D stream is gathered as s[i])"));
-    return V(detail::emit_gather(s_, std::move(idx)), detail::AdoptTag{});
+    return V(detail::emit_gather(s_, std::move(idx), boundary_, border_), detail::AdoptTag{});
   }
   std::shared_ptr<detail::StreamState> s_;
+  Boundary boundary_ = Boundary::Clamp;
+  ir::Constant border_{};
 };
 
-// How gathers read outside an array; ir::Boundary (rill/ir/IR.h) defines each mode exactly.
-using Boundary = ir::Boundary;
 
 template <class V>
 class Array {
