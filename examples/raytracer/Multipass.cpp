@@ -14,7 +14,7 @@
 // The per-pixel state lives in streams of records (Record.h), one stream per field: the ray
 // (Ray), its closest hit (Hit), its traversal state (TraceState) and the path (PathState),
 // plus the camera ray's AOVs (Aov). Every kernel names what it reads and writes ("tr.state",
-// "hit", ...) and is bound by those names (bind_fields below), never by position.
+// "hit", ...) and is bound by those names (Kernel::bind_fields), never by position.
 //
 // Traverser and intersector run in a host loop until neither has a ray left; the
 // intersector runs again while at least 20% of the rays wait for it (thesis 5.6; the
@@ -65,27 +65,6 @@ RILL_STRUCT(TraceState, (Int, state), (Int3, voxel), (Float3, t_next), (Float, t
 RILL_STRUCT(PathState, (Int, state), (Int, depth), (Int, rays), (Float, weight), (Float3, color));
 // The camera ray's AOVs.
 RILL_STRUCT(Aov, (Float, depth), (Int, prim), (Float3, normal));
-
-namespace {
-
-// Binds the fields of record stream s that kernel k declares as "<name>.<field>" (as an
-// input, an output or both), by name. Kernels read only the fields they use, so the strict
-// Kernel::bind(name, s), which wants every field declared, does not fit them; a field the
-// kernel declares but nobody binds is still an error at launch (Kernel: "not bound").
-template <class R>
-void bind_fields(Kernel& k, const std::string& name, const Stream<R>& s) {
-  const ir::Function& f = k.program().ir();
-  auto declared = [&](const std::string& n) {
-    for (const auto* params : {&f.inputs, &f.outputs})
-      for (ir::VarId v : *params)
-        if (f.var(v).name == n) return true;
-    return false;
-  };
-  for (const auto& [path, ref] : s.leaves())
-    if (declared(name + "." + path)) k.bind(name + "." + path, ref);
-}
-
-}  // namespace
 
 struct Multipass {
   Uniform<Int> light{0, "light_index"};
@@ -545,11 +524,8 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
   // Traces the rays of `ray` whose trace state is pending; the hits go to `hit`.
   auto trace = [&](const Stream<Ray>& ray, const Stream<Hit>& hit, bool any_hit) {
     M.any_hit.set(any_hit ? 1 : 0);
-    for (Kernel* k : {&K.setup, &K.traverse, &K.intersect, &K.finish}) {
-      bind_fields(*k, "ray", ray);
-      bind_fields(*k, "hit", hit);
-      bind_fields(*k, "tr", B.tr);
-    }
+    for (Kernel* k : {&K.setup, &K.traverse, &K.intersect, &K.finish})
+      k->bind_fields("ray", ray).bind_fields("hit", hit).bind_fields("tr", B.tr);
     const double n = static_cast<double>(run(K.setup, kSetup, where(tr_state, kPending)));
     for (int64_t pass = 0; n > 0; ++pass) {
       if (pass > 100000000) throw std::runtime_error("multipass: the trace loop does not end");
@@ -569,20 +545,19 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
   std::vector<glm::dvec3> sum(spp > 1 ? npix : 0, glm::dvec3(0.0));
   // The shading kernels bind the record fields they declare, by name (the trace kernels
   // are bound per trace, above).
-  std::vector<Kernel*> shading = {&K.raygen, &K.surface, &K.combine};
-  if (F.shadows) shading.insert(shading.end(), {&K.shadow_gen, &K.shadow_acc});
-  for (Kernel* k : shading) {
-    bind_fields(*k, "ray", B.ray);
-    bind_fields(*k, "shadow", B.shadow);
-    bind_fields(*k, "hit", B.hit);
-    bind_fields(*k, "shadow_hit", B.shadow_hit);
-    bind_fields(*k, "tr", B.tr);
-    bind_fields(*k, "path", B.path);
-    bind_fields(*k, "aov", B.aov);
+  K.raygen.bind_fields("ray", B.ray).bind_fields("path", B.path).bind_fields("aov", B.aov);
+  K.raygen.bind_fields("tr", B.tr);
+  K.surface.bind_fields("ray", B.ray).bind_fields("hit", B.hit).bind_fields("path", B.path);
+  K.surface.bind_fields("aov", B.aov).bind("local", B.local);
+  K.combine.bind_fields("ray", B.ray).bind_fields("hit", B.hit).bind_fields("path", B.path);
+  K.combine.bind_fields("tr", B.tr).bind("local", B.local);
+  if (F.shadows) {
+    K.shadow_gen.bind_fields("ray", B.ray).bind_fields("hit", B.hit).bind_fields("path", B.path);
+    K.shadow_gen.bind_fields("shadow", B.shadow).bind_fields("tr", B.tr);
+    K.shadow_acc.bind_fields("ray", B.ray).bind_fields("hit", B.hit).bind_fields("path", B.path);
+    K.shadow_acc.bind_fields("tr", B.tr).bind_fields("shadow_hit", B.shadow_hit);
+    K.shadow_acc.bind("local", B.local);
   }
-  K.surface.bind("local", B.local);
-  K.combine.bind("local", B.local);
-  if (F.shadows) K.shadow_acc.bind("local", B.local);
   const auto start = std::chrono::steady_clock::now();
   for (int sample = 0; sample < spp; ++sample) {
     offset.set(sample_offset(sample));
