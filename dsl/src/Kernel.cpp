@@ -149,7 +149,8 @@ Kernel& Kernel::bind(const std::string& name, StreamRef s) {
 }
 
 void Kernel::bind_record(const std::string& name, const std::string& stream,
-                         const std::vector<std::pair<std::string, StreamRef>>& leaves) {
+                         const std::vector<std::pair<std::string, StreamRef>>& leaves,
+                         bool partial) {
   if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
   const ir::Function& f = program_.ir();
   auto full = [&](const std::string& path) { return name.empty() ? path : name + "." + path; };
@@ -159,6 +160,19 @@ void Kernel::bind_record(const std::string& name, const std::string& stream,
         if (f.var(v).name == n) return true;
     return false;
   };
+  if (partial) {  // bind_fields: the fields the kernel declares
+    bool any = false;
+    for (const auto& [path, ref] : leaves)
+      if (declared(full(path))) {
+        bind(full(path), ref);
+        any = true;
+      }
+    if (!any)
+      throw Error("kernel '" + f.name + "' declares no field of record stream '" + stream +
+                  "' as '" + (name.empty() ? std::string("(unnamed)") : name) +
+                  ".<field>' (kernel " + describe_interface(f) + ")");
+    return;
+  }
   // Check the whole record first: a partial binding would leave the kernel half rebound.
   std::string missing, extra;
   for (const auto& [path, ref] : leaves)

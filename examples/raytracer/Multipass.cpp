@@ -11,40 +11,65 @@
 //   shadow gen/acc   per light: a shadow ray, traced like the others, then its Phong term
 //   combine          eq. 5.1 and the reflected ray of the next bounce
 //
+// The per-pixel state lives in streams of records (Record.h), one stream per field: the ray
+// (Ray), its closest hit (Hit), its traversal state (TraceState) and the path (PathState),
+// plus the camera ray's AOVs (Aov). Every kernel names what it reads and writes ("tr.state",
+// "hit", ...) and is bound by those names (Kernel::bind_fields), never by position.
+//
 // Traverser and intersector run in a host loop until neither has a ray left; the
 // intersector runs again while at least 20% of the rays wait for it (thesis 5.6; the
 // fraction is RenderSettings::wait_threshold, `--wait-threshold`), and when fewer than 5%
 // are left, one kernel takes them to the end (the same steps in a loop). Every kernel
 // discards the elements it has nothing to do for, so execute() counts the rays in each
-// state. Masking (RenderSettings::masking, `--masking on|off`): two Int state streams
-// mirror the states kept in tr_vox.w and path_i (tr_state: the ray's trace state;
-// path_state: 0 path ended, 1 alive, 2 alive with a surface to shade), and each kernel is
-// launched with rill::where() on its state, so the backend skips the other elements before
-// running the body (GLSL: early stencil test, the thesis's early-z culling). The discards
-// stay, so masking on and off give the same bits. Built from the same DSL functions as the
-// single kernel, it gives the same bits (tested); glass (refraction) is left to the single
-// kernel, as in the thesis (5.2.2).
+// state. Masking (RenderSettings::masking, `--masking on|off`): each kernel is launched with
+// rill::where() on a state field (tr.state: the ray's trace state; path.state: the path's),
+// so the backend skips the other elements before running the body (GLSL: early stencil
+// test, the thesis's early-z culling). The discards stay, so masking on and off give the
+// same bits. Built from the same DSL functions as the single kernel, it gives the same bits
+// (tested); glass (refraction) is left to the single kernel, as in the thesis (5.2.2).
+//
+// The kernels read only the fields they use and write only the fields they change: on GLSL
+// every input and output is a texture unit, and a kernel with more outputs than draw buffers
+// (8 on Mesa) is drawn once per group of outputs.
 #include <chrono>
 #include <optional>
 
 #include "TracerImpl.h"
+#include "rill/Record.h"
+#include "rill/Reduce.h"
 
 namespace rt {
 
 namespace {
 
-// Ray states, in the low 3 bits of tr_vox.w; bit 3: any-hit (shadow) ray; bits 4-: steps.
+// Trace states (TraceState::state).
 constexpr int kNone = 0, kPending = 1, kEnter = 2, kWait = 3, kFinished = 4;
-constexpr int kAnyHit = 8;
-// Path states (path_state), for masking the shading kernels.
+// Path states (PathState::state): ended, alive (a ray to trace or shade), alive with a
+// surface to shade (shadow rays and combine).
 constexpr int kPathEnded = 0, kPathAlive = 1, kPathSurface = 2;
 constexpr int kBatch = 8;               // triangles an intersector pass tests per ray
 constexpr double kTailFraction = 0.05;  // fewer rays than this left: one kernel finishes them
 
 }  // namespace
 
+// A ray: origin, direction and extent (kBig for camera and reflected rays).
+RILL_STRUCT(Ray, (Float3, o), (Float3, d), (Float, tmax));
+// The closest hit so far: distance, barycentrics, triangle id (-1: none).
+RILL_STRUCT(Hit, (Float, t), (Float2, uv), (Int, id));
+// A ray's grid traversal between kernels: its state (kPending...), the current voxel, the
+// distances to its exit planes (tMax), where the ray leaves the grid, the voxel steps taken,
+// and the cursor over the voxel's triangle list (next, end), or a subgrid's entry (base, -m).
+RILL_STRUCT(TraceState, (Int, state), (Int3, voxel), (Float3, t_next), (Float, t_exit),
+            (Int, steps), (Int2, cursor));
+// A pixel's path: its state (kPathEnded...), bounce depth, rays traced, weight and colour.
+RILL_STRUCT(PathState, (Int, state), (Int, depth), (Int, rays), (Float, weight), (Float3, color));
+// The camera ray's AOVs.
+RILL_STRUCT(Aov, (Float, depth), (Int, prim), (Float3, normal));
+
 struct Multipass {
   Uniform<Int> light{0, "light_index"};
+  // 1 while tracing shadow rays (any hit ends the search), 0 for closest hits.
+  Uniform<Int> any_hit{0, "any_hit"};
   Program raygen, setup, traverse, intersect, finish, surface, shadow_gen, shadow_acc, combine;
 
   struct Kernels {
@@ -54,33 +79,20 @@ struct Multipass {
 
   struct Buffers {
     Buffers(int64_t w, int64_t h)
-        : ray_o(w, h),
-          sh_o(w, h),
-          tr_tmx(w, h),
-          ray_d(w, h),
-          hit_tuv(w, h),
-          sh_d(w, h),
-          sh_tuv(w, h),
-          color(w, h),
-          local(w, h),
-          aov_normal(w, h),
-          hit_id(w, h),
-          sh_id(w, h),
-          aov_prim(w, h),
-          tr_vox(w, h),
-          path_i(w, h),
-          tr_cur(w, h),
-          path_w(w, h),
-          aov_depth(w, h),
-          tr_state(w, h),
-          path_state(w, h) {}
-    Stream<Float4> ray_o, sh_o, tr_tmx;
-    Stream<Float3> ray_d, hit_tuv, sh_d, sh_tuv, color, local, aov_normal;
-    Stream<Int> hit_id, sh_id, aov_prim;
-    Stream<Int4> tr_vox, path_i;  // path_i: depth, alive, rays, has a surface
-    Stream<Int2> tr_cur;
-    Stream<Float> path_w, aov_depth;
-    Stream<Int> tr_state, path_state;  // masks: tr_vox.w & 7 and the path's state (above)
+        : ray(w, h, "ray"),
+          shadow(w, h, "shadow"),
+          hit(w, h, "hit"),
+          shadow_hit(w, h, "shadow_hit"),
+          tr(w, h, "tr"),
+          path(w, h, "path"),
+          aov(w, h, "aov"),
+          local(w, h, "local") {}
+    Stream<Ray> ray, shadow;      // the path's ray; the shadow ray towards the current light
+    Stream<Hit> hit, shadow_hit;  // their hits
+    Stream<TraceState> tr;        // the traversal of the ray being traced (either)
+    Stream<PathState> path;
+    Stream<Aov> aov;
+    Stream<Float3> local;  // local light at the path's surface
   };
 
   void capture(const Tracer::Impl& I);
@@ -90,29 +102,15 @@ struct Multipass {
 void Multipass::capture(const Tracer::Impl& I) {
   const Features& F = I.F;
   raygen = rill::program("mp_raygen", [&] {
-    Output<Float4> o("ray_o");
-    Output<Float3> d("ray_d");
-    Output<Int4> vox("tr_vox");
-    Output<Float> w("path_w");
-    Output<Int4> pi("path_i");
-    Output<Float3> color("color");
-    Output<Float> ad("aov_depth");
-    Output<Int> ap("aov_prim");
-    Output<Float3> an("aov_normal");
-    Output<Int> ts("tr_state");
-    Output<Int> ps("path_state");
+    Output<Ray> ray("ray");
+    Output<PathState> path("path");
+    Output<Aov> aov("aov");
+    Output<Int> ts("tr.state");
     Float3 eye = I.eye;
-    o = Float4(eye, kBig);
-    d = I.camera_ray(element_coord());
-    vox = Int4(0, 0, 0, kPending);
-    w = 1.0f;
-    pi = Int4(0, 1, 1, 0);
-    color = Float3(0.0f);
-    ad = as_float(Int(0x7f800000));
-    ap = -1;
-    an = Float3(0.0f);
+    ray = Ray{eye, I.camera_ray(element_coord()), Float(kBig)};
+    path = PathState{Int(kPathAlive), Int(0), Int(1), Float(1.0f), Float3(0.0f)};
+    aov = Aov{as_float(Int(0x7f800000)), Int(-1), Float3(0.0f)};
     ts = kPending;
-    ps = kPathAlive;
   });
 
   // ---- the trace loop: voxel precalculation, traverser, intersector ----------------------
@@ -133,66 +131,62 @@ void Multipass::capture(const Tracer::Impl& I) {
     RILL_ENDIF;
   };
   setup = rill::program("mp_voxel_precalc", [&] {
-    Input<Float4> o4("ray_o");
-    Input<Float3> d("ray_d");
-    Input<Int4> vin("tr_vox");
-    Output<Int4> vout("tr_vox_out");
-    Output<Float4> tout("tr_tmx");
-    Output<Float3> tuv("hit_tuv");
-    Output<Int> id("hit_id");
-    Output<Int> ts("tr_state");
-    Int w = vin.w();
-    RILL_IF((w & 7) != kPending) {
+    Input<Ray> ray("ray");
+    Input<Int> state("tr.state");
+    Output<Int> state_out("tr.state");
+    Output<Int3> vout("tr.voxel");
+    Output<Float3> tmx_out("tr.t_next");
+    Output<Float> exit_out("tr.t_exit");
+    Output<Int> steps_out("tr.steps");
+    Output<Hit> hit("hit");
+    RILL_IF(state != kPending) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
-    Float3 o = o4(0, 1, 2);
-    Float tmax = o4.w();
     Bool inside = false;
     Float t_enter = 0.0f, t_exit = 0.0f;
-    I.ray_box(o, d, tmax, inside, t_enter, t_exit);
-    tuv = Float3(tmax, 0.0f, 0.0f);
-    id = -1;
+    I.ray_box(ray.o, ray.d, ray.tmax, inside, t_enter, t_exit);
+    hit = Hit{ray.tmax, Float2(0.0f), Int(-1)};
+    steps_out = 0;
     RILL_IF(inside) {
       Int3 vox(0);
       Float3 tmx(0.0f);
-      I.dda_init(o, d, t_enter, vox, tmx);
-      vout = Int4(vox, (w & kAnyHit) | kEnter);
-      ts = kEnter;
-      tout = Float4(tmx, t_exit);
+      I.dda_init(ray.o, ray.d, t_enter, vox, tmx);
+      vout = vox;
+      state_out = kEnter;
+      tmx_out = tmx;
+      exit_out = t_exit;
     }
     RILL_ELSE {
-      vout = Int4(0, 0, 0, (w & kAnyHit) | kFinished);
-      ts = kFinished;
-      tout = Float4(0.0f);
+      vout = Int3(0);
+      state_out = kFinished;
+      tmx_out = Float3(0.0f);
+      exit_out = 0.0f;
     }
     RILL_ENDIF;
   });
 
   traverse = rill::program("mp_traverser", [&] {
-    Input<Float4> o4("ray_o");
-    Input<Float3> d("ray_d");
-    Input<Int4> vin("tr_vox");
-    Input<Float4> tin("tr_tmx");
-    Input<Float3> tuv("hit_tuv");
-    Input<Int> id("hit_id");
-    Output<Int4> vout("tr_vox_out");
-    Output<Float4> tout("tr_tmx_out");
-    Output<Int2> cur("tr_cur");
-    Output<Int> ts("tr_state");
-    Int w = vin.w();
-    RILL_IF((w & 7) != kEnter) {
+    Input<Float3> d("ray.d");
+    Input<TraceState> tr("tr");
+    Input<Float> hit_t("hit.t");
+    Input<Int> hit_id("hit.id");
+    Output<Int> state_out("tr.state");
+    Output<Int3> vout("tr.voxel");
+    Output<Float3> tmx_out("tr.t_next");
+    Output<Int> steps_out("tr.steps");
+    Output<Int2> cur("tr.cursor");
+    RILL_IF(tr.state != kEnter) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
-    Int3 vox = vin(0, 1, 2);
-    Float3 tmx = tin(0, 1, 2);
-    Float t_exit = tin.w();
-    Int steps = w >> 4;
-    Bool any_hit = (w & kAnyHit) != 0;
+    Int3 vox = tr.voxel;
+    Float3 tmx = tr.t_next;
+    Int steps = tr.steps;
+    Bool any_hit = this->any_hit != 0;
     const RaySteps rs = I.ray_steps(d);  // once, not per step
-    Float best_t = tuv.x();
-    Int best_id = id;
+    Float best_t = hit_t;
+    Int best_id = hit_id;
     Bool done = false, found = false;
     Int2 range(0);
     // Empty voxels are stepped over here; leave_voxel's step limit ends the loop.
@@ -202,100 +196,90 @@ void Multipass::capture(const Tracer::Impl& I) {
         found = true;
       }
       RILL_ELSE {
-        I.leave_voxel(rs, t_exit, best_t, best_id, any_hit, range, vox, tmx, steps, done);
+        I.leave_voxel(rs, tr.t_exit, best_t, best_id, any_hit, range, vox, tmx, steps, done);
       }
       RILL_ENDIF;
     }
     RILL_ENDWHILE;
-    vout = Int4(vox, select(found, Int(kWait), Int(kFinished)) | (w & kAnyHit) | (steps << 4));
-    ts = select(found, Int(kWait), Int(kFinished));
-    tout = Float4(tmx, t_exit);
+    state_out = select(found, Int(kWait), Int(kFinished));
+    vout = vox;
+    tmx_out = tmx;
+    steps_out = steps;
     // The cursor over the voxel's list, or a subgrid's entry (base, -m) as it is.
     cur = select(range.y() < 0, range, Int2(range.x(), range.x() + range.y()));
   });
 
   intersect = rill::program("mp_intersector", [&] {
-    Input<Float4> o4("ray_o");
-    Input<Float3> d("ray_d");
-    Input<Int4> vin("tr_vox");
-    Input<Float4> tin("tr_tmx");
-    Input<Int2> cin("tr_cur");
-    Input<Float3> tuv_in("hit_tuv");
-    Input<Int> id_in("hit_id");
-    Output<Int4> vout("tr_vox_out");
-    Output<Float4> tout("tr_tmx_out");
-    Output<Int2> cout("tr_cur_out");
-    Output<Float3> tuv("hit_tuv_out");
-    Output<Int> id("hit_id_out");
-    Output<Int> ts("tr_state_out");
-    Int w = vin.w();
-    RILL_IF((w & 7) != kWait) {
+    Input<Float3> o("ray.o");
+    Input<Float3> d("ray.d");
+    Input<TraceState> tr("tr");
+    Input<Hit> hit("hit");
+    Output<Int> state_out("tr.state");
+    Output<Int3> vout("tr.voxel");
+    Output<Float3> tmx_out("tr.t_next");
+    Output<Int> steps_out("tr.steps");
+    Output<Int2> cur_out("tr.cursor");
+    Output<Hit> hit_out("hit");
+    RILL_IF(tr.state != kWait) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
-    Float3 o = o4(0, 1, 2);
     const RaySteps rs = I.ray_steps(d);
-    Float best_t = tuv_in.x(), best_u = tuv_in.y(), best_v = tuv_in.z();
-    Int best_id = id_in;
-    Int c = cin.x();
-    Int end = cin.y();
-    Int3 vox = vin(0, 1, 2);
-    Float3 tmx = tin(0, 1, 2);
-    walk_pending_subgrid(o, rs, tin.w(), (w & kAnyHit) != 0, vox, tmx, c, end, best_t, best_id,
-                         best_u, best_v);
+    Float best_t = hit.t, best_u = hit.uv.x(), best_v = hit.uv.y();
+    Int best_id = hit.id;
+    Int c = tr.cursor.x();
+    Int end = tr.cursor.y();
+    Int3 vox = tr.voxel;
+    Float3 tmx = tr.t_next;
+    Bool any_hit = this->any_hit != 0;
+    walk_pending_subgrid(o, rs, tr.t_exit, any_hit, vox, tmx, c, end, best_t, best_id, best_u,
+                         best_v);
     RILL_FOR(Int k = 0, k < kBatch && c < end, k += 1) {
       I.test_triangle(o, d, c, best_t, best_id, best_u, best_v);
       c += 1;
     }
     RILL_ENDFOR;
     Int state = kWait;
-    Int steps = w >> 4;
+    Int steps = tr.steps;
     RILL_IF(c >= end) {  // the voxel's list is done
       Bool done = false;
       // A voxel with triangles: a plain step.
-      I.leave_voxel(rs, tin.w(), best_t, best_id, (w & kAnyHit) != 0, Int2(0), vox, tmx, steps,
-                    done);
+      I.leave_voxel(rs, tr.t_exit, best_t, best_id, any_hit, Int2(0), vox, tmx, steps, done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDIF;
-    vout = Int4(vox, state | (w & kAnyHit) | (steps << 4));
-    ts = state;
-    tout = Float4(tmx, tin.w());
-    cout = Int2(c, end);
-    tuv = Float3(best_t, best_u, best_v);
-    id = best_id;
+    state_out = state;
+    vout = vox;
+    tmx_out = tmx;
+    steps_out = steps;
+    cur_out = Int2(c, end);
+    hit_out = Hit{best_t, Float2(best_u, best_v), best_id};
   });
 
   // The tail: the last few rays run traverser and intersector steps in one loop (the same
-  // steps in the same order, so the same result), instead of many nearly empty passes.
+  // steps in the same order, so the same result), instead of many nearly empty passes. It
+  // writes the state and the hit only: nothing reads a finished ray's voxel or steps.
   finish = rill::program("mp_finish", [&] {
-    Input<Float4> o4("ray_o");
-    Input<Float3> d("ray_d");
-    Input<Int4> vin("tr_vox");
-    Input<Float4> tin("tr_tmx");
-    Input<Int2> cin("tr_cur");
-    Input<Float3> tuv_in("hit_tuv");
-    Input<Int> id_in("hit_id");
-    Output<Int4> vout("tr_vox_out");
-    Output<Float3> tuv("hit_tuv_out");
-    Output<Int> id("hit_id_out");
-    Output<Int> ts("tr_state_out");
-    Int w = vin.w();
-    Int state = w & 7;
+    Input<Float3> o("ray.o");
+    Input<Float3> d("ray.d");
+    Input<TraceState> tr("tr");
+    Input<Hit> hit("hit");
+    Output<Int> state_out("tr.state");
+    Output<Hit> hit_out("hit");
+    Int state = tr.state;
     RILL_IF(state != kEnter && state != kWait) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
-    Float3 o = o4(0, 1, 2);
     const RaySteps rs = I.ray_steps(d);
-    Float best_t = tuv_in.x(), best_u = tuv_in.y(), best_v = tuv_in.z();
-    Int best_id = id_in;
-    Int c = cin.x();
-    Int end = cin.y();
-    Int3 vox = vin(0, 1, 2);
-    Float3 tmx = tin(0, 1, 2);
-    Int steps = w >> 4;
-    Bool any_hit = (w & kAnyHit) != 0;
+    Float best_t = hit.t, best_u = hit.uv.x(), best_v = hit.uv.y();
+    Int best_id = hit.id;
+    Int c = tr.cursor.x();
+    Int end = tr.cursor.y();
+    Int3 vox = tr.voxel;
+    Float3 tmx = tr.t_next;
+    Int steps = tr.steps;
+    Bool any_hit = this->any_hit != 0;
     Int2 entry(0);  // a resumed voxel (kWait) has triangles: a plain step after it
     RILL_WHILE(state != kFinished) {
       RILL_IF(state == kEnter) {
@@ -305,7 +289,7 @@ void Multipass::capture(const Tracer::Impl& I) {
       }
       RILL_ENDIF;
       // A subgrid entered here or by the traverser.
-      walk_pending_subgrid(o, rs, tin.w(), any_hit, vox, tmx, c, end, best_t, best_id, best_u,
+      walk_pending_subgrid(o, rs, tr.t_exit, any_hit, vox, tmx, c, end, best_t, best_id, best_u,
                            best_v);
       RILL_WHILE(c < end) {
         I.test_triangle(o, d, c, best_t, best_id, best_u, best_v);
@@ -313,153 +297,126 @@ void Multipass::capture(const Tracer::Impl& I) {
       }
       RILL_ENDWHILE;
       Bool done = false;
-      I.leave_voxel(rs, tin.w(), best_t, best_id, any_hit, entry, vox, tmx, steps, done);
+      I.leave_voxel(rs, tr.t_exit, best_t, best_id, any_hit, entry, vox, tmx, steps, done);
       state = select(done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDWHILE;
-    vout = Int4(vox, kFinished | (w & kAnyHit) | (steps << 4));
-    ts = kFinished;
-    tuv = Float3(best_t, best_u, best_v);
-    id = best_id;
+    state_out = kFinished;
+    hit_out = Hit{best_t, Float2(best_u, best_v), best_id};
   });
 
   // ---- shading ---------------------------------------------------------------------------
   surface = rill::program("mp_surface", [&] {
-    Input<Float4> o4("ray_o");
-    Input<Float3> d("ray_d");
-    Input<Float3> tuv("hit_tuv");
-    Input<Int> id("hit_id");
-    Input<Float> w("path_w");
-    Input<Int4> pi("path_i");
-    Input<Float3> color("color");
+    Input<Float3> o("ray.o");
+    Input<Float3> d("ray.d");
+    Input<Hit> hit("hit");
+    Input<Int> state("path.state");
+    Input<Int> depth("path.depth");
+    Input<Float> w("path.weight");
+    Input<Float3> color("path.color");
     Output<Float3> local("local");
-    Output<Float3> color_out("color_out");
-    Output<Int4> pi_out("path_i_out");
-    Output<Float> ad("aov_depth");
-    Output<Int> ap("aov_prim");
-    Output<Float3> an("aov_normal");
-    Output<Int> ps("path_state");
-    RILL_IF(pi.y() == 0) {
+    Output<Float3> color_out("path.color");
+    Output<Int> state_out("path.state");
+    Output<Aov> aov("aov");
+    RILL_IF(state == kPathEnded) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
     Int hid = -1;
-    if (F.geometry) hid = id;
+    if (F.geometry) hid = hit.id;
     RILL_IF(hid >= 0) {
       Surface s;
-      I.surface(o4(0, 1, 2), d, tuv.x(), hid, tuv.y(), tuv.z(), s);
+      I.surface(o, d, hit.t, hid, hit.uv.x(), hit.uv.y(), s);
       Float3 loc = I.ambient * s.kd;
-      RILL_IF(pi.x() == 0) {  // AOVs of the camera ray
-        ad = tuv.x();
-        ap = hid;
-        an = s.ns;
+      RILL_IF(depth == 0) {  // AOVs of the camera ray
+        aov = Aov{hit.t, hid, s.ns};
       }
       RILL_ENDIF;
       if (!F.shadows) loc += I.unshadowed_light(s);
       local = loc;
-      pi_out = Int4(pi.x(), 1, pi.z(), 1);
-      ps = kPathSurface;
+      state_out = kPathSurface;
     }
     RILL_ELSE {
       color_out = color + w * I.background;
-      pi_out = Int4(pi.x(), 0, pi.z(), 0);
-      ps = kPathEnded;
+      state_out = kPathEnded;
     }
     RILL_ENDIF;
   });
 
   if (F.shadows) {
     shadow_gen = rill::program("mp_shadow_rays", [&] {
-      Input<Float4> o4("ray_o");
-      Input<Float3> d("ray_d");
-      Input<Float3> tuv("hit_tuv");
-      Input<Int> id("hit_id");
-      Input<Int4> pi("path_i");
-      Output<Float4> so("shadow_o");
-      Output<Float3> sd("shadow_d");
-      Output<Int4> vox("tr_vox");
-      Output<Int4> pi_out("path_i_out");
-      Output<Int> ts("tr_state");
-      RILL_IF(pi.y() == 0 || pi.w() == 0) {
+      Input<Float3> o("ray.o");
+      Input<Float3> d("ray.d");
+      Input<Hit> hit("hit");
+      Input<Int> state("path.state");
+      Input<Int> rays("path.rays");
+      Output<Ray> shadow("shadow");
+      Output<Int> ts("tr.state");
+      Output<Int> rays_out("path.rays");
+      RILL_IF(state != kPathSurface) {
         RILL_DISCARD;
       }
       RILL_ENDIF;
       Surface s;
-      I.surface(o4(0, 1, 2), d, tuv.x(), id, tuv.y(), tuv.z(), s);
+      I.surface(o, d, hit.t, hit.id, hit.uv.x(), hit.uv.y(), s);
       Float3 ro(0.0f), rd(0.0f);
       Float tmax = 0.0f;
       Bool active = false;
       I.shadow_ray(light, s, ro, rd, tmax, active);
-      so = Float4(ro, tmax);
-      sd = rd;
-      vox = Int4(0, 0, 0, select(active, Int(kPending | kAnyHit), Int(kNone)));
+      shadow = Ray{ro, rd, tmax};
       ts = select(active, Int(kPending), Int(kNone));
-      pi_out = Int4(pi.x(), pi.y(), pi.z() + select(active, Int(1), Int(0)), pi.w());
+      rays_out = rays + select(active, Int(1), Int(0));
     });
     shadow_acc = rill::program("mp_shadow_light", [&] {
-      Input<Float4> o4("ray_o");
-      Input<Float3> d("ray_d");
-      Input<Float3> tuv("hit_tuv");
-      Input<Int> id("hit_id");
-      Input<Int4> pi("path_i");
-      Input<Int4> vox("tr_vox");
-      Input<Int> sid("shadow_id");
+      Input<Float3> o("ray.o");
+      Input<Float3> d("ray.d");
+      Input<Hit> hit("hit");
+      Input<Int> state("path.state");
+      Input<Int> ts("tr.state");
+      Input<Int> sid("shadow_hit.id");
       Input<Float3> local("local");
-      Output<Float3> local_out("local_out");
-      RILL_IF(pi.y() == 0 || pi.w() == 0 || (vox.w() & 7) != kFinished || sid >= 0) {
+      Output<Float3> local_out("local");
+      RILL_IF(state != kPathSurface || ts != kFinished || sid >= 0) {
         RILL_DISCARD;
       }
       RILL_ENDIF;
       Surface s;
-      I.surface(o4(0, 1, 2), d, tuv.x(), id, tuv.y(), tuv.z(), s);
+      I.surface(o, d, hit.t, hit.id, hit.uv.x(), hit.uv.y(), s);
       local_out = local + I.phong(light, s);
     });
   }
 
+  // The path's ray keeps tmax = kBig from the ray generator: combine writes o and d only.
   combine = rill::program("mp_combine", [&] {
-    Input<Float4> o4("ray_o");
-    Input<Float3> d("ray_d");
-    Input<Float3> tuv("hit_tuv");
-    Input<Int> id("hit_id");
-    Input<Float> w("path_w");
-    Input<Int4> pi("path_i");
-    Input<Float3> color("color");
+    Input<Float3> o("ray.o");
+    Input<Float3> d("ray.d");
+    Input<Hit> hit("hit");
+    Input<PathState> path("path");
     Input<Float3> local("local");
-    Output<Float3> color_out("color_out");
-    Output<Float> w_out("path_w_out");
-    Output<Int4> pi_out("path_i_out");
-    Output<Float4> o_out("ray_o_out");
-    Output<Float3> d_out("ray_d_out");
-    Output<Int4> vox("tr_vox");
-    Output<Int> ts("tr_state");
-    Output<Int> ps("path_state");
-    RILL_IF(pi.y() == 0 || pi.w() == 0) {
+    Output<PathState> path_out("path");
+    Output<Float3> o_out("ray.o");
+    Output<Float3> d_out("ray.d");
+    Output<Int> ts("tr.state");
+    RILL_IF(path.state != kPathSurface) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
     Surface s;
-    I.surface(o4(0, 1, 2), d, tuv.x(), id, tuv.y(), tuv.z(), s);
-    Float3 c = color;
-    Float weight = w;
-    Int depth = pi.x();
+    I.surface(o, d, hit.t, hit.id, hit.uv.x(), hit.uv.y(), s);
+    Float3 c = path.color;
+    Float weight = path.weight;
+    Int depth = path.depth;
     Float3 ro(0.0f), rd(0.0f);
     Bool go = false;
     I.shade(s, local, c, weight, depth, ro, rd, go, nullptr, nullptr);
-    color_out = c;
-    w_out = weight;
     RILL_IF(go) {
-      o_out = Float4(ro, kBig);
+      o_out = ro;
       d_out = rd;
-      vox = Int4(0, 0, 0, kPending);
       ts = kPending;
-      pi_out = Int4(depth, 1, pi.z() + 1, 0);
-      ps = kPathAlive;
-    }
-    RILL_ELSE {
-      pi_out = Int4(depth, 0, pi.z(), 0);
-      ps = kPathEnded;
     }
     RILL_ENDIF;
+    path_out = PathState{select(go, Int(kPathAlive), Int(kPathEnded)), depth,
+                         path.rays + select(go, Int(1), Int(0)), weight, c};
   });
 }
 
@@ -518,6 +475,10 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
 
   max_depth.set(depth);
   Multipass::Buffers B(width, height);
+  // The ray count is a reduction on the device (rill::sum): its kernels compile here, not in
+  // the first sample's trace time.
+  const Stream<Int> path_rays = B.path.field<Int>("rays");
+  (void)rill::sum(path_rays, rs.backend);
   r.compile_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
@@ -557,25 +518,24 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
     st.written += written;
     return written;
   };
-  // Traces the rays in (o, d) whose state is pending; the hits go to (tuv, id).
-  auto trace = [&](Stream<Float4>& o, Stream<Float3>& d, Stream<Float3>& tuv, Stream<Int>& id) {
-    K.setup.inputs(o, d, B.tr_vox).outputs(B.tr_vox, B.tr_tmx, tuv, id, B.tr_state);
-    K.traverse.inputs(o, d, B.tr_vox, B.tr_tmx, tuv, id)
-        .outputs(B.tr_vox, B.tr_tmx, B.tr_cur, B.tr_state);
-    K.intersect.inputs(o, d, B.tr_vox, B.tr_tmx, B.tr_cur, tuv, id)
-        .outputs(B.tr_vox, B.tr_tmx, B.tr_cur, tuv, id, B.tr_state);
-    K.finish.inputs(o, d, B.tr_vox, B.tr_tmx, B.tr_cur, tuv, id)
-        .outputs(B.tr_vox, tuv, id, B.tr_state);
-    const double n = static_cast<double>(run(K.setup, kSetup, where(B.tr_state, kPending)));
+  // The state fields the launches are masked on.
+  const Stream<Int> tr_state = B.tr.field<Int>("state");
+  const Stream<Int> path_state = B.path.field<Int>("state");
+  // Traces the rays of `ray` whose trace state is pending; the hits go to `hit`.
+  auto trace = [&](const Stream<Ray>& ray, const Stream<Hit>& hit, bool any_hit) {
+    M.any_hit.set(any_hit ? 1 : 0);
+    for (Kernel* k : {&K.setup, &K.traverse, &K.intersect, &K.finish})
+      k->bind_fields("ray", ray).bind_fields("hit", hit).bind_fields("tr", B.tr);
+    const double n = static_cast<double>(run(K.setup, kSetup, where(tr_state, kPending)));
     for (int64_t pass = 0; n > 0; ++pass) {
       if (pass > 100000000) throw std::runtime_error("multipass: the trace loop does not end");
-      const int64_t active = run(K.traverse, kTraverse, where(B.tr_state, kEnter));
-      auto intersect = [&] { return run(K.intersect, kIntersect, where(B.tr_state, kWait)); };
+      const int64_t active = run(K.traverse, kTraverse, where(tr_state, kEnter));
+      auto intersect = [&] { return run(K.intersect, kIntersect, where(tr_state, kWait)); };
       int64_t waiting = intersect();
       while (static_cast<double>(waiting) >= rs.wait_threshold * n) waiting = intersect();
       if (active == 0 && waiting == 0) break;
       if (static_cast<double>(active + waiting) < kTailFraction * n) {
-        run(K.finish, kFinish, where(B.tr_state, {kEnter, kWait}));
+        run(K.finish, kFinish, where(tr_state, {kEnter, kWait}));
         break;
       }
     }
@@ -583,43 +543,46 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
 
   const size_t npix = static_cast<size_t>(width) * static_cast<size_t>(height);
   std::vector<glm::dvec3> sum(spp > 1 ? npix : 0, glm::dvec3(0.0));
+  // The shading kernels bind the record fields they declare, by name (the trace kernels
+  // are bound per trace, above).
+  K.raygen.bind_fields("ray", B.ray).bind_fields("path", B.path).bind_fields("aov", B.aov);
+  K.raygen.bind_fields("tr", B.tr);
+  K.surface.bind_fields("ray", B.ray).bind_fields("hit", B.hit).bind_fields("path", B.path);
+  K.surface.bind_fields("aov", B.aov).bind("local", B.local);
+  K.combine.bind_fields("ray", B.ray).bind_fields("hit", B.hit).bind_fields("path", B.path);
+  K.combine.bind_fields("tr", B.tr).bind("local", B.local);
+  if (F.shadows) {
+    K.shadow_gen.bind_fields("ray", B.ray).bind_fields("hit", B.hit).bind_fields("path", B.path);
+    K.shadow_gen.bind_fields("shadow", B.shadow).bind_fields("tr", B.tr);
+    K.shadow_acc.bind_fields("ray", B.ray).bind_fields("hit", B.hit).bind_fields("path", B.path);
+    K.shadow_acc.bind_fields("tr", B.tr).bind_fields("shadow_hit", B.shadow_hit);
+    K.shadow_acc.bind("local", B.local);
+  }
   const auto start = std::chrono::steady_clock::now();
   for (int sample = 0; sample < spp; ++sample) {
     offset.set(sample_offset(sample));
-    K.raygen.outputs(B.ray_o, B.ray_d, B.tr_vox, B.path_w, B.path_i, B.color, B.aov_depth,
-                     B.aov_prim, B.aov_normal, B.tr_state, B.path_state);
     run(K.raygen, kRaygen, std::nullopt);
-    K.surface.inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_w, B.path_i, B.color)
-        .outputs(B.local, B.color, B.path_i, B.aov_depth, B.aov_prim, B.aov_normal, B.path_state);
-    K.combine.inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_w, B.path_i, B.color, B.local)
-        .outputs(B.color, B.path_w, B.path_i, B.ray_o, B.ray_d, B.tr_vox, B.tr_state, B.path_state);
-    const rill::StateMask with_surface = where(B.path_state, kPathSurface);
+    const rill::StateMask with_surface = where(path_state, kPathSurface);
     for (int bounce = 0; bounce <= depth; ++bounce) {
-      if (F.geometry) trace(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id);
-      if (run(K.surface, kSurface, where(B.path_state, {kPathAlive, kPathSurface})) == 0) break;
+      if (F.geometry) trace(B.ray, B.hit, false);
+      if (run(K.surface, kSurface, where(path_state, {kPathAlive, kPathSurface})) == 0) break;
       if (F.shadows) {
         for (size_t l = 0; l < scene.lights.size(); ++l) {
           M.light.set(static_cast<int32_t>(l));
-          K.shadow_gen.inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_i)
-              .outputs(B.sh_o, B.sh_d, B.tr_vox, B.path_i, B.tr_state);
           run(K.shadow_gen, kShadowGen, with_surface);
-          trace(B.sh_o, B.sh_d, B.sh_tuv, B.sh_id);
-          K.shadow_acc
-              .inputs(B.ray_o, B.ray_d, B.hit_tuv, B.hit_id, B.path_i, B.tr_vox, B.sh_id, B.local)
-              .outputs(B.local);
+          trace(B.shadow, B.shadow_hit, true);
           run(K.shadow_acc, kShadowAcc, with_surface);
         }
       }
       run(K.combine, kCombine, with_surface);
     }
-    std::vector<glm::ivec4> pi = B.path_i.download();
-    for (const glm::ivec4& p : pi) r.rays += p.z;
-    std::vector<glm::vec3> c = B.color.download();
+    r.rays += rill::sum(path_rays);
+    std::vector<glm::vec3> c = B.path.field<Float3>("color").download();
     if (sample == 0) {
       r.color = c;
-      r.depth = B.aov_depth.download();
-      r.prim = B.aov_prim.download();
-      r.normal = B.aov_normal.download();
+      r.depth = B.aov.field<Float>("depth").download();
+      r.prim = B.aov.field<Int>("prim").download();
+      r.normal = B.aov.field<Float3>("normal").download();
     }
     if (spp > 1)
       for (size_t p = 0; p < npix; ++p) sum[p] += glm::dvec3(c[p]);

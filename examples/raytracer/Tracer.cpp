@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "TracerImpl.h"
+#include "rill/Reduce.h"
 
 namespace rt {
 
@@ -989,13 +990,13 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
   k.outputs(color, dist, prim, normal, rays);
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
-  // below is tracing alone.
+  // below is tracing alone. The ray count's reduction kernels compile here too.
   const auto warm_key =
       std::make_pair(rs.backend + "/" + accuracy_name(rs.accuracy), r.width * r.height);
   if (!I.warmed.count(warm_key)) {
     I.max_iter.set(0);
     k.execute();
-    (void)rays.download();
+    (void)rill::sum(rays);
     I.warmed.insert(warm_key);
   }
   I.max_iter.set(static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
@@ -1009,8 +1010,7 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
     I.offset.set(sample_offset(s));
     k.execute();
     ++r.launches;
-    std::vector<int32_t> n = rays.download();
-    for (int32_t x : n) r.rays += x;
+    r.rays += rill::sum(rays);  // on the device: only the total comes back
     if (s == 0) {
       r.color = color.download();
       r.depth = dist.download();

@@ -190,6 +190,37 @@ TEST_P(RecordTest, MismatchedNamesAndTypesAreErrors) {
   EXPECT_THROW(ps.field<Float>("mass"), Error);
 }
 
+// A kernel that reads and writes only some fields of a record stream binds them with
+// bind_fields; the other fields keep their data. Declaring none of them is an error.
+TEST_P(RecordTest, SomeFieldsBoundByName) {
+  Program age = program("age_only", [] {
+    Input<Float> a("p.age");
+    Input<Float3> v("p.vel");
+    Output<Float> out("p.age");
+    out = a + v.x();
+  });
+  Stream<Particle> ps(some_particles(50), "particles");
+  const std::vector<Particle::Host> before = ps.download();
+  Kernel k = compile(age);
+  EXPECT_THROW(k.bind("p", ps), Error);  // the strict bind wants every field declared
+  k.bind_fields("p", ps).execute();
+  const std::vector<Particle::Host> after = ps.download();
+  for (size_t i = 0; i < after.size(); ++i) {
+    EXPECT_EQ(bits_of(after[i].age), bits_of(before[i].age + before[i].vel.x)) << i;
+    EXPECT_EQ(after[i].pos, before[i].pos) << i;
+    EXPECT_EQ(after[i].vel, before[i].vel) << i;
+  }
+  Stream<Bounce> bs(50, "bs");
+  try {
+    k.bind_fields("b", bs);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("declares no field of record stream 'bs'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 
 RILL_BACKEND_TEST_SUITE(RecordTest);

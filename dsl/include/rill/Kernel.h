@@ -59,7 +59,18 @@ class Kernel {
   template <class S>
     requires requires(const S& s) { s.leaves(); }
   Kernel& bind(const std::string& name, const S& s) {
-    bind_record(name, s.name(), s.leaves());
+    bind_record(name, s.name(), s.leaves(), false);
+    return *this;
+  }
+  // Binds only the fields of a record stream that the kernel declares ("<name>.<field>", as
+  // an input, an output or both), for kernels that read or write some of a record's fields:
+  //   Input<Int> st("tr.state");  Output<Int3> v("tr.voxel");  ...  k.bind_fields("tr", tr);
+  // A kernel that declares none of them is an error; a declared field left unbound is one at
+  // launch, as always.
+  template <class S>
+    requires requires(const S& s) { s.leaves(); }
+  Kernel& bind_fields(const std::string& name, const S& s) {
+    bind_record(name, s.name(), s.leaves(), true);
     return *this;
   }
 
@@ -90,7 +101,7 @@ class Kernel {
   friend Kernel compile(const Program&, const std::string&, const CompileOptions&);
   void bind_all(bool inputs, std::initializer_list<StreamRef> s);
   void bind_record(const std::string& name, const std::string& stream,
-                   const std::vector<std::pair<std::string, StreamRef>>& leaves);
+                   const std::vector<std::pair<std::string, StreamRef>>& leaves, bool partial);
   LaunchArgs prepare();
   int64_t launch(LaunchArgs& a);
 

@@ -15,6 +15,7 @@
 //   Stream<Particle> ps(n);          // a struct of streams: one stream per field
 //   Array<Particle> table(n);        // gathers a whole record at once: table[i]
 //   kernel.bind("p", ps);            // binds every field by its name (Kernel.h)
+//   kernel.bind_fields("p", ps);     // binds the fields the kernel declares ("p.age"...)
 //
 // Each record has a host twin, `Particle::Host`, with the matching host types in the same
 // order (glm::vec3 pos; glm::vec3 vel; float age;): streams, arrays and uniforms upload
