@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
 
 #include "rill/ControlFlow.h"
 #include "rill/Kernel.h"
@@ -107,33 +110,62 @@ int64_t blocks(int64_t n) {
   return (n + kReduceBlock - 1) / kReduceBlock;
 }
 
+// The launches that reduce one stream with one op on one backend: the level kernels (bound
+// to their partial streams) and the uniforms they read. A stream's shape never changes, so
+// the chain built for it is reused by every later reduction of it: no capture, no hashing and
+// no allocation per call.
+struct Chain {
+  std::mutex mutex;  // the partial streams are shared: one reduction of the chain at a time
+  std::vector<std::unique_ptr<Uniform<Int>>> uniforms;
+  std::vector<Kernel> levels;
+  StreamRef last{nullptr};  // the one-element result
+};
+
+struct ChainKey {
+  const StreamState* source;
+  ReduceOp op;
+  std::string backend;
+  auto operator<=>(const ChainKey&) const = default;
+};
+
+struct ChainCache {
+  std::mutex mutex;
+  std::map<ChainKey, std::shared_ptr<Chain>> chains;
+};
+
+// The first level's program holds the source stream (as the array it gathers from). When
+// that is the only reference left, the user has dropped the stream: its chain goes too.
+bool source_dropped(const Chain& c) {
+  return c.levels.front().program().captured().arrays.front().use_count() == 1;
+}
+ChainCache& chain_cache() {
+  static ChainCache c;
+  return c;
+}
+
 template <class V>
-std::array<uint32_t, 4> reduce_typed(const StreamRef& s, ReduceOp op, const std::string& backend) {
+std::shared_ptr<Chain> build_chain(const StreamRef& s, ReduceOp op, const std::string& backend) {
   StreamState& st = s.state();
-  if (st.count() == 0) return identity<V>(op);
-  if (st.width > std::numeric_limits<int32_t>::max() ||
-      st.count() > std::numeric_limits<int32_t>::max())
-    throw Error(std::string(op_name(op)) + " of stream '" + st.name +
-                "': " + std::to_string(st.count()) + " elements; reductions take under 2^31");
   CompileOptions options;
   options.accuracy = Accuracy::Strict;
+  auto chain = std::make_shared<Chain>();
   Stream<V> src(s);
   bool two_d = st.dims == 2 && st.height > 1;
   bool first_level = true;
   int64_t len = two_d ? st.width : st.count();
   int64_t count = two_d ? blocks(st.width) * st.height : blocks(len);
   for (;;) {
-    Uniform<Int> u_len(static_cast<int32_t>(len), "rill_len");
-    Uniform<Int> u_row_blocks(static_cast<int32_t>(blocks(len)), "rill_row_blocks");
+    auto& u_len = *chain->uniforms.emplace_back(
+        std::make_unique<Uniform<Int>>(static_cast<int32_t>(len), "rill_len"));
+    auto& u_row_blocks = *chain->uniforms.emplace_back(
+        std::make_unique<Uniform<Int>>(static_cast<int32_t>(blocks(len)), "rill_row_blocks"));
     Program p = level_program(op, src, two_d, first_level && reads_truth(op), u_len, u_row_blocks);
     Stream<V> partial(count, "rill_partial");
-    compile(p, backend, options).bind("partial", partial).execute();
+    chain->levels.push_back(compile(p, backend, options));
+    chain->levels.back().bind("partial", partial);
     if (count == 1) {
-      std::array<uint32_t, 4> out{};
-      const uint32_t* w =
-          static_cast<StreamState&>(StreamRef(partial).state()).host_data_for_read();
-      for (int c = 0; c < V::width; ++c) out[static_cast<size_t>(c)] = w[c];
-      return out;
+      chain->last = partial;
+      return chain;
     }
     src = partial;
     two_d = false;
@@ -143,10 +175,43 @@ std::array<uint32_t, 4> reduce_typed(const StreamRef& s, ReduceOp op, const std:
   }
 }
 
+template <class V>
+std::array<uint32_t, 4> reduce_typed(const StreamRef& s, ReduceOp op, const std::string& backend) {
+  StreamState& st = s.state();
+  if (st.count() == 0) return identity<V>(op);
+  if (st.width > std::numeric_limits<int32_t>::max() ||
+      st.count() > std::numeric_limits<int32_t>::max())
+    throw Error(std::string(op_name(op)) + " of stream '" + st.name +
+                "': " + std::to_string(st.count()) + " elements; reductions take under 2^31");
+  ChainCache& cache = chain_cache();
+  const ChainKey key{&st, op, backend};
+  std::shared_ptr<Chain> chain;
+  {
+    std::lock_guard<std::mutex> lock(cache.mutex);
+    std::erase_if(cache.chains, [](const auto& e) { return source_dropped(*e.second); });
+    auto it = cache.chains.find(key);
+    if (it != cache.chains.end()) chain = it->second;  // alive, so the address is this stream's
+  }
+  if (!chain) {
+    chain = build_chain<V>(s, op, backend);
+    std::lock_guard<std::mutex> lock(cache.mutex);
+    cache.chains[key] = chain;
+  }
+  std::lock_guard<std::mutex> lock(chain->mutex);
+  for (Kernel& k : chain->levels) k.execute();
+  std::array<uint32_t, 4> out{};
+  const uint32_t* w = chain->last.state().host_data_for_read();
+  for (int c = 0; c < V::width; ++c) out[static_cast<size_t>(c)] = w[c];
+  return out;
+}
+
 }  // namespace
 
 std::array<uint32_t, 4> reduce(const StreamRef& s, ReduceOp op, const std::string& backend_name) {
   StreamState& st = s.state();
+  // The backend registry exists before the chain cache (statics die in reverse order), so
+  // cached kernels and streams never outlive the backends they belong to.
+  (void)backend(backend_name.empty() ? std::string("cpu") : backend_name);
   std::string where = backend_name;
   if (where.empty()) {
     // Where the newest copy is: reducing there moves only the result.

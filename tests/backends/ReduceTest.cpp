@@ -131,6 +131,25 @@ TEST_P(ReduceTest, RunsWhereAnEarlierLaunchLeftTheData) {
   EXPECT_EQ(sum(s), static_cast<int32_t>(int64_t{99999} * 100000 / 2));
 }
 
+TEST_P(ReduceTest, RepeatedReductionsSeeNewDataAndReleaseDroppedStreams) {
+  // The second and later reductions of a stream reuse its kernels and partial streams.
+  Stream<Float> s(std::vector<float>(1000, 0.5f));
+  const std::string be = backend_name();
+  EXPECT_EQ(sum(s, be), 500.0f);
+  s.fill(2.0f);
+  EXPECT_EQ(sum(s, be), 2000.0f);
+  EXPECT_EQ(maximum(s, be), 2.0f);
+  std::weak_ptr<rill::detail::StreamState> dropped;
+  {
+    Stream<Float> temporary(std::vector<float>(5000, 1.0f));
+    dropped = StreamRef(temporary).shared();
+    EXPECT_EQ(sum(temporary, be), 5000.0f);
+  }
+  // Held by the cached kernels until the next reduction notices it was dropped.
+  EXPECT_EQ(sum(s, be), 2000.0f);
+  EXPECT_TRUE(dropped.expired());
+}
+
 TEST_P(ReduceTest, EmptyStreamsGiveTheIdentity) {
   Stream<Float> e(0);
   Stream<Int> ei(0);

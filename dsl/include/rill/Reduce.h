@@ -18,6 +18,10 @@
 //     element is left.
 // Each level is one launch of a Rill kernel that gathers its block from the previous level.
 //
+// The kernels and partial streams that reduce a stream are kept and reused by its later
+// reductions (no capture or allocation per call). They hold the stream: its data is released
+// at the first reduction after the last user handle is dropped.
+//
 // Meanings: sum adds in the order above (an Int sum wraps around modulo 2^32); minimum and
 // maximum use the DSL's min and max (a NaN is kept only where it comes first in its fold);
 // count, any and all read a Stream<Int> as truth values (not 0 is true); count is an Int sum
