@@ -183,16 +183,20 @@ class ListMaker : public FieldMaker {
 };
 
 // The leaves of a record-typed stream or array: one storage per leaf, named "<name>.<path>".
-template <class R, class State>
-std::vector<std::pair<std::string, std::shared_ptr<State>>> make_leaves(const std::string& what) {
-  std::vector<std::pair<std::string, std::shared_ptr<State>>> leaves;
+// Made (an ArrayState or a StreamState) is created per leaf and set up by init(made, path, type).
+template <class R, class Made, class Init>
+std::vector<std::pair<std::string, std::shared_ptr<ArrayState>>> make_leaves(
+    const std::string& what, Init init) {
+  std::vector<std::pair<std::string, std::shared_ptr<ArrayState>>> leaves;
   for_each_leaf_type<R>([&](const std::string& path, ir::Type t) {
     if (t.kind == ir::ScalarKind::Bool)
       throw Error(what + " of record " + R::rill_record_name + ": field '" + path + "' is a " +
                   t.str() +
                   "; streams and arrays hold Float or Int fields (store a "
                   "Bool as an Int)");
-    leaves.emplace_back(path, std::make_shared<State>());
+    auto made = std::make_shared<Made>();
+    init(*made, path, t);
+    leaves.emplace_back(path, std::move(made));
   });
   return leaves;
 }
@@ -341,19 +345,10 @@ class Stream<R> {
  private:
   void init(int64_t w, int64_t h, int dims, std::string name) {
     name_ = std::move(name);
-    leaves_ = detail::make_leaves<R, detail::ArrayState>("a stream");
-    for (auto& [path, s] : leaves_) {
-      auto st = std::make_shared<detail::StreamState>();
-      detail::init_stream(*st, type_of(path), w, h, dims, name_ + "." + path);
-      s = st;
-    }
-  }
-  ir::Type type_of(const std::string& path) const {
-    ir::Type found;
-    detail::for_each_leaf_type<R>([&](const std::string& p, ir::Type t) {
-      if (p == path) found = t;
-    });
-    return found;
+    leaves_ = detail::make_leaves<R, detail::StreamState>(
+        "a stream", [&](detail::StreamState& s, const std::string& path, ir::Type t) {
+          detail::init_stream(s, t, w, h, dims, name_ + "." + path);
+        });
   }
   const std::shared_ptr<detail::ArrayState>& leaf(const std::string& path) const {
     for (const auto& [p, s] : leaves_)
@@ -412,15 +407,13 @@ class Array<R> {
   Array(int dims, std::array<int64_t, 3> shape, std::string name) : name_(std::move(name)) {
     for (int64_t d : shape)
       if (d < 1) throw Error("array '" + name_ + "': every dimension must be at least 1");
-    leaves_ = detail::make_leaves<R, detail::ArrayState>("an array");
-    size_t l = 0;
-    detail::for_each_leaf_type<R>([&](const std::string& path, ir::Type t) {
-      detail::ArrayState& a = *leaves_[l++].second;
-      a.name = name_ + "." + path;
-      a.dims = dims;
-      for (int d = 0; d < 3; ++d) a.shape[d] = shape[static_cast<size_t>(d)];
-      a.init(t, shape[0] * shape[1] * shape[2]);
-    });
+    leaves_ = detail::make_leaves<R, detail::ArrayState>(
+        "an array", [&](detail::ArrayState& a, const std::string& path, ir::Type t) {
+          a.name = name_ + "." + path;
+          a.dims = dims;
+          for (int d = 0; d < 3; ++d) a.shape[d] = shape[static_cast<size_t>(d)];
+          a.init(t, shape[0] * shape[1] * shape[2]);
+        });
   }
   R gather(std::vector<ir::Operand> idx, int dims) const {
     if (dims != leaves_.front().second->dims)

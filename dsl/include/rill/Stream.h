@@ -150,6 +150,22 @@ std::vector<HostOf<V>> copy_out(Storage& s) {
 // How gathers read outside an array; ir::Boundary (rill/ir/IR.h) defines each mode exactly.
 using Boundary = ir::Boundary;
 
+namespace detail {
+// What a gather with `mode` reads outside an array or stream of V (kind "array" or "stream"):
+// `outside`, which only Boundary::Constant may set.
+template <class V>
+ir::Constant border_of(Boundary mode, const HostOf<V>& outside, const std::string& kind,
+                       const std::string& name) {
+  if (mode != Boundary::Constant && !(outside == HostOf<V>{}))
+    throw Error(kind + " '" + name + "': only Boundary::Constant takes a value for outside the " +
+                kind + " (the mode given is " + ir::boundary_name(mode) + ")");
+  ir::Constant c{};
+  c.type = V::type();
+  std::memcpy(c.bits.data(), &outside, sizeof outside);
+  return c;
+}
+}  // namespace detail
+
 // A type-erased reference to a stream, for binding to kernels.
 class StreamRef {
  public:
@@ -214,13 +230,8 @@ class Stream {
   // How this handle's gathers read outside the stream, as Array::boundary (clamp by default):
   //   Stream<Float> h(w, h); h.boundary(Boundary::Wrap);  // h(-1, y) reads h(w - 1, y)
   Stream& boundary(Boundary mode, const host_type& outside = host_type{}) {
-    if (mode != Boundary::Constant && !(outside == host_type{}))
-      throw Error("stream '" + s_->name + "': only Boundary::Constant takes a value for outside " +
-                  "the stream (the mode given is " + ir::boundary_name(mode) + ")");
+    border_ = detail::border_of<V>(mode, outside, "stream", s_->name);
     boundary_ = mode;
-    border_ = ir::Constant{};
-    border_.type = V::type();
-    std::memcpy(border_.bits.data(), &outside, sizeof outside);
     return *this;
   }
 
@@ -283,13 +294,8 @@ class Array {
   //   a.boundary(Boundary::Constant, 0.5f);     // a[-1] reads 0.5
   Array& boundary(Boundary mode) { return boundary(mode, host_type{}); }
   Array& boundary(Boundary mode, const host_type& outside) {
-    if (mode != Boundary::Constant && !(outside == host_type{}))
-      throw Error("array '" + s_->name + "': only Boundary::Constant takes a value for outside " +
-                  "the array (the mode given is " + ir::boundary_name(mode) + ")");
+    border_ = detail::border_of<V>(mode, outside, "array", s_->name);
     boundary_ = mode;
-    border_ = ir::Constant{};
-    border_.type = V::type();
-    std::memcpy(border_.bits.data(), &outside, sizeof outside);
     return *this;
   }
   Boundary boundary() const { return boundary_; }
