@@ -5,6 +5,20 @@
 
 namespace rill {
 
+const char* origin_name(KernelOrigin o) {
+  switch (o) {
+    case KernelOrigin::Built:
+      return "built";
+    case KernelOrigin::ProcessCache:
+      return "process cache";
+    case KernelOrigin::DiskCache:
+      return "disk cache";
+    case KernelOrigin::DriverCache:
+      return "driver cache";
+  }
+  return "unknown";
+}
+
 namespace detail {
 // Defined by the library that bundles the backends (backends/Registry.cpp).
 void register_builtin_backends();
@@ -43,7 +57,8 @@ void register_backend(std::unique_ptr<Backend> b) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.mutex);
   for (auto& existing : r.list)
-    if (existing->name() == b->name()) throw Error("backend '" + b->name() + "' is registered twice");
+    if (existing->name() == b->name())
+      throw Error("backend '" + b->name() + "' is registered twice");
   r.list.push_back(std::move(b));
 }
 

@@ -17,6 +17,7 @@ struct Kernel::Shared {
   ir::Function optimized;
   std::unique_ptr<CompiledKernel> compiled;
   std::mutex run_mutex;  // a compiled kernel runs one launch at a time
+  CompileInfo info;      // what building it cost
 };
 
 namespace {
@@ -75,7 +76,10 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
   if (it != c.entries.end()) {
     ++c.stats.hits;
     k.shared_ = it->second;
+    k.info_ = it->second->info;
+    k.info_.compile_ms = 0;
     k.info_.cache_hit = true;
+    k.info_.origin = KernelOrigin::ProcessCache;
     return k;
   }
   ++c.stats.misses;
@@ -90,6 +94,8 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   k.info_.compile_ms = ms;
   k.info_.from_disk_cache = shared->compiled->from_disk_cache();
+  k.info_.origin = shared->compiled->report().origin;
+  shared->info = k.info_;
 
   lock.lock();
   auto [pos, inserted] = c.entries.emplace(key, shared);
@@ -143,8 +149,8 @@ Kernel& Kernel::bind(const std::string& name, StreamRef s) {
   bind_to(f.inputs, in_, "input");
   bind_to(f.outputs, out_, "output");
   if (!found)
-    throw Error("kernel '" + f.name + "' has no input or output named '" + name +
-                "' (it has " + describe_interface(f) + ")");
+    throw Error("kernel '" + f.name + "' has no input or output named '" + name + "' (it has " +
+                describe_interface(f) + ")");
   return *this;
 }
 

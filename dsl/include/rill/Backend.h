@@ -27,8 +27,8 @@ struct LaunchArgs {
   std::vector<detail::StreamState*> outputs;  // parallel to Function::outputs
   std::vector<const detail::UniformState*> uniforms;
   std::vector<detail::ArrayState*> arrays;
-  int64_t count = 0;                 // elements to run
-  int64_t width = 0, height = 1;     // domain shape (of the first output)
+  int64_t count = 0;              // elements to run
+  int64_t width = 0, height = 1;  // domain shape (of the first output)
   // A masked launch (StateMask.h): run only elements i whose mask value is in mask_values.
   // Null: every element. Checked by Kernel: an Int stream of `count` elements, 1 to
   // StateMask::kMaxValues values.
@@ -42,6 +42,25 @@ struct LaunchResult {
   int64_t selected = 0;  // elements run: those the mask selected, or count without a mask
 };
 
+// Where a compiled kernel came from (reported by Kernel::info().origin).
+enum class KernelOrigin : uint8_t {
+  Built,         // source generated and compiled by this process
+  ProcessCache,  // an identical kernel compiled earlier in this process (Kernel.h)
+  DiskCache,     // a binary Rill stored on disk in an earlier process
+  DriverCache,   // compiled from source, but the driver served it from a cache of its own
+};
+const char* origin_name(KernelOrigin o);  // "built", "process cache", "disk cache", "driver cache"
+
+// What a backend's compile() and warm_up() spent, in milliseconds, and where the kernel came
+// from. Backends fill it in; Kernel adds capture and optimization and reports it as CompileInfo.
+struct BuildReport {
+  double codegen_ms = 0;  // emitting the backend's source
+  double compile_ms = 0;  // the backend compile (C compiler, clBuildProgram, glLinkProgram),
+                          // or loading a cached binary
+  double finish_ms = 0;   // driver-side finishing done by warm_up()
+  KernelOrigin origin = KernelOrigin::Built;
+};
+
 class CompiledKernel {
  public:
   virtual ~CompiledKernel() = default;
@@ -49,14 +68,21 @@ class CompiledKernel {
   virtual LaunchResult run(const LaunchArgs& args) = 0;
   // The generated source (C, OpenCL C, GLSL...).
   virtual const std::string& source() const = 0;
+  // Makes the driver finish whatever it defers to the first launch (PoCL and Mesa compile the
+  // final machine code then), so that a compiled kernel is ready to run. Called once by
+  // rill::compile(); records its time in report().finish_ms. Backends without such work
+  // (cpu) keep the default.
+  virtual void warm_up() {}
+  const BuildReport& report() const { return report_; }
   // Whether the backend reused a binary compiled earlier (a disk cache) instead of compiling.
-  bool from_disk_cache() const { return from_disk_cache_; }
+  bool from_disk_cache() const { return report_.origin == KernelOrigin::DiskCache; }
 
  protected:
-  explicit CompiledKernel(bool from_disk_cache = false) : from_disk_cache_(from_disk_cache) {}
-
- private:
-  bool from_disk_cache_;
+  CompiledKernel() = default;
+  explicit CompiledKernel(bool from_disk_cache) {
+    if (from_disk_cache) report_.origin = KernelOrigin::DiskCache;
+  }
+  BuildReport report_;
 };
 
 class Backend {

@@ -6,7 +6,10 @@
 // in the user's source (file:line) that caused it.
 #pragma once
 
+#include <version>
+#if defined(__cpp_lib_source_location)
 #include <source_location>
+#endif
 #include <stdexcept>
 #include <string>
 
@@ -18,8 +21,21 @@ struct SourceLoc {
   const char* file = nullptr;
   unsigned line = 0;
 
-  static SourceLoc from(const std::source_location& l) { return {l.file_name(), l.line()}; }
-  bool known() const { return file != nullptr && line != 0; }
+#if defined(__cpp_lib_source_location)
+  static SourceLoc from(const std::source_location& l) {
+    return {l.file_name(), l.line()};
+  }
+#else
+  // clang 14 with libstdc++ 12 (Debian 12's pair) has no std::source_location. clang's
+  // __builtin_FILE/__builtin_LINE, as default arguments of a function that is itself called
+  // in a default argument, give the outermost call site, as std::source_location does.
+  static SourceLoc current(const char* file = __builtin_FILE(), unsigned line = __builtin_LINE()) {
+    return {file, line};
+  }
+#endif
+  bool known() const {
+    return file != nullptr && line != 0;
+  }
   // "file.cpp:42", or "" when unknown.
   std::string str() const;
 };
@@ -39,4 +55,8 @@ class Error : public std::runtime_error {
 }  // namespace rill
 
 // The caller's source location; used as a default argument so errors point at user code.
+#if defined(__cpp_lib_source_location)
 #define RILL_HERE ::rill::SourceLoc::from(std::source_location::current())
+#else
+#define RILL_HERE ::rill::SourceLoc::current()
+#endif

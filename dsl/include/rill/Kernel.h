@@ -29,10 +29,19 @@ struct LaunchStats {
   int64_t written = 0;    // elements not discarded (<= processed)
 };
 
+// What compiling a kernel cost, stage by stage, in milliseconds, and where it came from.
+// On a process-cache hit the stages are those of the compile that built the shared kernel,
+// and compile_ms is 0: this compile() cost nothing.
 struct CompileInfo {
-  double compile_ms = 0;       // 0 on a cache hit
-  bool cache_hit = false;      // served from the in-process kernel cache
-  bool from_disk_cache = false;
+  double capture_ms = 0;          // building the program's IR (when the Program was defined)
+  double optimize_ms = 0;         // the optimizer passes
+  double codegen_ms = 0;          // emitting the backend's source
+  double backend_compile_ms = 0;  // the backend's compiler, or loading a cached binary
+  double driver_finish_ms = 0;    // work a driver defers to the first launch, done in compile()
+  double compile_ms = 0;          // what this compile() call took in all (0 on a cache hit)
+  KernelOrigin origin = KernelOrigin::Built;
+  bool cache_hit = false;        // served from the in-process kernel cache (origin ProcessCache)
+  bool from_disk_cache = false;  // the backend loaded a binary from Rill's disk cache
 };
 
 class Kernel {
@@ -57,7 +66,7 @@ class Kernel {
   // Binds a stream of records (Record.h) field by field: the leaf "pos" of the stream binds
   // the kernel's "<name>.pos" (or "pos" when name is empty, for unnamed record parameters).
   template <class S>
-    requires requires(const S& s) { s.leaves(); }
+  requires requires(const S& s) { s.leaves(); }
   Kernel& bind(const std::string& name, const S& s) {
     bind_record(name, s.name(), s.leaves(), false);
     return *this;
@@ -68,7 +77,7 @@ class Kernel {
   // A kernel that declares none of them is an error; a declared field left unbound is one at
   // launch, as always.
   template <class S>
-    requires requires(const S& s) { s.leaves(); }
+  requires requires(const S& s) { s.leaves(); }
   Kernel& bind_fields(const std::string& name, const S& s) {
     bind_record(name, s.name(), s.leaves(), true);
     return *this;
