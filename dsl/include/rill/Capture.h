@@ -98,9 +98,6 @@ class ProgramScope {
   ProgramScope& operator=(const ProgramScope&) = delete;
   // Checks the captured program (macros closed, outputs written, IR valid) and returns it.
   CapturedProgram finish();
-
- private:
-  bool finished_ = false;
 };
 
 // Records DSL code into a block of an existing function: passes use it to write IR with the
