@@ -6,6 +6,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <chrono>
 
 #include "CEmitter.h"
 #include "LockstepEmitter.h"
@@ -46,16 +47,16 @@ struct Selection {
 class CpuKernel : public CompiledKernel {
  public:
   // lockstep: the kernel is emit_c_lockstep()'s, which indexes arrays with 32-bit lanes.
-  CpuKernel(std::string source, SharedObject so, bool lockstep)
+  // compile_ms: compiling the shared object, or loading it from the disk cache.
+  CpuKernel(std::string source, SharedObject so, bool lockstep, double compile_ms)
       : CompiledKernel(so.from_disk_cache),
         source_(std::move(source)),
         so_(std::move(so)),
         lockstep_(lockstep) {
     run_ = reinterpret_cast<RunFn>(so_.symbol);
+    report_.compile_ms = compile_ms;
   }
-  ~CpuKernel() override {
-    if (so_.handle) dlclose(so_.handle);
-  }
+  ~CpuKernel() override { release(so_); }
 
   LaunchResult run(const LaunchArgs& a) override {
     std::vector<void*> in, out;
@@ -159,8 +160,11 @@ class CpuBackend : public Backend {
     std::string source = lockstep ? emit_c_lockstep(f, o.accuracy) : emit_c(f, o.accuracy);
     std::vector<std::string> flags = compiler_flags(o.accuracy);
     if (lockstep && vector_isa() == "AVX2") flags.push_back("-mavx2");
-    SharedObject so = compile_shared_object(source, flags, "rill_run");
-    return std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep);
+    const auto start = std::chrono::steady_clock::now();
+    SharedObject so = compile_shared_object(name(), source, flags, "rill_run");
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep, ms);
   }
 
  private:

@@ -2,10 +2,13 @@
 
 #include <dlfcn.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,6 +16,7 @@
 
 #include <fcntl.h>
 
+#include "../cache/DiskCache.h"
 #include "../codegen/SourceText.h"
 #include "rill/Error.h"
 #include "rill/ir/Hash.h"
@@ -31,7 +35,7 @@ std::string env(const char* name) {
 }
 
 std::string read_file(const fs::path& p) {
-  std::ifstream in(p);
+  std::ifstream in(p, std::ios::binary);
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
@@ -61,18 +65,7 @@ int run(const std::vector<std::string>& argv, const fs::path& log) {
 }  // namespace
 
 std::string cache_directory() {
-  std::string dir = env("RILL_CACHE_DIR");
-  if (dir.empty()) {
-    std::string xdg = env("XDG_CACHE_HOME");
-    std::string home = env("HOME");
-    if (!xdg.empty())
-      dir = xdg + "/rill";
-    else if (!home.empty())
-      dir = home + "/.cache/rill";
-    else
-      dir = (fs::temp_directory_path() / "rill-cache").string();
-  }
-  return dir;
+  return cache::directory();
 }
 
 std::string c_compiler() {
@@ -84,12 +77,75 @@ std::string c_compiler() {
   return "cc";
 }
 
-SharedObject compile_shared_object(const std::string& source, const std::vector<std::string>& flags,
+namespace {
+
+// Loads a verified shared object from memory (see the header: a memory file, never the
+// cache file) and looks up `entry`. Returns an object without a handle, and dlerror()'s text
+// in `why`, when the loader refuses it.
+SharedObject load_from_memory(std::string_view bytes, const std::string& entry, std::string& why) {
+  SharedObject so;
+  so.fd = memfd_create("rill-kernel", MFD_CLOEXEC);
+  if (so.fd < 0)
+    throw Error(std::string("CPU backend: memfd_create failed: ") + std::strerror(errno));
+  size_t done = 0;
+  while (done < bytes.size()) {
+    ssize_t n = write(so.fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      close(so.fd);
+      throw Error(std::string("CPU backend: cannot write a kernel to memory: ") +
+                  std::strerror(errno));
+    }
+    done += static_cast<size_t>(n);
+  }
+  const std::string name = "/proc/self/fd/" + std::to_string(so.fd);
+  so.handle = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!so.handle) {
+    const char* e = dlerror();
+    why = e ? e : "unknown error";
+    close(so.fd);
+    so.fd = -1;
+    return so;
+  }
+  so.symbol = dlsym(so.handle, entry.c_str());
+  if (!so.symbol) {
+    why = "it has no '" + entry + "'";
+    release(so);
+  }
+  return so;
+}
+
+}  // namespace
+
+void release(SharedObject& so) {
+  if (so.handle) dlclose(so.handle);
+  if (so.fd >= 0) close(so.fd);
+  so.handle = so.symbol = nullptr;
+  so.fd = -1;
+}
+
+SharedObject compile_shared_object(const std::string& backend, const std::string& source,
+                                   const std::vector<std::string>& flags,
                                    const std::string& entry) {
   const std::string cc = c_compiler();
   std::string command = cc;
   for (const auto& f : flags) command += " " + f;
-  const std::string key = ir::hex(ir::hash_bytes(source, ir::hash_bytes(command)));
+  const std::string key_text = "backend=" + backend + "\ndriver=" + command + "\nentry=" + entry +
+                               "\n" + cache::source_line(source);
+  const std::string cache_path = cache::entry_path(backend, key_text).string();
+
+  std::string why;
+  if (std::optional<std::string> cached = cache::load(backend, key_text)) {
+    SharedObject so = load_from_memory(*cached, entry, why);
+    if (so.handle) {
+      so.from_disk_cache = true;
+      so.path = cache_path;
+      return so;
+    }
+    // It passed the checksum, so it is what an earlier compile wrote, yet the loader refuses
+    // it (a compiler command that means something else now): rebuild it.
+    cache::remove(backend, key_text);
+  }
 
   fs::path dir = cache_directory();
   std::error_code ec;
@@ -98,59 +154,41 @@ SharedObject compile_shared_object(const std::string& source, const std::vector<
     throw Error("CPU backend: cannot create the kernel cache directory '" + dir.string() + "' (" +
                 ec.message() + "); set RILL_CACHE_DIR to a writable directory");
 
-  SharedObject so;
-  fs::path lib = dir / (key + ".so");
-  so.path = lib.string();
-  so.from_disk_cache = fs::exists(lib);
-  if (!so.from_disk_cache) {
-    // Unique temporary names per process and thread, then an atomic rename.
-    std::ostringstream tag;
-    tag << key << "." << getpid() << "."
-        << std::hash<std::thread::id>{}(std::this_thread::get_id());
-    fs::path src = dir / (tag.str() + ".c");
-    fs::path tmp = dir / (tag.str() + ".so.tmp");
-    fs::path log = dir / (tag.str() + ".log");
-    {
-      std::ofstream out(src);
-      out << source;
-      if (!out) throw Error("CPU backend: cannot write '" + src.string() + "'");
-    }
-    std::vector<std::string> argv{cc};
-    argv.insert(argv.end(), flags.begin(), flags.end());
-    argv.insert(argv.end(), {"-o", tmp.string(), src.string(), "-lm"});
-    int rc = run(argv, log);
-    std::string messages = read_file(log);
-    fs::remove(log, ec);
-    if (rc != 0) {
-      fs::remove(src, ec);
-      fs::remove(tmp, ec);
-      if (rc < 0)
-        throw Error("CPU backend: the C compiler '" + cc +
-                    "' could not be run; install one (apt-get install gcc) or set RILL_CC");
-      throw Error("CPU backend: the C compiler rejected the generated kernel (exit " +
-                  std::to_string(rc) + "):\n" + messages + "\ngenerated source:\n" +
-                  codegen::numbered(source));
-    }
-    fs::remove(src, ec);
-    fs::rename(tmp, lib, ec);
-    if (ec)
-      throw Error("CPU backend: cannot move the compiled kernel into the cache: " + ec.message());
+  // Unique temporary names per process and thread.
+  std::ostringstream tag;
+  tag << ir::hex(ir::hash_bytes(key_text)) << ".rill.tmp." << getpid() << "."
+      << std::hash<std::thread::id>{}(std::this_thread::get_id());
+  fs::path src = dir / (tag.str() + ".c");
+  fs::path tmp = dir / (tag.str() + ".so");
+  fs::path log = dir / (tag.str() + ".log");
+  {
+    std::ofstream out(src);
+    out << source;
+    if (!out) throw Error("CPU backend: cannot write '" + src.string() + "'");
   }
+  std::vector<std::string> argv{cc};
+  argv.insert(argv.end(), flags.begin(), flags.end());
+  argv.insert(argv.end(), {"-o", tmp.string(), src.string(), "-lm"});
+  int rc = run(argv, log);
+  std::string messages = read_file(log);
+  fs::remove(log, ec);
+  fs::remove(src, ec);
+  if (rc != 0) {
+    fs::remove(tmp, ec);
+    if (rc < 0)
+      throw Error("CPU backend: the C compiler '" + cc +
+                  "' could not be run; install one (apt-get install gcc) or set RILL_CC");
+    throw Error("CPU backend: the C compiler rejected the generated kernel (exit " +
+                std::to_string(rc) + "):\n" + messages + "\ngenerated source:\n" +
+                codegen::numbered(source));
+  }
+  std::string binary = read_file(tmp);
+  fs::remove(tmp, ec);
+  cache::store(backend, key_text, binary);
 
-  so.handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!so.handle && so.from_disk_cache) {
-    // A damaged cache file (a disk that filled up, a copy cut short): compile it afresh.
-    fs::remove(lib, ec);
-    return compile_shared_object(source, flags, entry);
-  }
-  if (!so.handle)
-    throw Error(std::string("CPU backend: cannot load compiled kernel: ") + dlerror());
-  so.symbol = dlsym(so.handle, entry.c_str());
-  if (!so.symbol) {
-    dlclose(so.handle);
-    throw Error("CPU backend: compiled kernel has no '" + entry + "' (stale cache file " +
-                lib.string() + "?)");
-  }
+  SharedObject so = load_from_memory(binary, entry, why);
+  if (!so.handle) throw Error("CPU backend: cannot load compiled kernel: " + why);
+  so.path = cache_path;
   return so;
 }
 

@@ -1,11 +1,19 @@
 // Compiling generated C into a shared object with the system C compiler, cached on disk.
 //
-// The cache key is a hash of the source and of the compiler command, so a kernel compiled
-// once is loaded from disk by every later process (the first use in a fresh cache costs a
-// compiler run, typically tens of milliseconds). Files are written under a temporary name
-// and renamed into place, so concurrent processes sharing the cache never see half a file.
+// The shared objects live in Rill's disk cache (cache/DiskCache.h), keyed by the backend
+// (cpu or simd), the compiler command with its flags ("driver=") and a hash of the source, so
+// a kernel compiled once is loaded from disk by every later process (the first use in a
+// fresh cache costs a compiler run, typically tens of milliseconds).
 //
-// Where: $RILL_CACHE_DIR, else $XDG_CACHE_HOME/rill, else ~/.cache/rill.
+// Loading: a corrupt ELF file can crash the dynamic loader, so a shared object is never
+// dlopen'ed from the cache file itself. The entry is read and its checksum verified first
+// (DiskCache::load), then the verified bytes are written to an anonymous memory file
+// (memfd_create) and loaded as /proc/self/fd/N: what is loaded is exactly what was checked,
+// with no window in which another process could change the file between check and load.
+// glibc recognizes an already loaded object by its path name, so the memory file stays
+// open while the object is loaded (release() closes both): no two live kernels can have the
+// same /proc/self/fd/N name. A fresh compile takes the same path, after storing the entry.
+//
 // Which compiler: $RILL_CC, else the C compiler Rill was built with, else `cc`.
 #pragma once
 
@@ -17,14 +25,18 @@ namespace rill::cpu {
 struct SharedObject {
   void* handle = nullptr;  // from dlopen
   void* symbol = nullptr;  // the requested entry point
+  int fd = -1;             // the memory file the object was loaded from (see above)
   bool from_disk_cache = false;
-  std::string path;
+  std::string path;  // the cache entry
 };
 
-// Compiles `source` with `flags` (or finds it in the cache), loads it and looks up `entry`.
-// Throws rill::Error with the compiler's messages and the numbered source on failure.
-SharedObject compile_shared_object(const std::string& source, const std::vector<std::string>& flags,
-                                   const std::string& entry);
+// Compiles `source` with `flags` (or finds it in the cache entries of `backend`), loads it
+// and looks up `entry`. Throws rill::Error with the compiler's messages and the numbered
+// source on failure.
+SharedObject compile_shared_object(const std::string& backend, const std::string& source,
+                                   const std::vector<std::string>& flags, const std::string& entry);
+// Unloads the object and closes its memory file.
+void release(SharedObject& so);
 
 std::string cache_directory();
 std::string c_compiler();

@@ -21,9 +21,17 @@
 // whole 4x4 blocks, GPUs whole tiles), so masked elements cost close to nothing.
 // layout(early_fragment_tests) is not used: it would make the occlusion query count
 // fragments the kernel then discards.
+//
+// Rill's disk cache (cache/DiskCache.h) keeps each pass's linked program as a program binary
+// (glGetProgramBinary), keyed by GL_VENDOR, GL_RENDERER, GL_VERSION and the shaders' source,
+// and loads it with glProgramBinary; a binary the driver refuses (GL_LINK_STATUS false) is
+// removed and the shaders compiled again. Drivers that offer no binary format
+// (GL_NUM_PROGRAM_BINARY_FORMATS 0) always compile: Mesa offers one only while its own shader
+// disk cache is on, so with MESA_SHADER_CACHE_DISABLE=true (.ci/run) nothing is cached here.
 #include "GLSLBackend.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -31,6 +39,7 @@
 #include <mutex>
 #include <vector>
 
+#include "../cache/DiskCache.h"
 #include "../codegen/SourceText.h"
 #include "GLContext.h"
 #include "GLSLEmitter.h"
@@ -130,6 +139,11 @@ class GLSLKernel : public CompiledKernel {
     for (const Pass& p : passes_) source_ += p.source;
   }
   ~GLSLKernel() override;
+  // Where the programs came from, and what linking or loading them took.
+  void set_origin(KernelOrigin origin, double compile_ms) {
+    report_.origin = origin;
+    report_.compile_ms = compile_ms;
+  }
   LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
 
@@ -165,7 +179,10 @@ class GLSLBackend : public Backend {
     if (!why.empty()) return "glsl: unavailable: " + why;
     auto* self = const_cast<GLSLBackend*>(this);
     return "glsl: " + self->context().kind() + ", " + self->context().renderer +
-           "; strict / and sqrt: " + divsqrt_name(self->divsqrt_);
+           "; strict / and sqrt: " + divsqrt_name(self->divsqrt_) + "; disk cache: " +
+           (self->binary_formats_ > 0
+                ? std::string("program binaries")
+                : std::string("none (the driver offers no program binary format)"));
   }
   bool supports(Accuracy a) const override { return a != Accuracy::Double; }
 
@@ -176,6 +193,8 @@ class GLSLBackend : public Backend {
       throw Error("GLSL backend: accuracy mode 'double' is not supported (GLSL kernels compute in binary32)");
     int group = std::max(1, max_draw_buffers_);
     std::vector<GLSLKernel::Pass> passes;
+    double compile_ms = 0;
+    bool all_cached = true;
     for (size_t first = 0; first < std::max<size_t>(1, f.outputs.size()); first += static_cast<size_t>(group)) {
       GLSLKernel::Pass p;
       for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group)); ++i)
@@ -183,10 +202,18 @@ class GLSLBackend : public Backend {
       GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, divsqrt_);
       p.source = std::move(shader.source);
       p.constants = std::move(shader.constants);
-      p.program = link(gl, f.name, p.source);
+      const auto start = std::chrono::steady_clock::now();
+      bool cached = false;
+      p.program = link_cached(gl, f.name, p.source, cached);
+      all_cached = all_cached && cached;
+      compile_ms +=
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
       passes.push_back(std::move(p));
     }
-    return std::make_unique<GLSLKernel>(*this, session_, f, std::move(passes));
+    auto kernel = std::make_unique<GLSLKernel>(*this, session_, f, std::move(passes));
+    kernel->set_origin(all_cached ? KernelOrigin::DiskCache : KernelOrigin::Built, compile_ms);
+    return kernel;
   }
 
   void read_back(const detail::Storage& s, uint32_t* host) override {
@@ -333,6 +360,8 @@ class GLSLBackend : public Backend {
     GLuint vs = compile_one(GL_VERTEX_SHADER, vertex_shader());
     GLuint fs = compile_one(GL_FRAGMENT_SHADER, fragment);
     GLuint prog = gl.glCreateProgram();
+    if (binary_formats_ > 0)
+      gl.glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     gl.glAttachShader(prog, vs);
     gl.glAttachShader(prog, fs);
     gl.glLinkProgram(prog);
@@ -348,6 +377,50 @@ class GLSLBackend : public Backend {
       gl.glDeleteProgram(prog);
       throw Error("GLSL backend: linking kernel '" + name + "' failed:\n" + log + "\ngenerated source:\n" +
                   codegen::numbered(fragment));
+    }
+    return prog;
+  }
+
+  // link(), through Rill's disk cache of program binaries (see the top of this file).
+  // `from_cache`: the program was loaded from a cached binary.
+  GLuint link_cached(const GL& gl, const std::string& name, const std::string& fragment,
+                     bool& from_cache) {
+    from_cache = false;
+    // No binary format (Mesa without its shader cache): compile every time.
+    if (binary_formats_ <= 0) return link(gl, name, fragment);
+    const std::string key =
+        "backend=glsl\n" + cache_identity_ + cache::source_line(vertex_shader() + "\n" + fragment);
+    std::optional<std::string> binary = cache::load("glsl", key);
+    if (binary && binary->size() > sizeof(GLenum)) {
+      GLenum format = 0;
+      std::memcpy(&format, binary->data(), sizeof format);
+      GLuint prog = gl.glCreateProgram();
+      gl.glProgramBinary(prog, format, binary->data() + sizeof format,
+                         static_cast<GLsizei>(binary->size() - sizeof format));
+      GLint ok = 0;
+      gl.glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+      // A format this driver does not know raises GL_INVALID_ENUM: a refused binary.
+      for (int i = 0; i < 8 && gl.glGetError() != GL_NO_ERROR; ++i) ok = 0;
+      if (ok) {
+        from_cache = true;
+        return prog;
+      }
+      gl.glDeleteProgram(prog);
+      cache::remove("glsl", key);
+    }
+    GLuint prog = link(gl, name, fragment);
+    GLint length = 0;
+    gl.glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &length);
+    if (length > 0) {
+      std::string payload(sizeof(GLenum) + static_cast<size_t>(length), '\0');
+      GLenum format = 0;
+      GLsizei got = 0;
+      gl.glGetProgramBinary(prog, length, &got, &format, payload.data() + sizeof format);
+      if (gl.glGetError() == GL_NO_ERROR && got > 0) {
+        std::memcpy(payload.data(), &format, sizeof format);
+        payload.resize(sizeof format + static_cast<size_t>(got));
+        cache::store("glsl", key, payload);
+      }
     }
     return prog;
   }
@@ -393,6 +466,13 @@ class GLSLBackend : public Backend {
       if (const char* force = std::getenv("RILL_GL_MAX_DRAW_BUFFERS"))  // to test pass splitting
         max_draw_buffers_ = std::clamp(std::atoi(force), 1, max_draw_buffers_);
       max_units_ = units;
+      gl.glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &binary_formats_);
+      auto str = [&](GLenum e) {
+        const GLubyte* s = gl.glGetString(e);
+        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+      };
+      cache_identity_ = "vendor=" + str(GL_VENDOR) + "\nrenderer=" + str(GL_RENDERER) +
+                        "\ndriver=" + str(GL_VERSION) + "\n";
       divsqrt_ = divsqrt_mode(c->renderer);
       gl.glGenFramebuffers(1, &fbo_);
       gl.glGenVertexArrays(1, &vao_);
@@ -418,6 +498,8 @@ class GLSLBackend : public Backend {
   bool started_ = false;  // a context was made (and, if session_ has none now, shut down)
   std::string init_error_;
   int max_draw_buffers_ = 1, max_units_ = 16;
+  GLint binary_formats_ = 0;    // GL_NUM_PROGRAM_BINARY_FORMATS: 0, no disk cache of programs
+  std::string cache_identity_;  // the driver, as disk cache key lines
   DivSqrt divsqrt_ = DivSqrt::Native;  // how strict kernels divide (DivSqrt.h)
   GLuint fbo_ = 0, vao_ = 0, query_ = 0;
   GLuint mask_program_ = 0;

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
 
+#include "../cache/DiskCache.h"
 #include "../codegen/SourceText.h"
 #include "OpenCLEmitter.h"
 #include "rill/Parameters.h"
@@ -126,7 +128,50 @@ struct Device {
   cl_context context = nullptr;
   cl_command_queue queue = nullptr;
   size_t max_group = 64;
+  std::string identity;  // the platform, device and driver, as disk cache key lines
 };
+
+// The device and driver lines of Rill's disk cache keys: a binary is only valid for the
+// driver version that produced it.
+std::string cache_identity(cl_device_id id) {
+  cl_platform_id platform = nullptr;
+  clGetDeviceInfo(id, CL_DEVICE_PLATFORM, sizeof platform, &platform, nullptr);
+  return "platform=" + platform_string(platform, CL_PLATFORM_NAME) + " / " +
+         platform_string(platform, CL_PLATFORM_VERSION) +
+         "\ndevice=" + device_string(id, CL_DEVICE_NAME) + " / " +
+         device_string(id, CL_DEVICE_VERSION) + "\ndriver=" + device_string(id, CL_DRIVER_VERSION) +
+         "\n";
+}
+
+// A program built from the binary in Rill's disk cache, or null when there is none. A binary
+// the driver refuses (CL_INVALID_BINARY, a failed build) is removed, and the caller builds
+// from source and stores a fresh one.
+cl_program program_from_cache(const Device& d, const std::string& key, const std::string& options) {
+  std::optional<std::string> binary = cache::load("opencl", key);
+  if (!binary) return nullptr;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(binary->data());
+  const size_t len = binary->size();
+  cl_int status = CL_SUCCESS, e = CL_SUCCESS;
+  cl_program prog = clCreateProgramWithBinary(d.context, 1, &d.id, &len, &bytes, &status, &e);
+  if (e == CL_SUCCESS && status == CL_SUCCESS &&
+      clBuildProgram(prog, 1, &d.id, options.c_str(), nullptr, nullptr) == CL_SUCCESS)
+    return prog;
+  if (e == CL_SUCCESS) clReleaseProgram(prog);
+  cache::remove("opencl", key);
+  return nullptr;
+}
+
+// Stores a built program's binary in Rill's disk cache (nothing if the driver gives none).
+void store_binary(cl_program prog, const std::string& key) {
+  size_t size = 0;
+  if (clGetProgramInfo(prog, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, nullptr) != CL_SUCCESS ||
+      size == 0)
+    return;
+  std::string binary(size, '\0');
+  auto* ptr = reinterpret_cast<unsigned char*>(binary.data());
+  if (clGetProgramInfo(prog, CL_PROGRAM_BINARIES, sizeof ptr, &ptr, nullptr) != CL_SUCCESS) return;
+  cache::store("opencl", key, binary);
+}
 
 // Device memory for a stream or array.
 struct ClBuffer : detail::DeviceBuffer {
@@ -143,6 +188,11 @@ class ClKernel : public CompiledKernel {
  public:
   ClKernel(OpenCLBackend& be, const ir::Function& f, std::string source, cl_program program, cl_kernel kernel)
       : be_(be), fn_(f), source_(std::move(source)), program_(program), kernel_(kernel) {}
+  // Where the program came from, and what building or loading it took.
+  void set_origin(KernelOrigin origin, double compile_ms) {
+    report_.origin = origin;
+    report_.compile_ms = compile_ms;
+  }
   ~ClKernel() override {
     clReleaseKernel(kernel_);
     clReleaseProgram(program_);
@@ -188,28 +238,41 @@ class OpenCLBackend : public Backend {
     if (o.accuracy == Accuracy::Double && !d.info.fp64)
       throw Error("OpenCL backend: device '" + d.info.device_name + "' has no fp64 support (cl_khr_fp64)");
     std::string source = emit_opencl(f, o.accuracy);
-    const char* text = source.c_str();
-    size_t len = source.size();
-    cl_int e = CL_SUCCESS;
-    cl_program prog = clCreateProgramWithSource(d.context, 1, &text, &len, &e);
-    check(e, "clCreateProgramWithSource");
     std::string options = "-cl-std=CL1.2";
     if (o.accuracy == Accuracy::Fast) options += " -cl-fast-relaxed-math -cl-mad-enable";
     else options += " -cl-fp32-correctly-rounded-divide-sqrt";
-    e = clBuildProgram(prog, 1, &d.id, options.c_str(), nullptr, nullptr);
-    if (e != CL_SUCCESS) {
-      size_t n = 0;
-      clGetProgramBuildInfo(prog, d.id, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
-      std::string log(n, '\0');
-      clGetProgramBuildInfo(prog, d.id, CL_PROGRAM_BUILD_LOG, n, log.data(), nullptr);
-      clReleaseProgram(prog);
-      throw Error("OpenCL backend: the driver (" + d.info.device_name + ") rejected kernel '" + f.name + "' (" +
-                  cl_error_name(e) + "):\n" + log + "\ngenerated source:\n" + codegen::numbered(source));
+    const auto start = std::chrono::steady_clock::now();
+    const std::string key =
+        "backend=opencl\n" + d.identity + "options=" + options + "\n" + cache::source_line(source);
+    cl_program prog = program_from_cache(d, key, options);
+    const KernelOrigin origin = prog ? KernelOrigin::DiskCache : KernelOrigin::Built;
+    cl_int e = CL_SUCCESS;
+    if (!prog) {
+      const char* text = source.c_str();
+      size_t len = source.size();
+      prog = clCreateProgramWithSource(d.context, 1, &text, &len, &e);
+      check(e, "clCreateProgramWithSource");
+      e = clBuildProgram(prog, 1, &d.id, options.c_str(), nullptr, nullptr);
+      if (e != CL_SUCCESS) {
+        size_t n = 0;
+        clGetProgramBuildInfo(prog, d.id, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
+        std::string log(n, '\0');
+        clGetProgramBuildInfo(prog, d.id, CL_PROGRAM_BUILD_LOG, n, log.data(), nullptr);
+        clReleaseProgram(prog);
+        throw Error("OpenCL backend: the driver (" + d.info.device_name + ") rejected kernel '" +
+                    f.name + "' (" + cl_error_name(e) + "):\n" + log + "\ngenerated source:\n" +
+                    codegen::numbered(source));
+      }
+      store_binary(prog, key);
     }
     cl_kernel k = clCreateKernel(prog, "rill_run", &e);
     if (e != CL_SUCCESS) clReleaseProgram(prog);
     check(e, "clCreateKernel");
-    return std::make_unique<ClKernel>(*this, f, std::move(source), prog, k);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    auto kernel = std::make_unique<ClKernel>(*this, f, std::move(source), prog, k);
+    kernel->set_origin(origin, ms);
+    return kernel;
   }
 
   // Makes the device copy of s current and returns its buffer.
@@ -267,6 +330,7 @@ class OpenCLBackend : public Backend {
       auto d = std::make_unique<Device>();
       d->info = found.infos[i];
       d->id = found.ids[i];
+      d->identity = cache_identity(d->id);
       cl_int e = CL_SUCCESS;
       d->context = clCreateContext(nullptr, 1, &d->id, nullptr, nullptr, &e);
       check(e, "clCreateContext");
