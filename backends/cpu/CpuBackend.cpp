@@ -192,9 +192,11 @@ std::vector<std::string> compiler_flags(Accuracy a) {
   if (a == Accuracy::Fast) {
     // -ffast-math's parts, spelled out: the option itself would also link crtfastmath.o,
     // which turns on flush-to-zero for the whole process, strict kernels included.
+    // (-fcx-limited-range, the last part, concerns complex arithmetic, which kernels never
+    // use, and clang 14 rejects it.)
     f.insert(f.end(), {"-fno-trapping-math", "-fno-signed-zeros", "-fassociative-math",
                        "-freciprocal-math", "-ffinite-math-only", "-fno-rounding-math",
-                       "-fcx-limited-range", "-ffp-contract=fast"});
+                       "-ffp-contract=fast"});
   } else {
     f.insert(f.end(), {"-fno-fast-math", "-ffp-contract=off", "-fexcess-precision=standard"});
   }

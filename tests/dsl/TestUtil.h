@@ -152,10 +152,20 @@ inline std::string problems(const ir::Function& f) {
 template <class V>
 using Host = typename V::host_type;
 
+// The bits of a host stream's words. For float data every NaN becomes the canonical quiet NaN
+// 0x7fc00000: the sign and payload of a NaN result are not specified (docs/accuracy.md), and
+// they do differ between C compilers (clang may swap the operands of a commutative add of two
+// NaNs; x86's invalid-operation NaN is negative where GCC folds a positive one).
 template <class T>
 std::vector<uint32_t> bits_of(const std::vector<T>& v) {
   std::vector<uint32_t> out(v.size() * sizeof(T) / 4);
   if (!v.empty()) std::memcpy(out.data(), v.data(), out.size() * 4);
+  constexpr bool floats = std::is_same_v<T, float> || requires {
+    requires std::is_same_v<typename T::value_type, float>;
+  };
+  if constexpr (floats)
+    for (uint32_t& w : out)
+      if ((w & 0x7fffffffu) > 0x7f800000u) w = 0x7fc00000u;
   return out;
 }
 
