@@ -11,6 +11,7 @@
 #include "LockstepEmitter.h"
 #include "SharedObjectCache.h"
 #include "rill/Parameters.h"
+#include "rill/Stopwatch.h"
 
 namespace rill::cpu {
 
@@ -156,11 +157,15 @@ class CpuBackend : public Backend {
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
     // The double mode is the accuracy reference, not a speed mode: it runs as scalar C.
     const bool lockstep = lockstep_ && o.accuracy != Accuracy::Double;
+    Stopwatch stage;
     std::string source = lockstep ? emit_c_lockstep(f, o.accuracy) : emit_c(f, o.accuracy);
+    const double codegen_ms = stage.lap();
     std::vector<std::string> flags = compiler_flags(o.accuracy);
     if (lockstep && vector_isa() == "AVX2") flags.push_back("-mavx2");
     SharedObject so = compile_shared_object(source, flags, "rill_run");
-    return std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep);
+    auto k = std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep);
+    k->set_build_times(codegen_ms, stage.lap());
+    return k;
   }
 
  private:

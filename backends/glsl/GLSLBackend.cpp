@@ -34,8 +34,10 @@
 #include "../codegen/SourceText.h"
 #include "GLContext.h"
 #include "GLSLEmitter.h"
-#include "rill/StateMask.h"
+#include "WarmUpLaunch.h"
 #include "rill/Parameters.h"
+#include "rill/StateMask.h"
+#include "rill/Stopwatch.h"
 
 namespace rill::glsl {
 
@@ -132,6 +134,10 @@ class GLSLKernel : public CompiledKernel {
   ~GLSLKernel() override;
   LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
+  // llvmpipe compiles a shader's variant for the bound texture and framebuffer formats at
+  // its first draw: one draw over one texel that the shader discards (rill_count 0) does it
+  // now. (A masked launch, with the stencil test on, is another variant, built at the first.)
+  void warm_up() override { run(WarmUpLaunch(fn_).args()); }
 
  private:
   // Masked launches: fills the stencil buffer from a.mask; returns the elements selected.
@@ -168,6 +174,7 @@ class GLSLBackend : public Backend {
            "; strict / and sqrt: " + divsqrt_name(self->divsqrt_);
   }
   bool supports(Accuracy a) const override { return a != Accuracy::Double; }
+  bool single_threaded() const override { return true; }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
     std::lock_guard<std::recursive_mutex> lock(mutex());
@@ -176,17 +183,23 @@ class GLSLBackend : public Backend {
       throw Error("GLSL backend: accuracy mode 'double' is not supported (GLSL kernels compute in binary32)");
     int group = std::max(1, max_draw_buffers_);
     std::vector<GLSLKernel::Pass> passes;
+    double codegen_ms = 0, link_ms = 0;
+    Stopwatch stage;
     for (size_t first = 0; first < std::max<size_t>(1, f.outputs.size()); first += static_cast<size_t>(group)) {
       GLSLKernel::Pass p;
       for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group)); ++i)
         p.outputs.push_back(static_cast<int>(i));
       GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, divsqrt_);
+      codegen_ms += stage.lap();
       p.source = std::move(shader.source);
       p.constants = std::move(shader.constants);
       p.program = link(gl, f.name, p.source);
+      link_ms += stage.lap();
       passes.push_back(std::move(p));
     }
-    return std::make_unique<GLSLKernel>(*this, session_, f, std::move(passes));
+    auto kernel = std::make_unique<GLSLKernel>(*this, session_, f, std::move(passes));
+    kernel->set_build_times(codegen_ms, link_ms);
+    return kernel;
   }
 
   void read_back(const detail::Storage& s, uint32_t* host) override {
@@ -507,7 +520,7 @@ GLuint GLSLKernel::draw_mask(const GL& gl, const LaunchArgs& a, const Shape& sha
 }
 
 LaunchResult GLSLKernel::run(const LaunchArgs& a) {
-  if (a.count == 0) return {0, 0};
+  if (a.count == 0 && !a.warm_up) return {0, 0};
   if (a.count > kMaxRow * kMaxRow) throw Error("GLSL backend: streams are limited to 4096 x 4096 elements");
   std::lock_guard<std::recursive_mutex> lock(be_.mutex());
   const GL& gl = be_.current();

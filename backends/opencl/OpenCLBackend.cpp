@@ -11,7 +11,9 @@
 
 #include "../codegen/SourceText.h"
 #include "OpenCLEmitter.h"
+#include "WarmUpLaunch.h"
 #include "rill/Parameters.h"
+#include "rill/Stopwatch.h"
 
 namespace rill::opencl {
 
@@ -149,6 +151,16 @@ class ClKernel : public CompiledKernel {
   }
   LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
+  // PoCL compiles the kernel at its first enqueue for the work-group size and for the class
+  // of grid: up to 65535 work-items ("smallgrid": 32-bit ids) or more. Two launches over no
+  // elements, with the usual group size and a grid of each class, do both now.
+  void warm_up() override {
+    WarmUpLaunch stand_ins(fn_);
+    for (size_t grid : {size_t{1}, size_t{65536}}) {
+      warm_up_grid_ = grid;
+      run(stand_ins.args());
+    }
+  }
 
  private:
   OpenCLBackend& be_;
@@ -156,6 +168,7 @@ class ClKernel : public CompiledKernel {
   std::string source_;
   cl_program program_;
   cl_kernel kernel_;
+  size_t warm_up_grid_ = 1;  // work-items a warm-up launch spans (warm_up)
 };
 
 class OpenCLBackend : public Backend {
@@ -187,7 +200,9 @@ class OpenCLBackend : public Backend {
     Device& d = device();
     if (o.accuracy == Accuracy::Double && !d.info.fp64)
       throw Error("OpenCL backend: device '" + d.info.device_name + "' has no fp64 support (cl_khr_fp64)");
+    Stopwatch stage;
     std::string source = emit_opencl(f, o.accuracy);
+    const double codegen_ms = stage.lap();
     const char* text = source.c_str();
     size_t len = source.size();
     cl_int e = CL_SUCCESS;
@@ -209,7 +224,9 @@ class OpenCLBackend : public Backend {
     cl_kernel k = clCreateKernel(prog, "rill_run", &e);
     if (e != CL_SUCCESS) clReleaseProgram(prog);
     check(e, "clCreateKernel");
-    return std::make_unique<ClKernel>(*this, f, std::move(source), prog, k);
+    auto kernel = std::make_unique<ClKernel>(*this, f, std::move(source), prog, k);
+    kernel->set_build_times(codegen_ms, stage.lap());
+    return kernel;
   }
 
   // Makes the device copy of s current and returns its buffer.
@@ -328,12 +345,13 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
 
   cl_uint written[2] = {0, 0};
   cl_int e = CL_SUCCESS;
-  if (a.count > 0) {
+  if (a.count > 0 || a.warm_up) {
     size_t group = 64;
     size_t kernel_group = 0;
     clGetKernelWorkGroupInfo(kernel_, d.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_group, &kernel_group, nullptr);
     group = std::max<size_t>(1, std::min({group, kernel_group ? kernel_group : group, d.max_group}));
-    size_t global = (static_cast<size_t>(a.count) + group - 1) / group * group;
+    const size_t span = a.warm_up ? warm_up_grid_ : static_cast<size_t>(a.count);
+    size_t global = (span + group - 1) / group * group;
     e = clEnqueueNDRangeKernel(d.queue, kernel_, 1, nullptr, &global, &group, 0, nullptr, nullptr);
     if (e == CL_SUCCESS)
       e = clEnqueueReadBuffer(d.queue, counter, CL_TRUE, 0, sizeof written, written, 0, nullptr, nullptr);
