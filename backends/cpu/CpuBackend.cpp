@@ -6,12 +6,12 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
-#include <chrono>
 
 #include "CEmitter.h"
 #include "LockstepEmitter.h"
 #include "SharedObjectCache.h"
 #include "rill/Parameters.h"
+#include "rill/Stopwatch.h"
 
 namespace rill::cpu {
 
@@ -47,14 +47,12 @@ struct Selection {
 class CpuKernel : public CompiledKernel {
  public:
   // lockstep: the kernel is emit_c_lockstep()'s, which indexes arrays with 32-bit lanes.
-  // compile_ms: compiling the shared object, or loading it from the disk cache.
-  CpuKernel(std::string source, SharedObject so, bool lockstep, double compile_ms)
+  CpuKernel(std::string source, SharedObject so, bool lockstep)
       : CompiledKernel(so.from_disk_cache),
         source_(std::move(source)),
         so_(std::move(so)),
         lockstep_(lockstep) {
     run_ = reinterpret_cast<RunFn>(so_.symbol);
-    report_.compile_ms = compile_ms;
   }
   ~CpuKernel() override { release(so_); }
 
@@ -157,14 +155,15 @@ class CpuBackend : public Backend {
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
     // The double mode is the accuracy reference, not a speed mode: it runs as scalar C.
     const bool lockstep = lockstep_ && o.accuracy != Accuracy::Double;
+    Stopwatch stage;
     std::string source = lockstep ? emit_c_lockstep(f, o.accuracy) : emit_c(f, o.accuracy);
+    const double codegen_ms = stage.lap();
     std::vector<std::string> flags = compiler_flags(o.accuracy);
     if (lockstep && vector_isa() == "AVX2") flags.push_back("-mavx2");
-    const auto start = std::chrono::steady_clock::now();
     SharedObject so = compile_shared_object(name(), source, flags, "rill_run");
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep, ms);
+    auto k = std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep);
+    k->set_build_times(codegen_ms, stage.lap());
+    return k;
   }
 
  private:
@@ -194,9 +193,9 @@ std::vector<std::string> compiler_flags(Accuracy a) {
     // which turns on flush-to-zero for the whole process, strict kernels included.
     // (-fcx-limited-range, the last part, concerns complex arithmetic, which kernels never
     // use, and clang 14 rejects it.)
-    f.insert(f.end(), {"-fno-trapping-math", "-fno-signed-zeros", "-fassociative-math",
-                       "-freciprocal-math", "-ffinite-math-only", "-fno-rounding-math",
-                       "-ffp-contract=fast"});
+    f.insert(f.end(),
+             {"-fno-trapping-math", "-fno-signed-zeros", "-fassociative-math", "-freciprocal-math",
+              "-ffinite-math-only", "-fno-rounding-math", "-ffp-contract=fast"});
   } else {
     f.insert(f.end(), {"-fno-fast-math", "-ffp-contract=off", "-fexcess-precision=standard"});
   }

@@ -31,7 +31,6 @@
 #include "GLSLBackend.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -43,8 +42,10 @@
 #include "../codegen/SourceText.h"
 #include "GLContext.h"
 #include "GLSLEmitter.h"
-#include "rill/StateMask.h"
+#include "WarmUpLaunch.h"
 #include "rill/Parameters.h"
+#include "rill/StateMask.h"
+#include "rill/Stopwatch.h"
 
 namespace rill::glsl {
 
@@ -60,10 +61,15 @@ struct Format {
 Format format_of(ir::Type t) {
   bool f = t.is_float();
   switch (t.width) {
-    case 1: return {GLenum(f ? GL_R32F : GL_R32I), GLenum(f ? GL_RED : GL_RED_INTEGER), GLenum(f ? GL_FLOAT : GL_INT), 1};
-    case 2: return {GLenum(f ? GL_RG32F : GL_RG32I), GLenum(f ? GL_RG : GL_RG_INTEGER), GLenum(f ? GL_FLOAT : GL_INT), 2};
+    case 1:
+      return {GLenum(f ? GL_R32F : GL_R32I), GLenum(f ? GL_RED : GL_RED_INTEGER),
+              GLenum(f ? GL_FLOAT : GL_INT), 1};
+    case 2:
+      return {GLenum(f ? GL_RG32F : GL_RG32I), GLenum(f ? GL_RG : GL_RG_INTEGER),
+              GLenum(f ? GL_FLOAT : GL_INT), 2};
     default:
-      return {GLenum(f ? GL_RGBA32F : GL_RGBA32I), GLenum(f ? GL_RGBA : GL_RGBA_INTEGER), GLenum(f ? GL_FLOAT : GL_INT), 4};
+      return {GLenum(f ? GL_RGBA32F : GL_RGBA32I), GLenum(f ? GL_RGBA : GL_RGBA_INTEGER),
+              GLenum(f ? GL_FLOAT : GL_INT), 4};
   }
 }
 
@@ -140,12 +146,12 @@ class GLSLKernel : public CompiledKernel {
   }
   ~GLSLKernel() override;
   // Where the programs came from, and what linking or loading them took.
-  void set_origin(KernelOrigin origin, double compile_ms) {
-    report_.origin = origin;
-    report_.compile_ms = compile_ms;
-  }
   LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
+  // llvmpipe compiles a shader's variant for the bound texture and framebuffer formats at
+  // its first draw: one draw over one texel that the shader discards (rill_count 0) does it
+  // now. (A masked launch, with the stencil test on, is another variant, built at the first.)
+  void warm_up() override { run(WarmUpLaunch(fn_).args()); }
 
  private:
   // Masked launches: fills the stencil buffer from a.mask; returns the elements selected.
@@ -185,34 +191,39 @@ class GLSLBackend : public Backend {
                 : std::string("none (the driver offers no program binary format)"));
   }
   bool supports(Accuracy a) const override { return a != Accuracy::Double; }
+  bool single_threaded() const override { return true; }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
     std::lock_guard<std::recursive_mutex> lock(mutex());
     const GL& gl = current();
     if (o.accuracy == Accuracy::Double)
-      throw Error("GLSL backend: accuracy mode 'double' is not supported (GLSL kernels compute in binary32)");
+      throw Error(
+          "GLSL backend: accuracy mode 'double' is not supported (GLSL kernels compute in "
+          "binary32)");
     int group = std::max(1, max_draw_buffers_);
     std::vector<GLSLKernel::Pass> passes;
-    double compile_ms = 0;
+    double codegen_ms = 0, link_ms = 0;
     bool all_cached = true;
-    for (size_t first = 0; first < std::max<size_t>(1, f.outputs.size()); first += static_cast<size_t>(group)) {
+    Stopwatch stage;
+    for (size_t first = 0; first < std::max<size_t>(1, f.outputs.size());
+         first += static_cast<size_t>(group)) {
       GLSLKernel::Pass p;
-      for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group)); ++i)
+      for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group));
+           ++i)
         p.outputs.push_back(static_cast<int>(i));
       GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, divsqrt_);
+      codegen_ms += stage.lap();
       p.source = std::move(shader.source);
       p.constants = std::move(shader.constants);
-      const auto start = std::chrono::steady_clock::now();
       bool cached = false;
       p.program = link_cached(gl, f.name, p.source, cached);
       all_cached = all_cached && cached;
-      compile_ms +=
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-              .count();
+      link_ms += stage.lap();
       passes.push_back(std::move(p));
     }
     auto kernel = std::make_unique<GLSLKernel>(*this, session_, f, std::move(passes));
-    kernel->set_origin(all_cached ? KernelOrigin::DiskCache : KernelOrigin::Built, compile_ms);
+    kernel->set_origin(all_cached ? KernelOrigin::DiskCache : KernelOrigin::Built);
+    kernel->set_build_times(codegen_ms, link_ms);
     return kernel;
   }
 
@@ -220,7 +231,8 @@ class GLSLBackend : public Backend {
     std::lock_guard<std::recursive_mutex> lock(mutex());
     const GL& gl = current();
     auto* t = s.device_buffer<Texture>(this);
-    std::vector<uint32_t> padded(static_cast<size_t>(t->shape.row) * static_cast<size_t>(t->shape.rows) *
+    std::vector<uint32_t> padded(static_cast<size_t>(t->shape.row) *
+                                 static_cast<size_t>(t->shape.rows) *
                                  static_cast<size_t>(t->fmt.channels));
     gl.glBindTexture(GL_TEXTURE_2D, t->tex);
     gl.glPixelStorei(GL_PACK_ALIGNMENT, 4);
@@ -244,7 +256,8 @@ class GLSLBackend : public Backend {
 
   static void check(const GL& gl, const char* what) {
     GLenum e = gl.glGetError();
-    if (e != GL_NO_ERROR) throw Error(std::string("GLSL backend: OpenGL error 0x") + hex(e) + " while " + what);
+    if (e != GL_NO_ERROR)
+      throw Error(std::string("GLSL backend: OpenGL error 0x") + hex(e) + " while " + what);
   }
 
   // The texture holding s, current with the host copy.
@@ -254,7 +267,8 @@ class GLSLBackend : public Backend {
     const uint32_t* host = s.host_data_for_read();
     Format fmt = format_of(s.type());
     Shape shape = shape_of(s.count());
-    if (!t || t->fmt.internal != fmt.internal || t->shape.row != shape.row || t->shape.rows != shape.rows) {
+    if (!t || t->fmt.internal != fmt.internal || t->shape.row != shape.row ||
+        t->shape.rows != shape.rows) {
       auto fresh = std::make_unique<Texture>();
       fresh->session = session_;
       fresh->fmt = fmt;
@@ -271,7 +285,8 @@ class GLSLBackend : public Backend {
         padded[static_cast<size_t>(i * fmt.channels + c)] = host[static_cast<size_t>(i * w + c)];
     gl.glBindTexture(GL_TEXTURE_2D, t->tex);
     gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl.glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, shape.row, shape.rows, fmt.format, fmt.type, padded.data());
+    gl.glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, shape.row, shape.rows, fmt.format, fmt.type,
+                       padded.data());
     check(gl, "uploading a texture");
     s.mark_device_current(this);
     return *t;
@@ -284,8 +299,8 @@ class GLSLBackend : public Backend {
     gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    gl.glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(fmt.internal), shape.row, shape.rows, 0, fmt.format,
-                    fmt.type, nullptr);
+    gl.glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(fmt.internal), shape.row, shape.rows, 0,
+                    fmt.format, fmt.type, nullptr);
     check(gl, "allocating a texture");
     return tex;
   }
@@ -310,18 +325,21 @@ class GLSLBackend : public Backend {
                            "#version 430 core\n"
                            "// Rill: the stencil mask of a masked launch.\n"
                            "uniform isampler2D rill_state;\n"
-                           "uniform int rill_values[" + std::to_string(StateMask::kMaxValues) + "];\n"
-                           "uniform int rill_nvalues;\n"
-                           "uniform int rill_count;\n"
-                           "uniform int rill_row;\n"
-                           "void main() {\n"
-                           "  ivec2 p = ivec2(gl_FragCoord.xy);\n"
-                           "  if (p.y * rill_row + p.x >= rill_count) discard;\n"
-                           "  int s = texelFetch(rill_state, p, 0).r;\n"
-                           "  bool selected = false;\n"
-                           "  for (int k = 0; k < rill_nvalues; ++k) selected = selected || s == rill_values[k];\n"
-                           "  if (!selected) discard;\n"
-                           "}\n");
+                           "uniform int rill_values[" +
+                               std::to_string(StateMask::kMaxValues) +
+                               "];\n"
+                               "uniform int rill_nvalues;\n"
+                               "uniform int rill_count;\n"
+                               "uniform int rill_row;\n"
+                               "void main() {\n"
+                               "  ivec2 p = ivec2(gl_FragCoord.xy);\n"
+                               "  if (p.y * rill_row + p.x >= rill_count) discard;\n"
+                               "  int s = texelFetch(rill_state, p, 0).r;\n"
+                               "  bool selected = false;\n"
+                               "  for (int k = 0; k < rill_nvalues; ++k) selected = selected || s "
+                               "== rill_values[k];\n"
+                               "  if (!selected) discard;\n"
+                               "}\n");
     return mask_program_;
   }
 
@@ -375,8 +393,8 @@ class GLSLBackend : public Backend {
       std::string log(static_cast<size_t>(std::max(n, 1)), '\0');
       gl.glGetProgramInfoLog(prog, n, nullptr, log.data());
       gl.glDeleteProgram(prog);
-      throw Error("GLSL backend: linking kernel '" + name + "' failed:\n" + log + "\ngenerated source:\n" +
-                  codegen::numbered(fragment));
+      throw Error("GLSL backend: linking kernel '" + name + "' failed:\n" + log +
+                  "\ngenerated source:\n" + codegen::numbered(fragment));
     }
     return prog;
   }
@@ -553,7 +571,8 @@ GLSLKernel::~GLSLKernel() {
 
 GLuint GLSLKernel::draw_mask(const GL& gl, const LaunchArgs& a, const Shape& shape) {
   GLuint state = be_.to_device(gl, *a.mask).tex;
-  gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, be_.stencil(gl, shape));
+  gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                               be_.stencil(gl, shape));
   const GLenum none = GL_NONE;
   gl.glDrawBuffers(1, &none);
   if (gl.glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
@@ -570,9 +589,10 @@ GLuint GLSLKernel::draw_mask(const GL& gl, const LaunchArgs& a, const Shape& sha
   gl.glActiveTexture(GL_TEXTURE0);
   gl.glBindTexture(GL_TEXTURE_2D, state);
   gl.glUniform1i(gl.glGetUniformLocation(prog, "rill_state"), 0);
-  gl.glUniform1iv(gl.glGetUniformLocation(prog, "rill_values"), static_cast<GLsizei>(a.mask_values.size()),
-                  a.mask_values.data());
-  gl.glUniform1i(gl.glGetUniformLocation(prog, "rill_nvalues"), static_cast<GLint>(a.mask_values.size()));
+  gl.glUniform1iv(gl.glGetUniformLocation(prog, "rill_values"),
+                  static_cast<GLsizei>(a.mask_values.size()), a.mask_values.data());
+  gl.glUniform1i(gl.glGetUniformLocation(prog, "rill_nvalues"),
+                 static_cast<GLint>(a.mask_values.size()));
   gl.glUniform1i(gl.glGetUniformLocation(prog, "rill_count"), static_cast<GLint>(a.count));
   gl.glUniform1i(gl.glGetUniformLocation(prog, "rill_row"), shape.row);
   GLuint selected = 0;
@@ -589,8 +609,9 @@ GLuint GLSLKernel::draw_mask(const GL& gl, const LaunchArgs& a, const Shape& sha
 }
 
 LaunchResult GLSLKernel::run(const LaunchArgs& a) {
-  if (a.count == 0) return {0, 0};
-  if (a.count > kMaxRow * kMaxRow) throw Error("GLSL backend: streams are limited to 4096 x 4096 elements");
+  if (a.count == 0 && !a.warm_up) return {0, 0};
+  if (a.count > kMaxRow * kMaxRow)
+    throw Error("GLSL backend: streams are limited to 4096 x 4096 elements");
   std::lock_guard<std::recursive_mutex> lock(be_.mutex());
   const GL& gl = be_.current();
   size_t widest = 0;
@@ -598,7 +619,8 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
   const int units = static_cast<int>(a.inputs.size() + widest + a.arrays.size());
   if (units > be_.max_texture_units())
     throw Error("GLSL backend: kernel '" + fn_.name + "' reads " + std::to_string(units) +
-                " textures but the context has " + std::to_string(be_.max_texture_units()) + " texture units");
+                " textures but the context has " + std::to_string(be_.max_texture_units()) +
+                " texture units");
 
   // Outputs: their textures, and a copy of their current contents (the previous values).
   std::vector<Texture*> out_tex;
@@ -607,21 +629,24 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
     Texture& t = be_.to_device(gl, *s);
     out_tex.push_back(&t);
     GLuint copy = be_.new_texture(gl, t.fmt, t.shape);
-    gl.glCopyImageSubData(t.tex, GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0, 0, 0, 0, t.shape.row, t.shape.rows, 1);
+    gl.glCopyImageSubData(t.tex, GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0, 0, 0, 0,
+                          t.shape.row, t.shape.rows, 1);
     prev.push_back(copy);
   }
   // Inputs: a stream that is also an output is read from its copy.
   std::vector<GLuint> in_tex;
   for (auto* s : a.inputs) {
     auto it = std::find(a.outputs.begin(), a.outputs.end(), s);
-    in_tex.push_back(it != a.outputs.end() ? prev[static_cast<size_t>(it - a.outputs.begin())] : be_.to_device(gl, *s).tex);
+    in_tex.push_back(it != a.outputs.end() ? prev[static_cast<size_t>(it - a.outputs.begin())]
+                                           : be_.to_device(gl, *s).tex);
   }
   std::vector<GLuint> arr_tex;
   std::vector<GLint> shapes;
   for (auto* arr : a.arrays) {
     arr_tex.push_back(be_.to_device(gl, *arr).tex);
-    shapes.insert(shapes.end(), {static_cast<GLint>(arr->shape[0]), static_cast<GLint>(arr->shape[1]),
-                                 static_cast<GLint>(arr->shape[2])});
+    shapes.insert(shapes.end(),
+                  {static_cast<GLint>(arr->shape[0]), static_cast<GLint>(arr->shape[1]),
+                   static_cast<GLint>(arr->shape[2])});
   }
   std::vector<GLuint> words;
   for (auto* u : a.uniforms) words.insert(words.end(), u->bits.begin(), u->bits.end());
@@ -652,13 +677,14 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
     const Pass& p = passes_[pi];
     std::vector<GLenum> bufs;
     for (size_t k = 0; k < p.outputs.size(); ++k) {
-      gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k), GL_TEXTURE_2D,
-                                out_tex[static_cast<size_t>(p.outputs[k])]->tex, 0);
+      gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k),
+                                GL_TEXTURE_2D, out_tex[static_cast<size_t>(p.outputs[k])]->tex, 0);
       bufs.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k));
     }
     gl.glDrawBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
     if (gl.glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Error("GLSL backend: the output textures of kernel '" + fn_.name + "' do not form a complete framebuffer");
+      throw Error("GLSL backend: the output textures of kernel '" + fn_.name +
+                  "' do not form a complete framebuffer");
     gl.glUseProgram(p.program);
     GLint unit = 0;
     auto bind = [&](const std::string& name, GLuint tex) {
@@ -684,7 +710,8 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
     }
     if (!p.constants.empty()) {
       GLint loc = gl.glGetUniformLocation(p.program, "rill_k");
-      if (loc >= 0) gl.glUniform1uiv(loc, static_cast<GLsizei>(p.constants.size()), p.constants.data());
+      if (loc >= 0)
+        gl.glUniform1uiv(loc, static_cast<GLsizei>(p.constants.size()), p.constants.data());
     }
     {
       const GLuint one = 0x3f800000u;  // 1.0f, for the helpers (see GLSLEmitter.cpp)
@@ -702,7 +729,8 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
       gl.glGetQueryObjectuiv(be_.query(), GL_QUERY_RESULT, &written);
     }
     for (size_t k = 0; k < p.outputs.size(); ++k)
-      gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k), GL_TEXTURE_2D, 0, 0);
+      gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k),
+                                GL_TEXTURE_2D, 0, 0);
   }
   gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
   gl.glDeleteTextures(static_cast<GLsizei>(prev.size()), prev.data());
@@ -714,6 +742,8 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
 
 }  // namespace
 
-std::unique_ptr<Backend> make_backend() { return std::make_unique<GLSLBackend>(); }
+std::unique_ptr<Backend> make_backend() {
+  return std::make_unique<GLSLBackend>();
+}
 
 }  // namespace rill::glsl

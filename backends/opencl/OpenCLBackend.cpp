@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -13,7 +12,9 @@
 #include "../cache/DiskCache.h"
 #include "../codegen/SourceText.h"
 #include "OpenCLEmitter.h"
+#include "WarmUpLaunch.h"
 #include "rill/Parameters.h"
+#include "rill/Stopwatch.h"
 
 namespace rill::opencl {
 
@@ -21,23 +22,36 @@ namespace {
 
 std::string cl_error_name(cl_int e) {
   switch (e) {
-    case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
-    case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
-    case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
-    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
-    case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
-    case CL_INVALID_VALUE: return "CL_INVALID_VALUE";
-    case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
-    case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
-    case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE";
-    case CL_INVALID_HOST_PTR: return "CL_INVALID_HOST_PTR";
-    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR";
-    default: return "OpenCL error " + std::to_string(e);
+    case CL_DEVICE_NOT_FOUND:
+      return "CL_DEVICE_NOT_FOUND";
+    case CL_OUT_OF_RESOURCES:
+      return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY:
+      return "CL_OUT_OF_HOST_MEMORY";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE:
+      return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+    case CL_BUILD_PROGRAM_FAILURE:
+      return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_VALUE:
+      return "CL_INVALID_VALUE";
+    case CL_INVALID_KERNEL_ARGS:
+      return "CL_INVALID_KERNEL_ARGS";
+    case CL_INVALID_WORK_GROUP_SIZE:
+      return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_BUFFER_SIZE:
+      return "CL_INVALID_BUFFER_SIZE";
+    case CL_INVALID_HOST_PTR:
+      return "CL_INVALID_HOST_PTR";
+    case -1001:
+      return "CL_PLATFORM_NOT_FOUND_KHR";
+    default:
+      return "OpenCL error " + std::to_string(e);
   }
 }
 
 void check(cl_int e, const char* what) {
-  if (e != CL_SUCCESS) throw Error(std::string("OpenCL backend: ") + what + " failed: " + cl_error_name(e));
+  if (e != CL_SUCCESS)
+    throw Error(std::string("OpenCL backend: ") + what + " failed: " + cl_error_name(e));
 }
 
 std::string platform_string(cl_platform_id p, cl_platform_info what) {
@@ -69,7 +83,8 @@ Found enumerate() {
   cl_uint np = 0;
   cl_int e = clGetPlatformIDs(0, nullptr, &np);
   if (e != CL_SUCCESS || np == 0) {
-    f.error = "no OpenCL platform found (" + (e == CL_SUCCESS ? std::string("0 platforms") : cl_error_name(e)) +
+    f.error = "no OpenCL platform found (" +
+              (e == CL_SUCCESS ? std::string("0 platforms") : cl_error_name(e)) +
               "); install an ICD such as pocl-opencl-icd, or a GPU driver's";
     return f;
   }
@@ -87,7 +102,8 @@ Found enumerate() {
       info.platform_name = platform_string(platforms[p], CL_PLATFORM_NAME);
       info.device_name = device_string(devs[d], CL_DEVICE_NAME);
       info.version = device_string(devs[d], CL_DEVICE_VERSION);
-      info.fp64 = device_string(devs[d], CL_DEVICE_EXTENSIONS).find("cl_khr_fp64") != std::string::npos;
+      info.fp64 =
+          device_string(devs[d], CL_DEVICE_EXTENSIONS).find("cl_khr_fp64") != std::string::npos;
       f.infos.push_back(info);
       f.ids.push_back(devs[d]);
     }
@@ -116,9 +132,10 @@ size_t choose(const Found& found, const std::string& spec) {
   }
   std::string avail;
   for (const auto& i : found.infos)
-    avail += "\n  " + std::to_string(i.platform) + ":" + std::to_string(i.device) + "  " + i.platform_name + " / " +
-             i.device_name;
-  throw Error("OpenCL backend: no device matches '" + spec + "' (RILL_OPENCL_DEVICE); available:" + avail);
+    avail += "\n  " + std::to_string(i.platform) + ":" + std::to_string(i.device) + "  " +
+             i.platform_name + " / " + i.device_name;
+  throw Error("OpenCL backend: no device matches '" + spec +
+              "' (RILL_OPENCL_DEVICE); available:" + avail);
 }
 
 // The device's context and queue, created on first use.
@@ -186,19 +203,26 @@ class OpenCLBackend;
 
 class ClKernel : public CompiledKernel {
  public:
-  ClKernel(OpenCLBackend& be, const ir::Function& f, std::string source, cl_program program, cl_kernel kernel)
+  ClKernel(OpenCLBackend& be, const ir::Function& f, std::string source, cl_program program,
+           cl_kernel kernel)
       : be_(be), fn_(f), source_(std::move(source)), program_(program), kernel_(kernel) {}
   // Where the program came from, and what building or loading it took.
-  void set_origin(KernelOrigin origin, double compile_ms) {
-    report_.origin = origin;
-    report_.compile_ms = compile_ms;
-  }
   ~ClKernel() override {
     clReleaseKernel(kernel_);
     clReleaseProgram(program_);
   }
   LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
+  // PoCL compiles the kernel at its first enqueue for the work-group size and for the class
+  // of grid: up to 65535 work-items ("smallgrid": 32-bit ids) or more. Two launches over no
+  // elements, with the usual group size and a grid of each class, do both now.
+  void warm_up() override {
+    WarmUpLaunch stand_ins(fn_);
+    for (size_t grid : {size_t{1}, size_t{65536}}) {
+      warm_up_grid_ = grid;
+      run(stand_ins.args());
+    }
+  }
 
  private:
   OpenCLBackend& be_;
@@ -206,6 +230,7 @@ class ClKernel : public CompiledKernel {
   std::string source_;
   cl_program program_;
   cl_kernel kernel_;
+  size_t warm_up_grid_ = 1;  // work-items a warm-up launch spans (warm_up)
 };
 
 class OpenCLBackend : public Backend {
@@ -225,7 +250,8 @@ class OpenCLBackend : public Backend {
     std::string why = unavailable_reason();
     if (!why.empty()) return "opencl: unavailable: " + why;
     const Device& d = const_cast<OpenCLBackend*>(this)->device();
-    return "opencl: " + d.info.platform_name + " / " + d.info.device_name + " (" + d.info.version + ")";
+    return "opencl: " + d.info.platform_name + " / " + d.info.device_name + " (" + d.info.version +
+           ")";
   }
 
   bool supports(Accuracy a) const override {
@@ -236,12 +262,16 @@ class OpenCLBackend : public Backend {
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
     Device& d = device();
     if (o.accuracy == Accuracy::Double && !d.info.fp64)
-      throw Error("OpenCL backend: device '" + d.info.device_name + "' has no fp64 support (cl_khr_fp64)");
+      throw Error("OpenCL backend: device '" + d.info.device_name +
+                  "' has no fp64 support (cl_khr_fp64)");
+    Stopwatch stage;
     std::string source = emit_opencl(f, o.accuracy);
+    const double codegen_ms = stage.lap();
     std::string options = "-cl-std=CL1.2";
-    if (o.accuracy == Accuracy::Fast) options += " -cl-fast-relaxed-math -cl-mad-enable";
-    else options += " -cl-fp32-correctly-rounded-divide-sqrt";
-    const auto start = std::chrono::steady_clock::now();
+    if (o.accuracy == Accuracy::Fast)
+      options += " -cl-fast-relaxed-math -cl-mad-enable";
+    else
+      options += " -cl-fp32-correctly-rounded-divide-sqrt";
     const std::string key =
         "backend=opencl\n" + d.identity + "options=" + options + "\n" + cache::source_line(source);
     cl_program prog = program_from_cache(d, key, options);
@@ -268,10 +298,9 @@ class OpenCLBackend : public Backend {
     cl_kernel k = clCreateKernel(prog, "rill_run", &e);
     if (e != CL_SUCCESS) clReleaseProgram(prog);
     check(e, "clCreateKernel");
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     auto kernel = std::make_unique<ClKernel>(*this, f, std::move(source), prog, k);
-    kernel->set_origin(origin, ms);
+    kernel->set_origin(origin);
+    kernel->set_build_times(codegen_ms, stage.lap());
     return kernel;
   }
 
@@ -313,7 +342,8 @@ class OpenCLBackend : public Backend {
     // Kernels always get a buffer, even for an empty table; pad to 8 bytes.
     std::vector<unsigned char> copy(std::max<size_t>(bytes, 8), 0);
     if (bytes) std::memcpy(copy.data(), data, bytes);
-    cl_mem m = clCreateBuffer(d.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, copy.size(), copy.data(), &e);
+    cl_mem m = clCreateBuffer(d.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, copy.size(),
+                              copy.data(), &e);
     check(e, "clCreateBuffer");
     return m;
   }
@@ -336,7 +366,8 @@ class OpenCLBackend : public Backend {
       check(e, "clCreateContext");
       d->queue = clCreateCommandQueue(d->context, d->id, 0, &e);
       check(e, "clCreateCommandQueue");
-      clGetDeviceInfo(d->id, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof d->max_group, &d->max_group, nullptr);
+      clGetDeviceInfo(d->id, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof d->max_group, &d->max_group,
+                      nullptr);
       dev_ = std::move(d);
     } catch (const Error& e) {
       init_error_ = e.what();
@@ -347,7 +378,9 @@ class OpenCLBackend : public Backend {
 
   void set_spec(const std::string& spec) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (dev_) throw Error("OpenCL backend: set_device() must be called before the first OpenCL kernel is compiled");
+    if (dev_)
+      throw Error(
+          "OpenCL backend: set_device() must be called before the first OpenCL kernel is compiled");
     spec_ = spec;
     init_error_.clear();
   }
@@ -363,7 +396,9 @@ OpenCLBackend* g_backend = nullptr;
 LaunchResult ClKernel::run(const LaunchArgs& a) {
   Device& d = be_.device();
   cl_uint arg = 0;
-  auto set_mem = [&](cl_mem m) { check(clSetKernelArg(kernel_, arg++, sizeof(cl_mem), &m), "clSetKernelArg"); };
+  auto set_mem = [&](cl_mem m) {
+    check(clSetKernelArg(kernel_, arg++, sizeof(cl_mem), &m), "clSetKernelArg");
+  };
   for (auto* s : a.inputs) set_mem(be_.to_device(*s));
   for (auto* s : a.outputs) set_mem(be_.to_device(*s));
   std::vector<cl_long> shapes;
@@ -392,15 +427,19 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
 
   cl_uint written[2] = {0, 0};
   cl_int e = CL_SUCCESS;
-  if (a.count > 0) {
+  if (a.count > 0 || a.warm_up) {
     size_t group = 64;
     size_t kernel_group = 0;
-    clGetKernelWorkGroupInfo(kernel_, d.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_group, &kernel_group, nullptr);
-    group = std::max<size_t>(1, std::min({group, kernel_group ? kernel_group : group, d.max_group}));
-    size_t global = (static_cast<size_t>(a.count) + group - 1) / group * group;
+    clGetKernelWorkGroupInfo(kernel_, d.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_group,
+                             &kernel_group, nullptr);
+    group =
+        std::max<size_t>(1, std::min({group, kernel_group ? kernel_group : group, d.max_group}));
+    const size_t span = a.warm_up ? warm_up_grid_ : static_cast<size_t>(a.count);
+    size_t global = (span + group - 1) / group * group;
     e = clEnqueueNDRangeKernel(d.queue, kernel_, 1, nullptr, &global, &group, 0, nullptr, nullptr);
     if (e == CL_SUCCESS)
-      e = clEnqueueReadBuffer(d.queue, counter, CL_TRUE, 0, sizeof written, written, 0, nullptr, nullptr);
+      e = clEnqueueReadBuffer(d.queue, counter, CL_TRUE, 0, sizeof written, written, 0, nullptr,
+                              nullptr);
   }
   const int64_t selected = a.mask ? written[1] : a.count;
   clReleaseMemObject(values_buf);
@@ -415,7 +454,9 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
 
 }  // namespace
 
-std::vector<DeviceInfo> list_devices() { return enumerate().infos; }
+std::vector<DeviceInfo> list_devices() {
+  return enumerate().infos;
+}
 
 void set_device(const std::string& spec) {
   backend("opencl");  // make sure the registry created it

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "rill/Parameters.h"
+#include "rill/Stopwatch.h"
 #include "rill/ir/Verifier.h"
 #include "rill/ir/Visitor.h"
 
@@ -127,6 +128,7 @@ class Fusion {
     append_body();
     set_interface();
     ir::verify_or_throw(*fn_, std::string(op()) + " of '" + fa.name + "' and '" + fb.name + "'");
+    out_.capture_ms = a_.capture_ms() + b_.capture_ms() + fusing_.ms();
     return Program(std::move(out_));
   }
 
@@ -330,6 +332,7 @@ class Fusion {
   const Program& a_;
   const Program& b_;
   SourceLoc loc_;
+  Stopwatch fusing_;  // the fused program's capture time adds this to both halves'
   std::shared_ptr<ir::Function> fn_;
   detail::CapturedProgram out_;
   std::vector<VarId> consumed_;  // a's outputs that b reads (connect)

@@ -33,7 +33,7 @@ namespace {
 struct Registry {
   std::mutex mutex;
   std::vector<std::unique_ptr<Backend>> list;
-  bool builtins = false;
+  std::once_flag builtins;  // other threads wait until every built-in backend is registered
   ~Registry() {
     while (!list.empty()) list.pop_back();
   }
@@ -43,13 +43,7 @@ Registry& registry() {
   return r;
 }
 void ensure_builtins() {
-  Registry& r = registry();
-  {
-    std::lock_guard<std::mutex> lock(r.mutex);
-    if (r.builtins) return;
-    r.builtins = true;
-  }
-  detail::register_builtin_backends();
+  std::call_once(registry().builtins, detail::register_builtin_backends);
 }
 }  // namespace
 

@@ -10,6 +10,7 @@
 
 #include "rill/Math.h"
 #include "rill/Parameters.h"
+#include "rill/Stopwatch.h"
 #include "rill/Stream.h"
 #include "rill/ir/Verifier.h"
 #include "rill/ir/Visitor.h"
@@ -43,6 +44,7 @@ struct Builder {
   std::vector<std::shared_ptr<ArrayState>> arrays;
 
   ir::Block* root = nullptr;  // where top-level statements go (fn->body unless extending)
+  Stopwatch started;          // when the program's definition began (capture_ms)
 
   ir::Block& current() {
     if (open.empty()) return root ? *root : fn->body;
@@ -487,7 +489,7 @@ CapturedProgram ProgramScope::finish() {
                   b.defined_at);
   }
   ir::verify_or_throw(*b.fn, "capture");
-  CapturedProgram out{b.fn, b.uniforms, b.arrays};
+  CapturedProgram out{b.fn, b.uniforms, b.arrays, b.started.ms()};
   return out;
 }
 

@@ -1,11 +1,13 @@
 #include "rill/Kernel.h"
 
 #include <chrono>
+#include <future>
 #include <map>
 #include <mutex>
 #include <tuple>
 
 #include "rill/Parameters.h"
+#include "rill/Stopwatch.h"
 #include "rill/ir/Printer.h"
 #include "rill/ir/Verifier.h"
 #include "rill/passes/Passes.h"
@@ -24,14 +26,48 @@ namespace {
 
 using CacheKey = std::tuple<uint64_t, std::string, uint64_t>;
 
+// A cache entry is made when its compile starts, so a second compile() of the same kernel
+// meanwhile (compile_all, or user threads) waits for that one instead of building it again.
+struct Entry {
+  std::shared_future<std::shared_ptr<Kernel::Shared>> ready;
+};
+
 struct Cache {
   std::mutex mutex;
-  std::map<CacheKey, std::shared_ptr<Kernel::Shared>> entries;
+  std::map<CacheKey, std::shared_ptr<Entry>> entries;
   CacheStats stats;
 };
 Cache& cache() {
   static Cache c;
   return c;
+}
+
+// Optimizes and builds one kernel, timing each stage into shared->info.
+std::shared_ptr<Kernel::Shared> build(const Program& p, Backend& be,
+                                      const CompileOptions& options) {
+  Stopwatch total, stage;
+  auto shared = std::make_shared<Kernel::Shared>();
+  CompileInfo& info = shared->info;
+  shared->backend = &be;
+  shared->optimized = passes::optimize(p.ir(), options.passes, options.accuracy);
+  info.optimize_ms = stage.lap();
+  shared->compiled = be.compile(shared->optimized, options);
+  stage.lap();
+  // A warm-up that fails (a launch the backend cannot make, such as too many textures)
+  // leaves the driver's work to the first launch, which reports the same problem with the
+  // user's own streams; compile() itself has succeeded.
+  try {
+    shared->compiled->warm_up();
+  } catch (const Error&) {
+  }
+  info.driver_finish_ms = stage.lap();
+  const BuildReport& report = shared->compiled->report();
+  info.codegen_ms = report.codegen_ms;
+  info.backend_compile_ms = report.compile_ms;
+  info.origin = report.origin;
+  info.from_disk_cache = shared->compiled->from_disk_cache();
+  info.compile_ms = total.ms();
+  return shared;
 }
 
 std::string describe_param(const ir::Function& f, ir::VarId v, const char* dir) {
@@ -71,35 +107,43 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
   k.out_.resize(p.ir().outputs.size());
   CacheKey key{p.hash(), be.name(), options.hash()};
 
+  Stopwatch waited;
   std::unique_lock<std::mutex> lock(c.mutex);
   auto it = c.entries.find(key);
   if (it != c.entries.end()) {
     ++c.stats.hits;
-    k.shared_ = it->second;
-    k.info_ = it->second->info;
-    k.info_.compile_ms = 0;
+    std::shared_ptr<Entry> entry = it->second;
+    lock.unlock();
+    const bool in_flight =
+        entry->ready.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
+    k.shared_ = entry->ready.get();  // rethrows the building thread's error
+    k.info_ = k.shared_->info;
+    // The wait for another thread's build of this kernel is what this call cost.
+    k.info_.compile_ms = in_flight ? waited.ms() : 0;
     k.info_.cache_hit = true;
     k.info_.origin = KernelOrigin::ProcessCache;
+    k.info_.capture_ms = p.capture_ms();
     return k;
   }
   ++c.stats.misses;
+  std::promise<std::shared_ptr<Kernel::Shared>> promise;
+  auto entry = std::make_shared<Entry>(Entry{promise.get_future().share()});
+  c.entries.emplace(key, entry);
   lock.unlock();
 
-  auto start = std::chrono::steady_clock::now();
-  auto shared = std::make_shared<Kernel::Shared>();
-  shared->backend = &be;
-  shared->optimized = passes::optimize(p.ir(), options.passes, options.accuracy);
-  shared->compiled = be.compile(shared->optimized, options);
-  double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  k.info_.compile_ms = ms;
-  k.info_.from_disk_cache = shared->compiled->from_disk_cache();
-  k.info_.origin = shared->compiled->report().origin;
-  shared->info = k.info_;
-
-  lock.lock();
-  auto [pos, inserted] = c.entries.emplace(key, shared);
-  k.shared_ = pos->second;  // another thread may have compiled it meanwhile
+  try {
+    k.shared_ = build(p, be, options);
+  } catch (...) {
+    // Waiters get the error; the next compile() tries again.
+    promise.set_exception(std::current_exception());
+    lock.lock();
+    auto mine = c.entries.find(key);
+    if (mine != c.entries.end() && mine->second == entry) c.entries.erase(mine);
+    throw;
+  }
+  promise.set_value(k.shared_);
+  k.info_ = k.shared_->info;
+  k.info_.capture_ms = p.capture_ms();
   return k;
 }
 

@@ -2,15 +2,19 @@
 
 #include "rill/Parameters.h"
 #include "rill/Reference.h"
+#include "rill/Stopwatch.h"
 #include "rill/Stream.h"
 #include "rill/ir/Hash.h"
 #include "rill/ir/Printer.h"
 
 namespace rill {
 
-Program::Program(detail::CapturedProgram captured)
-    : d_(std::make_shared<const detail::CapturedProgram>(std::move(captured))),
-      hash_(ir::hash(*d_->fn)) {}
+Program::Program(detail::CapturedProgram captured) {
+  Stopwatch hashing;  // hashing is the last step of capture: the caches need the key
+  hash_ = ir::hash(*captured.fn);
+  captured.capture_ms += hashing.ms();
+  d_ = std::make_shared<const detail::CapturedProgram>(std::move(captured));
+}
 
 std::string Program::print() const { return ir::print(*d_->fn); }
 

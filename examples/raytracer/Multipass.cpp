@@ -430,19 +430,21 @@ Multipass::Kernels& Multipass::kernels(const std::string& backend, Accuracy a) {
   CompileOptions opt;
   opt.accuracy = a;
   Kernels k;
-  k.raygen = compile(raygen, backend, opt);
-  k.surface = compile(surface, backend, opt);
-  k.combine = compile(combine, backend, opt);
-  if (setup.valid()) {
-    k.setup = compile(setup, backend, opt);
-    k.traverse = compile(traverse, backend, opt);
-    k.intersect = compile(intersect, backend, opt);
-    k.finish = compile(finish, backend, opt);
-  }
-  if (shadow_gen.valid()) {
-    k.shadow_gen = compile(shadow_gen, backend, opt);
-    k.shadow_acc = compile(shadow_acc, backend, opt);
-  }
+  // The passes' kernels are independent: compiled together, the C compiler runs on every
+  // core (about 2x faster on two cores than one after another).
+  std::vector<std::pair<Kernel*, const Program*>> wanted{
+      {&k.raygen, &raygen}, {&k.surface, &surface}, {&k.combine, &combine}};
+  if (setup.valid())
+    wanted.insert(wanted.end(), {{&k.setup, &setup},
+                                 {&k.traverse, &traverse},
+                                 {&k.intersect, &intersect},
+                                 {&k.finish, &finish}});
+  if (shadow_gen.valid())
+    wanted.insert(wanted.end(), {{&k.shadow_gen, &shadow_gen}, {&k.shadow_acc, &shadow_acc}});
+  std::vector<CompileRequest> requests;
+  for (const auto& [kernel, program] : wanted) requests.push_back({*program, backend, opt});
+  std::vector<Kernel> built = compile_all(requests);
+  for (size_t i = 0; i < wanted.size(); ++i) *wanted[i].first = std::move(built[i]);
   return compiled.emplace(key, std::move(k)).first->second;
 }
 
@@ -472,6 +474,9 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
   Multipass& M = *multipass;
   Multipass::Kernels& K = M.kernels(rs.backend, rs.accuracy);
   r.from_cache = K.raygen.info().cache_hit || K.raygen.info().from_disk_cache;
+  for (const Kernel* k : {&K.raygen, &K.setup, &K.traverse, &K.intersect, &K.finish, &K.surface,
+                          &K.shadow_gen, &K.shadow_acc, &K.combine})
+    if (!k->backend_name().empty()) add_stages(r, k->info());
 
   max_depth.set(depth);
   Multipass::Buffers B(width, height);

@@ -908,6 +908,17 @@ Kernel& Tracer::Impl::kernel(const std::string& backend_name, Accuracy a) {
   return kernels.emplace(key, compile(trace_program, backend_name, opt)).first->second;
 }
 
+void add_stages(RenderResult& r, const rill::CompileInfo& k) {
+  rill::CompileInfo& s = r.stages;
+  if (r.kernels++ == 0) s.origin = k.origin;
+  s.capture_ms += k.capture_ms;
+  s.optimize_ms += k.optimize_ms;
+  s.codegen_ms += k.codegen_ms;
+  s.backend_compile_ms += k.backend_compile_ms;
+  s.driver_finish_ms += k.driver_finish_ms;
+  s.compile_ms += k.compile_ms;
+}
+
 // ---- Tracer --------------------------------------------------------------------------------
 
 Tracer::Tracer(const Scene& scene, const Grid& grid, const TracerOptions& options)
@@ -976,6 +987,7 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
   const auto t0 = std::chrono::steady_clock::now();
   Kernel& k = I.kernel(rs.backend, rs.accuracy);
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
+  add_stages(r, k.info());
 
   I.set_camera(camera, r.width, r.height);
 

@@ -113,6 +113,11 @@ struct RenderResult {
   int64_t rays = 0;               // rays traced (camera, shadow, secondary), all samples
   double compile_ms = 0;          // 0 when the compiled kernel came from a cache
   bool from_cache = false;
+  // The render's kernels' compile stages (Kernel::info()), summed over them: the multipass
+  // strategy compiles its nine at once (compile_all), so the sum exceeds compile_ms. origin
+  // is the first kernel's.
+  rill::CompileInfo stages;
+  int kernels = 0;  // how many kernels `stages` sums
   double trace_ms = 0;
   int64_t launches = 0;           // kernel launches while tracing
   std::vector<PassStats> passes;  // multipass only: per pass (Multipass.cpp)

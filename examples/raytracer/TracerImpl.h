@@ -171,6 +171,9 @@ struct Tracer::Impl {
              Float3& ro, Float3& rd, Bool& go, Bool* has_second, Branch* second) const;
 };
 
+// Adds one kernel's compile stages to r.stages (RenderResult).
+void add_stages(RenderResult& r, const rill::CompileInfo& k);
+
 // Array contents must be at least one element: empty data gets a dummy element.
 template <class V>
 std::vector<typename V::host_type> padded(std::vector<typename V::host_type> v) {

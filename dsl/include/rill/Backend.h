@@ -34,6 +34,9 @@ struct LaunchArgs {
   // StateMask::kMaxValues values.
   detail::StreamState* mask = nullptr;
   std::vector<int32_t> mask_values;
+  // A warm-up (CompiledKernel::warm_up): count is 0, yet the backend goes as far as the
+  // driver's launch, so that the driver compiles what it defers to the first one.
+  bool warm_up = false;
 };
 
 // What one run() did, returned to Kernel (which reports it as LaunchStats).
@@ -51,13 +54,13 @@ enum class KernelOrigin : uint8_t {
 };
 const char* origin_name(KernelOrigin o);  // "built", "process cache", "disk cache", "driver cache"
 
-// What a backend's compile() and warm_up() spent, in milliseconds, and where the kernel came
-// from. Backends fill it in; Kernel adds capture and optimization and reports it as CompileInfo.
+// What a backend's compile() spent, in milliseconds, and where the kernel came from.
+// Backends fill it in; rill::compile() adds capture, optimization and warm_up() (which it
+// times itself) and reports it all as CompileInfo.
 struct BuildReport {
   double codegen_ms = 0;  // emitting the backend's source
   double compile_ms = 0;  // the backend compile (C compiler, clBuildProgram, glLinkProgram),
                           // or loading a cached binary
-  double finish_ms = 0;   // driver-side finishing done by warm_up()
   KernelOrigin origin = KernelOrigin::Built;
 };
 
@@ -70,10 +73,16 @@ class CompiledKernel {
   virtual const std::string& source() const = 0;
   // Makes the driver finish whatever it defers to the first launch (PoCL and Mesa compile the
   // final machine code then), so that a compiled kernel is ready to run. Called once by
-  // rill::compile(); records its time in report().finish_ms. Backends without such work
-  // (cpu) keep the default.
+  // rill::compile(), which times it (CompileInfo::driver_finish_ms). Backends without such
+  // work (cpu) keep the default.
   virtual void warm_up() {}
   const BuildReport& report() const { return report_; }
+  // Set by the backend's compile() once the kernel exists: the time its two steps took.
+  void set_build_times(double codegen_ms, double compile_ms) {
+    report_.codegen_ms = codegen_ms;
+    report_.compile_ms = compile_ms;
+  }
+  void set_origin(KernelOrigin origin) { report_.origin = origin; }
   // Whether the backend reused a binary compiled earlier (a disk cache) instead of compiling.
   bool from_disk_cache() const { return report_.origin == KernelOrigin::DiskCache; }
 
@@ -94,6 +103,10 @@ class Backend {
   // Device and driver in one line, for `info` listings.
   virtual std::string description() const { return name(); }
   virtual bool supports(Accuracy a) const { return a != Accuracy::Double; }
+  // Whether compile() must stay on one thread: a GL context is current on one thread at a
+  // time (EGL refuses to make it current on a second). compile_all() runs such a backend's
+  // compiles on its calling thread, alongside the other backends' on oneTBB's workers.
+  virtual bool single_threaded() const { return false; }
   virtual std::unique_ptr<CompiledKernel> compile(const ir::Function& optimized,
                                                   const CompileOptions& options) = 0;
   // Copies the device copy of a stream or array, which this backend holds, into `host`

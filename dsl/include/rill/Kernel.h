@@ -15,6 +15,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "rill/Backend.h"
 #include "rill/Program.h"
@@ -30,8 +31,11 @@ struct LaunchStats {
 };
 
 // What compiling a kernel cost, stage by stage, in milliseconds, and where it came from.
-// On a process-cache hit the stages are those of the compile that built the shared kernel,
-// and compile_ms is 0: this compile() cost nothing.
+// compile_ms is the whole compile() call: optimize_ms + codegen_ms + backend_compile_ms +
+// driver_finish_ms, plus a little bookkeeping. capture_ms happened earlier, when the Program
+// was defined, and is not part of it. On a process-cache hit the stages are those of the
+// compile that built the shared kernel, and compile_ms is 0: this compile() cost nothing
+// (or, when another thread was still building that kernel, the time spent waiting for it).
 struct CompileInfo {
   double capture_ms = 0;          // building the program's IR (when the Program was defined)
   double optimize_ms = 0;         // the optimizer passes
@@ -39,6 +43,8 @@ struct CompileInfo {
   double backend_compile_ms = 0;  // the backend's compiler, or loading a cached binary
   double driver_finish_ms = 0;    // work a driver defers to the first launch, done in compile()
   double compile_ms = 0;          // what this compile() call took in all (0 on a cache hit)
+  // Built, ProcessCache, DiskCache. DriverCache is never reported today: neither PoCL nor
+  // Mesa says whether a build came from its own cache (see docs/programming-model.md).
   KernelOrigin origin = KernelOrigin::Built;
   bool cache_hit = false;        // served from the in-process kernel cache (origin ProcessCache)
   bool from_disk_cache = false;  // the backend loaded a binary from Rill's disk cache
@@ -123,6 +129,22 @@ class Kernel {
 
 Kernel compile(const Program& p, const std::string& backend = "cpu",
                const CompileOptions& options = {});
+
+// One kernel for compile_all().
+struct CompileRequest {
+  Program program;
+  std::string backend = "cpu";
+  CompileOptions options = {};
+};
+
+// Compiles several kernels concurrently (oneTBB) and returns them in the order asked:
+//   std::vector<Kernel> ks = compile_all({{grow, "cpu"}, {shade, "simd", opt}});
+// Each is what compile() would return (the same kernel cache; identical requests build once).
+// The cpu and simd compilers run as separate processes, so they overlap fully; GLSL builds
+// share one GL context and run one at a time on the calling thread, alongside the others.
+// If any fails, every other still finishes, and the first failure in request order is
+// thrown, naming its program and backend.
+std::vector<Kernel> compile_all(const std::vector<CompileRequest>& requests);
 
 // Writes the optimized IR (ir()): std::cout << kernel;
 inline std::ostream& operator<<(std::ostream& os, const Kernel& k) {

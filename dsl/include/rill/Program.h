@@ -35,6 +35,9 @@ class Program {
   void dump(std::ostream& os = std::cerr) const;
   // Stable hash of the IR (the kernel caches' key).
   uint64_t hash() const { return hash_; }
+  // Milliseconds its definition took (running the body, checking and hashing the IR):
+  // reported as Kernel::info().capture_ms by every kernel compiled from it.
+  double capture_ms() const { return d_->capture_ms; }
 
   const detail::CapturedProgram& captured() const { return *d_; }
   bool valid() const { return d_ != nullptr; }
