@@ -53,7 +53,7 @@ RILL_FN rill_vi rill_splat_i(int32_t x) { return (rill_vi)RILL_SPLAT(x); }
 #if defined(__AVX2__) && RILL_W == 8 && defined(__has_builtin)
 #if __has_builtin(__builtin_shufflevector) && __has_builtin(__builtin_ia32_maskloadps) && \
     __has_builtin(__builtin_ia32_ptestz256) && __has_builtin(__builtin_ia32_roundps256) && \
-    __has_builtin(__builtin_ia32_sqrtps256) && __has_builtin(__builtin_ia32_blendvps256)
+    __has_builtin(__builtin_ia32_sqrtps256)
 #define RILL_AVX2 1
 typedef float rill_v4f __attribute__((vector_size(16)));
 typedef float rill_v4f_u __attribute__((vector_size(16), aligned(4)));
@@ -120,22 +120,10 @@ RILL_FN int rill_next_group(rill_groups* g, int64_t lane[RILL_W]) {
   return n;
 }
 
-#ifdef RILL_AVX2
-/* One vblendvps per blend, where (a & c) | (b & ~c) took GCC three instructions: lane masks
-   are -1 or 0, so their sign bits select. The masked assignments of the lowered kernel are
-   mostly blends, and the shorter code also takes less time to compile. */
-RILL_FN rill_vr rill_sel_r(rill_vi c, rill_vr a, rill_vr b) {
-  return __builtin_ia32_blendvps256(b, a, (rill_vr)c);
-}
-RILL_FN rill_vi rill_sel_i(rill_vi c, rill_vi a, rill_vi b) {
-  return (rill_vi)__builtin_ia32_blendvps256((rill_vr)b, (rill_vr)a, (rill_vr)c);
-}
-#else
 RILL_FN rill_vi rill_sel_i(rill_vi c, rill_vi a, rill_vi b) { return (a & c) | (b & ~c); }
 RILL_FN rill_vr rill_sel_r(rill_vi c, rill_vr a, rill_vr b) {
   return (rill_vr)(((rill_vi)a & c) | ((rill_vi)b & ~c));
 }
-#endif
 RILL_FN rill_vi rill_mask(rill_vi c) { return -(c != 0); }
 #define RILL_CMP(x) __builtin_convertvector((x), rill_vi)
 RILL_FN rill_vi rill_v_add_i(rill_vi a, rill_vi b) { return (rill_vi)((rill_vu)a + (rill_vu)b); }
@@ -308,8 +296,16 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   codegen::CFamilyPrinter p(f, d);
   std::string splat = "{x";
   for (int l = 1; l < lanes; ++l) splat += ", x";
-  std::string src = "#define RILL_W " + std::to_string(lanes) + "\n#define RILL_SPLAT(x) " + splat +
-                    "}\n" + c_head(f, accuracy);
+  // Lockstep kernels keep hundreds of vector variables live across their loops, and GCC's
+  // register allocation by loop regions took a quarter of a ray tracer kernel's compile; one
+  // region compiled it 20% faster, with no measurable change in run time
+  // (docs/benchmarks/2026-11-24-simd-compile.md). A pragma, since clang rejects the option
+  // -fira-region=one and ignores GCC's pragmas; before any function, so all get it alike.
+  std::string src =
+      "#if defined(__GNUC__) && !defined(__clang__)\n"
+      "#pragma GCC optimize(\"ira-region=one\")\n#endif\n";
+  src += "#define RILL_W " + std::to_string(lanes) + "\n#define RILL_SPLAT(x) " + splat + "}\n" +
+         c_head(f, accuracy);
   src += kVectorPrelude;
   src += lane_wise_helpers();
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
