@@ -221,10 +221,9 @@ class Lowering {
   // A side of an if runs under `if (some lane has mask)`, unless it is a few cheap
   // assignments (kUnguardedLimit, no gathers or transcendentals): those run for every lane,
   // which changes nothing, since every assignment under a mask blends or is unblended (its
-  // value in lanes that are off is never read; see unblended_vars()). The guard costs a test
-  // and a branch, and two basic blocks per side: a kernel of 400 short ifs compiled 2.5x
-  // faster unguarded (docs/benchmarks/2026-11-24-simd-compile.md), and a branch GCC does not
-  // have to predict is also no slower to run.
+  // value in lanes that are off is never read; see unblended_vars()). The guard costs a test,
+  // a branch and two basic blocks per side: a kernel of 400 short ifs compiled 2.5x faster
+  // unguarded (docs/benchmarks/2026-11-24-simd-compile.md).
   static constexpr size_t kUnguardedLimit = 8;
   static bool needs_guard(const Block& body) {
     if (body.size() > kUnguardedLimit) return true;
