@@ -42,8 +42,26 @@ typedef rill_real rill_vr __attribute__((vector_size(RILL_W * sizeof(rill_real))
 typedef int32_t rill_vi __attribute__((vector_size(RILL_W * 4)));
 typedef uint32_t rill_vu __attribute__((vector_size(RILL_W * 4)));
 
-RILL_FN rill_vr rill_splat_r(rill_real x) { rill_vr r; for (int l = 0; l < RILL_W; ++l) r[l] = x; return r; }
-RILL_FN rill_vi rill_splat_i(int32_t x) { rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = x; return r; }
+/* Broadcasts are vector initializers (RILL_SPLAT(x) is {x, ..., x}, RILL_W times), not loops:
+   a kernel holds thousands of them, and GCC spent over half of a ray tracer's compile time
+   unrolling and folding one loop per broadcast. */
+RILL_FN rill_vr rill_splat_r(rill_real x) { return (rill_vr)RILL_SPLAT(x); }
+RILL_FN rill_vi rill_splat_i(int32_t x) { return (rill_vi)RILL_SPLAT(x); }
+/* RILL_AVX2: 8 lanes in AVX2 registers, through the compiler's builtins (the same names in
+   GCC 12+ and clang) rather than <immintrin.h>, whose 46,000 preprocessed lines took a third
+   of a second to parse in every kernel. Without them the generic code below serves. */
+#if defined(__AVX2__) && RILL_W == 8 && defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector) && __has_builtin(__builtin_ia32_maskloadps) && \
+    __has_builtin(__builtin_ia32_ptestz256) && __has_builtin(__builtin_ia32_roundps256) && \
+    __has_builtin(__builtin_ia32_sqrtps256)
+#define RILL_AVX2 1
+typedef float rill_v4f __attribute__((vector_size(16)));
+typedef float rill_v4f_u __attribute__((vector_size(16), aligned(4)));
+typedef int32_t rill_v4i __attribute__((vector_size(16)));
+typedef int32_t rill_v2i_u __attribute__((vector_size(8), aligned(4)));
+typedef long long rill_v4q __attribute__((vector_size(32)));
+#endif
+#endif
 /* Each lane's element of a stream: p[lane[l] * stride] (p points at the component). */
 #if RILL_W == 8
 RILL_FN rill_vr rill_lanes_r(const float* p, const int64_t* lane, int64_t n) {
@@ -62,9 +80,8 @@ RILL_FN rill_vi rill_lanes_i(const int32_t* p, const int64_t* lane, int64_t n) {
   rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = p[lane[l] * n]; return r;
 }
 #endif
-#if defined(__AVX__) && RILL_W == 8
-#include <immintrin.h>
-RILL_FN int rill_any(rill_vi m) { return !_mm256_testz_si256((__m256i)m, (__m256i)m); }
+#ifdef RILL_AVX2
+RILL_FN int rill_any(rill_vi m) { return !__builtin_ia32_ptestz256((rill_v4q)m, (rill_v4q)m); }
 #else
 RILL_FN int rill_any(rill_vi m) {
   int32_t r = 0;
@@ -156,44 +173,49 @@ RILL_FN rill_vi rill_gather_i(const int32_t* base, rill_vi i) {
   rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = base[i[l]]; return r;
 }
 #endif
-#if defined(__AVX2__) && RILL_W == 8
-#include <immintrin.h>
+#ifdef RILL_AVX2
 /* Three or four consecutive floats per lane (a vec3/vec4 element): one 16-byte load per lane
    (masked to three floats for vec3, so the last element never reads past the array) and a
-   transpose, instead of eight scalar loads per component. */
-RILL_FN void rill_transpose_lanes(const __m128 q[8], rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
-  __m256 r0 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[0]), q[4], 1);
-  __m256 r1 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[1]), q[5], 1);
-  __m256 r2 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[2]), q[6], 1);
-  __m256 r3 = _mm256_insertf128_ps(_mm256_castps128_ps256(q[3]), q[7], 1);
-  __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
-  __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
-  *x = (rill_vr)_mm256_shuffle_ps(t0, t1, 0x44);
-  *y = (rill_vr)_mm256_shuffle_ps(t0, t1, 0xee);
-  *z = (rill_vr)_mm256_shuffle_ps(t2, t3, 0x44);
-  if (w) *w = (rill_vr)_mm256_shuffle_ps(t2, t3, 0xee);
+   transpose, instead of eight scalar loads per component. The shuffles are those of
+   _mm256_insertf128_ps, _mm256_unpacklo/hi_ps and _mm256_shuffle_ps (0x44, 0xee). */
+RILL_FN void rill_transpose_lanes(const rill_v4f q[8], rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
+  const rill_vr r0 = __builtin_shufflevector(q[0], q[4], 0, 1, 2, 3, 4, 5, 6, 7);
+  const rill_vr r1 = __builtin_shufflevector(q[1], q[5], 0, 1, 2, 3, 4, 5, 6, 7);
+  const rill_vr r2 = __builtin_shufflevector(q[2], q[6], 0, 1, 2, 3, 4, 5, 6, 7);
+  const rill_vr r3 = __builtin_shufflevector(q[3], q[7], 0, 1, 2, 3, 4, 5, 6, 7);
+  const rill_vr t0 = __builtin_shufflevector(r0, r1, 0, 8, 1, 9, 4, 12, 5, 13);
+  const rill_vr t1 = __builtin_shufflevector(r2, r3, 0, 8, 1, 9, 4, 12, 5, 13);
+  const rill_vr t2 = __builtin_shufflevector(r0, r1, 2, 10, 3, 11, 6, 14, 7, 15);
+  const rill_vr t3 = __builtin_shufflevector(r2, r3, 2, 10, 3, 11, 6, 14, 7, 15);
+  *x = __builtin_shufflevector(t0, t1, 0, 1, 8, 9, 4, 5, 12, 13);
+  *y = __builtin_shufflevector(t0, t1, 2, 3, 10, 11, 6, 7, 14, 15);
+  *z = __builtin_shufflevector(t2, t3, 0, 1, 8, 9, 4, 5, 12, 13);
+  if (w) *w = __builtin_shufflevector(t2, t3, 2, 3, 10, 11, 6, 7, 14, 15);
 }
 RILL_FN void rill_gather3_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z) {
-  const __m128i m = _mm_setr_epi32(-1, -1, -1, 0);
-  __m128 q[8];
-  for (int l = 0; l < 8; ++l) q[l] = _mm_maskload_ps(base + i[l], m);
+  const rill_v4i m = {-1, -1, -1, 0};
+  rill_v4f q[8];
+  for (int l = 0; l < 8; ++l) q[l] = __builtin_ia32_maskloadps((const rill_v4f*)(base + i[l]), m);
   rill_transpose_lanes(q, x, y, z, 0);
 }
 RILL_FN void rill_gather4_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
-  __m128 q[8];
-  for (int l = 0; l < 8; ++l) q[l] = _mm_loadu_ps(base + i[l]);
+  rill_v4f q[8];
+  for (int l = 0; l < 8; ++l) q[l] = *(const rill_v4f_u*)(base + i[l]);
   rill_transpose_lanes(q, x, y, z, w);
 }
-/* Two consecutive ints per lane (an ivec2 element): one 8-byte load per lane and a transpose. */
+/* Two consecutive ints per lane (an ivec2 element): one 8-byte load per lane and a transpose
+   (the shuffles of _mm_unpacklo_epi64, _mm256_insertf128_si256, _mm256_shuffle_ps 0x88/0xdd). */
 RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi* y) {
-  __m128i q[8];
-  for (int l = 0; l < 8; ++l) q[l] = _mm_loadl_epi64((const __m128i*)(base + i[l]));
-  __m128i a = _mm_unpacklo_epi64(q[0], q[1]), b = _mm_unpacklo_epi64(q[2], q[3]);
-  __m128i c = _mm_unpacklo_epi64(q[4], q[5]), d = _mm_unpacklo_epi64(q[6], q[7]);
-  __m256 lo = _mm256_castsi256_ps(_mm256_insertf128_si256(_mm256_castsi128_si256(a), c, 1));
-  __m256 hi = _mm256_castsi256_ps(_mm256_insertf128_si256(_mm256_castsi128_si256(b), d, 1));
-  *x = (rill_vi)_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, 0x88));
-  *y = (rill_vi)_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, 0xdd));
+  rill_v2i_u q[8];
+  for (int l = 0; l < 8; ++l) q[l] = *(const rill_v2i_u*)(base + i[l]);
+  const rill_v4i a = __builtin_shufflevector(q[0], q[1], 0, 1, 2, 3);
+  const rill_v4i b = __builtin_shufflevector(q[2], q[3], 0, 1, 2, 3);
+  const rill_v4i c = __builtin_shufflevector(q[4], q[5], 0, 1, 2, 3);
+  const rill_v4i d = __builtin_shufflevector(q[6], q[7], 0, 1, 2, 3);
+  const rill_vi lo = __builtin_shufflevector(a, c, 0, 1, 2, 3, 4, 5, 6, 7);
+  const rill_vi hi = __builtin_shufflevector(b, d, 0, 1, 2, 3, 4, 5, 6, 7);
+  *x = __builtin_shufflevector(lo, hi, 0, 2, 8, 10, 4, 6, 12, 14);
+  *y = __builtin_shufflevector(lo, hi, 1, 3, 9, 11, 5, 7, 13, 15);
 }
 #define RILL_HAVE_GATHER34 1
 #endif
@@ -203,20 +225,15 @@ RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi*
   RILL_FN R name(A a) { R r; for (int l = 0; l < RILL_W; ++l) r[l] = fn(a[l]); return r; }
 #define RILL_LANES2(name, R, A, fn) \
   RILL_FN R name(A a, A b) { R r; for (int l = 0; l < RILL_W; ++l) r[l] = fn(a[l], b[l]); return r; }
-#if defined(__AVX2__) && RILL_W == 8
+#ifdef RILL_AVX2
 /* Exact in every mode, so the same bits as the scalar helpers (NaN, infinities, -0 included):
    rounding to an integer and the square root are correctly rounded instructions. Strict code
-   would otherwise call floorf, ceilf and sqrtf lane by lane. */
-RILL_FN rill_vr rill_v_floor(rill_vr a) {
-  return (rill_vr)_mm256_round_ps((__m256)a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-}
-RILL_FN rill_vr rill_v_ceil(rill_vr a) {
-  return (rill_vr)_mm256_round_ps((__m256)a, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC);
-}
-RILL_FN rill_vr rill_v_trunc(rill_vr a) {
-  return (rill_vr)_mm256_round_ps((__m256)a, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
-}
-RILL_FN rill_vr rill_v_sqrt(rill_vr a) { return (rill_vr)_mm256_sqrt_ps((__m256)a); }
+   would otherwise call floorf, ceilf and sqrtf lane by lane. The rounding immediates are
+   _MM_FROUND_TO_NEG_INF, _TO_POS_INF and _TO_ZERO, each with _MM_FROUND_NO_EXC (8). */
+RILL_FN rill_vr rill_v_floor(rill_vr a) { return __builtin_ia32_roundps256(a, 1 | 8); }
+RILL_FN rill_vr rill_v_ceil(rill_vr a) { return __builtin_ia32_roundps256(a, 2 | 8); }
+RILL_FN rill_vr rill_v_trunc(rill_vr a) { return __builtin_ia32_roundps256(a, 3 | 8); }
+RILL_FN rill_vr rill_v_sqrt(rill_vr a) { return __builtin_ia32_sqrtps256(a); }
 #else
 RILL_LANES1(rill_v_trunc, rill_vr, rill_vr, rill_trunc)
 RILL_LANES1(rill_v_floor, rill_vr, rill_vr, rill_floor)
@@ -277,7 +294,18 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   const Function& f = lowered.f;
   VectorDialect d(accuracy, lanes);
   codegen::CFamilyPrinter p(f, d);
-  std::string src = "#define RILL_W " + std::to_string(lanes) + "\n" + c_head(f, accuracy);
+  std::string splat = "{x";
+  for (int l = 1; l < lanes; ++l) splat += ", x";
+  // Lockstep kernels keep hundreds of vector variables live across their loops, and GCC's
+  // register allocation by loop regions took a quarter of a ray tracer kernel's compile; one
+  // region compiled it 20% faster, with no measurable change in run time
+  // (docs/benchmarks/2026-11-24-simd-compile.md). A pragma, since clang rejects the option
+  // -fira-region=one and ignores GCC's pragmas; before any function, so all get it alike.
+  std::string src =
+      "#if defined(__GNUC__) && !defined(__clang__)\n"
+      "#pragma GCC optimize(\"ira-region=one\")\n#endif\n";
+  src += "#define RILL_W " + std::to_string(lanes) + "\n#define RILL_SPLAT(x) " + splat + "}\n" +
+         c_head(f, accuracy);
   src += kVectorPrelude;
   src += lane_wise_helpers();
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";

@@ -5,7 +5,7 @@
 // "some lane has it". Every Bool variable is then a lane mask, and
 //
 // - an `if` computes the masks of the lanes taking each side, and runs a side only if some
-//   lane takes it;
+//   lane takes it (a side of a few cheap assignments runs unguarded: see guarded());
 // - an assignment under a mask keeps the old value in the other lanes: it computes into a
 //   temporary, then blends, `x = select(mask, t, x)`; unless no lane that is off can ever
 //   read x (see unblended_vars()), which skips the blend;
@@ -166,13 +166,13 @@ class Lowering {
         VarId else_mask = kNoVar;
         if (!s.else_body.empty())
           else_mask = masked(out, "else", mask, negated(out, s.cond, s.loc), s.loc);
-        Stmt then_if = Stmt::make_if(use(then_mask), s.loc);
-        block(s.then_body, then_if.then_body, then_mask, live);
-        out.push_back(std::move(then_if));
+        Block then_body;
+        block(s.then_body, then_body, then_mask, live);
+        guarded(out, then_mask, std::move(then_body), s.loc);
         if (else_mask != kNoVar) {
-          Stmt else_if = Stmt::make_if(use(else_mask), s.loc);
-          block(s.else_body, else_if.then_body, else_mask, live);
-          out.push_back(std::move(else_if));
+          Block else_body;
+          block(s.else_body, else_body, else_mask, live);
+          guarded(out, else_mask, std::move(else_body), s.loc);
         }
         return;
       }
@@ -190,23 +190,55 @@ class Lowering {
       out.push_back(s);
       return;
     }
-    // t = op(args); dst[.mask] = select(mask, t, dst[.mask])
+    // t = op(args); dst[.mask] = select(mask, t, dst[.mask]). A copy blends its operand
+    // directly: over half of the glass ray tracer's blends were of copies, and each
+    // temporary is one more vector variable for the C compiler. (Not one that reads dst, whose
+    // components the blend may overwrite before it reads them, nor a broadcast.)
     const Type dst_type = f_.var(s.dst).type;
     const int width = s.mask.full() ? dst_type.width : s.mask.count;
-    VarId t = f_.add_var(dst_type.with_width(width));
-    Stmt compute = s;
-    compute.dst = t;
-    compute.mask = Mask{};
-    out.push_back(std::move(compute));
+    Operand value;
+    if (s.op == Op::Copy && s.args[0].type == dst_type.with_width(width) &&
+        !(s.args[0].is_var() && s.args[0].var == s.dst)) {
+      value = s.args[0];
+    } else {
+      VarId t = f_.add_var(dst_type.with_width(width));
+      Stmt compute = s;
+      compute.dst = t;
+      compute.mask = Mask{};
+      out.push_back(std::move(compute));
+      value = Operand::of_var(t, dst_type.with_width(width));
+    }
     Operand old = Operand::of_var(s.dst, dst_type);
     old.type = dst_type.with_width(width);
     for (int c = 0; c < width; ++c)
       old.swizzle[static_cast<size_t>(c)] =
           static_cast<uint8_t>(s.mask.full() ? c : s.mask.comps[static_cast<size_t>(c)]);
-    Stmt blend = Stmt::assign(
-        s.dst, Op::Select, {use(mask), Operand::of_var(t, dst_type.with_width(width)), old}, s.loc);
+    Stmt blend = Stmt::assign(s.dst, Op::Select, {use(mask), value, old}, s.loc);
     blend.mask = s.mask;
     out.push_back(std::move(blend));
+  }
+
+  // A side of an if runs under `if (some lane has mask)`, unless it is a few cheap
+  // assignments (kUnguardedLimit, no gathers or transcendentals): those run for every lane,
+  // which changes nothing, since every assignment under a mask blends or is unblended (its
+  // value in lanes that are off is never read; see unblended_vars()). The guard costs a test,
+  // a branch and two basic blocks per side: a kernel of 400 short ifs compiled 2.5x faster
+  // unguarded (docs/benchmarks/2026-11-24-simd-compile.md).
+  static constexpr size_t kUnguardedLimit = 8;
+  static bool needs_guard(const Block& body) {
+    if (body.size() > kUnguardedLimit) return true;
+    for (const Stmt& s : body)
+      if (s.kind != StmtKind::Assign || s.op == Op::Gather || is_transcendental(s.op)) return true;
+    return false;
+  }
+  void guarded(Block& out, VarId mask, Block body, SourceLoc loc) {
+    if (!needs_guard(body)) {
+      for (Stmt& s : body) out.push_back(std::move(s));
+      return;
+    }
+    Stmt side = Stmt::make_if(use(mask), loc);
+    side.then_body = std::move(body);
+    out.push_back(std::move(side));
   }
 
   // The loop runs while some lane is looping: for every kind of source loop, a while loop

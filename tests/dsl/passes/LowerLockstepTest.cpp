@@ -374,6 +374,40 @@ TEST(LowerLockstep, GathersAndElementIndexUnderMasks) {
   check(p, d);
 }
 
+// A side of a few cheap assignments runs for every lane, blended, with no `if` around it; a
+// side that gathers keeps its guard. Both still compute what the source does.
+TEST(LowerLockstep, ShortSidesRunUnguarded) {
+  Array<Int> table(std::vector<int32_t>{3, -1, 7}, "table");
+  Program p = program("short_sides", [&] {
+    Input<Int> a("a");
+    Output<Int> y("y");
+    Int t = a;
+    RILL_IF(a > 0) {
+      t = t * 2 + 1;
+    }
+    RILL_ELSE {
+      t = t - 3;
+    }
+    RILL_ENDIF;
+    RILL_IF(t < 4) {
+      t = t + table[t];  // a gather: guarded
+    }
+    RILL_ENDIF;
+    y = t;
+  });
+  check(p, ints({1}, {1}, kCount, 61));
+  const Function ref = passes::optimize(p.ir(), PassOptions{}, Accuracy::Strict);
+  const passes::LockstepFunction lowered = passes::lower_lockstep(ref);
+  EXPECT_EQ(test::count_kind(ref, StmtKind::If), 2) << ir::print(ref);
+  EXPECT_EQ(test::count_kind(lowered.f, StmtKind::If), 1) << ir::print(lowered.f);
+  int guarded_gathers = 0;
+  ir::for_each_stmt(lowered.f.body, [&](const Stmt& s) {
+    if (s.kind == StmtKind::If)
+      for (const Stmt& inner : s.then_body) guarded_gathers += inner.op == Op::Gather;
+  });
+  EXPECT_EQ(guarded_gathers, 1) << ir::print(lowered.f);
+}
+
 // A kernel without control flow needs no masks: the lowering leaves it as it is.
 TEST(LowerLockstep, StraightLineCodeIsUnchanged) {
   Program p = program("straight", [] {
