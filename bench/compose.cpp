@@ -34,6 +34,7 @@
 
 #include "CommaList.h"
 #include "Timing.h"
+#include "UsableBackends.h"
 
 namespace {
 
@@ -48,30 +49,6 @@ struct Options {
   int64_t reduce_n = int64_t{1} << 24;
   int64_t connect_n = int64_t{1} << 21;
 };
-
-bool has(const std::vector<std::string>& v, const std::string& s) {
-  for (const auto& x : v)
-    if (x == s) return true;
-  return false;
-}
-
-// The backends asked for that can run here; the others are listed with the reason.
-std::vector<std::string> usable_backends(const Options& o) {
-  std::vector<std::string> out;
-  for (const auto& name : o.backends) {
-    Backend* b = nullptr;
-    for (Backend* c : backends())
-      if (c->name() == name) b = c;
-    if (!b) {
-      std::printf("  %-8s skipped: not built into this Rill\n", name.c_str());
-    } else if (std::string why = b->unavailable_reason(); !why.empty()) {
-      std::printf("  %-8s skipped: %s\n", name.c_str(), why.c_str());
-    } else {
-      out.push_back(name);
-    }
-  }
-  return out;
-}
 
 template <class T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
@@ -111,7 +88,7 @@ bool run_blur(const Options& o) {
 
   bool ok = true;
   std::vector<glm::vec4> cpu_bits;
-  std::vector<std::string> names = usable_backends(o);
+  std::vector<std::string> names = usable_backends(o.backends);
   std::printf("  %-8s %12s %14s %8s  %s\n", "backend", "chain ms", "round trip ms", "ratio",
               "bits");
   for (const auto& be : names) {
@@ -184,7 +161,7 @@ bool run_reduce(const Options& o) {
   const double gelem = static_cast<double>(n) * 1e-9;
 
   bool ok = true;
-  std::vector<std::string> names = usable_backends(o);
+  std::vector<std::string> names = usable_backends(o.backends);
   std::printf("  %-8s %-22s %9s %9s %8s  %s %.1f)\n", "backend", "rill::sum against", "rill ms",
               "other ms", "rill/oth", "values (rill / other; double:", exact);
   Stream<Float> host_data(data);
@@ -277,7 +254,7 @@ bool run_connect(const Options& o) {
 
   bool ok = true;
   std::vector<glm::vec4> first_bits;
-  std::vector<std::string> names = usable_backends(o);
+  std::vector<std::string> names = usable_backends(o.backends);
   std::printf("  %-8s %10s %10s %8s %14s  %s\n", "backend", "fused ms", "2 launch", "ratio",
               "bytes/elem", "bits");
   for (const auto& be : names) {

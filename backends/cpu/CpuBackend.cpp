@@ -57,10 +57,13 @@ class CpuKernel : public CompiledKernel {
   ~CpuKernel() override { release(so_); }
 
   LaunchResult run(const LaunchArgs& a) override {
-    std::vector<void*> in, out;
-    std::vector<const void*> arrays;
-    std::vector<int64_t> shapes;
-    std::vector<uint32_t> uniforms;
+    // Members, so that launches reuse their memory (Kernel runs one launch at a time).
+    auto& [in, out, arrays, shapes, uniforms] = scratch_;
+    in.clear();
+    out.clear();
+    arrays.clear();
+    shapes.clear();
+    uniforms.clear();
     // The kernel only reads its inputs (rill_launch declares them void*, like the outputs).
     for (auto* s : a.inputs) in.push_back(const_cast<uint32_t*>(s->host_data_for_read()));
     for (auto* arr : a.arrays) {
@@ -97,30 +100,36 @@ class CpuKernel : public CompiledKernel {
                            a.count == a.width * a.height;
     const int64_t unit = row_pairs ? 2 * a.width : 1;
     const int64_t units = (a.count + unit - 1) / unit;
-    Counts total = tbb::parallel_reduce(
-        tbb::blocked_range<int64_t>(0, units, std::max<int64_t>(1, grain / unit)), Counts{},
-        [&](const tbb::blocked_range<int64_t>& r, Counts acc) {
-          if (!mask) {
-            const int64_t begin = r.begin() * unit, end = std::min(r.end() * unit, a.count);
-            acc.written += run_(&L, begin, end);
-            acc.selected += end - begin;
-            return acc;
-          }
-          for (int64_t i = r.begin(); i < r.end();) {
-            while (i < r.end() && !selected_at(i)) ++i;
-            int64_t j = i;
-            while (j < r.end() && selected_at(j)) ++j;
-            if (j > i) {
-              acc.written += run_(&L, i, j);
-              acc.selected += j - i;
-            }
-            i = j;
-          }
-          return acc;
-        },
-        [](Counts x, Counts y) {
-          return Counts{x.written + y.written, x.selected + y.selected};
-        });
+    const int64_t range_units = std::max<int64_t>(1, grain / unit);
+    auto run_range = [&](const tbb::blocked_range<int64_t>& r, Counts acc) {
+      if (!mask) {
+        const int64_t begin = r.begin() * unit, end = std::min(r.end() * unit, a.count);
+        acc.written += run_(&L, begin, end);
+        acc.selected += end - begin;
+        return acc;
+      }
+      for (int64_t i = r.begin(); i < r.end();) {
+        while (i < r.end() && !selected_at(i)) ++i;
+        int64_t j = i;
+        while (j < r.end() && selected_at(j)) ++j;
+        if (j > i) {
+          acc.written += run_(&L, i, j);
+          acc.selected += j - i;
+        }
+        i = j;
+      }
+      return acc;
+    };
+    // A launch of one range runs on the calling thread: TBB would only add its dispatch.
+    if (units <= range_units) {
+      const Counts c = run_range(tbb::blocked_range<int64_t>(0, units, range_units), Counts{});
+      return {c.written, c.selected};
+    }
+    Counts total =
+        tbb::parallel_reduce(tbb::blocked_range<int64_t>(0, units, range_units), Counts{},
+                             run_range, [](Counts x, Counts y) {
+                               return Counts{x.written + y.written, x.selected + y.selected};
+                             });
     return {total.written, total.selected};
   }
 
@@ -131,6 +140,13 @@ class CpuKernel : public CompiledKernel {
   SharedObject so_;
   RunFn run_ = nullptr;
   bool lockstep_;
+  // The argument tables of a launch (see run()).
+  struct Scratch {
+    std::vector<void*> in, out;
+    std::vector<const void*> arrays;
+    std::vector<int64_t> shapes;
+    std::vector<uint32_t> uniforms;
+  } scratch_;
 };
 
 // `cpu` runs the scalar C of emit_c(), one element per iteration; `simd` runs the

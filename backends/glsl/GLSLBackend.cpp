@@ -36,6 +36,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <tuple>
 #include <vector>
 
 #include "../cache/DiskCache.h"
@@ -133,11 +134,18 @@ struct Texture : detail::DeviceBuffer {
 
 class GLSLKernel : public CompiledKernel {
  public:
+  // Where a pass's program takes each of its uniforms (-1: the program does not use it),
+  // asked once, at the first launch.
+  struct Locations {
+    std::vector<GLint> in, prev, arr;  // parallel to inputs, Pass::outputs, arrays
+    GLint count = -1, row = -1, width = -1, u = -1, k = -1, one = -1, shapes = -1;
+  };
   struct Pass {
     std::vector<int> outputs;
     GLuint program = 0;
     std::string source;
     std::vector<uint32_t> constants;
+    Locations loc;
   };
   GLSLKernel(GLSLBackend& be, std::shared_ptr<Session> session, ir::Function f,
              std::vector<Pass> passes)
@@ -156,12 +164,24 @@ class GLSLKernel : public CompiledKernel {
  private:
   // Masked launches: fills the stencil buffer from a.mask; returns the elements selected.
   GLuint draw_mask(const GL& gl, const LaunchArgs& a, const Shape& shape);
+  // Fills every pass's Locations and reads_prev_ (at the first launch).
+  void locate(const GL& gl, const LaunchArgs& a);
 
   GLSLBackend& be_;                   // run() is only called while the backend exists
   std::shared_ptr<Session> session_;  // the destructor may run after the backend's
   ir::Function fn_;
   std::vector<Pass> passes_;
   std::string source_;
+  bool located_ = false;
+  // Per output: whether some pass reads its previous values (an output not written on every
+  // path). Outputs that no pass reads, and that are not also inputs, need no copy.
+  std::vector<bool> reads_prev_;
+  // Per launch, kept to reuse their memory: output textures, copies of outputs (0: none),
+  // input and array textures, array shapes, uniform words and draw buffers.
+  std::vector<Texture*> out_tex_;
+  std::vector<GLenum> draw_bufs_;
+  std::vector<GLuint> prev_, in_tex_, arr_tex_, words_;
+  std::vector<GLint> shapes_;
 };
 
 class GLSLBackend : public Backend {
@@ -303,6 +323,27 @@ class GLSLBackend : public Backend {
                     fmt.format, fmt.type, nullptr);
     check(gl, "allocating a texture");
     return tex;
+  }
+
+  // A texture of this format and shape for a launch's copy of an output's previous values:
+  // one from the pool, else a new one. give_back() returns it.
+  GLuint take_copy_texture(const GL& gl, const Format& fmt, const Shape& shape) {
+    auto it = copy_pool_.find({fmt.internal, shape.row, shape.rows});
+    if (it == copy_pool_.end() || it->second.empty()) return new_texture(gl, fmt, shape);
+    GLuint tex = it->second.back();
+    it->second.pop_back();
+    return tex;
+  }
+  // Keeps the textures of small launches (up to kPooledTexels texels, a few per shape) for the
+  // next launch, where allocating them would cost more than the kernel; deletes the others.
+  void give_back_copy_texture(const GL& gl, const Format& fmt, const Shape& shape, GLuint tex) {
+    constexpr int64_t kPooledTexels = int64_t{1} << 20;
+    constexpr size_t kPerShape = 4;
+    std::vector<GLuint>& pool = copy_pool_[{fmt.internal, shape.row, shape.rows}];
+    if (int64_t{shape.row} * shape.rows <= kPooledTexels && pool.size() < kPerShape)
+      pool.push_back(tex);
+    else
+      gl.glDeleteTextures(1, &tex);
   }
 
   // A depth-stencil renderbuffer of this size, for masked launches (kept for reuse).
@@ -456,12 +497,15 @@ class GLSLBackend : public Backend {
     std::lock_guard<std::recursive_mutex> lock(mutex());
     if (const GL* gl = session_->current_if_alive()) {
       for (auto& [size, rb] : stencils_) gl->glDeleteRenderbuffers(1, &rb);
+      for (auto& [key, pool] : copy_pool_)
+        if (!pool.empty()) gl->glDeleteTextures(static_cast<GLsizei>(pool.size()), pool.data());
       if (mask_program_) gl->glDeleteProgram(mask_program_);
       gl->glDeleteQueries(1, &query_);
       gl->glDeleteVertexArrays(1, &vao_);
       gl->glDeleteFramebuffers(1, &fbo_);
     }
     stencils_.clear();
+    copy_pool_.clear();
     fbo_ = vao_ = query_ = mask_program_ = 0;
     session_->context.reset();  // destroys the GL context (GLContext.cpp)
   }
@@ -522,6 +566,9 @@ class GLSLBackend : public Backend {
   GLuint fbo_ = 0, vao_ = 0, query_ = 0;
   GLuint mask_program_ = 0;
   std::map<std::pair<int, int>, GLuint> stencils_;
+  // Textures for copies of outputs, by (internal format, row, rows), for reuse (see
+  // give_back_copy_texture).
+  std::map<std::tuple<GLenum, int, int>, std::vector<GLuint>> copy_pool_;
 };
 
 // The backends that have made a context, for the exit handler. Globals, constructed before
@@ -608,6 +655,32 @@ GLuint GLSLKernel::draw_mask(const GL& gl, const LaunchArgs& a, const Shape& sha
   return selected;
 }
 
+void GLSLKernel::locate(const GL& gl, const LaunchArgs& a) {
+  reads_prev_.assign(fn_.outputs.size(), false);
+  for (Pass& p : passes_) {
+    Locations& l = p.loc;
+    l = Locations{};
+    auto at = [&](const std::string& name) {
+      return gl.glGetUniformLocation(p.program, name.c_str());
+    };
+    for (size_t i = 0; i < a.inputs.size(); ++i) l.in.push_back(at("rill_in" + std::to_string(i)));
+    for (int o : p.outputs) {
+      l.prev.push_back(at("rill_prev" + std::to_string(o)));
+      if (l.prev.back() >= 0) reads_prev_[static_cast<size_t>(o)] = true;
+    }
+    for (size_t i = 0; i < a.arrays.size(); ++i)
+      l.arr.push_back(at("rill_arr" + std::to_string(i)));
+    l.count = at("rill_count");
+    l.row = at("rill_row");
+    l.width = at("rill_width");
+    l.u = at("rill_u");
+    l.k = at("rill_k");
+    l.one = at("rill_one");
+    l.shapes = at("rill_shapes");
+  }
+  located_ = true;
+}
+
 LaunchResult GLSLKernel::run(const LaunchArgs& a) {
   if (a.count == 0 && !a.warm_up) return {0, 0};
   if (a.count > kMaxRow * kMaxRow)
@@ -621,38 +694,58 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
     throw Error("GLSL backend: kernel '" + fn_.name + "' reads " + std::to_string(units) +
                 " textures but the context has " + std::to_string(be_.max_texture_units()) +
                 " texture units");
+  if (!located_ || passes_[0].loc.in.size() != a.inputs.size() ||
+      passes_[0].loc.arr.size() != a.arrays.size())
+    locate(gl, a);
 
-  // Outputs: their textures, and a copy of their current contents (the previous values).
-  std::vector<Texture*> out_tex;
-  std::vector<GLuint> prev;
-  for (auto* s : a.outputs) {
+  // Outputs: their textures, and a copy of their current contents (the previous values) where
+  // the kernel reads them or reads the stream as an input too. The copies go back to the
+  // backend's pool at the end of the launch, also when it throws.
+  out_tex_.clear();
+  prev_.clear();
+  struct GiveBack {
+    GLSLBackend& be;
+    const GL& gl;
+    std::vector<Texture*>& out;
+    std::vector<GLuint>& prev;
+    ~GiveBack() {
+      for (size_t i = 0; i < prev.size(); ++i)
+        if (prev[i]) be.give_back_copy_texture(gl, out[i]->fmt, out[i]->shape, prev[i]);
+    }
+  } give_back{be_, gl, out_tex_, prev_};
+  for (size_t o = 0; o < a.outputs.size(); ++o) {
+    detail::StreamState* s = a.outputs[o];
     Texture& t = be_.to_device(gl, *s);
-    out_tex.push_back(&t);
-    GLuint copy = be_.new_texture(gl, t.fmt, t.shape);
-    gl.glCopyImageSubData(t.tex, GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0, 0, 0, 0,
-                          t.shape.row, t.shape.rows, 1);
-    prev.push_back(copy);
+    out_tex_.push_back(&t);
+    const bool also_input = std::find(a.inputs.begin(), a.inputs.end(), s) != a.inputs.end();
+    GLuint copy = 0;
+    if (reads_prev_[o] || also_input) {
+      copy = be_.take_copy_texture(gl, t.fmt, t.shape);
+      gl.glCopyImageSubData(t.tex, GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0, 0, 0, 0,
+                            t.shape.row, t.shape.rows, 1);
+    }
+    prev_.push_back(copy);
   }
   // Inputs: a stream that is also an output is read from its copy.
-  std::vector<GLuint> in_tex;
+  in_tex_.clear();
   for (auto* s : a.inputs) {
     auto it = std::find(a.outputs.begin(), a.outputs.end(), s);
-    in_tex.push_back(it != a.outputs.end() ? prev[static_cast<size_t>(it - a.outputs.begin())]
-                                           : be_.to_device(gl, *s).tex);
+    in_tex_.push_back(it != a.outputs.end() ? prev_[static_cast<size_t>(it - a.outputs.begin())]
+                                            : be_.to_device(gl, *s).tex);
   }
-  std::vector<GLuint> arr_tex;
-  std::vector<GLint> shapes;
+  arr_tex_.clear();
+  shapes_.clear();
   for (auto* arr : a.arrays) {
-    arr_tex.push_back(be_.to_device(gl, *arr).tex);
-    shapes.insert(shapes.end(),
-                  {static_cast<GLint>(arr->shape[0]), static_cast<GLint>(arr->shape[1]),
-                   static_cast<GLint>(arr->shape[2])});
+    arr_tex_.push_back(be_.to_device(gl, *arr).tex);
+    shapes_.insert(shapes_.end(),
+                   {static_cast<GLint>(arr->shape[0]), static_cast<GLint>(arr->shape[1]),
+                    static_cast<GLint>(arr->shape[2])});
   }
-  std::vector<GLuint> words;
-  for (auto* u : a.uniforms) words.insert(words.end(), u->bits.begin(), u->bits.end());
+  words_.clear();
+  for (auto* u : a.uniforms) words_.insert(words_.end(), u->bits.begin(), u->bits.end());
   be_.check(gl, "preparing a launch");
 
-  const Shape shape = out_tex.empty() ? shape_of(a.count) : out_tex[0]->shape;
+  const Shape shape = out_tex_.empty() ? shape_of(a.count) : out_tex_[0]->shape;
   GLuint written = 0;
   gl.glBindFramebuffer(GL_FRAMEBUFFER, be_.fbo());
   gl.glBindVertexArray(be_.vao());
@@ -675,53 +768,44 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
   const int64_t selected = a.mask ? draw_mask(gl, a, shape) : a.count;
   for (size_t pi = 0; pi < passes_.size(); ++pi) {
     const Pass& p = passes_[pi];
-    std::vector<GLenum> bufs;
+    const Locations& l = p.loc;
+    draw_bufs_.clear();
     for (size_t k = 0; k < p.outputs.size(); ++k) {
       gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k),
-                                GL_TEXTURE_2D, out_tex[static_cast<size_t>(p.outputs[k])]->tex, 0);
-      bufs.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k));
+                                GL_TEXTURE_2D, out_tex_[static_cast<size_t>(p.outputs[k])]->tex, 0);
+      draw_bufs_.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k));
     }
-    gl.glDrawBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
+    gl.glDrawBuffers(static_cast<GLsizei>(draw_bufs_.size()), draw_bufs_.data());
     if (gl.glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw Error("GLSL backend: the output textures of kernel '" + fn_.name +
                   "' do not form a complete framebuffer");
     gl.glUseProgram(p.program);
+    // Texture units in order: inputs, this pass's outputs' previous values, arrays; a unit is
+    // skipped (left unbound) where the program does not use the texture.
     GLint unit = 0;
-    auto bind = [&](const std::string& name, GLuint tex) {
-      GLint loc = gl.glGetUniformLocation(p.program, name.c_str());
-      gl.glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
-      gl.glBindTexture(GL_TEXTURE_2D, tex);
-      if (loc >= 0) gl.glUniform1i(loc, unit);
+    auto bind = [&](GLint loc, GLuint tex) {
+      if (loc >= 0) {
+        gl.glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+        gl.glBindTexture(GL_TEXTURE_2D, tex);
+        gl.glUniform1i(loc, unit);
+      }
       ++unit;
     };
-    for (size_t i = 0; i < in_tex.size(); ++i) bind("rill_in" + std::to_string(i), in_tex[i]);
-    for (int o : p.outputs) bind("rill_prev" + std::to_string(o), prev[static_cast<size_t>(o)]);
-    for (size_t i = 0; i < arr_tex.size(); ++i) bind("rill_arr" + std::to_string(i), arr_tex[i]);
-    auto set_int = [&](const char* name, int64_t v) {
-      GLint loc = gl.glGetUniformLocation(p.program, name);
-      if (loc >= 0) gl.glUniform1i(loc, static_cast<GLint>(v));
-    };
-    set_int("rill_count", a.count);
-    set_int("rill_row", shape.row);
-    set_int("rill_width", a.width);
-    if (!words.empty()) {
-      GLint loc = gl.glGetUniformLocation(p.program, "rill_u");
-      if (loc >= 0) gl.glUniform1uiv(loc, static_cast<GLsizei>(words.size()), words.data());
-    }
-    if (!p.constants.empty()) {
-      GLint loc = gl.glGetUniformLocation(p.program, "rill_k");
-      if (loc >= 0)
-        gl.glUniform1uiv(loc, static_cast<GLsizei>(p.constants.size()), p.constants.data());
-    }
-    {
-      const GLuint one = 0x3f800000u;  // 1.0f, for the helpers (see GLSLEmitter.cpp)
-      GLint loc = gl.glGetUniformLocation(p.program, "rill_one");
-      if (loc >= 0) gl.glUniform1uiv(loc, 1, &one);
-    }
-    if (!shapes.empty()) {
-      GLint loc = gl.glGetUniformLocation(p.program, "rill_shapes");
-      if (loc >= 0) gl.glUniform1iv(loc, static_cast<GLsizei>(shapes.size()), shapes.data());
-    }
+    for (size_t i = 0; i < in_tex_.size(); ++i) bind(l.in[i], in_tex_[i]);
+    for (size_t k = 0; k < p.outputs.size(); ++k)
+      bind(l.prev[k], prev_[static_cast<size_t>(p.outputs[k])]);
+    for (size_t i = 0; i < arr_tex_.size(); ++i) bind(l.arr[i], arr_tex_[i]);
+    if (l.count >= 0) gl.glUniform1i(l.count, static_cast<GLint>(a.count));
+    if (l.row >= 0) gl.glUniform1i(l.row, shape.row);
+    if (l.width >= 0) gl.glUniform1i(l.width, static_cast<GLint>(a.width));
+    if (!words_.empty() && l.u >= 0)
+      gl.glUniform1uiv(l.u, static_cast<GLsizei>(words_.size()), words_.data());
+    if (!p.constants.empty() && l.k >= 0)
+      gl.glUniform1uiv(l.k, static_cast<GLsizei>(p.constants.size()), p.constants.data());
+    const GLuint one = 0x3f800000u;  // 1.0f, for the helpers (see GLSLEmitter.cpp)
+    if (l.one >= 0) gl.glUniform1uiv(l.one, 1, &one);
+    if (!shapes_.empty() && l.shapes >= 0)
+      gl.glUniform1iv(l.shapes, static_cast<GLsizei>(shapes_.size()), shapes_.data());
     if (pi == 0) gl.glBeginQuery(GL_SAMPLES_PASSED, be_.query());
     gl.glDrawArrays(GL_TRIANGLES, 0, 3);
     if (pi == 0) {
@@ -733,7 +817,6 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
                                 GL_TEXTURE_2D, 0, 0);
   }
   gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl.glDeleteTextures(static_cast<GLsizei>(prev.size()), prev.data());
   be_.check(gl, "running a kernel");
   // The draws wrote the outputs' textures: their host copies are stale until read back.
   for (auto* s : a.outputs) s->mark_device_written(&be_);

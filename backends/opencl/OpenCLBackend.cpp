@@ -201,6 +201,18 @@ struct ClBuffer : detail::DeviceBuffer {
 
 class OpenCLBackend;
 
+// A small table a kernel reads (array shapes, uniform words, mask values), kept in one device
+// buffer across launches and written again only when its contents change.
+template <class T>
+struct ClTable {
+  cl_mem mem = nullptr;
+  size_t bytes = 0;
+  std::vector<T> uploaded;  // what the buffer holds
+  ~ClTable() {
+    if (mem) clReleaseMemObject(mem);
+  }
+};
+
 class ClKernel : public CompiledKernel {
  public:
   ClKernel(OpenCLBackend& be, const ir::Function& f, std::string source, cl_program program,
@@ -208,6 +220,7 @@ class ClKernel : public CompiledKernel {
       : be_(be), fn_(f), source_(std::move(source)), program_(program), kernel_(kernel) {}
   // Where the program came from, and what building or loading it took.
   ~ClKernel() override {
+    if (counter_) clReleaseMemObject(counter_);
     clReleaseKernel(kernel_);
     clReleaseProgram(program_);
   }
@@ -225,12 +238,28 @@ class ClKernel : public CompiledKernel {
   }
 
  private:
+  // The device buffer holding `now`, written only when it differs from the last upload.
+  template <class T>
+  cl_mem table(ClTable<T>& t, const std::vector<T>& now);
+
   OpenCLBackend& be_;
   ir::Function fn_;
   std::string source_;
   cl_program program_;
   cl_kernel kernel_;
   size_t warm_up_grid_ = 1;  // work-items a warm-up launch spans (warm_up)
+  // Launches reuse their buffers (run() is called one launch at a time: Kernel's run_mutex).
+  // The counter is never reset: it keeps running totals of elements written and selected, and
+  // a launch's counts are the difference from the totals after the previous one (unsigned
+  // arithmetic, so the totals may wrap).
+  cl_mem counter_ = nullptr;
+  cl_uint totals_[2] = {0, 0};
+  ClTable<cl_long> shapes_;
+  ClTable<cl_uint> uniforms_;
+  ClTable<cl_int> values_;
+  std::vector<cl_long> shapes_now_;
+  std::vector<cl_uint> uniforms_now_;
+  size_t group_ = 0;  // work-group size, from the kernel and the device, asked once
 };
 
 class OpenCLBackend : public Backend {
@@ -393,6 +422,23 @@ class OpenCLBackend : public Backend {
 
 OpenCLBackend* g_backend = nullptr;
 
+template <class T>
+cl_mem ClKernel::table(ClTable<T>& t, const std::vector<T>& now) {
+  const size_t bytes = now.size() * sizeof(T);
+  if (!t.mem || bytes > t.bytes) {
+    if (t.mem) clReleaseMemObject(t.mem);
+    t.mem = nullptr;
+    t.bytes = std::max<size_t>(bytes, 8);  // kernels always get a buffer, even for an empty table
+    t.mem = be_.scratch(bytes, now.data());
+  } else if (now != t.uploaded && bytes != 0) {
+    check(clEnqueueWriteBuffer(be_.device().queue, t.mem, CL_TRUE, 0, bytes, now.data(), 0, nullptr,
+                               nullptr),
+          "clEnqueueWriteBuffer");
+  }
+  t.uploaded = now;
+  return t.mem;
+}
+
 LaunchResult ClKernel::run(const LaunchArgs& a) {
   Device& d = be_.device();
   cl_uint arg = 0;
@@ -401,52 +447,63 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
   };
   for (auto* s : a.inputs) set_mem(be_.to_device(*s));
   for (auto* s : a.outputs) set_mem(be_.to_device(*s));
-  std::vector<cl_long> shapes;
+  shapes_now_.clear();
   for (auto* arr : a.arrays) {
     set_mem(be_.to_device(*arr));
-    shapes.insert(shapes.end(), {arr->shape[0], arr->shape[1], arr->shape[2]});
+    shapes_now_.insert(shapes_now_.end(), {arr->shape[0], arr->shape[1], arr->shape[2]});
   }
-  std::vector<cl_uint> uniforms;
-  for (auto* u : a.uniforms) uniforms.insert(uniforms.end(), u->bits.begin(), u->bits.end());
-  cl_uint zero[2] = {0, 0};  // elements written, elements selected
-  cl_mem shape_buf = be_.scratch(shapes.size() * sizeof(cl_long), shapes.data());
-  cl_mem uniform_buf = be_.scratch(uniforms.size() * sizeof(cl_uint), uniforms.data());
-  cl_mem counter = be_.scratch(sizeof zero, zero);
+  uniforms_now_.clear();
+  for (auto* u : a.uniforms)
+    uniforms_now_.insert(uniforms_now_.end(), u->bits.begin(), u->bits.end());
+  if (!counter_) {
+    totals_[0] = totals_[1] = 0;
+    counter_ = be_.scratch(sizeof totals_, totals_);
+  }
   cl_long width = a.width, count = a.count;
-  set_mem(shape_buf);
-  set_mem(uniform_buf);
+  set_mem(table(shapes_, shapes_now_));
+  set_mem(table(uniforms_, uniforms_now_));
   check(clSetKernelArg(kernel_, arg++, sizeof width, &width), "clSetKernelArg");
   check(clSetKernelArg(kernel_, arg++, sizeof count, &count), "clSetKernelArg");
-  set_mem(counter);
+  set_mem(counter_);
   // The mask (none: an empty set, and the values table stands in for the state stream).
-  cl_mem values_buf = be_.scratch(a.mask_values.size() * sizeof(cl_int), a.mask_values.data());
+  cl_mem values_buf = table(values_, a.mask_values);
   cl_int mask_count = a.mask ? static_cast<cl_int>(a.mask_values.size()) : 0;
   set_mem(a.mask ? be_.to_device(*a.mask) : values_buf);
   set_mem(values_buf);
   check(clSetKernelArg(kernel_, arg++, sizeof mask_count, &mask_count), "clSetKernelArg");
 
   cl_uint written[2] = {0, 0};
-  cl_int e = CL_SUCCESS;
   if (a.count > 0 || a.warm_up) {
-    size_t group = 64;
-    size_t kernel_group = 0;
-    clGetKernelWorkGroupInfo(kernel_, d.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_group,
-                             &kernel_group, nullptr);
-    group =
-        std::max<size_t>(1, std::min({group, kernel_group ? kernel_group : group, d.max_group}));
+    if (group_ == 0) {
+      size_t kernel_group = 0;
+      clGetKernelWorkGroupInfo(kernel_, d.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_group,
+                               &kernel_group, nullptr);
+      group_ = std::max<size_t>(
+          1, std::min({size_t{64}, kernel_group ? kernel_group : size_t{64}, d.max_group}));
+    }
+    // A warm-up runs no element (count 0) but spans warm_up_grid_ work-items (warm_up()).
     const size_t span = a.warm_up ? warm_up_grid_ : static_cast<size_t>(a.count);
-    size_t global = (span + group - 1) / group * group;
-    e = clEnqueueNDRangeKernel(d.queue, kernel_, 1, nullptr, &global, &group, 0, nullptr, nullptr);
+    size_t global = (span + group_ - 1) / group_ * group_;
+    cl_uint totals[2] = {0, 0};
+    // The blocking read of the counter is the launch's only wait: it returns once the kernel
+    // has run (the queue is in order).
+    cl_int e =
+        clEnqueueNDRangeKernel(d.queue, kernel_, 1, nullptr, &global, &group_, 0, nullptr, nullptr);
     if (e == CL_SUCCESS)
-      e = clEnqueueReadBuffer(d.queue, counter, CL_TRUE, 0, sizeof written, written, 0, nullptr,
+      e = clEnqueueReadBuffer(d.queue, counter_, CL_TRUE, 0, sizeof totals, totals, 0, nullptr,
                               nullptr);
+    if (e != CL_SUCCESS) {
+      // The totals are unknown now: the next launch starts a fresh counter.
+      clReleaseMemObject(counter_);
+      counter_ = nullptr;
+      check(e, "running the kernel");
+    }
+    for (int i = 0; i < 2; ++i) {
+      written[i] = totals[i] - totals_[i];
+      totals_[i] = totals[i];
+    }
   }
   const int64_t selected = a.mask ? written[1] : a.count;
-  clReleaseMemObject(values_buf);
-  clReleaseMemObject(shape_buf);
-  clReleaseMemObject(uniform_buf);
-  clReleaseMemObject(counter);
-  check(e, "running the kernel");
   // The device wrote the outputs: their host copies are stale until read back.
   for (auto* s : a.outputs) s->mark_device_written(&be_);
   return {written[0], selected};

@@ -1,7 +1,8 @@
 // Masked launches (rill::where, StateMask.h) on every backend: only the selected elements run,
 // the others keep their outputs and are not counted; sets of values; a mask stream that
 // the kernel also writes (the state is read as it was before the launch); loop() with a
-// mask; an empty selection; LaunchStats; and the errors for a wrong mask stream.
+// mask; an empty selection; LaunchStats; the counts of many launches of one kernel; and the
+// errors for a wrong mask stream.
 #include "BackendTest.h"
 
 namespace rill::testing {
@@ -157,6 +158,43 @@ TEST_P(MaskTest, LoopReevaluatesTheMask) {
   for (int32_t& v : want) v = std::max(v, 3);
   EXPECT_TRUE(bits_equal(s.download(), want));
   EXPECT_EQ(k.last_launch().processed, 0);
+}
+
+TEST_P(MaskTest, CountsOfSuccessiveLaunchesOfOneKernel) {
+  // Backends keep a kernel's launch state between launches (opencl: running totals in its
+  // counter, tables rewritten when they change): every launch must still report its own
+  // counts, masked or not, whatever the uniform and the mask values.
+  Uniform<Int> limit(0, "limit");
+  Program p = program("count_up", [&] {
+    Input<Int> v("v");
+    Output<Int> next("v");
+    RILL_IF(v >= limit) {
+      RILL_DISCARD;
+    }
+    RILL_ENDIF;
+    next = v + 1;
+  });
+  std::vector<int32_t> values = random_states(11, kN, 6), states = random_states(12, kN, 3);
+  Kernel k = compile(p);
+  Stream<Int> v(values), state(states);
+  k.bind("v", v);
+  for (int launch = 0; launch < 12; ++launch) {
+    const int32_t lim = launch % 7, pick = launch % 3;
+    const bool masked = pick != 0;
+    limit.set(lim);
+    int64_t want_written = 0, want_processed = 0;
+    for (size_t i = 0; i < values.size(); ++i) {
+      if (masked && states[i] != pick) continue;
+      ++want_processed;
+      if (values[i] >= lim) continue;
+      ++values[i];
+      ++want_written;
+    }
+    const int64_t written = masked ? k.execute(where(state, pick)) : k.execute();
+    EXPECT_EQ(written, want_written) << "launch " << launch;
+    EXPECT_EQ(k.last_launch().processed, want_processed) << "launch " << launch;
+  }
+  EXPECT_TRUE(bits_equal(v.download(), values));
 }
 
 TEST_P(MaskTest, EmptySelectionRunsNothing) {
