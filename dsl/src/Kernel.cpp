@@ -313,8 +313,7 @@ int64_t Kernel::execute() {
   return launch(a);
 }
 
-int64_t Kernel::execute(const StateMask& mask) {
-  LaunchArgs a = prepare();
+void Kernel::attach_mask(LaunchArgs& a, const StateMask& mask) const {
   const std::string& name = program_.name();
   detail::StreamState& s = mask.state().state();
   if (s.type() != ir::int_type(1))
@@ -329,7 +328,38 @@ int64_t Kernel::execute(const StateMask& mask) {
                 std::to_string(mask.values().size()) + ")");
   a.mask = &s;
   a.mask_values = mask.values();
+}
+
+int64_t Kernel::execute(const StateMask& mask) {
+  LaunchArgs a = prepare();
+  attach_mask(a, mask);
   return launch(a);
+}
+
+double Kernel::warm_up() {
+  LaunchArgs a = prepare();
+  return warm_up(a);
+}
+
+double Kernel::warm_up(const StateMask& mask) {
+  LaunchArgs a = prepare();
+  attach_mask(a, mask);
+  return warm_up(a);
+}
+
+double Kernel::warm_up(LaunchArgs& a) {
+  // The backend sees the bound streams (their shapes and formats are what a driver compiles
+  // a variant for) but a count of 0, so no element runs and nothing is written or counted.
+  a.count = 0;
+  a.warm_up = true;
+  Stopwatch watch;
+  {
+    std::lock_guard<std::mutex> lock(shared_->run_mutex);
+    shared_->compiled->run(a);
+  }
+  const double ms = watch.ms();
+  info_.driver_finish_ms += ms;
+  return ms;
 }
 
 int64_t Kernel::loop(const StateMask& mask, int64_t max_passes) {

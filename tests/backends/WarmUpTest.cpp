@@ -95,6 +95,44 @@ TEST_P(WarmUpTest, RunsNoElement) {
   EXPECT_EQ(got, (std::vector<float>{1.0f, 1.2f, 4.0f}));
 }
 
+// Kernel::warm_up() with the streams bound (the shapes a driver compiles its variant for),
+// unmasked and masked, runs no element: the outputs keep their values, nothing is counted as
+// launched, and its time is added to driver_finish_ms. Launches after it compute as ever.
+TEST_P(WarmUpTest, ExplicitWarmUpWithTheBoundStreamsRunsNoElement) {
+  Program p = program("warmed_for_its_streams", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    y = x * 2.0f;
+  });
+  Kernel k = compile(p);
+  const int w = 300, h = 75;  // not powers of two: llvmpipe's other shader variant
+  std::vector<float> xs(static_cast<size_t>(w * h)), before(xs.size(), -1.0f);
+  for (size_t i = 0; i < xs.size(); ++i) xs[i] = static_cast<float>(i);
+  Stream<Float> x(w, h), y(w, h);
+  x.upload(xs);
+  y.upload(before);
+  Stream<Int> state(w, h);
+  std::vector<int32_t> states(xs.size());
+  for (size_t i = 0; i < states.size(); ++i) states[i] = static_cast<int32_t>(i % 2);
+  state.upload(states);
+  k.inputs(x).outputs(y);
+  const double finish = k.info().driver_finish_ms;
+  const double ms = k.warm_up();
+  EXPECT_GE(ms, 0.0);
+  const double masked_ms = k.warm_up(where(state, 1));
+  EXPECT_GE(masked_ms, 0.0);
+  EXPECT_DOUBLE_EQ(k.info().driver_finish_ms, finish + ms + masked_ms);
+  EXPECT_EQ(k.last_launch().processed, 0);
+  EXPECT_EQ(y.download(), before);
+
+  EXPECT_EQ(k.execute(where(state, 1)), w * h / 2);
+  std::vector<float> got = y.download();
+  for (size_t i = 0; i < got.size(); ++i) ASSERT_EQ(got[i], i % 2 == 1 ? 2.0f * xs[i] : -1.0f) << i;
+  // A mask of the wrong size is the same error as at launch.
+  Stream<Int> small(4);
+  EXPECT_THROW(k.warm_up(where(small, 1)), Error);
+}
+
 RILL_BACKEND_TEST_SUITE(WarmUpTest);
 
 }  // namespace

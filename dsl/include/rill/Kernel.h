@@ -99,6 +99,14 @@ class Kernel {
   // many elements as the kernel runs over. loop(mask) re-evaluates the mask every pass.
   int64_t execute(const StateMask& mask);
   int64_t loop(const StateMask& mask, int64_t max_passes = std::numeric_limits<int64_t>::max());
+  // Does, without running any element, the work a driver would do at the first launch with
+  // the streams bound now, and returns its time in milliseconds (also added to
+  // info().driver_finish_ms). compile() already warms a kernel up for the usual case; this
+  // covers what that cannot know: llvmpipe compiles a shader variant per class of texture
+  // shape (power-of-two sides or not) and another for masked launches. Call it after
+  // binding, when the first launch's latency matters (an interactive frame).
+  double warm_up();
+  double warm_up(const StateMask& mask);
   // Elements processed and written by the last execute() of this Kernel object.
   const LaunchStats& last_launch() const { return last_; }
 
@@ -118,7 +126,9 @@ class Kernel {
   void bind_record(const std::string& name, const std::string& stream,
                    const std::vector<std::pair<std::string, StreamRef>>& leaves, bool partial);
   LaunchArgs prepare();
+  void attach_mask(LaunchArgs& a, const StateMask& mask) const;
   int64_t launch(LaunchArgs& a);
+  double warm_up(LaunchArgs& a);
 
   std::shared_ptr<Shared> shared_;
   Program program_;
