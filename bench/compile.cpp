@@ -40,11 +40,11 @@
 #include <vector>
 
 #include "CommaList.h"
-#include "Grid.h"
+#include "rill/rt/accel/Grid.h"
 #include "MandelbrotKernel.h"
-#include "Scene.h"
+#include "rill/rt/scene/Scene.h"
 #include "Timing.h"
-#include "Tracer.h"
+#include "rill/rt/Tracer.h"
 #include "UsableBackends.h"
 
 namespace {

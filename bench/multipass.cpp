@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "CommaList.h"
-#include "Grid.h"
-#include "Scene.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Scene.h"
 #include "Timing.h"
-#include "Tracer.h"
+#include "rill/rt/Tracer.h"
 
 namespace {
 

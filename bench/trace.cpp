@@ -50,11 +50,11 @@
 #include <vector>
 
 #include "CommaList.h"
-#include "Grid.h"
-#include "Scene.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Scene.h"
 #include "Timing.h"
-#include "Tracer.h"
-#include "TracerImpl.h"  // padded_rows (GLSL launches of at least one 4096-texel row)
+#include "rill/rt/Tracer.h"
+#include "rill/rt/kernel/TracerImpl.h"  // padded_rows (GLSL launches of at least one 4096-texel row)
 #include "trace_embree.h"
 
 namespace {

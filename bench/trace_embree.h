@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "Grid.h"
-#include "Scene.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Scene.h"
 
 namespace bench {
 

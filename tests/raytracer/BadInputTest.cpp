@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "Grid.h"
-#include "Scene.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Scene.h"
 #include "TestUtil.h"
 
 namespace rt {

@@ -4,8 +4,8 @@
 
 #include <set>
 
-#include "Grid.h"
-#include "Tracer.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/Tracer.h"
 
 namespace rt {
 namespace {

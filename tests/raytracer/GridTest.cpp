@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <random>
 
-#include "Grid.h"
+#include "rill/rt/accel/Grid.h"
 #include "TestUtil.h"
-#include "Tracer.h"
+#include "rill/rt/Tracer.h"
 
 namespace rt {
 namespace {

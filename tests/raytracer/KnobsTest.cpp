@@ -8,9 +8,9 @@
 #include <cstring>
 #include <set>
 
-#include "Grid.h"
+#include "rill/rt/accel/Grid.h"
 #include "TestUtil.h"
-#include "Tracer.h"
+#include "rill/rt/Tracer.h"
 
 namespace rt {
 namespace {

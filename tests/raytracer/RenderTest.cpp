@@ -7,10 +7,10 @@
 #include <cmath>
 #include <cstring>
 
-#include "Camera.h"
-#include "Grid.h"
+#include "rill/rt/scene/Camera.h"
+#include "rill/rt/accel/Grid.h"
 #include "TestUtil.h"
-#include "Tracer.h"
+#include "rill/rt/Tracer.h"
 
 namespace rt {
 namespace {

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "Camera.h"
-#include "Grid.h"
-#include "Scene.h"
+#include "rill/rt/scene/Camera.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Scene.h"
 #include "TestUtil.h"
 
 namespace rt {

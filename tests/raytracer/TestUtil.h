@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "Scene.h"
+#include "rill/rt/scene/Scene.h"
 
 namespace rt::testing {
 

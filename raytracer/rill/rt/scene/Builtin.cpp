@@ -2,8 +2,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "Scene.h"
-#include "TeapotData.h"
+#include "rill/rt/scene/Scene.h"
+#include "rill/rt/scene/TeapotData.h"
 
 namespace rt {
 

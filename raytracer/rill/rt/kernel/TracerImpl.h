@@ -8,7 +8,7 @@
 #include <set>
 #include <string>
 
-#include "Tracer.h"
+#include "rill/rt/Tracer.h"
 
 namespace rt {
 

@@ -29,10 +29,10 @@
 #include <sstream>
 
 #include "AccuracyBench.h"
-#include "Grid.h"
-#include "Image.h"
-#include "Scene.h"
-#include "Tracer.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Image.h"
+#include "rill/rt/scene/Scene.h"
+#include "rill/rt/Tracer.h"
 
 namespace {
 

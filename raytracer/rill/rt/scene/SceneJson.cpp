@@ -8,8 +8,8 @@
 #include <set>
 #include <sstream>
 
-#include "Grid.h"
-#include "Scene.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Scene.h"
 
 namespace rt {
 

@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "Scene.h"
+#include "rill/rt/scene/Scene.h"
 
 namespace rt {
 

@@ -34,7 +34,7 @@
 #include <chrono>
 #include <optional>
 
-#include "TracerImpl.h"
+#include "rill/rt/kernel/TracerImpl.h"
 #include "rill/Record.h"
 #include "rill/Reduce.h"
 

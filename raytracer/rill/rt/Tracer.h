@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
-#include "Camera.h"
-#include "Grid.h"
-#include "Scene.h"
+#include "rill/rt/scene/Camera.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Scene.h"
 
 namespace rt {
 

@@ -1,4 +1,4 @@
-#include "Image.h"
+#include "rill/rt/scene/Image.h"
 
 #include <png.h>
 

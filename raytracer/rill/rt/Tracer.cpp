@@ -1,11 +1,11 @@
 // The ray tracing kernel, written once in the DSL (see Tracer.h for the outline).
-#include "Tracer.h"
+#include "rill/rt/Tracer.h"
 
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
-#include "TracerImpl.h"
+#include "rill/rt/kernel/TracerImpl.h"
 #include "rill/Reduce.h"
 
 namespace rt {

@@ -1,5 +1,5 @@
 // Built with -ffp-contract=off (see CMakeLists.txt): every operation rounds to float32.
-#include "Camera.h"
+#include "rill/rt/scene/Camera.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "Grid.h"
+#include "rill/rt/accel/Grid.h"
 
 #include <algorithm>
 #include <chrono>

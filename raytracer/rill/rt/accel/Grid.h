@@ -48,7 +48,7 @@
 #include <string>
 #include <vector>
 
-#include "Scene.h"
+#include "rill/rt/scene/Scene.h"
 
 namespace rt {
 
