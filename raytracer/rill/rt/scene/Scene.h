@@ -11,9 +11,12 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "rill/rt/scene/Texture.h"
 
 namespace rt {
 
@@ -22,14 +25,36 @@ struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A value of a shader parameter (kernel/Shader.h): a number, a colour, or a texture (an
+// index into Scene::textures) bound to a colour parameter.
+struct ParamValue {
+  enum class Kind { Number, Color, Texture };
+  Kind kind = Kind::Number;
+  float number = 0.0f;
+  glm::vec3 color{0.0f};
+  int texture = -1;
+  static ParamValue of(float v) { return {Kind::Number, v, glm::vec3(0.0f), -1}; }
+  static ParamValue of(const glm::vec3& v) { return {Kind::Color, 0.0f, v, -1}; }
+  static ParamValue of_texture(int t) { return {Kind::Texture, 0.0f, glm::vec3(0.0f), t}; }
+};
+
+// A material: a surface shader (kernel/Shader.h) and the values of its parameters. The
+// classic fields below are the parameters of the built-in shaders (phong, mirror, glass) of
+// the same names; `params` holds any other shader's parameters and textures bound to colour
+// parameters, and wins over a classic field of the same name.
 struct Material {
   std::string name = "default";
+  // The shader's name; empty: "glass" when transmit > 0, else "phong" (shader_name()).
+  std::string shader;
+  std::map<std::string, ParamValue> params;
   glm::vec3 diffuse{0.8f};   // Kd
   glm::vec3 specular{0.0f};  // Ks (Phong highlight)
   float shininess = 32.0f;   // Ns (Phong exponent)
   float reflect = 0.0f;      // mirror reflection coefficient r of thesis eq. 5.1
   float transmit = 0.0f;     // fraction refracted (glass); split by Fresnel (Schlick)
   float ior = 1.5f;          // index of refraction (Ni)
+
+  const std::string& shader_name() const;
 };
 
 struct Light {
@@ -69,6 +94,10 @@ struct Scene {
   std::vector<glm::vec3> normals;
   // Three vertex colours per triangle (multiplying Kd), or empty.
   std::vector<glm::vec3> colors;
+  // Three texture coordinates per triangle, or empty. A triangle without them in a scene
+  // that has some gets (0, 0) at its three vertices.
+  std::vector<glm::vec2> texcoords;
+  std::vector<Texture> textures;  // what materials' parameters bind (ParamValue::texture)
   std::vector<int32_t> material;  // per triangle, index into materials
   std::vector<Material> materials;
 

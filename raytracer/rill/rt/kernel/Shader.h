@@ -1,0 +1,145 @@
+// Surface shaders: what a material does where a ray hits it, written by users in Rill.
+//
+// A shader is a name, typed parameters and up to three DSL functions, which the tracer calls
+// inside its kernels (both strategies, every backend):
+//
+//   emitted(sp)             light the surface gives without the light loop: emission and
+//                           ambient. Called once per hit.
+//   reflected(sp, light)    the light one point light sends towards the viewer, for each
+//                           light the tracer found unshadowed (it traces the shadow rays).
+//                           In a scene without lights, once with a headlight at the eye.
+//   scatter(sp, weight)     how the path goes on: the share of the path weight that sees the
+//                           local colour, and the weights and directions of a reflected and
+//                           a transmitted ray (the tracer offsets their origins, traces
+//                           them, and drops those below its minimum weight or depth).
+//
+// The local colour is emitted + the sum of reflected over the lights; the pixel gains
+// local_weight * local colour, as in the thesis's eq. 5.1. A missing function contributes
+// nothing (scatter: the path ends, local_weight = weight).
+//
+//   rt::SurfaceShader toon;
+//   toon.name = "toon";
+//   toon.params = {{"color", rt::ParamType::Color, rt::ParamValue::of(glm::vec3(1, 0.3f, 0))},
+//                  {"bands", rt::ParamType::Number, rt::ParamValue::of(3.0f)}};
+//   toon.reflected = [](const rt::ShadingPoint& sp, const rt::LightSample& l) {
+//     rill::Float n = sp.number("bands");
+//     return sp.color("color") * floor(max(dot(sp.s.nf, l.L), 0.0f) * n) / n * l.color;
+//   };
+//   rt::register_shader(toon);
+//
+// Parameters are numbers or colours; a colour parameter also takes a texture (a bitmap or a
+// procedural texture, kernel/Textures.h), sampled at the hit when the shader reads it. Only
+// the shaders a scene's materials use are generated into its kernels, and within a shader
+// the host-side queries (ShadingPoint::may_be_nonzero) leave out code no material needs.
+#pragma once
+
+#include <rill/rill.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rill/rt/kernel/Records.h"
+#include "rill/rt/scene/Scene.h"
+
+namespace rt {
+
+enum class ParamType {
+  Number,  // a float
+  Color,   // linear RGB, or a texture
+};
+const char* param_type_name(ParamType t);  // "number", "colour"
+
+struct ShaderParam {
+  std::string name;
+  ParamType type = ParamType::Number;
+  ParamValue default_value;  // of the same type
+  std::string doc;           // one line, for docs and `rill-trace info`
+};
+
+class MaterialTable;  // the device side of the materials (kernel/MaterialTable.h)
+
+// What a shader sees at a hit: the surface record and its material's parameters. The
+// accessors emit DSL code (reads from the material table, texture lookups) where they are
+// called.
+class ShadingPoint {
+ public:
+  ShadingPoint(const Surface& s, const MaterialTable& table, int shader);
+  const Surface& s;
+  // A colour parameter (a texture bound to it is sampled at s.uv here).
+  Float3 color(const std::string& name) const;
+  Float number(const std::string& name) const;
+  // Host side, while the kernel is generated: false when every material of the scene that
+  // uses this shader has the parameter at zero (a number or a black colour, no texture), so
+  // that the code it would weigh can be left out.
+  bool may_be_nonzero(const std::string& name) const;
+  // The scene's ambient light level (a uniform).
+  Float ambient() const;
+
+ private:
+  const MaterialTable& table_;
+  int shader_;
+};
+
+// One light as a shader sees it: the unit direction from the surface towards it and its
+// colour. `headlight` is true (host side) for the light at the eye of a scene without lights.
+struct LightSample {
+  Float3 L;
+  Float3 color;
+  bool headlight = false;
+};
+
+// How the path goes on from a hit (see the top of this file). Directions need not be
+// normalized beyond what the shader computes; a weight of 0 sends no ray.
+struct Scatter {
+  Float local_weight = 0.0f;
+  Float reflect_weight = 0.0f;
+  Float3 reflect_dir{0.0f};
+  Float transmit_weight = 0.0f;
+  Float3 transmit_dir{0.0f};
+};
+
+// Host side: which rays a material with these parameter values may send. The tracer
+// generates reflection code, refraction code and the ray stack only where some material
+// needs them.
+struct Lobes {
+  bool reflect = false;
+  bool transmit = false;
+};
+
+// A material's parameter values as the host sees them (defaults filled in).
+class MaterialParams {
+ public:
+  MaterialParams(const Material& m, const std::vector<ShaderParam>& decl) : m_(m), decl_(decl) {}
+  // The value of parameter `name` (the material's, else the classic field of that name, else
+  // the declared default); throws std::out_of_range for a name the shader does not declare.
+  ParamValue get(const std::string& name) const;
+  float number(const std::string& name) const { return get(name).number; }
+  // True unless the value is exactly zero (0, or black without a texture).
+  bool nonzero(const std::string& name) const;
+
+ private:
+  const Material& m_;
+  const std::vector<ShaderParam>& decl_;
+};
+
+struct SurfaceShader {
+  std::string name;
+  std::string doc;  // one line
+  std::vector<ShaderParam> params;
+  std::function<Float3(const ShadingPoint&)> emitted;
+  std::function<Float3(const ShadingPoint&, const LightSample&)> reflected;
+  std::function<Scatter(const ShadingPoint&, const Float& weight)> scatter;
+  std::function<Lobes(const MaterialParams&)> lobes;
+};
+
+// The process's shaders. The built-in ones (phong, mirror, glass: shaders/Builtin.cpp) are
+// always there. register_shader throws std::invalid_argument for an empty or taken name, a
+// parameter declared twice, or a default of the wrong type. Registering does not change
+// tracers built before.
+void register_shader(SurfaceShader shader);
+// Null when there is none of that name.
+const SurfaceShader* find_shader(const std::string& name);
+std::vector<std::string> shader_names();  // sorted
+
+}  // namespace rt

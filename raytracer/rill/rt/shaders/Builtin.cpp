@@ -1,0 +1,14 @@
+// The list of built-in shaders (Builtin.h).
+#include "rill/rt/shaders/Builtin.h"
+
+namespace rt {
+
+std::vector<SurfaceShader> builtin_shaders() {
+  return {phong_shader(), mirror_shader(), glass_shader()};
+}
+
+bool is_builtin_shader(const std::string& name) {
+  return name == "phong" || name == "mirror" || name == "glass";
+}
+
+}  // namespace rt

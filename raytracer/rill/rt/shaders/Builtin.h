@@ -1,0 +1,25 @@
+// The built-in surface shaders, written through the same API as users' (kernel/Shader.h):
+//
+//   phong   Phong (1975): diffuse + specular highlights, plus mirror reflection of
+//           strength `reflect` (the thesis's eq. 5.1). The default material.
+//   mirror  a perfect mirror: the path reflects with weight `reflect`, no local colour.
+//   glass   phong's local light, plus refraction with Schlick's Fresnel term and total
+//           internal reflection (a share `transmit` of the light goes through).
+//
+// A material with no shader named gets glass when it transmits, else phong (Material).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rill/rt/kernel/Shader.h"
+
+namespace rt {
+
+SurfaceShader phong_shader();
+SurfaceShader mirror_shader();
+SurfaceShader glass_shader();
+std::vector<SurfaceShader> builtin_shaders();
+bool is_builtin_shader(const std::string& name);
+
+}  // namespace rt

@@ -1,0 +1,45 @@
+// The glass shader (Builtin.h): phong's local light, and the rest of the path weight split
+// between a reflected and a refracted ray by Schlick's approximation of the Fresnel term;
+// total internal reflection sends it all to the reflected ray.
+#include "rill/rt/shaders/Builtin.h"
+#include "rill/rt/shaders/PhongLight.h"
+
+namespace rt {
+
+SurfaceShader glass_shader() {
+  SurfaceShader s;
+  s.name = "glass";
+  s.doc = "refraction with Fresnel reflection (Schlick), plus phong's local light";
+  s.params = phong_params();
+  s.params.push_back(
+      {"transmit", ParamType::Number, ParamValue::of(0.9f), "share of the light refracted"});
+  s.params.push_back({"ior", ParamType::Number, ParamValue::of(1.5f), "index of refraction"});
+  s.emitted = phong_emitted;
+  s.reflected = phong_reflected;
+  s.scatter = [](const ShadingPoint& sp, const Float& weight) {
+    const Surface& su = sp.s;
+    Float refl = sp.number("reflect"), trans = sp.number("transmit"), ior = sp.number("ior");
+    Scatter out;
+    out.local_weight = weight * (1.0f - refl - trans);
+    const Float3 inc = -su.V;
+    out.reflect_dir = reflect(inc, su.nf);
+    Float eta = select(su.entering, 1.0f / ior, ior);
+    Float cosi = dot(su.V, su.nf);
+    Float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
+    Bool tir = k < 0.0f;
+    Float sk = sqrt(max(k, 0.0f));
+    out.transmit_dir = eta * inc + (eta * cosi - sk) * su.nf;
+    Float r0 = (ior - 1.0f) / (ior + 1.0f);
+    r0 = r0 * r0;
+    Float c = 1.0f - select(su.entering, cosi, sk);
+    Float c2 = c * c;
+    Float fres = select(tir, 1.0f, r0 + (1.0f - r0) * (c2 * c2 * c));
+    out.reflect_weight = weight * (refl + trans * fres);
+    out.transmit_weight = weight * trans * (1.0f - fres);
+    return out;
+  };
+  s.lobes = [](const MaterialParams& p) { return Lobes{true, p.nonzero("transmit")}; };
+  return s;
+}
+
+}  // namespace rt

@@ -1,0 +1,62 @@
+// The phong shader (Builtin.h) and the Phong local light it shares with glass.
+#include "rill/rt/shaders/Builtin.h"
+#include "rill/rt/shaders/PhongLight.h"
+
+namespace rt {
+
+std::vector<ShaderParam> phong_params() {
+  return {
+      {"diffuse", ParamType::Color, ParamValue::of(glm::vec3(0.8f)), "diffuse colour (Kd)"},
+      {"specular", ParamType::Color, ParamValue::of(glm::vec3(0.0f)),
+       "colour of the highlights (Ks)"},
+      {"shininess", ParamType::Number, ParamValue::of(32.0f),
+       "Phong exponent (Ns): larger, smaller highlights"},
+      {"reflect", ParamType::Number, ParamValue::of(0.0f), "mirror reflection, 0 to 1"},
+  };
+}
+
+Float3 phong_diffuse(const ShadingPoint& sp) {
+  return sp.color("diffuse") * sp.s.vertex_color;
+}
+
+Float3 phong_emitted(const ShadingPoint& sp) {
+  return sp.ambient() * phong_diffuse(sp);
+}
+
+Float3 phong_reflected(const ShadingPoint& sp, const LightSample& light) {
+  Float ndl = dot(sp.s.nf, light.L);
+  Float3 c = phong_diffuse(sp) * max(ndl, 0.0f);
+  if (!light.headlight && sp.may_be_nonzero("specular")) {
+    Float3 R = reflect(-light.L, sp.s.nf);
+    Float rv = max(dot(R, sp.s.V), 0.0f);
+    c = c +
+        select(ndl > 0.0f, sp.color("specular") * pow(rv, sp.number("shininess")), Float3(0.0f));
+  }
+  return Float3(c * light.color);
+}
+
+SurfaceShader phong_shader() {
+  SurfaceShader s;
+  s.name = "phong";
+  s.doc = "Phong diffuse and highlights, with optional mirror reflection";
+  s.params = phong_params();
+  s.emitted = phong_emitted;
+  s.reflected = phong_reflected;
+  s.scatter = [](const ShadingPoint& sp, const Float& weight) {
+    Scatter out;
+    if (!sp.may_be_nonzero("reflect")) {
+      out.local_weight = weight;
+      return out;
+    }
+    Float r = sp.number("reflect");
+    // Eq. 5.1: the surface keeps 1 - r of the weight; the reflection carries r.
+    out.local_weight = weight * (1.0f - r);
+    out.reflect_weight = weight * r;
+    out.reflect_dir = reflect(-sp.s.V, sp.s.nf);
+    return out;
+  };
+  s.lobes = [](const MaterialParams& p) { return Lobes{p.nonzero("reflect"), false}; };
+  return s;
+}
+
+}  // namespace rt
