@@ -55,6 +55,7 @@ struct ShaderParam {
   ParamType type = ParamType::Number;
   ParamValue default_value;  // of the same type
   std::string doc;           // one line, for docs and `rill-trace info`
+  bool required = false;     // a material must give it (scene files: an error otherwise)
 };
 
 class MaterialTable;  // the device side of the materials (kernel/MaterialTable.h)
