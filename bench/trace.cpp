@@ -54,7 +54,7 @@
 #include "rill/rt/scene/Scene.h"
 #include "Timing.h"
 #include "rill/rt/Tracer.h"
-#include "rill/rt/kernel/TracerImpl.h"  // padded_rows (GLSL launches of at least one 4096-texel row)
+#include "rill/rt/kernel/DeviceArrays.h"
 #include "trace_embree.h"
 
 namespace {

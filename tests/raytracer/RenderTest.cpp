@@ -7,13 +7,15 @@
 #include <cmath>
 #include <cstring>
 
-#include "rill/rt/scene/Camera.h"
-#include "rill/rt/accel/Grid.h"
+#include "RenderCompare.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Camera.h"
 
 namespace rt {
 namespace {
+using testing::expect_identical;
 
 class Render : public ::testing::TestWithParam<std::string> {};
 
@@ -177,32 +179,6 @@ RenderResult render_checked(const Scene& s, const std::string& backend, int W, i
       << s.name << ": too many fragile pixels";
   EXPECT_GT(hits, 0) << s.name;
   return r;
-}
-
-// Bitwise equality, flushing denormals on both sides (docs/accuracy.md: a backend may flush
-// them).
-float flush(float x) {
-  return std::fpclassify(x) == FP_SUBNORMAL ? std::copysign(0.0f, x) : x;
-}
-bool same(float a, float b) {
-  return std::bit_cast<uint32_t>(flush(a)) == std::bit_cast<uint32_t>(flush(b));
-}
-
-void expect_identical(const RenderResult& a, const RenderResult& b, const std::string& what) {
-  ASSERT_EQ(a.color.size(), b.color.size());
-  int diff = 0;
-  for (size_t p = 0; p < a.color.size(); ++p) {
-    bool ok = a.prim[p] == b.prim[p] && same(a.depth[p], b.depth[p]);
-    for (int c = 0; c < 3; ++c)
-      ok = ok && same(a.color[p][c], b.color[p][c]) && same(a.normal[p][c], b.normal[p][c]);
-    if (!ok && ++diff <= 3)
-      ADD_FAILURE() << what << ": pixel " << p << " differs: colour " << a.color[p].x << " "
-                    << a.color[p].y << " " << a.color[p].z << " vs " << b.color[p].x << " "
-                    << b.color[p].y << " " << b.color[p].z << ", prim " << a.prim[p] << " vs "
-                    << b.prim[p];
-  }
-  EXPECT_EQ(diff, 0) << what;
-  EXPECT_EQ(a.rays, b.rays) << what;
 }
 
 TEST_P(Render, AovsMatchReferenceAndImagesMatchCpu) {

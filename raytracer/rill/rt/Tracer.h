@@ -1,20 +1,21 @@
-// The ray tracer: one Rill program, written once, run on every backend (and, as a second
-// strategy, the thesis's multipass kernels built from the same DSL functions).
+// The ray tracer's facade (rill::raytracer): build a Tracer from a scene and its grid, then
+// render through a camera on any backend, with either strategy.
 //
-// The kernel (Sh style, after Moreno-Fortuny and McCool) runs one instance per pixel: it
-// makes the camera ray (Camera.h), then a RILL_DO ... RILL_UNTIL loop traces one ray per
-// iteration through the uniform grid (3D-DDA, Amanatides & Woo) and reacts to what it hit:
-// a camera or secondary ray gets Phong shading and then one shadow ray per light; when the
-// lights are done, the local colour is weighted as in the thesis's eq. 5.1 and the path
-// continues with a reflected or refracted ray (a second branch goes on a small ray stack),
-// until the path ends, the stack is empty and the loop finishes.
+//   rt::Scene scene = rt::load_scene("scenes/cornell.json");   // scene/Scene.h
+//   rt::Grid grid = rt::build_grid_for(scene);                 // accel/Grid.h
+//   rt::Tracer tracer(scene, grid);
+//   rt::RenderSettings rs;  rs.backend = "opencl";  rs.width = 640;  rs.height = 480;
+//   rt::RenderResult image = tracer.render(rs, scene.camera);
+//
+// Materials name surface shaders (kernel/Shader.h); register your own with
+// rt::register_shader before building the tracer. Inside, the tracer uploads the scene once
+// (kernel/DeviceScene.h) and builds its programs from the DSL building blocks there: the
+// megakernel (megakernel/), one kernel per pixel with a loop, and the thesis's multipass
+// sequence of small kernels (multipass/). Only what the scene calls for is generated
+// (kernel/Features.h): its shaders, its textures, reflection, refraction and shadow code.
 //
 // The accuracy knobs (TracerOptions: triangle test, self-intersection offset, traversal)
-// are fixed per tracer and select the code of the shared building blocks (TracerImpl.h).
-//
-// Only what the scene calls for is generated (host C++ at capture time, see Features):
-// a scene without reflective materials has no reflection code, one without lights no
-// shadow rays, one without glass no refraction code and no ray stack.
+// are fixed per tracer and select the code of the shared building blocks.
 #pragma once
 
 #include <rill/rill.h>
@@ -23,66 +24,19 @@
 #include <string>
 #include <vector>
 
-#include "rill/rt/scene/Camera.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/kernel/Features.h"
+#include "rill/rt/kernel/Options.h"
+#include "rill/rt/kernel/Shader.h"
+#include "rill/rt/scene/Camera.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt {
 
-struct Multipass;
-
-// What the kernel is generated with, decided on the host from the scene.
-struct Features {
-  bool geometry = false;        // any traceable triangle (else every ray misses)
-  bool lights = false;          // point lights (else a headlight at the eye, no shadows)
-  bool shadows = false;         // shadow rays (lights and options.shadows)
-  bool specular = false;        // any Ks > 0: Phong highlights
-  bool reflection = false;      // any reflect > 0
-  bool refraction = false;      // any transmit > 0 (Fresnel, total internal reflection)
-  bool vertex_normals = false;  // interpolated normals (mesh normals and smooth_normals)
-  bool vertex_colors = false;   // per-vertex colours multiply Kd
-  int stack = 0;                // ray stack entries (refraction: reflected branch)
-  std::string str() const;      // "geometry lights shadows ..." for logs and stats
-};
-Features scene_features(const Scene& s);
-
-constexpr int kRayStack = 3;
-
 enum class Strategy {
-  Megakernel,  // one kernel per pixel with a RILL_DO loop (Sh)
-  Multipass,   // the thesis's kernel sequence with ray states (no refraction)
+  Megakernel,  // one kernel per pixel with a RILL_DO loop (Sh; megakernel/)
+  Multipass,   // the thesis's kernel sequence with ray states, no refraction (multipass/)
 };
-
-// Accuracy knobs fixed when the tracer is built: each selects different DSL code in the
-// generated kernels (and so a different kernel; see docs/accuracy.md, "The ray tracer's
-// accuracy knobs"). The defaults are the recommended settings.
-enum class TriangleTest {
-  MollerTrumbore,  // Moller & Trumbore 1997: edges from v0, the determinant, u, v, t
-  Watertight,      // Woop, Benthin & Wald 2013: shear to ray space, three 2D edge functions
-};
-enum class SelfIntersection {
-  Epsilon,  // new rays start at P + eps * n, eps fixed per scene (its size)
-  Scaled,   // Wachter & Binder 2019: P from the barycentrics, then a few ulps along n
-};
-enum class Traversal {
-  Incremental,  // 3D-DDA: tMax += tDelta at each step (Amanatides & Woo)
-  Recompute,    // tMax recomputed from the cell index at each step (no accumulated error)
-};
-// Defaults as measured (docs/accuracy.md): the scaled offset is far more accurate at no
-// measurable cost; the watertight test costs 5-20% on the CPU for the rare hole; the
-// recomputed traversal costs 5-30% and gains nothing measurable.
-struct TracerOptions {
-  TriangleTest triangle = TriangleTest::MollerTrumbore;
-  SelfIntersection offset = SelfIntersection::Scaled;
-  Traversal traversal = Traversal::Incremental;
-  Features extra_features;  // kernel features forced on (see the Tracer constructor)
-  std::string str() const;  // "moller epsilon incremental"
-};
-// Parse the command-line names (moller|watertight, epsilon|scaled, incremental|recompute);
-// throw std::invalid_argument naming the bad value.
-TriangleTest parse_triangle_test(const std::string& s);
-SelfIntersection parse_self_intersection(const std::string& s);
-Traversal parse_traversal(const std::string& s);
 
 struct RenderSettings {
   std::string backend = "cpu";
@@ -142,6 +96,8 @@ class Tracer {
   const rill::Program& program() const;
   const Features& features() const;
   const TracerOptions& options() const;
+  // The shaders generated into the kernels: those of the materials the scene's triangles use.
+  std::vector<std::string> shaders() const;
   // Compiles (cached per backend and accuracy) and renders through the camera.
   RenderResult render(const RenderSettings& settings, const Camera& camera);
   // The generated source on a backend (compiles if needed).
@@ -162,11 +118,12 @@ class Tracer {
 
  private:
   struct Impl;
-  friend struct Multipass;
   std::unique_ptr<Impl> d_;
 };
 
 // The sample offsets used for spp samples (sample 0 is the pixel centre).
 glm::vec2 sample_offset(int k);
+// Adds one kernel's compile stages to r.stages.
+void add_stages(RenderResult& r, const rill::CompileInfo& k);
 
 }  // namespace rt

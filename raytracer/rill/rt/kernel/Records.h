@@ -18,6 +18,7 @@ using rill::Float4;
 using rill::Int;
 using rill::Int2;
 using rill::Int3;
+using rill::Int4;
 
 // A ray: origin, direction and extent (kBig for camera and reflected rays).
 RILL_STRUCT(Ray, (Float3, o), (Float3, d), (Float, tmax));

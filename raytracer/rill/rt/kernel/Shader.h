@@ -142,5 +142,7 @@ void register_shader(SurfaceShader shader);
 // Null when there is none of that name.
 const SurfaceShader* find_shader(const std::string& name);
 std::vector<std::string> shader_names();  // sorted
+// The shader a material names; throws SceneError when none is registered under that name.
+const SurfaceShader& material_shader(const Material& m);
 
 }  // namespace rt

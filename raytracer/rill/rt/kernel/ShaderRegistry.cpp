@@ -80,6 +80,14 @@ std::vector<std::string> shader_names() {
   return names;
 }
 
+// The shader of a material (by its shader_name()).
+const SurfaceShader& material_shader(const Material& m) {
+  const SurfaceShader* s = find_shader(m.shader_name());
+  if (s == nullptr)
+    throw SceneError("material '" + m.name + "': no shader named '" + m.shader_name() + "'");
+  return *s;
+}
+
 // ---- MaterialParams --------------------------------------------------------------------------
 
 namespace {

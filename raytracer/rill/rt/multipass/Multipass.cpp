@@ -33,12 +33,16 @@
 // (8 on Mesa) is drawn once per group of outputs.
 #include <chrono>
 #include <optional>
+#include <stdexcept>
 
-#include "rill/rt/kernel/TracerImpl.h"
+#include "rill/rt/multipass/Multipass.h"
+
 #include "rill/Record.h"
 #include "rill/Reduce.h"
 
 namespace rt {
+
+using namespace rill;
 
 namespace {
 
@@ -52,62 +56,50 @@ constexpr double kTailFraction = 0.05;  // fewer rays than this left: one kernel
 
 }  // namespace
 
-// A ray: origin, direction and extent (kBig for camera and reflected rays).
-RILL_STRUCT(Ray, (Float3, o), (Float3, d), (Float, tmax));
-// The closest hit so far: distance, barycentrics, triangle id (-1: none).
-RILL_STRUCT(Hit, (Float, t), (Float2, uv), (Int, id));
-// A ray's grid traversal between kernels: its state (kPending...), the current voxel, the
-// distances to its exit planes (tMax), where the ray leaves the grid, the voxel steps taken,
-// and the cursor over the voxel's triangle list (next, end), or a subgrid's entry (base, -m).
-RILL_STRUCT(TraceState, (Int, state), (Int3, voxel), (Float3, t_next), (Float, t_exit),
-            (Int, steps), (Int2, cursor));
 // A pixel's path: its state (kPathEnded...), bounce depth, rays traced, weight and colour.
 RILL_STRUCT(PathState, (Int, state), (Int, depth), (Int, rays), (Float, weight), (Float3, color));
 // The camera ray's AOVs.
 RILL_STRUCT(Aov, (Float, depth), (Int, prim), (Float3, normal));
 
-struct Multipass {
-  Uniform<Int> light{0, "light_index"};
-  // 1 while tracing shadow rays (any hit ends the search), 0 for closest hits.
-  Uniform<Int> any_hit{0, "any_hit"};
-  Program raygen, setup, traverse, intersect, finish, surface, shadow_gen, shadow_acc, combine;
-
-  struct Kernels {
-    Kernel raygen, setup, traverse, intersect, finish, surface, shadow_gen, shadow_acc, combine;
-  };
-  std::map<std::string, Kernels> compiled;
-
-  struct Buffers {
-    Buffers(int64_t w, int64_t h)
-        : ray(w, h, "ray"),
-          shadow(w, h, "shadow"),
-          hit(w, h, "hit"),
-          shadow_hit(w, h, "shadow_hit"),
-          tr(w, h, "tr"),
-          path(w, h, "path"),
-          aov(w, h, "aov"),
-          local(w, h, "local") {}
-    Stream<Ray> ray, shadow;      // the path's ray; the shadow ray towards the current light
-    Stream<Hit> hit, shadow_hit;  // their hits
-    Stream<TraceState> tr;        // the traversal of the ray being traced (either)
-    Stream<PathState> path;
-    Stream<Aov> aov;
-    Stream<Float3> local;  // local light at the path's surface
-  };
-
-  void capture(const Tracer::Impl& I);
-  Kernels& kernels(const std::string& backend, Accuracy a);
+struct Multipass::Buffers {
+  Buffers(int64_t w, int64_t h)
+      : ray(w, h, "ray"),
+        shadow(w, h, "shadow"),
+        hit(w, h, "hit"),
+        shadow_hit(w, h, "shadow_hit"),
+        tr(w, h, "tr"),
+        path(w, h, "path"),
+        aov(w, h, "aov"),
+        local(w, h, "local") {}
+  Stream<Ray> ray, shadow;      // the path's ray; the shadow ray towards the current light
+  Stream<Hit> hit, shadow_hit;  // their hits
+  Stream<TraceState> tr;        // the traversal of the ray being traced (either)
+  Stream<PathState> path;
+  Stream<Aov> aov;
+  Stream<Float3> local;  // local light at the path's surface
 };
 
-void Multipass::capture(const Tracer::Impl& I) {
-  const Features& F = I.F;
-  raygen = rill::program("mp_raygen", [&] {
+Multipass::Multipass(DeviceScene& scene) : S_(scene) {
+  if (S_.F.refraction)
+    throw std::runtime_error(
+        "--strategy multipass: glass (transmit > 0) needs the ray stack of the single kernel; "
+        "use --strategy megakernel (the thesis's multipass tracer has no refraction either)");
+  capture();
+  // Without geometry there is nothing to trace.
+  if (!S_.F.geometry) setup_ = traverse_ = intersect_ = Program();
+}
+
+void Multipass::capture() {
+  const Features& F = S_.F;
+  const Intersector& X = S_.intersector;
+  const Shading& sh = S_.shading;
+  raygen_ = rill::program("mp_raygen", [&] {
     Output<Ray> ray("ray");
     Output<PathState> path("path");
     Output<Aov> aov("aov");
     Output<Int> ts("tr.state");
-    Float3 eye = I.eye;
-    ray = Ray{eye, I.camera_ray(element_coord()), Float(kBig)};
+    Float3 eye = S_.camera.eye;
+    ray = Ray{eye, S_.camera.direction(element_coord()), Float(kBig)};
     path = PathState{Int(kPathAlive), Int(0), Int(1), Float(1.0f), Float3(0.0f)};
     aov = Aov{as_float(Int(0x7f800000)), Int(-1), Float3(0.0f)};
     ts = kPending;
@@ -118,19 +110,17 @@ void Multipass::capture(const Tracer::Impl& I) {
   // walks the whole subgrid in one pass (then the cursor is empty). Generated only when the
   // grid has subgrids.
   auto walk_pending_subgrid = [&](const Float3& o, const RaySteps& r, const Float& t_exit,
-                                  const Bool& any_hit, const Int3& vox, const Float3& tmx, Int& c,
-                                  Int& end, Float& best_t, Int& best_id, Float& best_u,
-                                  Float& best_v) {
-    if (I.grid.subgrids == 0) return;
+                                  const Bool& any_hit, const DdaState& at, Int& c, Int& end,
+                                  Hit& best) {
+    if (S_.grid.subgrids == 0) return;
     RILL_IF(end < 0) {
-      I.walk_subgrid(o, r, t_exit, any_hit, Int2(c, end), vox, tmx, best_t, best_id, best_u,
-                     best_v);
+      X.walk_subgrid(o, r, t_exit, any_hit, Int2(c, end), at, best);
       c = 0;
       end = 0;
     }
     RILL_ENDIF;
   };
-  setup = rill::program("mp_voxel_precalc", [&] {
+  setup_ = rill::program("mp_voxel_precalc", [&] {
     Input<Ray> ray("ray");
     Input<Int> state("tr.state");
     Output<Int> state_out("tr.state");
@@ -145,16 +135,14 @@ void Multipass::capture(const Tracer::Impl& I) {
     RILL_ENDIF;
     Bool inside = false;
     Float t_enter = 0.0f, t_exit = 0.0f;
-    I.ray_box(ray.o, ray.d, ray.tmax, inside, t_enter, t_exit);
+    X.ray_box(ray, inside, t_enter, t_exit);
     hit = Hit{ray.tmax, Float2(0.0f), Int(-1)};
     steps_out = 0;
     RILL_IF(inside) {
-      Int3 vox(0);
-      Float3 tmx(0.0f);
-      I.dda_init(ray.o, ray.d, t_enter, vox, tmx);
-      vout = vox;
+      DdaState st = X.dda_init(ray.o, ray.d, t_enter);
+      vout = st.vox;
       state_out = kEnter;
-      tmx_out = tmx;
+      tmx_out = st.tmx;
       exit_out = t_exit;
     }
     RILL_ELSE {
@@ -166,7 +154,7 @@ void Multipass::capture(const Tracer::Impl& I) {
     RILL_ENDIF;
   });
 
-  traverse = rill::program("mp_traverser", [&] {
+  traverse_ = rill::program("mp_traverser", [&] {
     Input<Float3> d("ray.d");
     Input<TraceState> tr("tr");
     Input<Float> hit_t("hit.t");
@@ -180,36 +168,33 @@ void Multipass::capture(const Tracer::Impl& I) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
-    Int3 vox = tr.voxel;
-    Float3 tmx = tr.t_next;
-    Int steps = tr.steps;
-    Bool any_hit = this->any_hit != 0;
-    const RaySteps rs = I.ray_steps(d);  // once, not per step
-    Float best_t = hit_t;
-    Int best_id = hit_id;
-    Bool done = false, found = false;
+    DdaState st{tr.voxel, tr.t_next, tr.steps, Bool(false)};
+    Bool any_hit = any_hit_ != 0;
+    const RaySteps rs = X.ray_steps(d);  // once, not per step
+    const Hit best{hit_t, Float2(0.0f), hit_id};
+    Bool found = false;
     Int2 range(0);
     // Empty voxels are stepped over here; leave_voxel's step limit ends the loop.
-    RILL_WHILE(!done && !found) {
-      range = I.voxel_range(vox);
+    RILL_WHILE(!st.done && !found) {
+      range = S_.grid.voxel_range(st.vox);
       RILL_IF(range.y() != 0) {  // triangles, or a subgrid
         found = true;
       }
       RILL_ELSE {
-        I.leave_voxel(rs, tr.t_exit, best_t, best_id, any_hit, range, vox, tmx, steps, done);
+        X.leave_voxel(rs, tr.t_exit, best, any_hit, range, st);
       }
       RILL_ENDIF;
     }
     RILL_ENDWHILE;
     state_out = select(found, Int(kWait), Int(kFinished));
-    vout = vox;
-    tmx_out = tmx;
-    steps_out = steps;
+    vout = st.vox;
+    tmx_out = st.tmx;
+    steps_out = st.steps;
     // The cursor over the voxel's list, or a subgrid's entry (base, -m) as it is.
     cur = select(range.y() < 0, range, Int2(range.x(), range.x() + range.y()));
   });
 
-  intersect = rill::program("mp_intersector", [&] {
+  intersect_ = rill::program("mp_intersector", [&] {
     Input<Float3> o("ray.o");
     Input<Float3> d("ray.d");
     Input<TraceState> tr("tr");
@@ -224,42 +209,37 @@ void Multipass::capture(const Tracer::Impl& I) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
-    const RaySteps rs = I.ray_steps(d);
-    Float best_t = hit.t, best_u = hit.uv.x(), best_v = hit.uv.y();
-    Int best_id = hit.id;
+    const RaySteps rs = X.ray_steps(d);
+    Hit best = hit;
     Int c = tr.cursor.x();
     Int end = tr.cursor.y();
-    Int3 vox = tr.voxel;
-    Float3 tmx = tr.t_next;
-    Bool any_hit = this->any_hit != 0;
-    walk_pending_subgrid(o, rs, tr.t_exit, any_hit, vox, tmx, c, end, best_t, best_id, best_u,
-                         best_v);
+    DdaState st{tr.voxel, tr.t_next, tr.steps, Bool(false)};
+    Bool any_hit = any_hit_ != 0;
+    walk_pending_subgrid(o, rs, tr.t_exit, any_hit, st, c, end, best);
     RILL_FOR(Int k = 0, k < kBatch && c < end, k += 1) {
-      I.test_triangle(o, d, c, best_t, best_id, best_u, best_v);
+      X.test_triangle(o, d, c, best);
       c += 1;
     }
     RILL_ENDFOR;
     Int state = kWait;
-    Int steps = tr.steps;
     RILL_IF(c >= end) {  // the voxel's list is done
-      Bool done = false;
       // A voxel with triangles: a plain step.
-      I.leave_voxel(rs, tr.t_exit, best_t, best_id, any_hit, Int2(0), vox, tmx, steps, done);
-      state = select(done, Int(kFinished), Int(kEnter));
+      X.leave_voxel(rs, tr.t_exit, best, any_hit, Int2(0), st);
+      state = select(st.done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDIF;
     state_out = state;
-    vout = vox;
-    tmx_out = tmx;
-    steps_out = steps;
+    vout = st.vox;
+    tmx_out = st.tmx;
+    steps_out = st.steps;
     cur_out = Int2(c, end);
-    hit_out = Hit{best_t, Float2(best_u, best_v), best_id};
+    hit_out = best;
   });
 
   // The tail: the last few rays run traverser and intersector steps in one loop (the same
   // steps in the same order, so the same result), instead of many nearly empty passes. It
   // writes the state and the hit only: nothing reads a finished ray's voxel or steps.
-  finish = rill::program("mp_finish", [&] {
+  finish_ = rill::program("mp_finish", [&] {
     Input<Float3> o("ray.o");
     Input<Float3> d("ray.d");
     Input<TraceState> tr("tr");
@@ -271,42 +251,38 @@ void Multipass::capture(const Tracer::Impl& I) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
-    const RaySteps rs = I.ray_steps(d);
-    Float best_t = hit.t, best_u = hit.uv.x(), best_v = hit.uv.y();
-    Int best_id = hit.id;
+    const RaySteps rs = X.ray_steps(d);
+    Hit best = hit;
     Int c = tr.cursor.x();
     Int end = tr.cursor.y();
-    Int3 vox = tr.voxel;
-    Float3 tmx = tr.t_next;
-    Int steps = tr.steps;
-    Bool any_hit = this->any_hit != 0;
+    DdaState st{tr.voxel, tr.t_next, tr.steps, Bool(false)};
+    Bool any_hit = any_hit_ != 0;
     Int2 entry(0);  // a resumed voxel (kWait) has triangles: a plain step after it
     RILL_WHILE(state != kFinished) {
       RILL_IF(state == kEnter) {
-        entry = I.voxel_range(vox);
+        entry = S_.grid.voxel_range(st.vox);
         c = entry.x();
         end = select(entry.y() < 0, entry.y(), entry.x() + entry.y());
       }
       RILL_ENDIF;
       // A subgrid entered here or by the traverser.
-      walk_pending_subgrid(o, rs, tr.t_exit, any_hit, vox, tmx, c, end, best_t, best_id, best_u,
-                           best_v);
+      walk_pending_subgrid(o, rs, tr.t_exit, any_hit, st, c, end, best);
       RILL_WHILE(c < end) {
-        I.test_triangle(o, d, c, best_t, best_id, best_u, best_v);
+        X.test_triangle(o, d, c, best);
         c += 1;
       }
       RILL_ENDWHILE;
-      Bool done = false;
-      I.leave_voxel(rs, tr.t_exit, best_t, best_id, any_hit, entry, vox, tmx, steps, done);
-      state = select(done, Int(kFinished), Int(kEnter));
+      st.done = false;
+      X.leave_voxel(rs, tr.t_exit, best, any_hit, entry, st);
+      state = select(st.done, Int(kFinished), Int(kEnter));
     }
     RILL_ENDWHILE;
     state_out = kFinished;
-    hit_out = Hit{best_t, Float2(best_u, best_v), best_id};
+    hit_out = best;
   });
 
   // ---- shading ---------------------------------------------------------------------------
-  surface = rill::program("mp_surface", [&] {
+  surface_ = rill::program("mp_surface", [&] {
     Input<Float3> o("ray.o");
     Input<Float3> d("ray.d");
     Input<Hit> hit("hit");
@@ -325,26 +301,25 @@ void Multipass::capture(const Tracer::Impl& I) {
     Int hid = -1;
     if (F.geometry) hid = hit.id;
     RILL_IF(hid >= 0) {
-      Surface s;
-      I.surface(o, d, hit.t, hid, hit.uv.x(), hit.uv.y(), s);
-      Float3 loc = I.ambient * s.kd;
+      Surface s = sh.surface(Ray{o, d, Float(kBig)}, Hit{hit.t, hit.uv, hid});
+      Float3 loc = sh.emitted(s);
       RILL_IF(depth == 0) {  // AOVs of the camera ray
         aov = Aov{hit.t, hid, s.ns};
       }
       RILL_ENDIF;
-      if (!F.shadows) loc += I.unshadowed_light(s);
+      if (!F.shadows) loc += sh.unshadowed_light(s);
       local = loc;
       state_out = kPathSurface;
     }
     RILL_ELSE {
-      color_out = color + w * I.background;
+      color_out = color + w * sh.background;
       state_out = kPathEnded;
     }
     RILL_ENDIF;
   });
 
   if (F.shadows) {
-    shadow_gen = rill::program("mp_shadow_rays", [&] {
+    shadow_gen_ = rill::program("mp_shadow_rays", [&] {
       Input<Float3> o("ray.o");
       Input<Float3> d("ray.d");
       Input<Hit> hit("hit");
@@ -357,17 +332,13 @@ void Multipass::capture(const Tracer::Impl& I) {
         RILL_DISCARD;
       }
       RILL_ENDIF;
-      Surface s;
-      I.surface(o, d, hit.t, hit.id, hit.uv.x(), hit.uv.y(), s);
-      Float3 ro(0.0f), rd(0.0f);
-      Float tmax = 0.0f;
+      Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
       Bool active = false;
-      I.shadow_ray(light, s, ro, rd, tmax, active);
-      shadow = Ray{ro, rd, tmax};
+      shadow = sh.shadow_ray(light_, s, active);
       ts = select(active, Int(kPending), Int(kNone));
       rays_out = rays + select(active, Int(1), Int(0));
     });
-    shadow_acc = rill::program("mp_shadow_light", [&] {
+    shadow_acc_ = rill::program("mp_shadow_light", [&] {
       Input<Float3> o("ray.o");
       Input<Float3> d("ray.d");
       Input<Hit> hit("hit");
@@ -380,14 +351,13 @@ void Multipass::capture(const Tracer::Impl& I) {
         RILL_DISCARD;
       }
       RILL_ENDIF;
-      Surface s;
-      I.surface(o, d, hit.t, hit.id, hit.uv.x(), hit.uv.y(), s);
-      local_out = local + I.phong(light, s);
+      Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
+      local_out = local + sh.light(light_, s);
     });
   }
 
   // The path's ray keeps tmax = kBig from the ray generator: combine writes o and d only.
-  combine = rill::program("mp_combine", [&] {
+  combine_ = rill::program("mp_combine", [&] {
     Input<Float3> o("ray.o");
     Input<Float3> d("ray.d");
     Input<Hit> hit("hit");
@@ -401,17 +371,16 @@ void Multipass::capture(const Tracer::Impl& I) {
       RILL_DISCARD;
     }
     RILL_ENDIF;
-    Surface s;
-    I.surface(o, d, hit.t, hit.id, hit.uv.x(), hit.uv.y(), s);
+    Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
     Float3 c = path.color;
     Float weight = path.weight;
     Int depth = path.depth;
-    Float3 ro(0.0f), rd(0.0f);
+    Ray next{Float3(0.0f), Float3(0.0f), Float(kBig)};
     Bool go = false;
-    I.shade(s, local, c, weight, depth, ro, rd, go, nullptr, nullptr);
+    sh.shade(s, local, c, weight, depth, next, go, nullptr);
     RILL_IF(go) {
-      o_out = ro;
-      d_out = rd;
+      o_out = next.o;
+      d_out = next.d;
       ts = kPending;
     }
     RILL_ENDIF;
@@ -420,66 +389,53 @@ void Multipass::capture(const Tracer::Impl& I) {
   });
 }
 
-Tracer::Impl::Impl() = default;
-Tracer::Impl::~Impl() = default;
-
 Multipass::Kernels& Multipass::kernels(const std::string& backend, Accuracy a) {
   const std::string key = backend + "/" + accuracy_name(a);
-  auto it = compiled.find(key);
-  if (it != compiled.end()) return it->second;
+  auto it = compiled_.find(key);
+  if (it != compiled_.end()) return it->second;
   CompileOptions opt;
   opt.accuracy = a;
   Kernels k;
   // The passes' kernels are independent: compiled together, the C compiler runs on every
   // core (about 2x faster on two cores than one after another).
   std::vector<std::pair<Kernel*, const Program*>> wanted{
-      {&k.raygen, &raygen}, {&k.surface, &surface}, {&k.combine, &combine}};
-  if (setup.valid())
-    wanted.insert(wanted.end(), {{&k.setup, &setup},
-                                 {&k.traverse, &traverse},
-                                 {&k.intersect, &intersect},
-                                 {&k.finish, &finish}});
-  if (shadow_gen.valid())
-    wanted.insert(wanted.end(), {{&k.shadow_gen, &shadow_gen}, {&k.shadow_acc, &shadow_acc}});
+      {&k.raygen, &raygen_}, {&k.surface, &surface_}, {&k.combine, &combine_}};
+  if (setup_.valid())
+    wanted.insert(wanted.end(), {{&k.setup, &setup_},
+                                 {&k.traverse, &traverse_},
+                                 {&k.intersect, &intersect_},
+                                 {&k.finish, &finish_}});
+  if (shadow_gen_.valid())
+    wanted.insert(wanted.end(), {{&k.shadow_gen, &shadow_gen_}, {&k.shadow_acc, &shadow_acc_}});
   std::vector<CompileRequest> requests;
   for (const auto& [kernel, program] : wanted) requests.push_back({*program, backend, opt});
   std::vector<Kernel> built = compile_all(requests);
   for (size_t i = 0; i < wanted.size(); ++i) *wanted[i].first = std::move(built[i]);
-  return compiled.emplace(key, std::move(k)).first->second;
+  return compiled_.emplace(key, std::move(k)).first->second;
 }
 
-RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width, int height,
-                                            int depth, int spp) {
-  if (F.refraction)
-    throw std::runtime_error(
-        "--strategy multipass: glass (transmit > 0) needs the ray stack of the single kernel; "
-        "use --strategy megakernel (the thesis's multipass tracer has no refraction either)");
+RenderResult Multipass::render(const RenderSettings& rs, int width, int height, int depth,
+                               int spp) {
+  const Features& F = S_.F;
   RenderResult r;
   r.backend = rs.backend;
   r.width = width;
   r.height = height;
   const auto t0 = std::chrono::steady_clock::now();
-  if (!multipass) {
-    multipass = std::make_unique<Multipass>();
-    multipass->capture(*this);
-    // Without geometry there is nothing to trace.
-    if (!F.geometry) multipass->setup = multipass->traverse = multipass->intersect = Program();
-  }
   Backend& be = backend(rs.backend);
   if (std::string why = be.unavailable_reason(); !why.empty())
     throw std::runtime_error("backend " + rs.backend + " cannot run here: " + why);
   if (!be.supports(rs.accuracy))
     throw std::runtime_error(std::string("backend ") + rs.backend + " has no " +
                              accuracy_name(rs.accuracy) + " accuracy mode");
-  Multipass& M = *multipass;
-  Multipass::Kernels& K = M.kernels(rs.backend, rs.accuracy);
+  Kernels& K = kernels(rs.backend, rs.accuracy);
   r.from_cache = K.raygen.info().cache_hit || K.raygen.info().from_disk_cache;
   for (const Kernel* k : {&K.raygen, &K.setup, &K.traverse, &K.intersect, &K.finish, &K.surface,
                           &K.shadow_gen, &K.shadow_acc, &K.combine})
     if (!k->backend_name().empty()) add_stages(r, k->info());
 
-  max_depth.set(depth);
-  Multipass::Buffers B(width, height);
+  S_.shading.max_depth.set(depth);
+  Buffers B(width, height);
   // The ray count is a reduction on the device (rill::sum): its kernels compile here, not in
   // the first sample's trace time.
   const Stream<Int> path_rays = B.path.field<Int>("rays");
@@ -528,7 +484,7 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
   const Stream<Int> path_state = B.path.field<Int>("state");
   // Traces the rays of `ray` whose trace state is pending; the hits go to `hit`.
   auto trace = [&](const Stream<Ray>& ray, const Stream<Hit>& hit, bool any_hit) {
-    M.any_hit.set(any_hit ? 1 : 0);
+    any_hit_.set(any_hit ? 1 : 0);
     for (Kernel* k : {&K.setup, &K.traverse, &K.intersect, &K.finish})
       k->bind_fields("ray", ray).bind_fields("hit", hit).bind_fields("tr", B.tr);
     const double n = static_cast<double>(run(K.setup, kSetup, where(tr_state, kPending)));
@@ -565,15 +521,15 @@ RenderResult Tracer::Impl::render_multipass(const RenderSettings& rs, int width,
   }
   const auto start = std::chrono::steady_clock::now();
   for (int sample = 0; sample < spp; ++sample) {
-    offset.set(sample_offset(sample));
+    S_.camera.offset.set(sample_offset(sample));
     run(K.raygen, kRaygen, std::nullopt);
     const rill::StateMask with_surface = where(path_state, kPathSurface);
     for (int bounce = 0; bounce <= depth; ++bounce) {
       if (F.geometry) trace(B.ray, B.hit, false);
       if (run(K.surface, kSurface, where(path_state, {kPathAlive, kPathSurface})) == 0) break;
       if (F.shadows) {
-        for (size_t l = 0; l < scene.lights.size(); ++l) {
-          M.light.set(static_cast<int32_t>(l));
+        for (int l = 0; l < S_.light_count; ++l) {
+          light_.set(static_cast<int32_t>(l));
           run(K.shadow_gen, kShadowGen, with_surface);
           trace(B.shadow, B.shadow_hit, true);
           run(K.shadow_acc, kShadowAcc, with_surface);

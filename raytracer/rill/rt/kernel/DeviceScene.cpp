@@ -1,0 +1,17 @@
+// Uploads a scene for the kernels (DeviceScene.h).
+#include "rill/rt/kernel/DeviceScene.h"
+
+namespace rt {
+
+DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions& options,
+                         const Features& features)
+    : K(options), F(features) {
+  grid.upload(g);
+  tris.upload(scene, K, F);
+  materials.upload(scene, F);
+  lights.upload(scene);
+  shading.upload(scene);
+  light_count = static_cast<int>(scene.lights.size());
+}
+
+}  // namespace rt

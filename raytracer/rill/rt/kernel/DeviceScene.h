@@ -1,0 +1,35 @@
+// Everything the tracer's kernels read, in one place: the grid, the triangles, the
+// materials (with their shaders and textures), the lights, the camera and the shading
+// uniforms, uploaded once per tracer; and the DSL building blocks over them (Intersector,
+// Shading). Both strategies (megakernel/, multipass/) build their programs from this.
+#pragma once
+
+#include "rill/rt/accel/GridView.h"
+#include "rill/rt/kernel/CameraRays.h"
+#include "rill/rt/kernel/Intersector.h"
+#include "rill/rt/kernel/MaterialTable.h"
+#include "rill/rt/kernel/Shading.h"
+#include "rill/rt/kernel/Triangles.h"
+
+namespace rt {
+
+struct DeviceScene {
+  // Uploads the scene (validated) and the grid; F and K select what is uploaded and
+  // generated.
+  DeviceScene(const Scene& scene, const Grid& grid, const TracerOptions& K, const Features& F);
+  DeviceScene(const DeviceScene&) = delete;
+  DeviceScene& operator=(const DeviceScene&) = delete;
+
+  const TracerOptions K;
+  const Features F;
+  GridView grid;
+  Triangles tris;
+  MaterialTable materials;
+  Lights lights;
+  CameraRays camera;
+  Intersector intersector{grid, tris, K, F};
+  Shading shading{tris, materials, lights, K, F};
+  int light_count = 0;  // host
+};
+
+}  // namespace rt

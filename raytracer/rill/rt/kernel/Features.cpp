@@ -1,0 +1,62 @@
+// The kernel features a scene calls for (Features.h).
+#include "rill/rt/kernel/Features.h"
+
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/kernel/Shader.h"
+#include "rill/rt/scene/Scene.h"
+
+namespace rt {
+
+std::string Features::str() const {
+  std::string s;
+  auto add = [&](bool on, const char* name) {
+    if (on) s += (s.empty() ? "" : " ") + std::string(name);
+  };
+  add(geometry, "geometry");
+  add(lights, "lights");
+  add(shadows, "shadows");
+  add(specular, "specular");
+  add(reflection, "reflection");
+  add(refraction, "refraction");
+  add(vertex_normals, "vertex-normals");
+  add(vertex_colors, "vertex-colors");
+  add(texcoords, "texcoords");
+  if (stack > 0) s += " stack=" + std::to_string(stack);
+  return s.empty() ? "none" : s;
+}
+
+Features scene_features(const Scene& s) {
+  Features f;
+  std::vector<bool> used(s.materials.size());
+  for (size_t t = 0; t < s.triangle_count(); ++t)
+    if (triangle_usable(s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2])) {
+      f.geometry = true;
+      used[static_cast<size_t>(s.material[t])] = true;
+    }
+  f.lights = !s.lights.empty() && f.geometry;
+  f.shadows = f.lights && s.options.shadows;
+  for (size_t m = 0; m < s.materials.size(); ++m) {
+    if (!used[m]) continue;
+    const Material& mat = s.materials[m];
+    const SurfaceShader& sh = material_shader(mat);
+    const MaterialParams params(mat, sh.params);
+    const Lobes lobes = sh.lobes ? sh.lobes(params) : Lobes{};
+    f.reflection = f.reflection || lobes.reflect;
+    f.refraction = f.refraction || lobes.transmit;
+    for (const ShaderParam& p : sh.params) {
+      if (f.lights && p.name == "specular" && params.nonzero("specular")) f.specular = true;
+      if (params.get(p.name).kind == ParamValue::Kind::Texture) f.texcoords = true;
+    }
+  }
+  // Refraction always needs the reflection code too (Fresnel, total internal reflection).
+  if (f.refraction) {
+    f.reflection = true;
+    f.stack = kRayStack;
+  }
+  f.vertex_normals = f.geometry && !s.normals.empty() && s.options.smooth_normals;
+  f.vertex_colors = f.geometry && !s.colors.empty();
+  f.texcoords = f.texcoords && f.geometry && !s.texcoords.empty();
+  return f;
+}
+
+}  // namespace rt

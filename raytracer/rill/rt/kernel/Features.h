@@ -1,0 +1,33 @@
+// What the kernels are generated with, decided on the host from the scene: only what the
+// scene calls for is generated. A scene without reflective materials has no reflection
+// code, one without lights no shadow rays, one without glass no refraction code and no ray
+// stack; only the shaders its materials use are compiled in (kernel/MaterialTable.h), and
+// texture code only where a material binds a texture.
+#pragma once
+
+#include <string>
+
+namespace rt {
+
+struct Scene;
+
+struct Features {
+  bool geometry = false;        // any traceable triangle (else every ray misses)
+  bool lights = false;          // point lights (else a headlight at the eye, no shadows)
+  bool shadows = false;         // shadow rays (lights and options.shadows)
+  bool specular = false;        // any used material with a Phong highlight, and lights
+  bool reflection = false;      // any used material that reflects (shader lobes)
+  bool refraction = false;      // any used material that transmits (Fresnel, TIR)
+  bool vertex_normals = false;  // interpolated normals (mesh normals and smooth_normals)
+  bool vertex_colors = false;   // per-vertex colours multiply the diffuse colour
+  bool texcoords = false;       // per-vertex texture coordinates (a used texture needs them)
+  int stack = 0;                // ray stack entries (refraction: reflected branch)
+  std::string str() const;      // "geometry lights shadows ..." for logs and stats
+};
+
+constexpr int kRayStack = 3;
+
+// Throws SceneError for a material whose shader is not registered.
+Features scene_features(const Scene& s);
+
+}  // namespace rt

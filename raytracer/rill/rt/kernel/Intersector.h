@@ -1,0 +1,93 @@
+// The closest-hit (and any-hit) search, as DSL functions over the grid (accel/GridView.h)
+// and the triangles (Triangles.h): the ray against the grid's box, then a 3D-DDA from voxel
+// to voxel (Amanatides & Woo; thesis 5.1.2), a second one inside voxels with a subgrid, and
+// the knob's triangle test on the triangles each voxel lists. The closest hit wins (ties:
+// the smaller id, so the result does not depend on the order of the lists); a hit counts
+// once its distance is within the current voxel.
+//
+// The megakernel calls intersect(); the multipass strategy calls the steps (ray_box,
+// dda_init, leave_voxel, ...) from its traverser and intersector kernels, so both compute
+// the same bits.
+#pragma once
+
+#include <rill/rill.h>
+
+#include "rill/rt/accel/GridView.h"
+#include "rill/rt/kernel/Features.h"
+#include "rill/rt/kernel/Options.h"
+#include "rill/rt/kernel/Records.h"
+#include "rill/rt/kernel/Triangles.h"
+
+namespace rt {
+
+constexpr float kBig = 3.0e38f;  // "no limit" for ray extents (finite on every backend)
+
+// What a 3D-DDA step needs of a ray's direction, computed once per ray (not per step): the
+// flat axes, the reciprocal, the step sign and the distance between voxel boundaries.
+struct RaySteps {
+  Float3 d{0.0f};
+  Bool3 flat{false};
+  Float3 inv{0.0f};
+  Int3 step{0};
+  Float3 tdl{0.0f};
+};
+
+// Where a 3D-DDA is: the voxel, the distances to its exit planes (Traversal::Recompute: the
+// origin relative to the grid's corner), the steps taken, and whether the walk is over.
+struct DdaState {
+  Int3 vox{0};
+  Float3 tmx{0.0f};
+  Int steps = 0;
+  Bool done = false;
+};
+
+class Intersector {
+ public:
+  Intersector(const GridView& grid, const Triangles& tris, const TracerOptions& K,
+              const Features& F)
+      : grid_(grid), tris_(tris), K_(K), F_(F) {}
+
+  // The whole search. With *any_hit true, the first hit before ray.tmax ends it (shadow
+  // rays); any_hit null: closest hit only. No hit: id -1, t = ray.tmax.
+  Hit intersect(const Ray& ray, const Bool* any_hit) const;
+
+  // ---- the steps --------------------------------------------------------------------------
+  // The ray against the grid's box: inside, and the parameter range [t_enter, t_exit]
+  // (t_exit at most tmax).
+  void ray_box(const Ray& ray, Bool& inside, Float& t_enter, Float& t_exit) const;
+  // 3D-DDA initialization (thesis 5.1.2): the voxel at t_enter and the distances to the
+  // next voxel boundary on each axis.
+  DdaState dda_init(const Float3& o, const Float3& d, const Float& t_enter) const;
+  RaySteps ray_steps(const Float3& d) const;
+  // The knob's triangle test against the triangle of element-list entry ref; keeps the
+  // closest hit in best (ties: the smaller id).
+  void test_triangle(const Float3& o, const Float3& d, const Int& ref, Hit& best) const;
+  // The triangles of a voxel with a subgrid (entry (base, -m), Grid.h): a 3D-DDA over its
+  // sub-voxels, within the voxel.
+  void walk_subgrid(const Float3& o, const RaySteps& r, const Float& t_exit, const Bool& any_hit,
+                    const Int2& entry, const DdaState& at, Hit& best) const;
+  // After a voxel's triangles: done when the best hit lies within the voxel (or any hit,
+  // for shadow rays), the ray ends inside it, it leaves the grid or the steps run out;
+  // otherwise steps to the next voxel, or, from an empty voxel far from any triangle, jumps
+  // over the empty voxels around it. entry is the voxel's entry (GridView::voxel_range;
+  // (0, 0) where the caller has not loaded it: a plain step).
+  void leave_voxel(const RaySteps& r, const Float& t_exit, const Hit& best, const Bool& any_hit,
+                   const Int2& entry, DdaState& st) const;
+  const GridView& grid() const { return grid_; }
+
+ private:
+  Bool3 flat_axes(const Float3& d) const;
+  Float3 inverse_dir(const Float3& d) const;
+  Int3 step_dir(const Float3& d) const;
+  Bool3 nearest_axis(const Float3& t) const;
+  void dda_start(const Float3& o, const Float3& d, const Float& t, const Float3& lo,
+                 const Float3& cell, const Float3& last, Int3& vox, Float3& tmx) const;
+  Float3 voxel_exits(const RaySteps& r, const Int3& vox, const Float3& tmx) const;
+
+  const GridView& grid_;
+  const Triangles& tris_;
+  const TracerOptions& K_;
+  const Features& F_;
+};
+
+}  // namespace rt

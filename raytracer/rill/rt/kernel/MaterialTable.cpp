@@ -1,0 +1,212 @@
+// Material parameters on the device and the dispatch into shaders (MaterialTable.h).
+#include "rill/rt/kernel/MaterialTable.h"
+
+#include <stdexcept>
+
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/kernel/DeviceArrays.h"
+
+namespace rt {
+
+using namespace rill;
+
+void MaterialTable::upload(const Scene& scene, const Features& F) {
+  shaders_.clear();
+  std::vector<bool> used(scene.materials.size());
+  if (F.geometry)
+    for (size_t t = 0; t < scene.triangle_count(); ++t)
+      if (triangle_usable(scene.positions[3 * t], scene.positions[3 * t + 1],
+                          scene.positions[3 * t + 2]))
+        used[static_cast<size_t>(scene.material[t])] = true;
+  // The used shaders, in the order their first material appears.
+  std::vector<int> shader_index(scene.materials.size(), 0);
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    if (!used[m]) continue;
+    const SurfaceShader& sh = material_shader(scene.materials[m]);
+    size_t i = 0;
+    while (i < shaders_.size() && shaders_[i].shader != &sh) ++i;
+    if (i == shaders_.size()) {
+      Layout l;
+      l.shader = &sh;
+      int numbers = 0;
+      for (const ShaderParam& p : sh.params)
+        if (p.type == ParamType::Color) l.params[p.name] = Param{p.type, l.slots++, 0};
+      for (const ShaderParam& p : sh.params)
+        if (p.type == ParamType::Number) {
+          l.params[p.name] = Param{p.type, l.slots + numbers / 4, numbers % 4};
+          ++numbers;
+        }
+      l.slots += (numbers + 3) / 4;
+      shaders_.push_back(std::move(l));
+    }
+    shader_index[m] = static_cast<int>(i);
+  }
+  stride_ = 1;
+  for (const Layout& l : shaders_) stride_ = std::max(stride_, l.slots);
+
+  std::vector<glm::vec4> block(scene.materials.size() * static_cast<size_t>(stride_),
+                               glm::vec4(0.0f));
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    if (!used[m]) continue;
+    Layout& l = shaders_[static_cast<size_t>(shader_index[m])];
+    const MaterialParams values(scene.materials[m], l.shader->params);
+    for (auto& [name, p] : l.params) {
+      const ParamValue v = values.get(name);
+      glm::vec4& slot = block[m * static_cast<size_t>(stride_) + static_cast<size_t>(p.slot)];
+      p.nonzero = p.nonzero || values.nonzero(name);
+      if (p.type == ParamType::Number) {
+        slot[p.lane] = v.number;
+      } else if (v.kind == ParamValue::Kind::Texture) {
+        if (v.texture < 0 || static_cast<size_t>(v.texture) >= scene.textures.size())
+          throw SceneError("material '" + scene.materials[m].name + "': parameter '" + name +
+                           "' names texture " + std::to_string(v.texture) + " of " +
+                           std::to_string(scene.textures.size()));
+        slot = glm::vec4(0.0f, 0.0f, 0.0f, static_cast<float>(v.texture));
+        p.textured = true;
+      } else {
+        slot = glm::vec4(v.color, -1.0f);
+      }
+    }
+  }
+  upload_padded(params_, block);
+  upload_padded(shader_of_, std::vector<int32_t>(shader_index.begin(), shader_index.end()));
+  textures_.upload(scene);
+  ambient.set(scene.options.ambient);
+}
+
+std::vector<std::string> MaterialTable::used_shaders() const {
+  std::vector<std::string> names;
+  for (const Layout& l : shaders_) names.push_back(l.shader->name);
+  return names;
+}
+
+const MaterialTable::Param& MaterialTable::param(int shader, const std::string& name,
+                                                 ParamType type) const {
+  const Layout& l = shaders_.at(static_cast<size_t>(shader));
+  auto it = l.params.find(name);
+  if (it == l.params.end())
+    throw std::invalid_argument("shader '" + l.shader->name + "' reads parameter '" + name +
+                                "', which it does not declare");
+  if (it->second.type != type)
+    throw std::invalid_argument("shader '" + l.shader->name + "' reads parameter '" + name +
+                                "' as a " + param_type_name(type) + ", but declares it a " +
+                                param_type_name(it->second.type));
+  return it->second;
+}
+
+Float4 MaterialTable::load(const Surface& s, int slot) const {
+  return params_[s.material * stride_ + slot];
+}
+
+Float3 MaterialTable::color(int shader, const std::string& name, const Surface& s) const {
+  const Param& p = param(shader, name, ParamType::Color);
+  Float4 v = load(s, p.slot);
+  Float3 c(v.x(), v.y(), v.z());
+  if (p.textured) {
+    RILL_IF(v.w() >= 0.0f) {
+      c = textures_.sample(to_int(v.w()), s.uv, s.P);
+    }
+    RILL_ENDIF;
+  }
+  return c;
+}
+
+Float MaterialTable::number(int shader, const std::string& name, const Surface& s) const {
+  const Param& p = param(shader, name, ParamType::Number);
+  Float4 v = load(s, p.slot);
+  switch (p.lane) {
+    case 0:
+      return v.x();
+    case 1:
+      return v.y();
+    case 2:
+      return v.z();
+    default:
+      return v.w();
+  }
+}
+
+bool MaterialTable::may_be_nonzero(int shader, const std::string& name) const {
+  const Layout& l = shaders_.at(static_cast<size_t>(shader));
+  auto it = l.params.find(name);
+  if (it == l.params.end())
+    throw std::invalid_argument("shader '" + l.shader->name + "' asks about parameter '" + name +
+                                "', which it does not declare");
+  return it->second.nonzero;
+}
+
+template <class F>
+void MaterialTable::dispatch(const Surface& s, F&& f) const {
+  if (shaders_.empty()) return;  // no geometry: nothing is ever shaded
+  if (shaders_.size() == 1) {
+    f(0);
+    return;
+  }
+  Int which = shader_of_[s.material];
+  for (size_t i = 0; i < shaders_.size(); ++i) {
+    RILL_IF(which == static_cast<int32_t>(i)) {
+      f(static_cast<int>(i));
+    }
+    RILL_ENDIF;
+  }
+}
+
+Float3 MaterialTable::emitted(const Surface& s) const {
+  Float3 out(0.0f);
+  dispatch(s, [&](int i) {
+    const SurfaceShader& sh = *shaders_[static_cast<size_t>(i)].shader;
+    if (sh.emitted) out = sh.emitted(ShadingPoint(s, *this, i));
+  });
+  return out;
+}
+
+Float3 MaterialTable::reflected(const Surface& s, const LightSample& light) const {
+  Float3 out(0.0f);
+  dispatch(s, [&](int i) {
+    const SurfaceShader& sh = *shaders_[static_cast<size_t>(i)].shader;
+    if (sh.reflected) out = sh.reflected(ShadingPoint(s, *this, i), light);
+  });
+  return out;
+}
+
+Scatter MaterialTable::scatter(const Surface& s, const Float& weight) const {
+  Scatter out;
+  out.local_weight = weight;
+  dispatch(s, [&](int i) {
+    const SurfaceShader& sh = *shaders_[static_cast<size_t>(i)].shader;
+    if (!sh.scatter) {
+      out.local_weight = weight;
+      return;
+    }
+    Scatter r = sh.scatter(ShadingPoint(s, *this, i), weight);
+    out.local_weight = r.local_weight;
+    out.reflect_weight = r.reflect_weight;
+    out.reflect_dir = r.reflect_dir;
+    out.transmit_weight = r.transmit_weight;
+    out.transmit_dir = r.transmit_dir;
+  });
+  return out;
+}
+
+// ---- ShadingPoint --------------------------------------------------------------------------
+
+ShadingPoint::ShadingPoint(const Surface& surface, const MaterialTable& table, int shader)
+    : s(surface), table_(table), shader_(shader) {}
+
+Float3 ShadingPoint::color(const std::string& name) const {
+  return table_.color(shader_, name, s);
+}
+
+Float ShadingPoint::number(const std::string& name) const {
+  return table_.number(shader_, name, s);
+}
+
+bool ShadingPoint::may_be_nonzero(const std::string& name) const {
+  return table_.may_be_nonzero(shader_, name);
+}
+
+Float ShadingPoint::ambient() const {
+  return table_.ambient;
+}
+
+}  // namespace rt

@@ -1,0 +1,165 @@
+// The tracer's side of shading (Shading.h).
+#include "rill/rt/kernel/Shading.h"
+
+#include "rill/rt/kernel/DeviceArrays.h"
+
+namespace rt {
+
+using namespace rill;
+
+void Lights::upload(const Scene& scene) {
+  std::vector<glm::vec3> lp, lc;
+  for (const Light& l : scene.lights) {
+    lp.push_back(l.position);
+    lc.push_back(l.color);
+  }
+  upload_padded(position, lp);
+  upload_padded(color, lc);
+  count.set(static_cast<int32_t>(scene.lights.size()));
+}
+
+void Shading::upload(const Scene& scene) {
+  // Secondary rays start a little off the surface: 2e-5 of the scene's size (and at least
+  // a few ulps of its coordinates).
+  glm::vec3 lo, hi;
+  float e = 1e-4f;
+  if (scene_bounds(scene, lo, hi)) {
+    double diag = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
+    double mag = std::max(glm::length(glm::dvec3(lo)), glm::length(glm::dvec3(hi)));
+    e = static_cast<float>(std::max(2e-5 * diag, 1e-6 * mag));
+    if (!(e > 0)) e = 1e-4f;
+  }
+  eps.set(e);
+  background.set(scene.background);
+}
+
+// Wachter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection" (Ray Tracing
+// Gems, ch. 6): move each coordinate a number of ulps proportional to the normal (integer
+// steps on the float's bits, so the offset scales with the coordinate's magnitude: it
+// suffices at 1e4 as at 1e-4); where a coordinate is near zero and its ulps are tiny, a
+// fixed step instead. Two changes from the published constants, both measured (HardCases
+// tests, docs/accuracy.md): the point comes from the barycentrics (surface()), so its error
+// is about 2 ulps per coordinate and kIntScale = 8 ulps suffices where the paper's 256
+// (for points from o + t d after instance transforms) moved rays 0.25 units at 1e4 and lost
+// contact shadows; and the near-zero step is the scene-relative eps instead of 2^-16
+// absolute, which was 15% of a scene scaled to 1e-3 units.
+Float3 Shading::offset_origin(const Float3& p, const Float3& n) const {
+  if (K_.offset == SelfIntersection::Epsilon) return p + n * eps;
+  constexpr float kOrigin = 1.0f / 32.0f, kIntScale = 8.0f;
+  Int3 of = to_int(kIntScale * n);
+  Float3 pi = as_float(as_int(p) + select(p < 0.0f, -of, of));
+  return select(abs(p) < kOrigin, p + n * eps, pi);
+}
+
+Surface Shading::surface(const Ray& ray, const Hit& hit) const {
+  const Float3& rd = ray.d;
+  const Int& hid = hit.id;
+  const Float hu = hit.uv.x(), hv = hit.uv.y();
+  Surface s;
+  if (K_.offset == SelfIntersection::Scaled) {
+    // On the triangle, from the barycentrics: the error does not grow with the distance.
+    s.P = tris_.v0[hid] + hu * tris_.e1[hid] + hv * tris_.e2[hid];
+  } else {
+    s.P = ray.o + hit.t * rd;
+  }
+  Float3 ng = tris_.ng[hid];
+  Float3 ns = ng;
+  if (F_.vertex_normals) {
+    Float w = 1.0f - hu - hv;
+    Float3 nn = tris_.n0[hid] * w + tris_.n1[hid] * hu + tris_.n2[hid] * hv;
+    Float nl = length(nn);
+    ns = select(nl > 0.0f, nn / select(nl > 0.0f, nl, 1.0f), ng);
+    ng = select(dot(ng, ns) < 0.0f, -ng, ng);  // the vertex normals tell outside
+  }
+  s.ns = ns;
+  s.entering = dot(ng, rd) < 0.0f;
+  s.nf = select(s.entering, ns, -ns);
+  s.ngf = select(s.entering, ng, -ng);
+  s.V = -rd;
+  s.material = tris_.material[hid];
+  s.vertex_color = Float3(1.0f);
+  if (F_.vertex_colors) {
+    Float w = 1.0f - hu - hv;
+    s.vertex_color = tris_.c0[hid] * w + tris_.c1[hid] * hu + tris_.c2[hid] * hv;
+  }
+  s.uv = Float2(0.0f);
+  if (F_.texcoords) {
+    Float w = 1.0f - hu - hv;
+    s.uv = tris_.uv[3 * hid] * w + tris_.uv[3 * hid + 1] * hu + tris_.uv[3 * hid + 2] * hv;
+  }
+  return s;
+}
+
+Float3 Shading::light(const Int& l, const Surface& s) const {
+  Float3 L = normalize(lights_.position[l] - s.P);
+  return materials_.reflected(s, LightSample{L, lights_.color[l], false});
+}
+
+Float3 Shading::unshadowed_light(const Surface& s) const {
+  Float3 sum(0.0f);
+  if (F_.lights) {
+    RILL_FOR(Int l = 0, l < lights_.count, l += 1) {
+      sum += light(l, s);
+    }
+    RILL_ENDFOR;
+  } else {
+    sum = materials_.reflected(s, LightSample{s.V, Float3(1.0f), true});
+  }
+  return sum;
+}
+
+Ray Shading::shadow_ray(const Int& l, const Surface& s, Bool& active) const {
+  Float3 so = offset_origin(s.P, s.ngf);
+  Float3 L = lights_.position[l] - so;
+  Float dist = length(L);
+  Float3 rd = L / dist;
+  active = dist > 0.0f && dot(s.nf, rd) > 0.0f;
+  // Stop short of the light by the same offset: a light on a surface (as on an area
+  // light's quad) is not shadowed by that surface.
+  return Ray{so, rd, dist - eps};
+}
+
+void Shading::shade(const Surface& s, const Float3& local, Float3& color, Float& weight, Int& depth,
+                    Ray& next, Bool& go, Branch* second) const {
+  const Scatter sc = materials_.scatter(s, weight);
+  // Eq. 5.1: this surface contributes M_j (1 - r_j) times the product of the earlier
+  // coefficients (the shader's local_weight).
+  color += sc.local_weight * local;
+  go = false;
+  if (second != nullptr) second->wanted = false;
+  if (!F_.reflection) return;
+  RILL_IF(depth < max_depth) {
+    Float wr = sc.reflect_weight;
+    Float wt = 0.0f;
+    Float3 tdir(0.0f);
+    if (F_.refraction) {
+      wt = sc.transmit_weight;
+      tdir = sc.transmit_dir;
+    }
+    Bool go_r = wr > kMinWeight;
+    Bool go_t = wt > kMinWeight;
+    if (second != nullptr) {  // both: the reflection is the second branch
+      second->wanted = go_r && go_t;
+      second->ray.o = offset_origin(s.P, s.ngf);
+      second->ray.d = sc.reflect_dir;
+      second->weight = wr;
+    }
+    RILL_IF(go_t) {
+      next.o = offset_origin(s.P, -s.ngf);
+      next.d = tdir;
+      weight = wt;
+      go = true;
+    }
+    RILL_ELSE_IF(go_r) {
+      next.o = offset_origin(s.P, s.ngf);
+      next.d = sc.reflect_dir;
+      weight = wr;
+      go = true;
+    }
+    RILL_ENDIF;
+    depth += 1;
+  }
+  RILL_ENDIF;
+}
+
+}  // namespace rt

@@ -1,0 +1,46 @@
+// The megakernel strategy (Sh style, after Moreno-Fortuny and McCool): one kernel instance
+// per pixel. It makes the camera ray, then a RILL_DO ... RILL_UNTIL loop traces one ray per
+// iteration and reacts to what it hit: a camera or secondary ray gets its shader's emitted
+// light and then one shadow ray per light; when the lights are done, the local colour is
+// weighted as in the thesis's eq. 5.1 and the path continues with the shader's reflected or
+// transmitted ray (a second branch goes on a small ray stack), until the path ends, the
+// stack is empty and the loop finishes.
+#pragma once
+
+#include <rill/rill.h>
+
+#include <map>
+#include <set>
+#include <string>
+
+#include "rill/rt/Tracer.h"
+#include "rill/rt/kernel/DeviceScene.h"
+
+namespace rt {
+
+class Megakernel {
+ public:
+  explicit Megakernel(DeviceScene& scene);
+  const rill::Program& program() const { return program_; }
+  // Compiled once per backend and accuracy.
+  rill::Kernel& kernel(const std::string& backend, rill::Accuracy a);
+  // Renders spp samples through the camera set in the scene's CameraRays.
+  RenderResult render(const RenderSettings& rs, int width, int height, int depth, int spp);
+
+ private:
+  rill::Program capture() const;
+
+  DeviceScene& S_;
+  // The loop's iteration limit; 0 skips all tracing (render()'s warm-up launch).
+  rill::Uniform<Int> max_iter_{64, "max_iterations"};
+  rill::Program program_;
+  std::map<std::string, rill::Kernel> kernels_;
+  std::set<std::pair<std::string, int64_t>> warmed_;  // kernels launched at a size before
+};
+
+// Compiles `program` for a backend, with a clear error when the backend cannot run here or
+// lacks the accuracy mode.
+rill::Kernel compile_for(const rill::Program& program, const std::string& backend,
+                         rill::Accuracy a);
+
+}  // namespace rt
