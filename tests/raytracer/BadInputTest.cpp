@@ -6,26 +6,15 @@
 #include <cmath>
 #include <random>
 
+#include "TestUtil.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/Scene.h"
-#include "TestUtil.h"
 
 namespace rt {
 namespace {
 
+using testing::error_of;
 using testing::TempDir;
-
-// The message of the SceneError that f throws (fails the test if it throws none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no SceneError";
-  return {};
-}
 
 const char* kCube =
     "mtllib cube.mtl\n"

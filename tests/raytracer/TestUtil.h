@@ -46,6 +46,18 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+// The message of the SceneError that f throws (fails the test if it throws none).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no SceneError";
+  return {};
+}
+
 // Skips the test when the backend cannot run here.
 inline bool backend_available(const std::string& name, std::string& why) {
   for (rill::Backend* b : rill::backends())

@@ -81,8 +81,10 @@ void teapot_eval(int p, double u, double v, glm::dvec3& pos, glm::dvec3& nrm) {
 
 void add_quad(Scene& s, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
               const glm::vec3& d, int m) {
-  s.add_triangle(a, b, c, m);
-  s.add_triangle(a, c, d, m);
+  const glm::vec2 t1[3] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}};
+  const glm::vec2 t2[3] = {{0.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+  s.add_triangle(a, b, c, m, nullptr, nullptr, t1);
+  s.add_triangle(a, c, d, m, nullptr, nullptr, t2);
 }
 
 void add_box(Scene& s, const glm::vec3& lo, const glm::vec3& hi, int m, const Transform& t,
@@ -104,6 +106,13 @@ void add_box(Scene& s, const glm::vec3& lo, const glm::vec3& hi, int m, const Tr
 
 void add_sphere(Scene& s, const glm::vec3& center, float radius, int slices, int stacks, int m,
                 bool smooth) {
+  // u along the longitude (j / slices, 1 at the seam's second side), v = 1 at the north pole
+  // (i = 0) down to 0 at the south; a pole vertex takes the middle of its triangle's span.
+  auto tex = [&](int i, int j, int other_j) {
+    double u = j;
+    if (i == 0 || i == stacks) u = 0.5 * (j + other_j);
+    return glm::vec2(static_cast<float>(u / slices), static_cast<float>(1.0 - double(i) / stacks));
+  };
   auto point = [&](int i, int j, glm::vec3& n) {
     double th = kPi * i / stacks, ph = 2.0 * kPi * (j % slices) / slices;
     glm::dvec3 d(std::sin(th) * std::cos(ph), std::cos(th), -std::sin(th) * std::sin(ph));
@@ -119,11 +128,13 @@ void add_sphere(Scene& s, const glm::vec3& center, float radius, int slices, int
                 p01 = point(i, j + 1, n01);
       if (i != 0) {
         glm::vec3 n[3] = {n00, n10, n01};
-        s.add_triangle(p00, p10, p01, m, smooth ? n : nullptr);
+        glm::vec2 uv[3] = {tex(i, j, j + 1), tex(i + 1, j, j + 1), tex(i, j + 1, j)};
+        s.add_triangle(p00, p10, p01, m, smooth ? n : nullptr, nullptr, uv);
       }
       if (i != stacks - 1) {
         glm::vec3 n[3] = {n01, n10, n11};
-        s.add_triangle(p01, p10, p11, m, smooth ? n : nullptr);
+        glm::vec2 uv[3] = {tex(i, j + 1, j), tex(i + 1, j, j + 1), tex(i + 1, j + 1, j)};
+        s.add_triangle(p01, p10, p11, m, smooth ? n : nullptr, nullptr, uv);
       }
     }
 }
@@ -151,8 +162,14 @@ void add_teapot(Scene& s, int n, int m, const Transform& t, bool smooth) {
         int a = i * (n + 1) + j, b = (i + 1) * (n + 1) + j, c = (i + 1) * (n + 1) + j + 1,
             d = i * (n + 1) + j + 1;
         glm::vec3 n1[3] = {nrm[a], nrm[c], nrm[b]}, n2[3] = {nrm[a], nrm[d], nrm[c]};
-        s.add_triangle(pos[a], pos[c], pos[b], m, smooth ? n1 : nullptr);
-        s.add_triangle(pos[a], pos[d], pos[c], m, smooth ? n2 : nullptr);
+        // The patch's (u, v) = (i / n, j / n).
+        auto uv = [&](int di, int dj) {
+          return glm::vec2(static_cast<float>(i + di) / static_cast<float>(n),
+                           static_cast<float>(j + dj) / static_cast<float>(n));
+        };
+        glm::vec2 t1[3] = {uv(0, 0), uv(1, 1), uv(1, 0)}, t2[3] = {uv(0, 0), uv(0, 1), uv(1, 1)};
+        s.add_triangle(pos[a], pos[c], pos[b], m, smooth ? n1 : nullptr, nullptr, t1);
+        s.add_triangle(pos[a], pos[d], pos[c], m, smooth ? n2 : nullptr, nullptr, t2);
       }
   }
 }
@@ -338,10 +355,82 @@ Scene scene_glass() {
   return s;
 }
 
+Texture procedural(const std::string& type, glm::vec3 c1, glm::vec3 c2, float scale) {
+  Texture t;
+  t.name = t.type = type;
+  t.color1 = c1, t.color2 = c2, t.scale = scale;
+  return t;
+}
+
+// A bitmap made in memory (no file needed): 64 x 64 diagonal stripes in two colours with a
+// soft edge, so that bilinear filtering and the wrap mode show.
+Texture stripes() {
+  Texture t;
+  t.name = "stripes";
+  t.type = "bitmap";
+  t.file = "(generated)";
+  t.width = t.height = 64;
+  t.texels.resize(64 * 64);
+  const glm::vec3 a(0.9f, 0.75f, 0.2f), b(0.15f, 0.25f, 0.6f);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const int d = (x + y) % 16;  // the period along the diagonal: 16 texels
+      const float w = d < 7 ? 0.0f : d == 7 ? 0.5f : d < 15 ? 1.0f : 0.5f;
+      t.texels[static_cast<size_t>(y * 64 + x)] = a + (b - a) * w;
+    }
+  return t;
+}
+
+// Textures: a checker floor, a marble sphere, a wood box, a box with a bitmap made in memory,
+// and a sphere with the mirror shader; 2 lights. 1946 triangles.
+Scene scene_textured() {
+  Scene s;
+  s.name = "textured";
+  auto textured = [&](const std::string& name, const Texture& t, glm::vec3 ks, float ns) {
+    s.textures.push_back(t);
+    Material m = mat(name, glm::vec3(0.8f), ks, ns);
+    m.shader = "phong";
+    m.params["diffuse"] = ParamValue::of_texture(static_cast<int>(s.textures.size()) - 1);
+    return s.add_material(m);
+  };
+  // The floor quad's uv spans [0, 1] over 12 units: scale 12 gives checks of one unit.
+  int floor = textured("floor", procedural("checker", glm::vec3(0.85f), glm::vec3(0.15f), 12.0f),
+                       glm::vec3(0.0f), 1.0f);
+  int marble =
+      textured("marble", procedural("marble", {0.92f, 0.9f, 0.85f}, {0.25f, 0.3f, 0.35f}, 1.5f),
+               glm::vec3(0.5f), 80.0f);
+  int wood = textured("wood", procedural("wood", {0.75f, 0.5f, 0.25f}, {0.45f, 0.25f, 0.1f}, 2.0f),
+                      glm::vec3(0.2f), 20.0f);
+  int striped = textured("striped", stripes(), glm::vec3(0.3f), 40.0f);
+  Material chrome = mat("chrome", glm::vec3(0.9f));
+  chrome.shader = "mirror";
+  chrome.reflect = 0.85f;
+  int mirror = s.add_material(chrome);
+
+  add_quad(s, {-6.0f, 0.0f, 6.0f}, {6.0f, 0.0f, 6.0f}, {6.0f, 0.0f, -6.0f}, {-6.0f, 0.0f, -6.0f},
+           floor);
+  add_sphere(s, {-1.7f, 1.0f, 0.3f}, 1.0f, 32, 16, marble);
+  Transform t;
+  t.rotate_deg.y = 25.0f;
+  t.translate = glm::vec3(0.3f, 0.0f, -1.8f);
+  add_box(s, {-0.7f, 0.0f, -0.7f}, {0.7f, 1.4f, 0.7f}, wood, t);
+  t.rotate_deg.y = -15.0f;
+  t.translate = glm::vec3(1.9f, 0.0f, 0.8f);
+  add_box(s, {-0.5f, 0.0f, -0.5f}, {0.5f, 1.0f, 0.5f}, striped, t);
+  add_sphere(s, {1.6f, 0.6f, -3.5f}, 0.6f, 32, 16, mirror);
+  s.camera = Camera{{0.0f, 2.8f, 7.0f}, {0.0f, 0.8f, -0.5f}, {0.0f, 1.0f, 0.0f}, 45.0f};
+  s.has_camera = true;
+  s.lights = {Light{{-4.0f, 6.0f, 5.0f}, {0.8f, 0.8f, 0.75f}},
+              Light{{5.0f, 4.0f, 2.0f}, {0.35f, 0.35f, 0.4f}}};
+  s.background = {0.45f, 0.55f, 0.7f};
+  s.width = s.height = 256;
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-  return {"thesis-a", "thesis-b", "thesis-c", "cornell", "glass", "empty"};
+  return {"thesis-a", "thesis-b", "thesis-c", "cornell", "glass", "textured", "empty"};
 }
 
 Scene builtin_scene(const std::string& name) {
@@ -350,6 +439,7 @@ Scene builtin_scene(const std::string& name) {
   if (name == "thesis-c" || name == "c") return scene_c();
   if (name == "cornell") return scene_cornell();
   if (name == "glass") return scene_glass();
+  if (name == "textured") return scene_textured();
   if (name == "empty") {
     Scene s;
     s.name = "empty";

@@ -1,11 +1,14 @@
 // The OBJ + MTL loader (tinyobjloader): triangles in file order (polygons fanned), vertex
-// normals and colours where the file has them, materials from the MTL files it names.
+// normals, colours and texture coordinates where the file has them, materials from the MTL
+// files it names, with their map_Kd PNGs as bitmap textures.
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <sstream>
 
 #include "rill/rt/scene/Scene.h"
@@ -41,6 +44,30 @@ Material from_mtl(const tinyobj::material_t& m) {
   return r;
 }
 
+// The line number (1-based) of the face-th face (0-based, over all shapes) that
+// tinyobjloader keeps: its lines starting with "f" and at least 3 vertices, in file order.
+// tinyobjloader reports only the last line of the file for a bad index, so an error that
+// names a face's line scans the file again.
+size_t face_line(const std::string& path, size_t face) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  size_t line = 0, seen = 0, pos = 0;
+  while (pos < text.size()) {
+    // tinyobjloader's lines end at \n, \r\n or a lone \r.
+    size_t end = text.find_first_of("\r\n", pos);
+    if (end == std::string::npos) end = text.size();
+    ++line;
+    std::istringstream words(text.substr(pos, end - pos));
+    std::string word;
+    size_t count = 0;
+    bool is_face = false;
+    while (words >> word) is_face = count++ == 0 ? word == "f" : is_face;
+    if (is_face && count >= 4 && seen++ == face) return line;
+    pos = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+  }
+  return 0;
+}
+
 }  // namespace
 
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
@@ -67,6 +94,7 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
   s.name = fs::path(path).stem().string();
   const size_t nv = attrib.vertices.size() / 3;
   const size_t nn = attrib.normals.size() / 3;
+  const size_t nt = attrib.texcoords.size() / 2;
   const bool has_colors = attrib.colors.size() == attrib.vertices.size() && !attrib.colors.empty();
 
   std::vector<int> mat_index(mtls.size());
@@ -74,7 +102,29 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
   if (opt.override_material != nullptr) {
     fallback = s.add_material(*opt.override_material);
   } else {
-    for (size_t i = 0; i < mtls.size(); ++i) mat_index[i] = s.add_material(from_mtl(mtls[i]));
+    // map_Kd: the PNG (relative to the OBJ's directory, where the MTL files are read from)
+    // becomes a bitmap texture, loaded once however many materials name it, bound to the
+    // diffuse colour (in place of Kd).
+    std::map<std::string, int> texture_of_file;
+    for (size_t i = 0; i < mtls.size(); ++i) {
+      Material m = from_mtl(mtls[i]);
+      if (const std::string& map = mtls[i].diffuse_texname; !map.empty()) {
+        fs::path file(map);
+        if (file.is_relative()) file = fs::path(base) / file;
+        auto [it, added] = texture_of_file.emplace(file.string(), 0);
+        if (added) {
+          try {
+            s.textures.push_back(load_png_texture(file.string()));
+          } catch (const SceneError& e) {
+            throw SceneError(path + ": material '" + m.name + "': map_Kd " + e.what());
+          }
+          s.textures.back().name = map;
+          it->second = static_cast<int>(s.textures.size()) - 1;
+        }
+        m.params["diffuse"] = ParamValue::of_texture(it->second);
+      }
+      mat_index[i] = s.add_material(m);
+    }
   }
   auto default_mat = [&] {
     if (fallback < 0) {
@@ -85,7 +135,19 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
     return fallback;
   };
 
+  size_t faces_before = 0;  // faces of the earlier shapes, for face_line
   auto vertex = [&](const tinyobj::index_t& ix, size_t face, const std::string& shape) {
+    // tinyobjloader does not check vt indices: a positive one past the end stays as it is,
+    // a relative one before the first becomes < -1 (-1 is "none").
+    if (ix.texcoord_index < -1 ||
+        (ix.texcoord_index >= 0 && static_cast<size_t>(ix.texcoord_index) >= nt)) {
+      const long long written = ix.texcoord_index >= 0 ? ix.texcoord_index + 1LL
+                                                       : static_cast<long long>(ix.texcoord_index) -
+                                                             static_cast<long long>(nt);
+      throw SceneError(path + ":" + std::to_string(face_line(path, faces_before + face)) +
+                       ": vt index " + std::to_string(written) + " out of range (the file has " +
+                       std::to_string(nt) + ")");
+    }
     if (ix.vertex_index < 0 || static_cast<size_t>(ix.vertex_index) >= nv)
       throw SceneError(path + ": shape '" + shape + "' face " + std::to_string(face + 1) +
                        " refers to vertex " + std::to_string(ix.vertex_index + 1) +
@@ -129,6 +191,13 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
       bool all_normals = true;
       for (size_t k = 0; k < fv; ++k)
         all_normals = all_normals && mesh.indices[offset + k].normal_index >= 0;
+      bool all_uv = true;
+      for (size_t k = 0; k < fv; ++k)
+        all_uv = all_uv && mesh.indices[offset + k].texcoord_index >= 0;
+      auto tex = [&](size_t k) {
+        int ti = mesh.indices[offset + k].texcoord_index;
+        return glm::vec2(attrib.texcoords[2 * ti], attrib.texcoords[2 * ti + 1]);
+      };
       auto nrm = [&](size_t k) {
         int ni = mesh.indices[offset + k].normal_index;
         glm::vec3 n(attrib.normals[3 * ni], attrib.normals[3 * ni + 1], attrib.normals[3 * ni + 2]);
@@ -137,6 +206,7 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
       // Fan: (v0, vk, vk+1).
       for (size_t k = 1; k + 1 < fv; ++k) {
         glm::vec3 n[3], c[3];
+        glm::vec2 t[3];
         if (all_normals) {
           n[0] = nrm(0);
           n[1] = nrm(k);
@@ -147,11 +217,17 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
           c[1] = col(k);
           c[2] = col(k + 1);
         }
+        if (all_uv) {
+          t[0] = tex(0);
+          t[1] = tex(k);
+          t[2] = tex(k + 1);
+        }
         s.add_triangle(pos(0), pos(k), pos(k + 1), mat, all_normals ? n : nullptr,
-                       has_colors ? c : nullptr);
+                       has_colors ? c : nullptr, all_uv ? t : nullptr);
       }
       offset += fv;
     }
+    faces_before += mesh.num_face_vertices.size();
   }
   if (s.materials.empty()) default_mat();
   return s;

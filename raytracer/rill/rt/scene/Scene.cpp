@@ -49,6 +49,28 @@ glm::vec3 rotate(const glm::vec3& p, const glm::vec3& deg) {
   return r;
 }
 
+void validate_texture(const Texture& t) {
+  const std::string where = "texture '" + t.name + "': ";
+  if (t.type == "bitmap") {
+    if (t.width < 1 || t.height < 1 ||
+        t.texels.size() != static_cast<size_t>(t.width) * static_cast<size_t>(t.height))
+      throw SceneError(where + "needs width * height texels (" + std::to_string(t.width) + "x" +
+                       std::to_string(t.height) + ", " + std::to_string(t.texels.size()) +
+                       " given)");
+    for (const glm::vec3& c : t.texels)
+      if (!finite3(c)) throw SceneError(where + "texels must be finite");
+    return;
+  }
+  const auto& types = procedural_texture_types();
+  if (std::find(types.begin(), types.end(), t.type) == types.end()) {
+    std::string all = "bitmap";
+    for (const std::string& k : types) all += ", " + k;
+    throw SceneError(where + "unknown type '" + t.type + "' (" + all + ")");
+  }
+  if (!finite3(t.color1) || !finite3(t.color2) || !std::isfinite(t.scale))
+    throw SceneError(where + "values must be finite numbers");
+}
+
 }  // namespace
 
 // ---- Scene ---------------------------------------------------------------------------------
@@ -59,18 +81,20 @@ int Scene::add_material(const Material& m) {
 }
 
 void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, int mat,
-                         const glm::vec3* n, const glm::vec3* col) {
+                         const glm::vec3* n, const glm::vec3* col, const glm::vec2* uv) {
   const size_t before = positions.size();
-  // The first triangle with normals (colours) gives the earlier ones geometric normals
-  // (white).
+  // The first triangle with normals (colours, texture coordinates) gives the earlier ones
+  // geometric normals (white, (0, 0)).
   const bool with_normals = n != nullptr || !normals.empty();
   const bool with_colors = col != nullptr || !colors.empty();
+  const bool with_uv = uv != nullptr || !texcoords.empty();
   if (with_normals && normals.empty())
     for (size_t i = 0; i < before; i += 3) {
       glm::vec3 g = glm::cross(positions[i + 1] - positions[i], positions[i + 2] - positions[i]);
       normals.insert(normals.end(), {g, g, g});
     }
   if (with_colors && colors.empty()) colors.assign(before, glm::vec3(1.0f));
+  if (with_uv && texcoords.empty()) texcoords.assign(before, glm::vec2(0.0f));
   positions.insert(positions.end(), {a, b, c});
   material.push_back(mat);
   if (with_normals) {
@@ -87,16 +111,29 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
     else
       colors.insert(colors.end(), 3, glm::vec3(1.0f));
   }
+  if (with_uv) {
+    if (uv != nullptr)
+      texcoords.insert(texcoords.end(), {uv[0], uv[1], uv[2]});
+    else
+      texcoords.insert(texcoords.end(), 3, glm::vec2(0.0f));
+  }
 }
 
 void Scene::append(const Scene& o) {
   const int base = static_cast<int>(materials.size());
-  materials.insert(materials.end(), o.materials.begin(), o.materials.end());
+  const int tex_base = static_cast<int>(textures.size());
+  textures.insert(textures.end(), o.textures.begin(), o.textures.end());
+  for (Material m : o.materials) {
+    for (auto& [name, v] : m.params)
+      if (v.kind == ParamValue::Kind::Texture) v.texture += tex_base;
+    materials.push_back(std::move(m));
+  }
   for (size_t t = 0; t < o.triangle_count(); ++t) {
     const glm::vec3* n = o.normals.empty() ? nullptr : &o.normals[3 * t];
     const glm::vec3* c = o.colors.empty() ? nullptr : &o.colors[3 * t];
+    const glm::vec2* uv = o.texcoords.empty() ? nullptr : &o.texcoords[3 * t];
     add_triangle(o.positions[3 * t], o.positions[3 * t + 1], o.positions[3 * t + 2],
-                 base + o.material[t], n, c);
+                 base + o.material[t], n, c, uv);
   }
 }
 
@@ -107,6 +144,13 @@ void Scene::validate() const {
     throw SceneError("internal: normals and positions disagree");
   if (!colors.empty() && colors.size() != 3 * n)
     throw SceneError("internal: colors and positions disagree");
+  if (!texcoords.empty() && texcoords.size() != 3 * n)
+    throw SceneError("internal: texcoords and positions disagree");
+  for (size_t i = 0; i < texcoords.size(); ++i)
+    if (!std::isfinite(texcoords[i].x) || !std::isfinite(texcoords[i].y))
+      throw SceneError("triangle " + std::to_string(i / 3) +
+                       ": texture coordinates must be finite numbers");
+  for (const Texture& t : textures) validate_texture(t);
   if (n > (size_t{1} << 26))
     throw SceneError("scene has " + std::to_string(n) +
                      " triangles; at most 67108864 are supported");
@@ -123,6 +167,16 @@ void Scene::validate() const {
     if (m.shininess < 0 || m.shininess > 1e4f)
       throw SceneError(where + "shininess must be in [0, 10000]");
     if (!(m.ior > 0.0f) || m.ior > 100.0f) throw SceneError(where + "ior must be in (0, 100]");
+    for (const auto& [name, v] : m.params) {
+      const bool finite = v.kind == ParamValue::Kind::Number  ? std::isfinite(v.number)
+                          : v.kind == ParamValue::Kind::Color ? finite3(v.color)
+                                                              : true;
+      if (!finite) throw SceneError(where + name + " must be finite");
+      if (v.kind == ParamValue::Kind::Texture &&
+          (v.texture < 0 || static_cast<size_t>(v.texture) >= textures.size()))
+        throw SceneError(where + name + " refers to texture " + std::to_string(v.texture) +
+                         ", but the scene has " + std::to_string(textures.size()));
+    }
   }
   for (const Light& l : lights)
     if (!finite3(l.position) || !finite3(l.color))

@@ -107,13 +107,17 @@ struct Scene {
 
   size_t triangle_count() const { return material.size(); }
   int add_material(const Material& m);  // returns its index
-  // Appends a triangle with material index mat (and optional per-vertex normals/colours).
+  // Appends a triangle with material index mat (and optional per-vertex normals, colours
+  // and texture coordinates: three of each).
   void add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, int mat,
-                    const glm::vec3* n = nullptr, const glm::vec3* col = nullptr);
-  // Appends all of other's triangles and materials (lights and camera are not taken).
+                    const glm::vec3* n = nullptr, const glm::vec3* col = nullptr,
+                    const glm::vec2* uv = nullptr);
+  // Appends all of other's triangles, materials and textures (the appended materials'
+  // texture parameters are renumbered); lights and camera are not taken.
   void append(const Scene& other);
-  // Checks invariants (sizes, finite materials and lights, camera, image size); throws
-  // SceneError. Triangles with non-finite vertices are allowed: they are never hit.
+  // Checks invariants (sizes, finite materials, texture coordinates, textures and lights,
+  // texture indices of material parameters, camera, image size); throws SceneError.
+  // Triangles with non-finite vertices are allowed: they are never hit.
   void validate() const;
 };
 
@@ -153,11 +157,16 @@ Scene load_scene(const std::string& spec);
 
 // Built-in scenes: "thesis-a" (3 boxes, 36 triangles), "thesis-b" (cubes in a room, 2064),
 // "thesis-c" (high- and low-polygon objects with a tessellated Utah teapot, 61562),
-// "cornell" (Cornell box), "glass" (glass and mirrors), "empty".
+// "cornell" (Cornell box), "glass" (glass and mirrors), "textured" (procedural and bitmap
+// textures, a mirror shader), "empty".
 std::vector<std::string> builtin_scene_names();
 Scene builtin_scene(const std::string& name);
 
-// Shapes the built-in scenes and JSON files are made of (appended to `s` with material mat).
+// Shapes the built-in scenes and JSON files are made of (appended to `s` with material mat),
+// with texture coordinates: a quad maps a, b, c, d to (0, 0), (1, 0), (1, 1), (0, 1); each
+// face of a box is such a quad; a sphere has u = longitude / 360 degrees (growing
+// counter-clockwise seen from +y) and v from 0 at the south pole to 1 at the north; the
+// teapot has each Bezier patch's own (u, v).
 void add_box(Scene& s, const glm::vec3& lo, const glm::vec3& hi, int mat, const Transform& t = {},
              bool inward = false);
 void add_quad(Scene& s, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,

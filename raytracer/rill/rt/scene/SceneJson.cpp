@@ -1,6 +1,8 @@
-// The JSON scene format (docs/scene-format.md).
+// The JSON scene format (docs/scene-format.md): textures, materials with their shaders'
+// parameters, meshes and shapes, lights, camera, image and options.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,7 +11,9 @@
 #include <sstream>
 
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/kernel/Shader.h"
 #include "rill/rt/scene/Scene.h"
+#include "rill/rt/shaders/Builtin.h"
 
 namespace rt {
 
@@ -82,18 +86,184 @@ Transform transform(const Ctx& c, const json& j, const std::string& where) {
   return t;
 }
 
-Material material(const Ctx& c, const std::string& name, const json& j) {
+// ---- textures and materials ----------------------------------------------------------------
+
+// Texture names of the file's "textures" -> index in Scene::textures.
+using TextureNames = std::map<std::string, int>;
+
+std::string join(const std::vector<std::string>& names) {
+  std::string all;
+  for (const std::string& n : names) all += (all.empty() ? "" : ", ") + n;
+  return all;
+}
+
+void textures(const Ctx& c, Scene& s, const json& j, TextureNames& names) {
+  if (!j.is_object()) fail(c, "textures must be an object of named textures");
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string where = "textures." + it.key();
+    const json& t = it.value();
+    if (!t.is_object()) fail(c, where + " must be an object");
+    std::string type = "bitmap";
+    if (t.contains("type")) {
+      if (!t["type"].is_string()) fail(c, where + ".type must be a texture type");
+      type = t["type"].get<std::string>();
+    }
+    const auto& procedural = procedural_texture_types();
+    Texture tex;
+    if (type == "bitmap") {
+      check_keys(c, t, where, {"type", "file", "wrap", "filter", "srgb"});
+      if (!t.contains("file") || !t["file"].is_string())
+        fail(c, where + ".file must be the path of a PNG file");
+      std::filesystem::path p(t["file"].get<std::string>());
+      if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
+      const bool srgb = !t.contains("srgb") || boolean(c, t["srgb"], where + ".srgb");
+      try {
+        tex = load_png_texture(p.string(), srgb);
+      } catch (const SceneError& e) {
+        fail(c, where + ".file: " + e.what());
+      }
+      if (t.contains("wrap")) {
+        if (!t["wrap"].is_string()) fail(c, where + ".wrap must be repeat, clamp or mirror");
+        try {
+          tex.wrap = parse_wrap_mode(t["wrap"].get<std::string>());
+        } catch (const std::invalid_argument& e) {
+          fail(c, where + ".wrap: " + e.what());
+        }
+      }
+      if (t.contains("filter")) {
+        const json& f = t["filter"];
+        if (!f.is_string() ||
+            (f.get<std::string>() != "bilinear" && f.get<std::string>() != "nearest"))
+          fail(c, where + ".filter must be \"bilinear\" or \"nearest\"");
+        tex.bilinear = f.get<std::string>() == "bilinear";
+      }
+    } else if (std::find(procedural.begin(), procedural.end(), type) != procedural.end()) {
+      check_keys(c, t, where, {"type", "color1", "color2", "scale"});
+      tex.type = type;
+      if (t.contains("color1")) tex.color1 = vec3_or_scalar(c, t["color1"], where + ".color1");
+      if (t.contains("color2")) tex.color2 = vec3_or_scalar(c, t["color2"], where + ".color2");
+      if (t.contains("scale")) tex.scale = num(c, t["scale"], where + ".scale");
+      if (!(tex.scale > 0.0f)) fail(c, where + ".scale must be positive");
+    } else {
+      fail(c,
+           where + ".type: unknown texture type '" + type + "' (bitmap, " + join(procedural) + ")");
+    }
+    tex.name = it.key();
+    s.textures.push_back(std::move(tex));
+    names[it.key()] = static_cast<int>(s.textures.size()) - 1;
+  }
+}
+
+// A colour parameter: a number (grey), [r, g, b], or {"texture": NAME}.
+ParamValue colour(const Ctx& c, const json& j, const std::string& where,
+                  const TextureNames& names) {
+  if (j.is_number() || (j.is_array() && j.size() == 3))
+    return ParamValue::of(vec3_or_scalar(c, j, where));
+  if (j.is_object() && j.size() == 1 && j.contains("texture") && j["texture"].is_string()) {
+    const std::string name = j["texture"].get<std::string>();
+    auto it = names.find(name);
+    if (it == names.end()) {
+      std::vector<std::string> known;
+      for (const auto& [n, i] : names) known.push_back(n);
+      fail(c, where + ": unknown texture '" + name + "' (" +
+                  (known.empty() ? std::string("the file defines no textures")
+                                 : "textures: " + join(known)) +
+                  ")");
+    }
+    return ParamValue::of_texture(it->second);
+  }
+  fail(c, where + ": expected a colour [r, g, b], a number or {\"texture\": NAME}");
+}
+
+// The classic Material fields, which hold the built-in shaders' parameters of those names
+// (as MaterialParams reads them), so that scenes without "shader" parse as they always did.
+const char* const kClassicKeys[] = {"diffuse", "specular", "shininess",
+                                    "reflect", "transmit", "ior"};
+
+bool classic_key(const std::string& k) {
+  for (const char* a : kClassicKeys)
+    if (k == a) return true;
+  return false;
+}
+
+void set_classic(Material& m, const std::string& k, const ParamValue& v) {
+  if (k == "diffuse") m.diffuse = v.color;
+  if (k == "specular") m.specular = v.color;
+  if (k == "shininess") m.shininess = v.number;
+  if (k == "reflect") m.reflect = v.number;
+  if (k == "transmit") m.transmit = v.number;
+  if (k == "ior") m.ior = v.number;
+}
+
+Material material(const Ctx& c, const std::string& name, const json& j, const TextureNames& names) {
   const std::string where = "materials." + name;
-  check_keys(c, j, where, {"diffuse", "specular", "shininess", "reflect", "transmit", "ior"});
+  if (!j.is_object()) fail(c, where + " must be an object");
   Material m;
   m.name = name;
   m.specular = glm::vec3(0.0f);
-  if (j.contains("diffuse")) m.diffuse = vec3_or_scalar(c, j["diffuse"], where + ".diffuse");
-  if (j.contains("specular")) m.specular = vec3_or_scalar(c, j["specular"], where + ".specular");
-  if (j.contains("shininess")) m.shininess = num(c, j["shininess"], where + ".shininess");
-  if (j.contains("reflect")) m.reflect = num(c, j["reflect"], where + ".reflect");
-  if (j.contains("transmit")) m.transmit = num(c, j["transmit"], where + ".transmit");
-  if (j.contains("ior")) m.ior = num(c, j["ior"], where + ".ior");
+  const SurfaceShader* shader = nullptr;
+  if (j.contains("shader")) {
+    if (!j["shader"].is_string()) fail(c, where + ".shader must be a shader name");
+    m.shader = j["shader"].get<std::string>();
+    shader = find_shader(m.shader);
+    if (shader == nullptr)
+      fail(c, where + ".shader: unknown shader '" + m.shader + "' (known: " + join(shader_names()) +
+                  ")");
+  }
+  // Without "shader" the material is phong or glass (Material::shader_name), which between
+  // them take the classic keys.
+  const bool builtin = shader == nullptr || is_builtin_shader(shader->name);
+  auto declared = [&](const std::string& key, ParamType& type) {
+    if (shader != nullptr)
+      for (const ShaderParam& p : shader->params)
+        if (p.name == key) {
+          type = p.type;
+          return true;
+        }
+    if (builtin && classic_key(key)) {
+      type = key == "diffuse" || key == "specular" ? ParamType::Color : ParamType::Number;
+      return true;
+    }
+    return false;
+  };
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& key = it.key();
+    if (key == "shader") continue;
+    const std::string at = where + "." + key;
+    ParamType type;
+    if (!declared(key, type)) {
+      std::vector<std::string> allowed{"shader"};
+      if (shader != nullptr)
+        for (const ShaderParam& p : shader->params) allowed.push_back(p.name);
+      if (builtin)
+        for (const char* k : kClassicKeys)
+          if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) allowed.push_back(k);
+      fail(c, where + ": unknown key '" + key + "' (" + join(allowed) + ")");
+    }
+    ParamValue v;
+    if (type == ParamType::Color) {
+      v = colour(c, it.value(), at, names);
+    } else {
+      if (!it.value().is_number())
+        fail(c, at + ": expected a number" +
+                    (it.value().is_object() ? " (textures bind only to colour parameters)" : ""));
+      v = ParamValue::of(num(c, it.value(), at));
+    }
+    if (builtin && classic_key(key) && v.kind != ParamValue::Kind::Texture)
+      set_classic(m, key, v);
+    else
+      m.params[key] = v;
+  }
+  if (shader != nullptr)
+    for (const ShaderParam& p : shader->params) {
+      if (j.contains(p.name)) continue;
+      if (p.required)
+        fail(c, where + ": shader '" + shader->name + "' needs parameter '" + p.name + "' (a " +
+                    param_type_name(p.type) + ")");
+      // A built-in shader named explicitly gets its own defaults (mirror: reflect 0.9), not
+      // the classic fields' (reflect 0).
+      if (builtin && classic_key(p.name)) set_classic(m, p.name, p.default_value);
+    }
   return m;
 }
 
@@ -128,7 +298,11 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     ObjLoadOptions o;
     o.transform = t;
     o.override_material = mat;
+    const size_t first = s.materials.size();
     s.append(load_obj(p.string(), o));
+    // append() renumbers the OBJ's texture indices as its own; the override's already refer
+    // to this scene's textures (the OBJ then has one material and no textures).
+    if (mat != nullptr) s.materials[first] = *mat;
     return;
   }
   if (!j.contains("shape") || !j["shape"].is_string())
@@ -165,7 +339,7 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
         np = n;
       }
       s.add_triangle(tp(tmp.positions[3 * i]), tp(tmp.positions[3 * i + 1]),
-                     tp(tmp.positions[3 * i + 2]), m, np);
+                     tp(tmp.positions[3 * i + 2]), m, np, nullptr, &tmp.texcoords[3 * i]);
     }
   } else if (shape == "quad") {
     check_keys(c, j, where, {"shape", "vertices", "material", "transform"});
@@ -174,7 +348,8 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
   } else if (shape == "triangle") {
     check_keys(c, j, where, {"shape", "vertices", "material", "transform"});
     auto v = points(c, j.value("vertices", json()), where + ".vertices", 3);
-    s.add_triangle(tp(v[0]), tp(v[1]), tp(v[2]), m);
+    const glm::vec2 uv[3] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}};
+    s.add_triangle(tp(v[0]), tp(v[1]), tp(v[2]), m, nullptr, nullptr, uv);
   } else if (shape == "teapot") {
     check_keys(c, j, where, {"shape", "subdivisions", "material", "transform", "smooth"});
     int n = j.contains("subdivisions")
@@ -201,9 +376,9 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     fail(c, "invalid JSON: " + (p == std::string::npos ? msg : msg.substr(p)));
   }
   try {
-    check_keys(
-        c, j, "scene",
-        {"builtin", "camera", "image", "meshes", "materials", "lights", "background", "options"});
+    check_keys(c, j, "scene",
+               {"builtin", "camera", "image", "meshes", "textures", "materials", "lights",
+                "background", "options"});
     Scene s;
     if (j.contains("builtin")) {
       if (!j["builtin"].is_string()) fail(c, "builtin must be a scene name");
@@ -211,11 +386,13 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     }
     s.name = std::filesystem::path(name).stem().string();
 
+    TextureNames texture_names;
+    if (j.contains("textures")) textures(c, s, j["textures"], texture_names);
     std::map<std::string, Material> materials;
     if (j.contains("materials")) {
       if (!j["materials"].is_object()) fail(c, "materials must be an object of named materials");
       for (auto it = j["materials"].begin(); it != j["materials"].end(); ++it)
-        materials[it.key()] = material(c, it.key(), it.value());
+        materials[it.key()] = material(c, it.key(), it.value(), texture_names);
     }
     if (j.contains("meshes")) {
       if (!j["meshes"].is_array()) fail(c, "meshes must be an array");

@@ -41,4 +41,9 @@ Texture load_png_texture(const std::string& path, bool srgb = true);
 // The linear value of an 8-bit sRGB code (the exact curve, IEC 61966-2-1).
 float srgb8_to_linear(unsigned char c);
 
+// The procedural textures' types, which the tracer implements on the device
+// (kernel/Textures.h): "checker" (of uv * scale), and the solid textures "noise", "marble"
+// and "wood" (of the hit point P * scale); each blends between color1 and color2.
+const std::vector<std::string>& procedural_texture_types();
+
 }  // namespace rt
