@@ -185,7 +185,7 @@ TEST_P(Render, AovsMatchReferenceAndImagesMatchCpu) {
   RT_REQUIRE_BACKEND(GetParam());
   testing::TempDir dir;
   std::vector<Scene> scenes = {builtin_scene("thesis-a"), builtin_scene("cornell"),
-                               builtin_scene("glass"), obj_scene(dir)};
+                               builtin_scene("glass"), builtin_scene("textured"), obj_scene(dir)};
   const int W = 32, H = 24;
   for (Scene& s : scenes) {
     SCOPED_TRACE(s.name);
@@ -263,7 +263,7 @@ TEST_P(Render, MultipassMatchesMegakernel) {
   RT_REQUIRE_BACKEND(GetParam());
   // thesis-a twice: on its automatic grid, and with a subgrid in every voxel listing more
   // than 2 triangles (multipass walks a subgrid within one intersector pass).
-  for (const char* name : {"thesis-a", "thesis-a+subgrids", "thesis-b", "cornell"}) {
+  for (const char* name : {"thesis-a", "thesis-a+subgrids", "thesis-b", "cornell", "textured"}) {
     const bool subgrids = std::string(name) == "thesis-a+subgrids";
     Scene s = builtin_scene(subgrids ? "thesis-a" : name);
     if (std::string(name) == "thesis-b") s.lights.resize(1);  // fewer passes

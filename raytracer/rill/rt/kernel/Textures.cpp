@@ -17,12 +17,11 @@ constexpr int kBitmap = 0, kChecker = 1, kNoise = 2, kMarble = 3, kWood = 4;
 
 int kind_of(const Texture& t) {
   if (t.type == "bitmap") return kBitmap;
-  if (t.type == "checker") return kChecker;
-  if (t.type == "noise") return kNoise;
-  if (t.type == "marble") return kMarble;
-  if (t.type == "wood") return kWood;
-  throw SceneError("texture '" + t.name + "': unknown type '" + t.type +
-                   "' (expected bitmap, checker, noise, marble or wood)");
+  // The procedural kinds are numbered in the order of procedural_texture_types().
+  const std::vector<std::string>& types = procedural_texture_types();
+  for (size_t i = 0; i < types.size(); ++i)
+    if (t.type == types[i]) return static_cast<int>(i) + 1;
+  throw SceneError("texture '" + t.name + "': unknown type '" + t.type + "'");
 }
 
 // A fixed permutation of 0..255 (a Fisher-Yates shuffle driven by a 32-bit LCG), twice, so
