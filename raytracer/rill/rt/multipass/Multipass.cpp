@@ -36,6 +36,7 @@
 #include <stdexcept>
 
 #include "rill/rt/multipass/Multipass.h"
+#include "rill/rt/multipass/States.h"
 
 #include "rill/Record.h"
 #include "rill/Reduce.h"
@@ -44,22 +45,7 @@ namespace rt {
 
 using namespace rill;
 
-namespace {
-
-// Trace states (TraceState::state).
-constexpr int kNone = 0, kPending = 1, kEnter = 2, kWait = 3, kFinished = 4;
-// Path states (PathState::state): ended, alive (a ray to trace or shade), alive with a
-// surface to shade (shadow rays and combine).
-constexpr int kPathEnded = 0, kPathAlive = 1, kPathSurface = 2;
-constexpr int kBatch = 8;               // triangles an intersector pass tests per ray
-constexpr double kTailFraction = 0.05;  // fewer rays than this left: one kernel finishes them
-
-}  // namespace
-
-// A pixel's path: its state (kPathEnded...), bounce depth, rays traced, weight and colour.
-RILL_STRUCT(PathState, (Int, state), (Int, depth), (Int, rays), (Float, weight), (Float3, color));
-// The camera ray's AOVs.
-RILL_STRUCT(Aov, (Float, depth), (Int, prim), (Float3, normal));
+using namespace mp;
 
 struct Multipass::Buffers {
   Buffers(int64_t w, int64_t h)
@@ -84,309 +70,19 @@ Multipass::Multipass(DeviceScene& scene) : S_(scene) {
     throw std::runtime_error(
         "--strategy multipass: glass (transmit > 0) needs the ray stack of the single kernel; "
         "use --strategy megakernel (the thesis's multipass tracer has no refraction either)");
-  capture();
-  // Without geometry there is nothing to trace.
-  if (!S_.F.geometry) setup_ = traverse_ = intersect_ = Program();
-}
-
-void Multipass::capture() {
-  const Features& F = S_.F;
-  const Intersector& X = S_.intersector;
-  const Shading& sh = S_.shading;
-  raygen_ = rill::program("mp_raygen", [&] {
-    Output<Ray> ray("ray");
-    Output<PathState> path("path");
-    Output<Aov> aov("aov");
-    Output<Int> ts("tr.state");
-    Float3 eye = S_.camera.eye;
-    ray = Ray{eye, S_.camera.direction(element_coord()), Float(kBig)};
-    path = PathState{Int(kPathAlive), Int(0), Int(1), Float(1.0f), Float3(0.0f)};
-    aov = Aov{as_float(Int(0x7f800000)), Int(-1), Float3(0.0f)};
-    ts = kPending;
-  });
-
-  // ---- the trace loop: voxel precalculation, traverser, intersector ----------------------
-  // A voxel's cursor (c, end) is a subgrid's entry (base, -m) when end < 0: the intersector
-  // walks the whole subgrid in one pass (then the cursor is empty). Generated only when the
-  // grid has subgrids.
-  auto walk_pending_subgrid = [&](const Float3& o, const RaySteps& r, const Float& t_exit,
-                                  const Bool& any_hit, const DdaState& at, Int& c, Int& end,
-                                  Hit& best) {
-    if (S_.grid.subgrids == 0) return;
-    RILL_IF(end < 0) {
-      X.walk_subgrid(o, r, t_exit, any_hit, Int2(c, end), at, best);
-      c = 0;
-      end = 0;
-    }
-    RILL_ENDIF;
-  };
-  setup_ = rill::program("mp_voxel_precalc", [&] {
-    Input<Ray> ray("ray");
-    Input<Int> state("tr.state");
-    Output<Int> state_out("tr.state");
-    Output<Int3> vout("tr.voxel");
-    Output<Float3> tmx_out("tr.t_next");
-    Output<Float> exit_out("tr.t_exit");
-    Output<Int> steps_out("tr.steps");
-    Output<Hit> hit("hit");
-    RILL_IF(state != kPending) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
-    Bool inside = false;
-    Float t_enter = 0.0f, t_exit = 0.0f;
-    X.ray_box(ray, inside, t_enter, t_exit);
-    hit = Hit{ray.tmax, Float2(0.0f), Int(-1)};
-    steps_out = 0;
-    RILL_IF(inside) {
-      DdaState st = X.dda_init(ray.o, ray.d, t_enter);
-      vout = st.vox;
-      state_out = kEnter;
-      tmx_out = st.tmx;
-      exit_out = t_exit;
-    }
-    RILL_ELSE {
-      vout = Int3(0);
-      state_out = kFinished;
-      tmx_out = Float3(0.0f);
-      exit_out = 0.0f;
-    }
-    RILL_ENDIF;
-  });
-
-  traverse_ = rill::program("mp_traverser", [&] {
-    Input<Float3> d("ray.d");
-    Input<TraceState> tr("tr");
-    Input<Float> hit_t("hit.t");
-    Input<Int> hit_id("hit.id");
-    Output<Int> state_out("tr.state");
-    Output<Int3> vout("tr.voxel");
-    Output<Float3> tmx_out("tr.t_next");
-    Output<Int> steps_out("tr.steps");
-    Output<Int2> cur("tr.cursor");
-    RILL_IF(tr.state != kEnter) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
-    DdaState st{tr.voxel, tr.t_next, tr.steps, Bool(false)};
-    Bool any_hit = any_hit_ != 0;
-    const RaySteps rs = X.ray_steps(d);  // once, not per step
-    const Hit best{hit_t, Float2(0.0f), hit_id};
-    Bool found = false;
-    Int2 range(0);
-    // Empty voxels are stepped over here; leave_voxel's step limit ends the loop.
-    RILL_WHILE(!st.done && !found) {
-      range = S_.grid.voxel_range(st.vox);
-      RILL_IF(range.y() != 0) {  // triangles, or a subgrid
-        found = true;
-      }
-      RILL_ELSE {
-        X.leave_voxel(rs, tr.t_exit, best, any_hit, range, st);
-      }
-      RILL_ENDIF;
-    }
-    RILL_ENDWHILE;
-    state_out = select(found, Int(kWait), Int(kFinished));
-    vout = st.vox;
-    tmx_out = st.tmx;
-    steps_out = st.steps;
-    // The cursor over the voxel's list, or a subgrid's entry (base, -m) as it is.
-    cur = select(range.y() < 0, range, Int2(range.x(), range.x() + range.y()));
-  });
-
-  intersect_ = rill::program("mp_intersector", [&] {
-    Input<Float3> o("ray.o");
-    Input<Float3> d("ray.d");
-    Input<TraceState> tr("tr");
-    Input<Hit> hit("hit");
-    Output<Int> state_out("tr.state");
-    Output<Int3> vout("tr.voxel");
-    Output<Float3> tmx_out("tr.t_next");
-    Output<Int> steps_out("tr.steps");
-    Output<Int2> cur_out("tr.cursor");
-    Output<Hit> hit_out("hit");
-    RILL_IF(tr.state != kWait) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
-    const RaySteps rs = X.ray_steps(d);
-    Hit best = hit;
-    Int c = tr.cursor.x();
-    Int end = tr.cursor.y();
-    DdaState st{tr.voxel, tr.t_next, tr.steps, Bool(false)};
-    Bool any_hit = any_hit_ != 0;
-    walk_pending_subgrid(o, rs, tr.t_exit, any_hit, st, c, end, best);
-    RILL_FOR(Int k = 0, k < kBatch && c < end, k += 1) {
-      X.test_triangle(o, d, c, best);
-      c += 1;
-    }
-    RILL_ENDFOR;
-    Int state = kWait;
-    RILL_IF(c >= end) {  // the voxel's list is done
-      // A voxel with triangles: a plain step.
-      X.leave_voxel(rs, tr.t_exit, best, any_hit, Int2(0), st);
-      state = select(st.done, Int(kFinished), Int(kEnter));
-    }
-    RILL_ENDIF;
-    state_out = state;
-    vout = st.vox;
-    tmx_out = st.tmx;
-    steps_out = st.steps;
-    cur_out = Int2(c, end);
-    hit_out = best;
-  });
-
-  // The tail: the last few rays run traverser and intersector steps in one loop (the same
-  // steps in the same order, so the same result), instead of many nearly empty passes. It
-  // writes the state and the hit only: nothing reads a finished ray's voxel or steps.
-  finish_ = rill::program("mp_finish", [&] {
-    Input<Float3> o("ray.o");
-    Input<Float3> d("ray.d");
-    Input<TraceState> tr("tr");
-    Input<Hit> hit("hit");
-    Output<Int> state_out("tr.state");
-    Output<Hit> hit_out("hit");
-    Int state = tr.state;
-    RILL_IF(state != kEnter && state != kWait) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
-    const RaySteps rs = X.ray_steps(d);
-    Hit best = hit;
-    Int c = tr.cursor.x();
-    Int end = tr.cursor.y();
-    DdaState st{tr.voxel, tr.t_next, tr.steps, Bool(false)};
-    Bool any_hit = any_hit_ != 0;
-    Int2 entry(0);  // a resumed voxel (kWait) has triangles: a plain step after it
-    RILL_WHILE(state != kFinished) {
-      RILL_IF(state == kEnter) {
-        entry = S_.grid.voxel_range(st.vox);
-        c = entry.x();
-        end = select(entry.y() < 0, entry.y(), entry.x() + entry.y());
-      }
-      RILL_ENDIF;
-      // A subgrid entered here or by the traverser.
-      walk_pending_subgrid(o, rs, tr.t_exit, any_hit, st, c, end, best);
-      RILL_WHILE(c < end) {
-        X.test_triangle(o, d, c, best);
-        c += 1;
-      }
-      RILL_ENDWHILE;
-      st.done = false;
-      X.leave_voxel(rs, tr.t_exit, best, any_hit, entry, st);
-      state = select(st.done, Int(kFinished), Int(kEnter));
-    }
-    RILL_ENDWHILE;
-    state_out = kFinished;
-    hit_out = best;
-  });
-
-  // ---- shading ---------------------------------------------------------------------------
-  surface_ = rill::program("mp_surface", [&] {
-    Input<Float3> o("ray.o");
-    Input<Float3> d("ray.d");
-    Input<Hit> hit("hit");
-    Input<Int> state("path.state");
-    Input<Int> depth("path.depth");
-    Input<Float> w("path.weight");
-    Input<Float3> color("path.color");
-    Output<Float3> local("local");
-    Output<Float3> color_out("path.color");
-    Output<Int> state_out("path.state");
-    Output<Aov> aov("aov");
-    RILL_IF(state == kPathEnded) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
-    Int hid = -1;
-    if (F.geometry) hid = hit.id;
-    RILL_IF(hid >= 0) {
-      Surface s = sh.surface(Ray{o, d, Float(kBig)}, Hit{hit.t, hit.uv, hid});
-      Float3 loc = sh.emitted(s);
-      RILL_IF(depth == 0) {  // AOVs of the camera ray
-        aov = Aov{hit.t, hid, s.ns};
-      }
-      RILL_ENDIF;
-      if (!F.shadows) loc += sh.unshadowed_light(s);
-      local = loc;
-      state_out = kPathSurface;
-    }
-    RILL_ELSE {
-      color_out = color + w * sh.background;
-      state_out = kPathEnded;
-    }
-    RILL_ENDIF;
-  });
-
-  if (F.shadows) {
-    shadow_gen_ = rill::program("mp_shadow_rays", [&] {
-      Input<Float3> o("ray.o");
-      Input<Float3> d("ray.d");
-      Input<Hit> hit("hit");
-      Input<Int> state("path.state");
-      Input<Int> rays("path.rays");
-      Output<Ray> shadow("shadow");
-      Output<Int> ts("tr.state");
-      Output<Int> rays_out("path.rays");
-      RILL_IF(state != kPathSurface) {
-        RILL_DISCARD;
-      }
-      RILL_ENDIF;
-      Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
-      Bool active = false;
-      shadow = sh.shadow_ray(light_, s, active);
-      ts = select(active, Int(kPending), Int(kNone));
-      rays_out = rays + select(active, Int(1), Int(0));
-    });
-    shadow_acc_ = rill::program("mp_shadow_light", [&] {
-      Input<Float3> o("ray.o");
-      Input<Float3> d("ray.d");
-      Input<Hit> hit("hit");
-      Input<Int> state("path.state");
-      Input<Int> ts("tr.state");
-      Input<Int> sid("shadow_hit.id");
-      Input<Float3> local("local");
-      Output<Float3> local_out("local");
-      RILL_IF(state != kPathSurface || ts != kFinished || sid >= 0) {
-        RILL_DISCARD;
-      }
-      RILL_ENDIF;
-      Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
-      local_out = local + sh.light(light_, s);
-    });
+  raygen_ = capture_raygen();
+  if (S_.F.geometry) {  // without geometry there is nothing to trace
+    setup_ = capture_setup();
+    traverse_ = capture_traverse();
+    intersect_ = capture_intersect();
+    finish_ = capture_finish();
   }
-
-  // The path's ray keeps tmax = kBig from the ray generator: combine writes o and d only.
-  combine_ = rill::program("mp_combine", [&] {
-    Input<Float3> o("ray.o");
-    Input<Float3> d("ray.d");
-    Input<Hit> hit("hit");
-    Input<PathState> path("path");
-    Input<Float3> local("local");
-    Output<PathState> path_out("path");
-    Output<Float3> o_out("ray.o");
-    Output<Float3> d_out("ray.d");
-    Output<Int> ts("tr.state");
-    RILL_IF(path.state != kPathSurface) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
-    Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
-    Float3 c = path.color;
-    Float weight = path.weight;
-    Int depth = path.depth;
-    Ray next{Float3(0.0f), Float3(0.0f), Float(kBig)};
-    Bool go = false;
-    sh.shade(s, local, c, weight, depth, next, go, nullptr);
-    RILL_IF(go) {
-      o_out = next.o;
-      d_out = next.d;
-      ts = kPending;
-    }
-    RILL_ENDIF;
-    path_out = PathState{select(go, Int(kPathAlive), Int(kPathEnded)), depth,
-                         path.rays + select(go, Int(1), Int(0)), weight, c};
-  });
+  surface_ = capture_surface();
+  if (S_.F.shadows) {
+    shadow_gen_ = capture_shadow_gen();
+    shadow_acc_ = capture_shadow_acc();
+  }
+  combine_ = capture_combine();
 }
 
 Multipass::Kernels& Multipass::kernels(const std::string& backend, Accuracy a) {

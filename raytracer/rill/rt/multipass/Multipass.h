@@ -1,7 +1,8 @@
 // The thesis's multipass strategy (sections 5.4-5.6): a sequence of small kernels over
-// per-pixel state streams instead of one kernel with a loop (Multipass.cpp describes the
-// passes). Built from the same DSL building blocks (kernel/) as the megakernel, it gives
-// the same bits. Refraction is left to the megakernel, as in the thesis (5.2.2).
+// per-pixel state streams instead of one kernel with a loop. Multipass.cpp describes the
+// passes and runs them; TracePasses.cpp and ShadePasses.cpp build them; States.h holds the
+// state values and records. Built from the same DSL building blocks (kernel/) as the megakernel, it
+// gives the same bits. Refraction is left to the megakernel, as in the thesis (5.2.2).
 #pragma once
 
 #include <rill/rill.h>
@@ -27,7 +28,20 @@ class Multipass {
         combine;
   };
   struct Buffers;
-  void capture();
+  // The passes' programs (TracePasses.cpp, ShadePasses.cpp).
+  rill::Program capture_raygen() const;
+  rill::Program capture_setup() const;
+  rill::Program capture_traverse() const;
+  rill::Program capture_intersect() const;
+  rill::Program capture_finish() const;
+  rill::Program capture_surface() const;
+  rill::Program capture_shadow_gen() const;
+  rill::Program capture_shadow_acc() const;
+  rill::Program capture_combine() const;
+  // Walks a subgrid whose entry (base, -m) is the cursor (c, end); then the cursor is empty.
+  void walk_pending_subgrid(const Float3& o, const RaySteps& r, const Float& t_exit,
+                            const Bool& any_hit, const DdaState& at, Int& c, Int& end,
+                            Hit& best) const;
   Kernels& kernels(const std::string& backend, rill::Accuracy a);
 
   DeviceScene& S_;
