@@ -27,182 +27,222 @@ Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
   program_ = capture();
 }
 
-Program Megakernel::capture() const {
-  const Features& F = S_.F;
-  const Shading& sh = S_.shading;
-  return rill::program("rill_trace", [&] {
-    Output<Float3> out_color("color");
-    Output<Float> out_depth("depth");
-    Output<Int> out_prim("prim");
-    Output<Float3> out_normal("normal");
-    Output<Int> out_rays("rays");
-
-    const Float inf = as_float(Int(0x7f800000));
-    out_depth = inf;
-    out_prim = -1;
-    out_normal = Float3(0.0f);
-
-    Ray ray{S_.camera.eye, S_.camera.direction(element_coord()), Float(kBig)};
-    Bool ray_active = true;
-
-    Float3 color(0.0f);
-    Float weight = 1.0f;  // eq. 5.1: the product of the reflection coefficients so far
-    Int depth = 0;
-    Int mode = 0;  // 0: camera or secondary ray, 1: shadow ray towards light li
-    Int li = 0;
-    Int rays = 0, iter = 0;
-    Bool finished = false;
-    Surface surf;
-    Float3 local(0.0f);
-
-    // The ray stack (refraction: the reflected branch waits here).
-    std::vector<Ray> stack_ray;
-    std::vector<Float> stack_weight;
-    std::vector<Int> stack_depth;
-    for (int s = 0; s < F.stack; ++s) {
+// The loop's state, carried from one iteration (one traced ray) to the next: the ray being
+// traced and what it is for, the path (colour, weight, depth), the light loop's position
+// and the surface it shades, and the ray stack.
+struct Megakernel::PathLoop {
+  explicit PathLoop(int stack_size) {
+    for (int s = 0; s < stack_size; ++s) {
       stack_ray.push_back(Ray{Float3(0.0f), Float3(0.0f), Float(0.0f)});
       stack_weight.emplace_back(0.0f);
       stack_depth.emplace_back(0);
     }
-    Int sp = 0;
+  }
+  Ray ray{Float3(0.0f), Float3(0.0f), Float(kBig)};
+  Bool ray_active = true;
+  Float3 color{0.0f};
+  Float weight = 1.0f;  // eq. 5.1: the product of the reflection coefficients so far
+  Int depth = 0;
+  Int mode = 0;  // 0: camera or secondary ray, 1: shadow ray towards light li
+  Int li = 0;
+  Int rays = 0, iter = 0;
+  Bool finished = false;
+  Surface surf;
+  Float3 local{0.0f};
+  // The ray stack (refraction: the reflected branch waits here); sp entries are used.
+  std::vector<Ray> stack_ray;
+  std::vector<Float> stack_weight;
+  std::vector<Int> stack_depth;
+  Int sp = 0;
+  // Set within one iteration: the surface is done (local light complete), the path is
+  // done (no next ray).
+  Bool shade_done = false, path_done = false;
+};
 
+// The AOVs of the camera ray.
+struct Megakernel::Aovs {
+  Output<Float> depth{"depth"};
+  Output<Int> prim{"prim"};
+  Output<Float3> normal{"normal"};
+};
+
+Program Megakernel::capture() const {
+  return rill::program("rill_trace", [&] {
+    Output<Float3> out_color("color");
+    Aovs aovs;
+    Output<Int> out_rays("rays");
+    aovs.depth = as_float(Int(0x7f800000));
+    aovs.prim = -1;
+    aovs.normal = Float3(0.0f);
+
+    PathLoop L(S_.F.stack);
+    L.ray.o = S_.camera.eye;
+    L.ray.d = S_.camera.direction(element_coord());
     // max_iter = 0 skips all tracing: render() uses that for a warm-up launch.
     RILL_IF(max_iter_ > 0) {
       RILL_DO {
-        Hit hit{Float(0.0f), Float2(0.0f), Int(-1)};
-        if (F.geometry) {
-          RILL_IF(ray_active) {
-            Bool any_hit = mode == 1;
-            hit = S_.intersector.intersect(ray, F.shadows ? &any_hit : nullptr);
-            rays += 1;
-          }
-          RILL_ENDIF;
-        } else {
-          rays += 1;
-        }
-        Bool hit_something = hit.id >= 0;
-        Bool shade_done = false, path_done = false;
-        Int cur_mode = mode;  // the branches below may change mode for the next iteration
-
-        auto shade_hit = [&] {
-          surf = sh.surface(ray, hit);
-          local = sh.emitted(surf);
-          RILL_IF(depth == 0) {  // AOVs of the camera ray
-            out_depth = hit.t;
-            out_prim = hit.id;
-            out_normal = surf.ns;
-          }
-          RILL_ENDIF;
-          if (F.shadows) {
-            mode = 1;
-            li = 0;
-            ray = sh.shadow_ray(li, surf, ray_active);
-          } else {
-            local += sh.unshadowed_light(surf);
-            shade_done = true;
-          }
-        };
-        auto miss = [&] {
-          color += weight * sh.background;
-          path_done = true;
-        };
+        L.shade_done = false;
+        L.path_done = false;
+        const Hit hit = trace(L);
+        Int cur_mode = L.mode;  // the steps below may change mode for the next iteration
         RILL_IF(cur_mode == 0) {
-          if (F.geometry) {
-            RILL_IF(hit_something) {
-              shade_hit();
-            }
-            RILL_ELSE {
-              miss();
-            }
-            RILL_ENDIF;
-          } else {
-            miss();
-          }
+          camera_or_secondary_ray(L, hit, aovs);
         }
         RILL_ENDIF;
-        if (F.shadows) {
-          RILL_IF(cur_mode == 1) {  // a shadow ray came back
-            RILL_IF(ray_active && !hit_something) {
-              local += sh.light(li, surf);
-            }
-            RILL_ENDIF;
-            li += 1;
-            RILL_IF(li < S_.lights.count) {
-              ray = sh.shadow_ray(li, surf, ray_active);
-            }
-            RILL_ELSE {
-              mode = 0;
-              shade_done = true;
-            }
-            RILL_ENDIF;
+        if (S_.F.shadows) {
+          RILL_IF(cur_mode == 1) {
+            shadow_ray_back(L, hit);
           }
           RILL_ENDIF;
         }
-
-        RILL_IF(shade_done) {
-          Bool go = false;
-          Branch second;
-          sh.shade(surf, local, color, weight, depth, ray, go, F.stack > 0 ? &second : nullptr);
-          if (F.stack > 0) {
-            RILL_IF(second.wanted && sp < F.stack) {  // the reflection waits on the stack
-              for (int s = 0; s < F.stack; ++s) {
-                RILL_IF(sp == s) {
-                  stack_ray[static_cast<size_t>(s)] = second.ray;
-                  stack_weight[static_cast<size_t>(s)] = second.weight;
-                  stack_depth[static_cast<size_t>(s)] = depth;
-                }
-                RILL_ENDIF;
-              }
-              sp += 1;
-            }
-            RILL_ENDIF;
-          }
-          RILL_IF(go) {
-            ray_active = true;
-            ray.tmax = kBig;
-          }
-          RILL_ELSE {
-            path_done = true;
-          }
-          RILL_ENDIF;
+        RILL_IF(L.shade_done) {
+          next_ray(L);
         }
         RILL_ENDIF;
-
-        RILL_IF(path_done) {
-          if (F.stack > 0) {
-            RILL_IF(sp > 0) {
-              for (int s = 0; s < F.stack; ++s) {
-                RILL_IF(sp == s + 1) {
-                  ray.o = stack_ray[static_cast<size_t>(s)].o;
-                  ray.d = stack_ray[static_cast<size_t>(s)].d;
-                  weight = stack_weight[static_cast<size_t>(s)];
-                  depth = stack_depth[static_cast<size_t>(s)];
-                }
-                RILL_ENDIF;
-              }
-              sp -= 1;
-              ray_active = true;
-              ray.tmax = kBig;
-            }
-            RILL_ELSE {
-              finished = true;
-            }
-            RILL_ENDIF;
-          } else {
-            finished = true;
-          }
+        RILL_IF(L.path_done) {
+          pop_or_finish(L);
         }
         RILL_ENDIF;
-        iter += 1;
-        finished = finished || iter >= max_iter_;
+        L.iter += 1;
+        L.finished = L.finished || L.iter >= max_iter_;
       }
-      RILL_UNTIL(finished);
+      RILL_UNTIL(L.finished);
     }
     RILL_ENDIF;
-
-    out_color = color;
-    out_rays = rays;
+    out_color = L.color;
+    out_rays = L.rays;
   });
+}
+
+Hit Megakernel::trace(PathLoop& L) const {
+  Hit hit{Float(0.0f), Float2(0.0f), Int(-1)};
+  if (!S_.F.geometry) {
+    L.rays += 1;
+    return hit;
+  }
+  RILL_IF(L.ray_active) {
+    Bool any_hit = L.mode == 1;
+    hit = S_.intersector.intersect(L.ray, S_.F.shadows ? &any_hit : nullptr);
+    L.rays += 1;
+  }
+  RILL_ENDIF;
+  return hit;
+}
+
+// A hit starts the surface's local light (the shader's emitted light) and its light loop;
+// a miss adds the background and ends the path.
+void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const {
+  const Shading& sh = S_.shading;
+  auto miss = [&] {
+    L.color += L.weight * sh.background;
+    L.path_done = true;
+  };
+  if (!S_.F.geometry) {
+    miss();
+    return;
+  }
+  Bool hit_something = hit.id >= 0;
+  RILL_IF(hit_something) {
+    L.surf = sh.surface(L.ray, hit);
+    L.local = sh.emitted(L.surf);
+    RILL_IF(L.depth == 0) {
+      aovs.depth = hit.t;
+      aovs.prim = hit.id;
+      aovs.normal = L.surf.ns;
+    }
+    RILL_ENDIF;
+    if (S_.F.shadows) {
+      L.mode = 1;
+      L.li = 0;
+      L.ray = sh.shadow_ray(L.li, L.surf, L.ray_active);
+    } else {
+      L.local += sh.unshadowed_light(L.surf);
+      L.shade_done = true;
+    }
+  }
+  RILL_ELSE {
+    miss();
+  }
+  RILL_ENDIF;
+}
+
+// A shadow ray came back: the light's share if it was not blocked, then the next light's
+// shadow ray, or, after the last light, the surface is done.
+void Megakernel::shadow_ray_back(PathLoop& L, const Hit& hit) const {
+  const Shading& sh = S_.shading;
+  Bool hit_something = hit.id >= 0;
+  RILL_IF(L.ray_active && !hit_something) {
+    L.local += sh.light(L.li, L.surf);
+  }
+  RILL_ENDIF;
+  L.li += 1;
+  RILL_IF(L.li < S_.lights.count) {
+    L.ray = sh.shadow_ray(L.li, L.surf, L.ray_active);
+  }
+  RILL_ELSE {
+    L.mode = 0;
+    L.shade_done = true;
+  }
+  RILL_ENDIF;
+}
+
+// Eq. 5.1 for the finished surface, and the path's next ray (a second branch waits on the
+// stack).
+void Megakernel::next_ray(PathLoop& L) const {
+  const int stack = S_.F.stack;
+  Bool go = false;
+  Branch second;
+  S_.shading.shade(L.surf, L.local, L.color, L.weight, L.depth, L.ray, go,
+                   stack > 0 ? &second : nullptr);
+  if (stack > 0) {
+    RILL_IF(second.wanted && L.sp < stack) {  // the reflection waits on the stack
+      for (int s = 0; s < stack; ++s) {
+        RILL_IF(L.sp == s) {
+          L.stack_ray[static_cast<size_t>(s)] = second.ray;
+          L.stack_weight[static_cast<size_t>(s)] = second.weight;
+          L.stack_depth[static_cast<size_t>(s)] = L.depth;
+        }
+        RILL_ENDIF;
+      }
+      L.sp += 1;
+    }
+    RILL_ENDIF;
+  }
+  RILL_IF(go) {
+    L.ray_active = true;
+    L.ray.tmax = kBig;
+  }
+  RILL_ELSE {
+    L.path_done = true;
+  }
+  RILL_ENDIF;
+}
+
+// The path ended: the next ray from the stack, or the loop is finished.
+void Megakernel::pop_or_finish(PathLoop& L) const {
+  const int stack = S_.F.stack;
+  if (stack == 0) {
+    L.finished = true;
+    return;
+  }
+  RILL_IF(L.sp > 0) {
+    for (int s = 0; s < stack; ++s) {
+      RILL_IF(L.sp == s + 1) {
+        L.ray.o = L.stack_ray[static_cast<size_t>(s)].o;
+        L.ray.d = L.stack_ray[static_cast<size_t>(s)].d;
+        L.weight = L.stack_weight[static_cast<size_t>(s)];
+        L.depth = L.stack_depth[static_cast<size_t>(s)];
+      }
+      RILL_ENDIF;
+    }
+    L.sp -= 1;
+    L.ray_active = true;
+    L.ray.tmax = kBig;
+  }
+  RILL_ELSE {
+    L.finished = true;
+  }
+  RILL_ENDIF;
 }
 
 Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a) {

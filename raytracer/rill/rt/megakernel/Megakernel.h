@@ -28,7 +28,15 @@ class Megakernel {
   RenderResult render(const RenderSettings& rs, int width, int height, int depth, int spp);
 
  private:
+  struct PathLoop;
+  struct Aovs;
   rill::Program capture() const;
+  // The loop body's steps, in order (Megakernel.cpp).
+  Hit trace(PathLoop& L) const;
+  void camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const;
+  void shadow_ray_back(PathLoop& L, const Hit& hit) const;
+  void next_ray(PathLoop& L) const;
+  void pop_or_finish(PathLoop& L) const;
 
   DeviceScene& S_;
   // The loop's iteration limit; 0 skips all tracing (render()'s warm-up launch).
