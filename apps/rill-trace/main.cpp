@@ -29,10 +29,10 @@
 #include <sstream>
 
 #include "AccuracyBench.h"
+#include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/Image.h"
 #include "rill/rt/scene/Scene.h"
-#include "rill/rt/Tracer.h"
 
 namespace {
 
@@ -320,6 +320,26 @@ int info() {
   std::printf("built-in scenes (builtin:NAME):");
   for (const auto& n : rt::builtin_scene_names()) std::printf(" %s", n.c_str());
   std::printf("\n");
+  // Defaults as a scene file writes them (docs/scene-format.md): 0.5, or [r, g, b].
+  auto value = [](const rt::ShaderParam& p) {
+    const rt::ParamValue& v = p.default_value;
+    if (p.required) return std::string("(required)");
+    char buf[96];
+    if (v.kind == rt::ParamValue::Kind::Number)
+      std::snprintf(buf, sizeof buf, "%g", static_cast<double>(v.number));
+    else
+      std::snprintf(buf, sizeof buf, "[%g, %g, %g]", static_cast<double>(v.color.r),
+                    static_cast<double>(v.color.g), static_cast<double>(v.color.b));
+    return std::string(buf);
+  };
+  std::printf("surface shaders (a material's \"shader\"; parameter, type, default):\n");
+  for (const std::string& name : rt::shader_names()) {
+    const rt::SurfaceShader& sh = *rt::find_shader(name);
+    std::printf("  %-9s %s\n", name.c_str(), sh.doc.c_str());
+    for (const rt::ShaderParam& p : sh.params)
+      std::printf("            %-10s %-7s %-16s %s\n", p.name.c_str(), rt::param_type_name(p.type),
+                  value(p).c_str(), p.doc.c_str());
+  }
   return 0;
 }
 
@@ -391,7 +411,8 @@ int main(int argc, char** argv) {
   d->add_option("--scene", demo_scene, "scene to render")->default_str("builtin:glass");
   d->add_option("--size", demo_size, "image size WxH");
   d->add_option("--out-dir", demo_out, "where the PNGs go");
-  CLI::App* in = app.add_subcommand("info", "list backends, devices and built-in scenes");
+  CLI::App* in =
+      app.add_subcommand("info", "list backends, devices, built-in scenes and surface shaders");
 
   try {
     app.parse(argc, argv);

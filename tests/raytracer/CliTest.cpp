@@ -1,5 +1,5 @@
 // rill-trace on bad command lines and bad files: it exits (no crash, no hang) with a
-// non-zero status and one line on stderr.
+// non-zero status and one line on stderr. And what `rill-trace info` lists.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -82,8 +82,40 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --size 4x4 --out /no/such/dir/x.png", "x.png");
 }
 
+// What rill-trace prints (stdout and stderr) with these arguments, and its exit status.
+std::string output_of(const std::string& args, int& status) {
+  std::string out;
+  FILE* p = popen(("timeout 60 '" RILL_TRACE_EXE "' " + args + " 2>&1").c_str(), "r");
+  if (p == nullptr) return out;
+  char buf[4096];
+  for (size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+  const int rc = pclose(p);
+  status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  return out;
+}
+
+// `info` lists the registered surface shaders, each with its parameters: name, type, default.
+TEST(Cli, InfoListsShadersAndTheirParameters) {
+  int status = -1;
+  const std::string out = output_of("info", status);
+  EXPECT_EQ(status, 0) << out;
+  const size_t shaders = out.find("surface shaders");
+  ASSERT_NE(shaders, std::string::npos) << out;
+  for (const char* name : {"\n  glass ", "\n  mirror ", "\n  phong "})
+    EXPECT_NE(out.find(name, shaders), std::string::npos) << name << " missing in:\n" << out;
+  // A number and a colour parameter, with their types and defaults, and the docs.
+  EXPECT_NE(out.find("ior        number  1.5 "), std::string::npos) << out;
+  EXPECT_NE(out.find("diffuse    colour  [0.8, 0.8, 0.8]  diffuse colour (Kd)"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("reflect    number  0.9              reflectance, 0 to 1"), std::string::npos)
+      << out;
+}
+
 #else
 TEST(Cli, BadCommandLinesAndInputs) {
+  GTEST_SKIP() << "rill-trace is not built";
+}
+TEST(Cli, InfoListsShadersAndTheirParameters) {
   GTEST_SKIP() << "rill-trace is not built";
 }
 #endif
