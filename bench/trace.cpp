@@ -50,11 +50,11 @@
 #include <vector>
 
 #include "CommaList.h"
-#include "rill/rt/accel/Grid.h"
-#include "rill/rt/scene/Scene.h"
 #include "Timing.h"
 #include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
 #include "rill/rt/kernel/DeviceArrays.h"
+#include "rill/rt/scene/Scene.h"
 #include "trace_embree.h"
 
 namespace {
@@ -509,7 +509,7 @@ class Bench {
         // Every effect on at zero strength changes only rounding (interpolated normals and
         // white vertex colours are not exactly the face normal and 1), and rounding can flip
         // whether a secondary ray whose weight is at the tracer's cut-off (1e-3, kMinWeight in
-        // TracerImpl.h) is traced: so colours may differ by up to that weight (measured: 3.7e-4
+        // kernel/Shading.h) is traced: so colours may differ by up to that weight (measured: 3.7e-4
         // on thesis-b at 1920x1080), while every camera ray must hit the same primitive.
         const bool same = maxdiff <= 1e-3f && a.prim == b.prim && generic.features().refraction &&
                           generic.features().vertex_colors && generic.features().vertex_normals;

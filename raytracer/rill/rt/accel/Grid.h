@@ -8,14 +8,14 @@
 //
 // Storage, as in the thesis: a voxel index (per voxel: start and count in the element
 // list), the element list (triangle ids, ascending within a voxel) and the triangle data
-// (in Tracer.cpp). Voxel (x, y, z) has index x + res.x * (y + res.y * z).
+// (kernel/Triangles.h). Voxel (x, y, z) has index x + res.x * (y + res.y * z).
 //
 // Empty-space skipping (a "proximity cloud", Cohen & Sheffer 1994): an empty voxel has no
 // use for its start, so its entry holds instead its chessboard distance to the nearest
 // non-empty voxel (max over the axes of |index difference|; 0 never occurs, and a grid
 // with no triangles at all has 0 everywhere). Every voxel closer than that is empty, so the
-// traversal may jump across them in one step (Tracer.cpp, leave_voxel) instead of visiting
-// them one by one; the entry it loads anyway tells it how far.
+// traversal may jump across them in one step (kernel/Intersector.cpp, leave_voxel) instead of
+// visiting them one by one; the entry it loads anyway tells it how far.
 //
 // Two levels, optional (Jevans & Wyvill 1989; Kalojanov, Billeter & Slusallek 2011 on GPUs):
 // a uniform grid suits the empty space between objects, but a surface mesh puts many
@@ -24,7 +24,7 @@
 // kSubgridMin), a voxel listing more than subgrid_min triangles gets its own m x m x m subgrid (m
 // from kSubgridDensity sub-voxels per triangle, 2..kSubgridMaxRes), built with the same exact
 // overlap test and margin on the sub-voxels; the ray walks it with a second 3D-DDA confined
-// to the voxel (Tracer.cpp, walk_subgrid). Subgrid entries follow the top level's in
+// to the voxel (kernel/Intersector.cpp, walk_subgrid). Subgrid entries follow the top level's in
 // `voxels`: sub-voxel (i, j, k) of a subgrid at base b is voxels[b + i + m (j + m k)].
 //
 // A voxel entry is (start, count) into the element list when count > 0; (distance, 0) when

@@ -9,7 +9,7 @@
 //
 // normalize(v) is v / sqrt(dot(v, v)) with dot(a, b) = (a.x*b.x + a.y*b.y) + a.z*b.z, as in
 // the DSL. The host part (frame, t, a) is computed here once; the per-pixel part runs in the
-// kernel (Tracer.cpp) and, for tests, in camera_ray() below.
+// kernel (kernel/CameraRays.cpp) and, for tests, in camera_ray() below.
 #pragma once
 
 #include <glm/glm.hpp>
