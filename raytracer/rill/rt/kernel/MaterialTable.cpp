@@ -68,6 +68,12 @@ void MaterialTable::upload(const Scene& scene, const Features& F) {
       }
     }
   }
+  // Features forced on (TracerOptions::extra_features, for benchmarks of the specialized
+  // against the generic kernel): specular keeps the highlight code of every shader that has
+  // a `specular` parameter.
+  if (F.specular)
+    for (Layout& l : shaders_)
+      if (auto it = l.params.find("specular"); it != l.params.end()) it->second.nonzero = true;
   upload_padded(params_, block);
   upload_padded(shader_of_, std::vector<int32_t>(shader_index.begin(), shader_index.end()));
   textures_.upload(scene);
