@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""Speed kept across the modular-renderer restructure (issue 18 item 1), measured side by side.
+
+Runs two rill-trace binaries, BEFORE and AFTER, alternately (the order flips every repeat)
+on builtin:thesis-b at 256x192 for each backend and workload:
+
+  full       rill-trace render builtin:thesis-b (the scene's defaults)
+  primary    the same scene with shadows off and --max-depth 0 (thesis-b-primary.json next
+             to this script: rill-trace has no shadows switch)
+  multipass  full, with --strategy multipass
+
+and reads trace_ms (time_ms.trace) from --stats-json. Each binary has private caches (Rill's,
+PoCL's, Mesa's) and renders every row once untimed first, so the timed runs load warm
+kernels. Every timed render also writes --pfm; the script checks that BEFORE's and AFTER's
+images are bitwise identical (cmp) for every row.
+
+  speed_kept.py BEFORE AFTER [--reps 9] [--backends cpu,simd,opencl,glsl] [--json out.json]
+
+Prints a Markdown table: medians, AFTER/BEFORE of the medians, the median of the per-repeat
+ratios (each from two runs next to each other in time) and its min..max spread.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SIZE = "256x192"
+WORKLOADS = {
+    "full": ["builtin:thesis-b"],
+    "primary": [os.path.join(HERE, "thesis-b-primary.json"), "--max-depth", "0"],
+    "multipass": ["builtin:thesis-b", "--strategy", "multipass"],
+}
+
+
+def render(binary, env, backend, workload, out_dir, tag):
+    """Runs one render; returns (trace_ms, path of its PFM)."""
+    stats = os.path.join(out_dir, f"{tag}.json")
+    pfm = os.path.join(out_dir, f"{tag}.pfm")
+    cmd = [binary, "render"] + WORKLOADS[workload] + [
+        "--backend", backend, "--size", SIZE, "--stats-json", stats, "--pfm", pfm, "--quiet"]
+    r = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if r.returncode != 0:
+        sys.exit(f"speed_kept.py: {' '.join(cmd)} failed ({r.returncode}): {r.stderr.strip()}")
+    with open(stats) as f:
+        return json.load(f)["time_ms"]["trace"], pfm
+
+
+def private_env(root):
+    env = dict(os.environ)
+    for var, sub in (("RILL_CACHE_DIR", "rill"), ("POCL_CACHE_DIR", "pocl"),
+                     ("MESA_SHADER_CACHE_DIR", "mesa"), ("XDG_CACHE_HOME", "xdg")):
+        env[var] = os.path.join(root, sub)
+        os.makedirs(env[var], exist_ok=True)
+    return env
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("before")
+    ap.add_argument("after")
+    ap.add_argument("--reps", type=int, default=9)
+    ap.add_argument("--backends", default="cpu,simd,opencl,glsl")
+    ap.add_argument("--workloads", default="full,primary,multipass")
+    ap.add_argument("--json", help="write every measurement here")
+    a = ap.parse_args()
+    backends = a.backends.split(",")
+    workloads = a.workloads.split(",")
+    rows = [(b, w) for b in backends for w in workloads]
+
+    work = tempfile.mkdtemp(prefix="rill-speed-kept-")
+    bins = {"before": os.path.abspath(a.before), "after": os.path.abspath(a.after)}
+    envs = {k: private_env(os.path.join(work, k)) for k in bins}
+    for k in bins:  # warm the private caches
+        for b, w in rows:
+            render(bins[k], envs[k], b, w, work, f"warm-{k}")
+
+    times = {row: {"before": [], "after": []} for row in rows}
+    identical = {row: True for row in rows}
+    for rep in range(a.reps):
+        order = ["before", "after"] if rep % 2 == 0 else ["after", "before"]
+        for row in rows:
+            pfms = {}
+            for k in order:
+                ms, pfms[k] = render(bins[k], envs[k], row[0], row[1], work, k)
+                times[row][k].append(ms)
+            same = subprocess.run(["cmp", "-s", pfms["before"], pfms["after"]]).returncode == 0
+            identical[row] = identical[row] and same
+        print(f"repeat {rep + 1}/{a.reps} done", file=sys.stderr)
+
+    print(f"thesis-b {SIZE}, trace_ms, {a.reps} alternating repeats per binary\n")
+    print("| backend | workload | BEFORE median ms | AFTER median ms | AFTER/BEFORE "
+          "| per-repeat ratio median (min..max) | BEFORE spread ms | AFTER spread ms "
+          "| images |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    result = []
+    for row in rows:
+        t = times[row]
+        mb, ma = statistics.median(t["before"]), statistics.median(t["after"])
+        ratios = [x / y for x, y in zip(t["after"], t["before"])]
+        print(f"| {row[0]} | {row[1]} | {mb:.1f} | {ma:.1f} | {ma / mb:.3f} "
+              f"| {statistics.median(ratios):.3f} ({min(ratios):.3f}..{max(ratios):.3f}) "
+              f"| {min(t['before']):.1f}..{max(t['before']):.1f} "
+              f"| {min(t['after']):.1f}..{max(t['after']):.1f} "
+              f"| {'identical' if identical[row] else 'DIFFER'} |")
+        result.append({"backend": row[0], "workload": row[1], "before_ms": t["before"],
+                       "after_ms": t["after"], "identical": identical[row]})
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump({"size": SIZE, "reps": a.reps, "rows": result}, f, indent=1)
+    return 0 if all(identical.values()) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
