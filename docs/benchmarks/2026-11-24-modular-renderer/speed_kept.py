@@ -14,10 +14,13 @@ PoCL's, Mesa's) and renders every row once untimed first, so the timed runs load
 kernels. Every timed render also writes --pfm; the script checks that BEFORE's and AFTER's
 images are bitwise identical (cmp) for every row.
 
-  speed_kept.py BEFORE AFTER [--reps 9] [--backends cpu,simd,opencl,glsl] [--json out.json]
+  speed_kept.py BEFORE AFTER [--reps 9] [--backends cpu,simd,opencl,glsl]
+                [--workloads full,primary,multipass] [--json out.json]
+  speed_kept.py --table out.json          # the table of an earlier run
 
 Prints a Markdown table: medians, AFTER/BEFORE of the medians, the median of the per-repeat
-ratios (each from two runs next to each other in time) and its min..max spread.
+ratios (each from two runs next to each other in time) with its min..max, the ratio of the
+fastest runs, and each binary's min..max.
 """
 import argparse
 import json
@@ -59,6 +62,11 @@ def private_env(root):
 
 
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--table":  # re-print a --json file's table
+        with open(sys.argv[2]) as f:
+            saved = json.load(f)
+        print_table(saved["rows"], saved["reps"])
+        return 0
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("before")
     ap.add_argument("after")
@@ -91,27 +99,32 @@ def main():
             identical[row] = identical[row] and same
         print(f"repeat {rep + 1}/{a.reps} done", file=sys.stderr)
 
-    print(f"thesis-b {SIZE}, trace_ms, {a.reps} alternating repeats per binary\n")
-    print("| backend | workload | BEFORE median ms | AFTER median ms | AFTER/BEFORE "
-          "| per-repeat ratio median (min..max) | BEFORE spread ms | AFTER spread ms "
-          "| images |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    result = []
-    for row in rows:
-        t = times[row]
-        mb, ma = statistics.median(t["before"]), statistics.median(t["after"])
-        ratios = [x / y for x, y in zip(t["after"], t["before"])]
-        print(f"| {row[0]} | {row[1]} | {mb:.1f} | {ma:.1f} | {ma / mb:.3f} "
-              f"| {statistics.median(ratios):.3f} ({min(ratios):.3f}..{max(ratios):.3f}) "
-              f"| {min(t['before']):.1f}..{max(t['before']):.1f} "
-              f"| {min(t['after']):.1f}..{max(t['after']):.1f} "
-              f"| {'identical' if identical[row] else 'DIFFER'} |")
-        result.append({"backend": row[0], "workload": row[1], "before_ms": t["before"],
-                       "after_ms": t["after"], "identical": identical[row]})
+    result = [{"backend": b, "workload": w, "before_ms": times[(b, w)]["before"],
+               "after_ms": times[(b, w)]["after"], "identical": identical[(b, w)]}
+              for b, w in rows]
+    print_table(result, a.reps)
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"size": SIZE, "reps": a.reps, "rows": result}, f, indent=1)
     return 0 if all(identical.values()) else 1
+
+
+def print_table(rows, reps):
+    """The Markdown table of a run's rows (as written to --json)."""
+    print(f"thesis-b {SIZE}, trace_ms, {reps} alternating repeats per binary\n")
+    print("| backend | workload | BEFORE median ms | AFTER median ms | AFTER/BEFORE "
+          "| per-repeat ratio median (min..max) | min AFTER/min BEFORE | BEFORE spread ms "
+          "| AFTER spread ms | images |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        tb, ta = r["before_ms"], r["after_ms"]
+        mb, ma = statistics.median(tb), statistics.median(ta)
+        ratios = [x / y for x, y in zip(ta, tb)]
+        print(f"| {r['backend']} | {r['workload']} | {mb:.1f} | {ma:.1f} | {ma / mb:.3f} "
+              f"| {statistics.median(ratios):.3f} ({min(ratios):.3f}..{max(ratios):.3f}) "
+              f"| {min(ta) / min(tb):.3f} | {min(tb):.1f}..{max(tb):.1f} "
+              f"| {min(ta):.1f}..{max(ta):.1f} "
+              f"| {'identical' if r['identical'] else 'DIFFER'} |")
 
 
 if __name__ == "__main__":
