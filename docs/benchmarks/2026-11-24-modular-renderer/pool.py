@@ -19,8 +19,11 @@ def main():
     pairs = {}
     for path in sys.argv[1:]:
         with open(path) as f:
-            for r in json.load(f)["rows"]:
-                key = (r["backend"], r["workload"])
+            run = json.load(f)
+            for r in run["rows"]:
+                # Runs at another size than the brief's 256x192 are rows of their own.
+                size = "" if run["size"] == "256x192" else " " + run["size"]
+                key = (r["backend"], r["workload"] + size)
                 pairs.setdefault(key, []).extend(
                     a / b for a, b in zip(r["after_ms"], r["before_ms"]))
     if not pairs:

@@ -15,7 +15,7 @@ kernels. Every timed render also writes --pfm; the script checks that BEFORE's a
 images are bitwise identical (cmp) for every row.
 
   speed_kept.py BEFORE AFTER [--reps 9] [--backends cpu,simd,opencl,glsl]
-                [--workloads full,primary,multipass] [--json out.json]
+                [--workloads full,primary,multipass] [--size 256x192] [--json out.json]
   speed_kept.py --table out.json          # the table of an earlier run
 
 Prints a Markdown table: medians, AFTER/BEFORE of the medians, the median of the per-repeat
@@ -31,7 +31,7 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SIZE = "256x192"
+SIZE = "256x192"  # --size changes it
 WORKLOADS = {
     "full": ["builtin:thesis-b"],
     "primary": [os.path.join(HERE, "thesis-b-primary.json"), "--max-depth", "0"],
@@ -62,10 +62,11 @@ def private_env(root):
 
 
 def main():
+    global SIZE
     if len(sys.argv) == 3 and sys.argv[1] == "--table":  # re-print a --json file's table
         with open(sys.argv[2]) as f:
             saved = json.load(f)
-        print_table(saved["rows"], saved["reps"])
+        print_table(saved["rows"], saved["reps"], saved["size"])
         return 0
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("before")
@@ -74,7 +75,9 @@ def main():
     ap.add_argument("--backends", default="cpu,simd,opencl,glsl")
     ap.add_argument("--workloads", default="full,primary,multipass")
     ap.add_argument("--json", help="write every measurement here")
+    ap.add_argument("--size", default=SIZE, help="image size WxH (default %(default)s)")
     a = ap.parse_args()
+    SIZE = a.size
     backends = a.backends.split(",")
     workloads = a.workloads.split(",")
     rows = [(b, w) for b in backends for w in workloads]
@@ -102,16 +105,16 @@ def main():
     result = [{"backend": b, "workload": w, "before_ms": times[(b, w)]["before"],
                "after_ms": times[(b, w)]["after"], "identical": identical[(b, w)]}
               for b, w in rows]
-    print_table(result, a.reps)
+    print_table(result, a.reps, SIZE)
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"size": SIZE, "reps": a.reps, "rows": result}, f, indent=1)
     return 0 if all(identical.values()) else 1
 
 
-def print_table(rows, reps):
+def print_table(rows, reps, size):
     """The Markdown table of a run's rows (as written to --json)."""
-    print(f"thesis-b {SIZE}, trace_ms, {reps} alternating repeats per binary\n")
+    print(f"thesis-b {size}, trace_ms, {reps} alternating repeats per binary\n")
     print("| backend | workload | BEFORE median ms | AFTER median ms | AFTER/BEFORE "
           "| per-repeat ratio median (min..max) | min AFTER/min BEFORE | BEFORE spread ms "
           "| AFTER spread ms | images |")
