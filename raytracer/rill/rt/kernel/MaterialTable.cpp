@@ -78,6 +78,7 @@ void MaterialTable::upload(const Scene& scene, const Features& F) {
   upload_padded(shader_of_, std::vector<int32_t>(shader_index.begin(), shader_index.end()));
   textures_.upload(scene);
   ambient.set(scene.options.ambient);
+  vertex_colors_ = F.vertex_colors;
 }
 
 std::vector<std::string> MaterialTable::used_shaders() const {
@@ -100,13 +101,23 @@ const MaterialTable::Param& MaterialTable::param(int shader, const std::string& 
   return it->second;
 }
 
-Float4 MaterialTable::load(const Surface& s, int slot) const {
-  return params_[s.material * stride_ + slot];
+MaterialTable::Slots MaterialTable::load(const Surface& s) const {
+  Slots slots;
+  if (shaders_.empty()) return slots;
+  Int row = s.material * stride_;
+  for (int i = 0; i < stride_; ++i) slots.push_back(params_[row + i]);
+  return slots;
 }
 
-Float3 MaterialTable::color(int shader, const std::string& name, const Surface& s) const {
+Float4 MaterialTable::slot(const Surface& s, int i, const Slots* slots) const {
+  if (slots != nullptr) return (*slots)[static_cast<size_t>(i)];
+  return params_[s.material * stride_ + i];
+}
+
+Float3 MaterialTable::color(int shader, const std::string& name, const Surface& s,
+                            const Slots* slots) const {
   const Param& p = param(shader, name, ParamType::Color);
-  Float4 v = load(s, p.slot);
+  Float4 v = slot(s, p.slot, slots);
   Float3 c(v.x(), v.y(), v.z());
   if (p.textured) {
     RILL_IF(v.w() >= 0.0f) {
@@ -117,9 +128,10 @@ Float3 MaterialTable::color(int shader, const std::string& name, const Surface& 
   return c;
 }
 
-Float MaterialTable::number(int shader, const std::string& name, const Surface& s) const {
+Float MaterialTable::number(int shader, const std::string& name, const Surface& s,
+                            const Slots* slots) const {
   const Param& p = param(shader, name, ParamType::Number);
-  Float4 v = load(s, p.slot);
+  Float4 v = slot(s, p.slot, slots);
   switch (p.lane) {
     case 0:
       return v.x();
@@ -157,25 +169,36 @@ void MaterialTable::dispatch(const Surface& s, F&& f) const {
   }
 }
 
-Float3 MaterialTable::emitted(const Surface& s) const {
+Float3 MaterialTable::emitted(const Surface& s, const Slots* slots) const {
+  if (shaders_.size() == 1) {  // called directly: no copy into a shared result
+    const SurfaceShader& sh = *shaders_[0].shader;
+    return sh.emitted ? sh.emitted(ShadingPoint(s, *this, 0, slots)) : Float3(0.0f);
+  }
   Float3 out(0.0f);
   dispatch(s, [&](int i) {
     const SurfaceShader& sh = *shaders_[static_cast<size_t>(i)].shader;
-    if (sh.emitted) out = sh.emitted(ShadingPoint(s, *this, i));
+    if (sh.emitted) out = sh.emitted(ShadingPoint(s, *this, i, slots));
   });
   return out;
 }
 
-Float3 MaterialTable::reflected(const Surface& s, const LightSample& light) const {
+Float3 MaterialTable::reflected(const Surface& s, const LightSample& light,
+                                const Slots* slots) const {
+  if (shaders_.size() == 1) {
+    const SurfaceShader& sh = *shaders_[0].shader;
+    return sh.reflected ? sh.reflected(ShadingPoint(s, *this, 0, slots), light) : Float3(0.0f);
+  }
   Float3 out(0.0f);
   dispatch(s, [&](int i) {
     const SurfaceShader& sh = *shaders_[static_cast<size_t>(i)].shader;
-    if (sh.reflected) out = sh.reflected(ShadingPoint(s, *this, i), light);
+    if (sh.reflected) out = sh.reflected(ShadingPoint(s, *this, i, slots), light);
   });
   return out;
 }
 
-Scatter MaterialTable::scatter(const Surface& s, const Float& weight) const {
+Scatter MaterialTable::scatter(const Surface& s, const Float& weight, const Slots* slots) const {
+  if (shaders_.size() == 1 && shaders_[0].shader->scatter)
+    return shaders_[0].shader->scatter(ShadingPoint(s, *this, 0, slots), weight);
   Scatter out;
   out.local_weight = weight;
   dispatch(s, [&](int i) {
@@ -184,7 +207,7 @@ Scatter MaterialTable::scatter(const Surface& s, const Float& weight) const {
       out.local_weight = weight;
       return;
     }
-    Scatter r = sh.scatter(ShadingPoint(s, *this, i), weight);
+    Scatter r = sh.scatter(ShadingPoint(s, *this, i, slots), weight);
     out.local_weight = r.local_weight;
     out.reflect_weight = r.reflect_weight;
     out.reflect_dir = r.reflect_dir;
@@ -196,15 +219,20 @@ Scatter MaterialTable::scatter(const Surface& s, const Float& weight) const {
 
 // ---- ShadingPoint --------------------------------------------------------------------------
 
-ShadingPoint::ShadingPoint(const Surface& surface, const MaterialTable& table, int shader)
-    : s(surface), table_(table), shader_(shader) {}
+ShadingPoint::ShadingPoint(const Surface& surface, const MaterialTable& table, int shader,
+                           const std::vector<Float4>* slots)
+    : s(surface), table_(table), shader_(shader), slots_(slots) {}
 
 Float3 ShadingPoint::color(const std::string& name) const {
-  return table_.color(shader_, name, s);
+  return table_.color(shader_, name, s, slots_);
 }
 
 Float ShadingPoint::number(const std::string& name) const {
-  return table_.number(shader_, name, s);
+  return table_.number(shader_, name, s, slots_);
+}
+
+bool ShadingPoint::has_vertex_colors() const {
+  return table_.vertex_colors();
 }
 
 bool ShadingPoint::may_be_nonzero(const std::string& name) const {

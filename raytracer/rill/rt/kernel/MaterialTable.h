@@ -27,18 +27,26 @@ class MaterialTable {
   // and the scene's textures. Throws SceneError for a material whose shader is unknown.
   void upload(const Scene& scene, const Features& F);
 
-  // The shaders' functions at a surface, dispatched on its material's shader.
-  Float3 emitted(const Surface& s) const;
-  Float3 reflected(const Surface& s, const LightSample& light) const;
-  Scatter scatter(const Surface& s, const Float& weight) const;
+  // A surface's material parameters, read once (every slot of its row): the functions
+  // below take them so that a light loop does not read the table once per light. Slots no
+  // shader reads are dead code the compilers drop.
+  using Slots = std::vector<Float4>;
+  Slots load(const Surface& s) const;
+
+  // The shaders' functions at a surface, dispatched on its material's shader; without
+  // `slots`, each parameter is read from the table where the shader asks for it.
+  Float3 emitted(const Surface& s, const Slots* slots = nullptr) const;
+  Float3 reflected(const Surface& s, const LightSample& light, const Slots* slots = nullptr) const;
+  Scatter scatter(const Surface& s, const Float& weight, const Slots* slots = nullptr) const;
 
   std::vector<std::string> used_shaders() const;  // in the order of their indices
   rill::Uniform<Float> ambient{0.1f, "ambient"};
 
   // ---- for ShadingPoint --------------------------------------------------------------------
-  Float3 color(int shader, const std::string& name, const Surface& s) const;
-  Float number(int shader, const std::string& name, const Surface& s) const;
+  Float3 color(int shader, const std::string& name, const Surface& s, const Slots* slots) const;
+  Float number(int shader, const std::string& name, const Surface& s, const Slots* slots) const;
   bool may_be_nonzero(int shader, const std::string& name) const;
+  bool vertex_colors() const { return vertex_colors_; }
 
  private:
   struct Param {
@@ -53,7 +61,7 @@ class MaterialTable {
     int slots = 0;
   };
   const Param& param(int shader, const std::string& name, ParamType type) const;
-  Float4 load(const Surface& s, int slot) const;
+  Float4 slot(const Surface& s, int slot, const Slots* slots) const;
   // Calls f(i) for the shader of s's material: directly with one shader, else in a branch
   // per shader.
   template <class F>
@@ -61,6 +69,7 @@ class MaterialTable {
 
   std::vector<Layout> shaders_;
   int stride_ = 1;
+  bool vertex_colors_ = false;
   rill::Array<Float4> params_{1, "mat_params"};
   rill::Array<Int> shader_of_{1, "mat_shader"};
   TextureTable textures_;

@@ -65,7 +65,8 @@ class MaterialTable;  // the device side of the materials (kernel/MaterialTable.
 // called.
 class ShadingPoint {
  public:
-  ShadingPoint(const Surface& s, const MaterialTable& table, int shader);
+  ShadingPoint(const Surface& s, const MaterialTable& table, int shader,
+               const std::vector<Float4>* slots = nullptr);
   const Surface& s;
   // A colour parameter (a texture bound to it is sampled at s.uv here).
   Float3 color(const std::string& name) const;
@@ -74,12 +75,16 @@ class ShadingPoint {
   // uses this shader has the parameter at zero (a number or a black colour, no texture), so
   // that the code it would weigh can be left out.
   bool may_be_nonzero(const std::string& name) const;
+  // Host side: whether the scene has vertex colours (without, s.vertex_color is white and
+  // multiplying by it can be left out).
+  bool has_vertex_colors() const;
   // The scene's ambient light level (a uniform).
   Float ambient() const;
 
  private:
   const MaterialTable& table_;
   int shader_;
+  const std::vector<Float4>* slots_;  // the material's parameters, read before (or null)
 };
 
 // One light as a shader sees it: the unit direction from the surface towards it and its

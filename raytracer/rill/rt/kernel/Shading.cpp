@@ -55,13 +55,14 @@ Surface Shading::surface(const Ray& ray, const Hit& hit) const {
   const Float3& rd = ray.d;
   const Int& hid = hit.id;
   const Float hu = hit.uv.x(), hv = hit.uv.y();
-  Surface s;
-  if (K_.offset == SelfIntersection::Scaled) {
-    // On the triangle, from the barycentrics: the error does not grow with the distance.
-    s.P = tris_.v0[hid] + hu * tris_.e1[hid] + hv * tris_.e2[hid];
-  } else {
-    s.P = ray.o + hit.t * rd;
-  }
+  // Every field is computed into its own value and the record built at the end: a record
+  // default-constructed and then filled would assign each field twice (on simd, twice per
+  // lane under the branch's mask).
+  Float3 P = K_.offset == SelfIntersection::Scaled
+                 // On the triangle, from the barycentrics: the error does not grow with the
+                 // distance.
+                 ? Float3(tris_.v0[hid] + hu * tris_.e1[hid] + hv * tris_.e2[hid])
+                 : Float3(ray.o + hit.t * rd);
   Float3 ng = tris_.ng[hid];
   Float3 ns = ng;
   if (F_.vertex_normals) {
@@ -71,23 +72,22 @@ Surface Shading::surface(const Ray& ray, const Hit& hit) const {
     ns = select(nl > 0.0f, nn / select(nl > 0.0f, nl, 1.0f), ng);
     ng = select(dot(ng, ns) < 0.0f, -ng, ng);  // the vertex normals tell outside
   }
-  s.ns = ns;
-  s.entering = dot(ng, rd) < 0.0f;
-  s.nf = select(s.entering, ns, -ns);
-  s.ngf = select(s.entering, ng, -ng);
-  s.V = -rd;
-  s.material = tris_.material[hid];
-  s.vertex_color = Float3(1.0f);
+  Bool entering = dot(ng, rd) < 0.0f;
+  Float3 nf = select(entering, ns, -ns);
+  Float3 ngf = select(entering, ng, -ng);
+  Float3 V = -rd;
+  Int material = tris_.material[hid];
+  Float3 vertex_color(1.0f);
   if (F_.vertex_colors) {
     Float w = 1.0f - hu - hv;
-    s.vertex_color = tris_.c0[hid] * w + tris_.c1[hid] * hu + tris_.c2[hid] * hv;
+    vertex_color = tris_.c0[hid] * w + tris_.c1[hid] * hu + tris_.c2[hid] * hv;
   }
-  s.uv = Float2(0.0f);
+  Float2 uv(0.0f);
   if (F_.texcoords) {
     Float w = 1.0f - hu - hv;
-    s.uv = tris_.uv[3 * hid] * w + tris_.uv[3 * hid + 1] * hu + tris_.uv[3 * hid + 2] * hv;
+    uv = tris_.uv[3 * hid] * w + tris_.uv[3 * hid + 1] * hu + tris_.uv[3 * hid + 2] * hv;
   }
-  return s;
+  return Surface{P, ns, nf, ngf, V, uv, entering, vertex_color, material};
 }
 
 Float3 Shading::light(const Int& l, const Surface& s) const {
@@ -95,15 +95,16 @@ Float3 Shading::light(const Int& l, const Surface& s) const {
   return materials_.reflected(s, LightSample{L, lights_.color[l], false});
 }
 
-Float3 Shading::unshadowed_light(const Surface& s) const {
+Float3 Shading::unshadowed_light(const Surface& s, const MaterialTable::Slots* slots) const {
   Float3 sum(0.0f);
   if (F_.lights) {
     RILL_FOR(Int l = 0, l < lights_.count, l += 1) {
-      sum += light(l, s);
+      Float3 L = normalize(lights_.position[l] - s.P);
+      sum += materials_.reflected(s, LightSample{L, lights_.color[l], false}, slots);
     }
     RILL_ENDFOR;
   } else {
-    sum = materials_.reflected(s, LightSample{s.V, Float3(1.0f), true});
+    sum = materials_.reflected(s, LightSample{s.V, Float3(1.0f), true}, slots);
   }
   return sum;
 }

@@ -44,12 +44,16 @@ class Shading {
 
   // The surface at hit (a hit of ray, id >= 0).
   Surface surface(const Ray& ray, const Hit& hit) const;
+  // The surface's material parameters, read once for the calls below that take them.
+  MaterialTable::Slots material(const Surface& s) const { return materials_.load(s); }
   // The shader's light without the light loop (emission, ambient).
-  Float3 emitted(const Surface& s) const { return materials_.emitted(s); }
+  Float3 emitted(const Surface& s, const MaterialTable::Slots* slots = nullptr) const {
+    return materials_.emitted(s, slots);
+  }
   // The light l sends towards the viewer through the shader, shadows aside.
   Float3 light(const Int& l, const Surface& s) const;
   // Local light when there are no shadow rays: all lights, or the headlight.
-  Float3 unshadowed_light(const Surface& s) const;
+  Float3 unshadowed_light(const Surface& s, const MaterialTable::Slots* slots = nullptr) const;
   // The shadow ray towards light l; active is false when the light is behind the surface.
   Ray shadow_ray(const Int& l, const Surface& s, Bool& active) const;
   // Eq. 5.1 and the next ray: adds the surface's share of local light to color, then (if

@@ -47,7 +47,9 @@ struct Megakernel::PathLoop {
   Int li = 0;
   Int rays = 0, iter = 0;
   Bool finished = false;
-  Surface surf;
+  // Fields the scene has no use for keep these values and are never assigned (set_surface).
+  Surface surf{Float3(0.0f), Float3(0.0f), Float3(0.0f), Float3(0.0f), Float3(0.0f),
+               Float2(0.0f), Bool(true),   Float3(1.0f), Int(0)};
   Float3 local{0.0f};
   // The ray stack (refraction: the reflected branch waits here); sp entries are used.
   std::vector<Ray> stack_ray;
@@ -129,6 +131,20 @@ Hit Megakernel::trace(PathLoop& L) const {
   return hit;
 }
 
+// The loop's surface from a new one: only the fields the scene uses, since on simd every
+// assignment under a branch is a masked select per lane.
+void Megakernel::set_surface(Surface& to, const Surface& from) const {
+  to.P = from.P;
+  to.ns = from.ns;
+  to.nf = from.nf;
+  to.ngf = from.ngf;
+  to.V = from.V;
+  to.entering = from.entering;
+  to.material = from.material;
+  if (S_.F.texcoords) to.uv = from.uv;
+  if (S_.F.vertex_colors) to.vertex_color = from.vertex_color;
+}
+
 // A hit starts the surface's local light (the shader's emitted light) and its light loop;
 // a miss adds the background and ends the path.
 void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const {
@@ -143,8 +159,11 @@ void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs
   }
   Bool hit_something = hit.id >= 0;
   RILL_IF(hit_something) {
-    L.surf = sh.surface(L.ray, hit);
-    L.local = sh.emitted(L.surf);
+    set_surface(L.surf, sh.surface(L.ray, hit));
+    // The material's parameters, read once for the local light (and, without shadow rays,
+    // for every light).
+    const MaterialTable::Slots slots = sh.material(L.surf);
+    L.local = sh.emitted(L.surf, &slots);
     RILL_IF(L.depth == 0) {
       aovs.depth = hit.t;
       aovs.prim = hit.id;
@@ -156,7 +175,7 @@ void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs
       L.li = 0;
       L.ray = sh.shadow_ray(L.li, L.surf, L.ray_active);
     } else {
-      L.local += sh.unshadowed_light(L.surf);
+      L.local += sh.unshadowed_light(L.surf, &slots);
       L.shade_done = true;
     }
   }

@@ -33,6 +33,7 @@ class Megakernel {
   rill::Program capture() const;
   // The loop body's steps, in order (Megakernel.cpp).
   Hit trace(PathLoop& L) const;
+  void set_surface(Surface& to, const Surface& from) const;
   void camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const;
   void shadow_ray_back(PathLoop& L, const Hit& hit) const;
   void next_ray(PathLoop& L) const;

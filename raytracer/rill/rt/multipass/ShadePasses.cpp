@@ -47,12 +47,13 @@ Program Multipass::capture_surface() const {
     if (F.geometry) hid = hit.id;
     RILL_IF(hid >= 0) {
       Surface s = sh.surface(Ray{o, d, Float(kBig)}, Hit{hit.t, hit.uv, hid});
-      Float3 loc = sh.emitted(s);
+      const MaterialTable::Slots slots = sh.material(s);
+      Float3 loc = sh.emitted(s, &slots);
       RILL_IF(depth == 0) {  // AOVs of the camera ray
         aov = Aov{hit.t, hid, s.ns};
       }
       RILL_ENDIF;
-      if (!F.shadows) loc += sh.unshadowed_light(s);
+      if (!F.shadows) loc += sh.unshadowed_light(s, &slots);
       local = loc;
       state_out = kPathSurface;
     }

@@ -16,6 +16,7 @@ std::vector<ShaderParam> phong_params() {
 }
 
 Float3 phong_diffuse(const ShadingPoint& sp) {
+  if (!sp.has_vertex_colors()) return sp.color("diffuse");
   return sp.color("diffuse") * sp.s.vertex_color;
 }
 
