@@ -90,17 +90,16 @@ Surface Shading::surface(const Ray& ray, const Hit& hit) const {
   return Surface{P, ns, nf, ngf, V, uv, entering, vertex_color, material};
 }
 
-Float3 Shading::light(const Int& l, const Surface& s) const {
+Float3 Shading::light(const Int& l, const Surface& s, const MaterialTable::Slots* slots) const {
   Float3 L = normalize(lights_.position[l] - s.P);
-  return materials_.reflected(s, LightSample{L, lights_.color[l], false});
+  return materials_.reflected(s, LightSample{L, lights_.color[l], false}, slots);
 }
 
 Float3 Shading::unshadowed_light(const Surface& s, const MaterialTable::Slots* slots) const {
   Float3 sum(0.0f);
   if (F_.lights) {
     RILL_FOR(Int l = 0, l < lights_.count, l += 1) {
-      Float3 L = normalize(lights_.position[l] - s.P);
-      sum += materials_.reflected(s, LightSample{L, lights_.color[l], false}, slots);
+      sum += light(l, s, slots);
     }
     RILL_ENDFOR;
   } else {

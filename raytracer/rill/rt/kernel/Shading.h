@@ -51,7 +51,7 @@ class Shading {
     return materials_.emitted(s, slots);
   }
   // The light l sends towards the viewer through the shader, shadows aside.
-  Float3 light(const Int& l, const Surface& s) const;
+  Float3 light(const Int& l, const Surface& s, const MaterialTable::Slots* slots = nullptr) const;
   // Local light when there are no shadow rays: all lights, or the headlight.
   Float3 unshadowed_light(const Surface& s, const MaterialTable::Slots* slots = nullptr) const;
   // The shadow ray towards light l; active is false when the light is behind the surface.

@@ -15,6 +15,14 @@ std::vector<ShaderParam> phong_params() {
   };
 }
 
+Scatter mirror_scatter(const ShadingPoint& sp, const Float& weight, const Float& r) {
+  Scatter out;
+  out.local_weight = weight * (1.0f - r);
+  out.reflect_weight = weight * r;
+  out.reflect_dir = reflect(-sp.s.V, sp.s.nf);
+  return out;
+}
+
 Float3 phong_diffuse(const ShadingPoint& sp) {
   if (!sp.has_vertex_colors()) return sp.color("diffuse");
   return sp.color("diffuse") * sp.s.vertex_color;
@@ -44,17 +52,12 @@ SurfaceShader phong_shader() {
   s.emitted = phong_emitted;
   s.reflected = phong_reflected;
   s.scatter = [](const ShadingPoint& sp, const Float& weight) {
-    Scatter out;
-    if (!sp.may_be_nonzero("reflect")) {
+    if (!sp.may_be_nonzero("reflect")) {  // no material reflects: the path ends here
+      Scatter out;
       out.local_weight = weight;
       return out;
     }
-    Float r = sp.number("reflect");
-    // Eq. 5.1: the surface keeps 1 - r of the weight; the reflection carries r.
-    out.local_weight = weight * (1.0f - r);
-    out.reflect_weight = weight * r;
-    out.reflect_dir = reflect(-sp.s.V, sp.s.nf);
-    return out;
+    return mirror_scatter(sp, weight, sp.number("reflect"));
   };
   s.lobes = [](const MaterialParams& p) { return Lobes{p.nonzero("reflect"), false}; };
   return s;

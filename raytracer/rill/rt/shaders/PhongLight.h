@@ -1,6 +1,6 @@
 // The Phong model's local light, shared by the phong and glass shaders: ambient times the
 // diffuse colour, and per light a Lambert term plus a specular highlight (Phong 1975).
-// Vertex colours multiply the diffuse colour.
+// Vertex colours multiply the diffuse colour. Also the mirror lobe that phong and mirror share.
 #pragma once
 
 #include "rill/rt/kernel/Shader.h"
@@ -14,5 +14,8 @@ Float3 phong_emitted(const ShadingPoint& sp);
 Float3 phong_reflected(const ShadingPoint& sp, const LightSample& light);
 // The parameters both shaders declare: diffuse, specular, shininess, reflect.
 std::vector<ShaderParam> phong_params();
+// Mirror reflection of strength r (eq. 5.1): the surface keeps 1 - r of the path weight, the
+// reflected ray carries r. Phong's and the mirror shader's scatter.
+Scatter mirror_scatter(const ShadingPoint& sp, const Float& weight, const Float& r);
 
 }  // namespace rt
