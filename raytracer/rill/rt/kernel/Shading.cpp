@@ -120,8 +120,8 @@ Ray Shading::shadow_ray(const Int& l, const Surface& s, Bool& active) const {
 }
 
 void Shading::shade(const Surface& s, const Float3& local, Float3& color, Float& weight, Int& depth,
-                    Ray& next, Bool& go, Branch* second) const {
-  const Scatter sc = materials_.scatter(s, weight);
+                    Ray& next, Bool& go, Branch* second, const MaterialTable::Slots* slots) const {
+  const Scatter sc = materials_.scatter(s, weight, slots);
   // Eq. 5.1: this surface contributes M_j (1 - r_j) times the product of the earlier
   // coefficients (the shader's local_weight).
   color += sc.local_weight * local;

@@ -59,9 +59,11 @@ class Shading {
   // Eq. 5.1 and the next ray: adds the surface's share of local light to color, then (if
   // some material reflects) makes the reflected and refracted rays. Writes the continuing
   // ray into `next` and the path's weight and depth, and sets go; with `second`, a second
-  // branch (refraction with reflection) is written there.
+  // branch (refraction with reflection) is written there. `slots`: the material's
+  // parameters if they were read already (MaterialTable::material).
   void shade(const Surface& s, const Float3& local, Float3& color, Float& weight, Int& depth,
-             Ray& next, Bool& go, Branch* second) const;
+             Ray& next, Bool& go, Branch* second,
+             const MaterialTable::Slots* slots = nullptr) const;
   // A new ray's origin: p moved off the surface along n (the knob's fixed epsilon or
   // scale-aware offset).
   Float3 offset_origin(const Float3& p, const Float3& n) const;

@@ -83,7 +83,7 @@ Program Megakernel::capture() const {
     // max_iter = 0 skips all tracing: render() uses that for a warm-up launch.
     RILL_IF(max_iter_ > 0) {
       RILL_DO {
-        L.shade_done = false;
+        if (S_.F.shadows) L.shade_done = false;
         L.path_done = false;
         const Hit hit = trace(L);
         Int cur_mode = L.mode;  // the steps below may change mode for the next iteration
@@ -97,10 +97,12 @@ Program Megakernel::capture() const {
           }
           RILL_ENDIF;
         }
-        RILL_IF(L.shade_done) {
-          next_ray(L);
+        if (S_.F.shadows) {  // without, camera_or_secondary_ray went on to the next ray
+          RILL_IF(L.shade_done) {
+            next_ray(L);
+          }
+          RILL_ENDIF;
         }
-        RILL_ENDIF;
         RILL_IF(L.path_done) {
           pop_or_finish(L);
         }
@@ -174,9 +176,9 @@ void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs
       L.mode = 1;
       L.li = 0;
       L.ray = sh.shadow_ray(L.li, L.surf, L.ray_active);
-    } else {
+    } else {  // the surface is done in this iteration: its parameters serve the next ray too
       L.local += sh.unshadowed_light(L.surf, &slots);
-      L.shade_done = true;
+      next_ray(L, &slots);
     }
   }
   RILL_ELSE {
@@ -207,12 +209,12 @@ void Megakernel::shadow_ray_back(PathLoop& L, const Hit& hit) const {
 
 // Eq. 5.1 for the finished surface, and the path's next ray (a second branch waits on the
 // stack).
-void Megakernel::next_ray(PathLoop& L) const {
+void Megakernel::next_ray(PathLoop& L, const MaterialTable::Slots* slots) const {
   const int stack = S_.F.stack;
   Bool go = false;
   Branch second;
   S_.shading.shade(L.surf, L.local, L.color, L.weight, L.depth, L.ray, go,
-                   stack > 0 ? &second : nullptr);
+                   stack > 0 ? &second : nullptr, slots);
   if (stack > 0) {
     RILL_IF(second.wanted && L.sp < stack) {  // the reflection waits on the stack
       for (int s = 0; s < stack; ++s) {

@@ -36,7 +36,7 @@ class Megakernel {
   void set_surface(Surface& to, const Surface& from) const;
   void camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const;
   void shadow_ray_back(PathLoop& L, const Hit& hit) const;
-  void next_ray(PathLoop& L) const;
+  void next_ray(PathLoop& L, const MaterialTable::Slots* slots = nullptr) const;
   void pop_or_finish(PathLoop& L) const;
 
   DeviceScene& S_;
