@@ -4,6 +4,7 @@
 #include "opencl/OpenCLBackend.h"
 #endif
 #ifdef RILL_HAVE_GLSL
+#include "glsl/ComputeBackend.h"
 #include "glsl/GLSLBackend.h"
 #endif
 #include "rill/Backend.h"
@@ -18,6 +19,7 @@ void register_builtin_backends() {
 #endif
 #ifdef RILL_HAVE_GLSL
   register_backend(glsl::make_backend());
+  register_backend(glsl::make_compute_backend());
 #endif
 }
 

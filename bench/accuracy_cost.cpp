@@ -346,7 +346,7 @@ std::vector<Row> run_kernel(const BenchKernel& b, const std::vector<std::string>
       if (!why_not_here.empty()) {
         v.row.unavailable = "backend not available here: " + why_not_here;
       } else if (!be.supports(a)) {
-        v.row.unavailable = name == "glsl" ? "GLSL kernels compute in binary32 (no double mode)"
+        v.row.unavailable = name.rfind("glsl", 0) == 0 ? "GLSL kernels compute in binary32 (no double mode)"
                                            : "the device has no double precision";
       } else {
         CompileOptions opt;

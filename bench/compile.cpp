@@ -1,7 +1,7 @@
 // rill-bench-compile: what a kernel costs before and around its work (issue 17): launch
 // overhead, the cost of a loop() pass, and cold and warm compiles as a new process.
 //
-//   rill-bench-compile [--sections launch,compile] [--backends all|cpu,simd,opencl,glsl]
+//   rill-bench-compile [--sections launch,compile] [--backends all|cpu,simd,opencl,glsl,glsl-compute]
 //                      [--launches N] [--passes N] [--reps R]
 //                      [--kernels mandelbrot,raytracer,ifs400] [--scene builtin:thesis-a]
 //
@@ -377,7 +377,7 @@ bool run_compile(const Options& o) {
 [[noreturn]] void usage_error(const std::string& msg) {
   std::fprintf(stderr,
                "rill-bench-compile: %s\n"
-               "options: --sections launch,compile  --backends all|cpu,simd,opencl,glsl\n"
+               "options: --sections launch,compile  --backends all|cpu,simd,opencl,glsl,glsl-compute\n"
                "         --launches N  --passes N  --reps R  --kernels "
                "mandelbrot,raytracer,ifs400  --scene builtin:NAME\n",
                msg.c_str());

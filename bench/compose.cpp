@@ -293,7 +293,7 @@ bool run_connect(const Options& o) {
 [[noreturn]] void usage_error(const std::string& msg) {
   std::fprintf(stderr,
                "rill-bench-compose: %s\n"
-               "options: --sections blur,reduce,connect  --backends all|cpu,simd,opencl,glsl\n"
+               "options: --sections blur,reduce,connect  --backends all|cpu,simd,opencl,glsl,glsl-compute\n"
                "         --reps R  --size WxH  --reduce-n N  --connect-n N\n",
                msg.c_str());
   std::exit(2);

@@ -214,7 +214,7 @@ int parent(const std::vector<std::string>& wanted, const std::string& size, int 
 
 int usage() {
   std::fprintf(stderr,
-               "usage: rill-bench-shaders [--backends cpu,simd,opencl,glsl] [--size WxH] "
+               "usage: rill-bench-shaders [--backends cpu,simd,opencl,glsl,glsl-compute] [--size WxH] "
                "[--reps 5] [--runs 3]\n");
   return 2;
 }

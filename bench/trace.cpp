@@ -1,7 +1,7 @@
 // rill-bench-trace: the ray tracer's benchmarks (issue #6, docs/raytracer.md, Performance).
 //
 //   rill-bench-trace [--sections throughput,embree,grid,depth,spec] [--size WxH]
-//                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends all|cpu,simd,opencl,glsl]
+//                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends all|cpu,simd,opencl,glsl,glsl-compute]
 //                    [--repeats R] [--subgrids N|off] [--grid-density D] [--grid-scene S] [--grids
 //                    auto,16,32,...]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu] [--md F] [--csv F]
@@ -567,7 +567,7 @@ int main(int argc, char** argv) {
   app.add_option("--size", o.size, "image size WxH")->default_str(o.size);
   app.add_option("--scenes", o.scenes, "comma list: builtin:NAME, OBJ or JSON files")
       ->default_str(o.scenes);
-  app.add_option("--backends", o.backends, "all, or a comma list of cpu,simd,opencl,glsl")
+  app.add_option("--backends", o.backends, "all, or a comma list of cpu,simd,opencl,glsl,glsl-compute")
       ->default_str(o.backends);
   app.add_option("--repeats", o.repeats, "timed repeats (medians)")
       ->check(CLI::Range(1, 1000))

@@ -68,9 +68,9 @@ int show_cache(bool clear) {
     all.bytes += e.bytes;
   }
   for (const auto& [backend, t] : per_backend)
-    std::printf("  %-8s %6zu entries  %10s\n", backend.c_str(), t.entries,
+    std::printf("  %-12s %6zu entries  %10s\n", backend.c_str(), t.entries,
                 megabytes(t.bytes).c_str());
-  std::printf("  %-8s %6zu entries  %10s\n", "total", all.entries, megabytes(all.bytes).c_str());
+  std::printf("  %-12s %6zu entries  %10s\n", "total", all.entries, megabytes(all.bytes).c_str());
   return 0;
 }
 
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
     if (cache) return show_cache(clear);
     for (rill::Backend* b : rill::backends()) {
       std::string why = b->unavailable_reason();
-      std::printf("%-8s %-4s %s\n", b->name().c_str(), why.empty() ? "ok" : "--",
+      std::printf("%-12s %-4s %s\n", b->name().c_str(), why.empty() ? "ok" : "--",
                   why.empty() ? b->description().c_str() : why.c_str());
     }
 #ifdef RILL_HAVE_OPENCL

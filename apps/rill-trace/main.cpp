@@ -1,6 +1,6 @@
 // rill-trace: the Rill ray tracer's command line.
 //
-//   rill-trace render SCENE [--backend cpu|simd|opencl|glsl] [--accuracy strict|fast|double]
+//   rill-trace render SCENE [--backend cpu|simd|opencl|glsl|glsl-compute] [--accuracy strict|fast|double]
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
 //                           [--grid N|auto] [--grid-density D] [--subgrids N|off]
@@ -351,7 +351,7 @@ int main(int argc, char** argv) {
   RenderOptions ro;
   CLI::App* r = app.add_subcommand("render", "render a scene");
   r->add_option("scene", ro.scene, "JSON scene, OBJ file or builtin:NAME")->required();
-  r->add_option("--backend", ro.backend, "cpu, simd, opencl or glsl")->default_str("cpu");
+  r->add_option("--backend", ro.backend, "cpu, simd, opencl, glsl or glsl-compute")->default_str("cpu");
   r->add_option("--accuracy", ro.accuracy, "strict, fast or double")->default_str("strict");
   r->add_option("--size", ro.size, "image size WxH (default: the scene's)");
   r->add_option("--out", ro.out, "PNG output (sRGB)");

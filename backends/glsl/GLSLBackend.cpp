@@ -22,12 +22,7 @@
 // layout(early_fragment_tests) is not used: it would make the occlusion query count
 // fragments the kernel then discards.
 //
-// Rill's disk cache (cache/DiskCache.h) keeps each pass's linked program as a program binary
-// (glGetProgramBinary), keyed by GL_VENDOR, GL_RENDERER, GL_VERSION and the shaders' source,
-// and loads it with glProgramBinary; a binary the driver refuses (GL_LINK_STATUS false) is
-// removed and the shaders compiled again. Drivers that offer no binary format
-// (GL_NUM_PROGRAM_BINARY_FORMATS 0) always compile: Mesa offers one only while its own shader
-// disk cache is on, so with MESA_SHADER_CACHE_DISABLE=true (.ci/run) nothing is cached here.
+// The context, its shutdown at exit and the disk cache of program binaries: GLSession.h.
 #include "GLSLBackend.h"
 
 #include <algorithm>
@@ -39,9 +34,9 @@
 #include <tuple>
 #include <vector>
 
-#include "../cache/DiskCache.h"
 #include "../codegen/SourceText.h"
 #include "GLContext.h"
+#include "GLSession.h"
 #include "GLSLEmitter.h"
 #include "WarmUpLaunch.h"
 #include "rill/Parameters.h"
@@ -84,45 +79,7 @@ Shape shape_of(int64_t count) {
   return s;
 }
 
-// The GL context and its lock, shared (std::shared_ptr) by the backend, its kernels and the
-// textures of streams and arrays.
-//
-// Why shared, and why the backend shuts down explicitly: at exit, static destructors run in
-// an order of their own (the kernel cache, the backend registry, streams and arrays kept in
-// statics), and the GL library, loaded with dlopen at first use, tears itself down from its
-// own exit handlers. So:
-//   - right after the backend makes its context (the library is loaded by then), it registers
-//     an exit handler (std::atexit). Exit handlers run last-registered first, so this one runs
-//     before every handler the library registered while loading and making the context; it
-//     calls GLSLBackend::shutdown(), which deletes the backend's GL objects and destroys the
-//     context while GL still works. A handler the driver registers later still runs first:
-//     Mesa's thread queues register theirs at their first use (a shader compile, say) and only
-//     stop their threads there, after which destroying the context is still safe (every glsl
-//     test process, and the NVIDIA EGL runs, exit cleanly);
-//   - a texture or kernel destroyed after that (or after the backend itself) holds this
-//     session, not the backend: it finds `context` null under the lock and skips its GL
-//     calls. Destroying the context already freed every object made in it;
-//   - the backend's destructor calls shutdown() as well; the second call does nothing.
-struct Session {
-  // Recursive: replacing a stream's texture inside a launch releases the old one.
-  std::recursive_mutex mutex;
-  std::unique_ptr<GLContext> context;  // null before the first use and after shutdown
-
-  // Under the lock: the context, made current on this thread; null after shutdown. Never
-  // throws (for destructors): null also when the context cannot be made current here.
-  const GL* current_if_alive() noexcept {
-    if (!context) return nullptr;
-    try {
-      context->make_current();
-    } catch (const Error&) {
-      return nullptr;
-    }
-    return &context->gl();
-  }
-};
-
 class GLSLBackend;
-void shut_down_at_exit(GLSLBackend* b);
 
 struct Texture : detail::DeviceBuffer {
   std::shared_ptr<Session> session;
@@ -184,7 +141,7 @@ class GLSLKernel : public CompiledKernel {
   std::vector<GLint> shapes_;
 };
 
-class GLSLBackend : public Backend {
+class GLSLBackend : public Backend, public SessionOwner {
  public:
   // Backends live in the registry until exit; the exit handler has normally shut this one
   // down by then.
@@ -204,9 +161,9 @@ class GLSLBackend : public Backend {
     std::string why = unavailable_reason();
     if (!why.empty()) return "glsl: unavailable: " + why;
     auto* self = const_cast<GLSLBackend*>(this);
-    return "glsl: " + self->context().kind() + ", " + self->context().renderer +
-           "; strict / and sqrt: " + divsqrt_name(self->divsqrt_) + "; disk cache: " +
-           (self->binary_formats_ > 0
+    return "glsl: fragment shaders; " + self->context().kind() + ", " + self->context().renderer +
+           "; strict / and sqrt: " + divsqrt_name(self->driver_.divsqrt) + "; disk cache: " +
+           (self->driver_.binary_formats > 0
                 ? std::string("program binaries")
                 : std::string("none (the driver offers no program binary format)"));
   }
@@ -231,12 +188,14 @@ class GLSLBackend : public Backend {
       for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group));
            ++i)
         p.outputs.push_back(static_cast<int>(i));
-      GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, divsqrt_);
+      GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, driver_.divsqrt);
       codegen_ms += stage.lap();
       p.source = std::move(shader.source);
       p.constants = std::move(shader.constants);
       bool cached = false;
-      p.program = link_cached(gl, f.name, p.source, cached);
+      p.program = link_program_cached(
+          gl, driver_, "glsl", "GLSL backend", f.name,
+          {{GL_VERTEX_SHADER, vertex_shader()}, {GL_FRAGMENT_SHADER, p.source}}, cached);
       all_cached = all_cached && cached;
       link_ms += stage.lap();
       passes.push_back(std::move(p));
@@ -274,17 +233,17 @@ class GLSLBackend : public Backend {
     return c.gl();
   }
 
-  static void check(const GL& gl, const char* what) {
-    GLenum e = gl.glGetError();
-    if (e != GL_NO_ERROR)
-      throw Error(std::string("GLSL backend: OpenGL error 0x") + hex(e) + " while " + what);
-  }
+  static void check(const GL& gl, const char* what) { glsl::check(gl, what); }
 
   // The texture holding s, current with the host copy.
   Texture& to_device(const GL& gl, detail::Storage& s) {
     auto* t = s.device_buffer<Texture>(this);
     if (t && s.is_device_current(this)) return *t;
+    // The freshest copy may be another backend's, read back now: with the other GLSL
+    // backend, through its own context, so this one is made current again.
     const uint32_t* host = s.host_data_for_read();
+    current();
+    t = s.device_buffer<Texture>(this);
     Format fmt = format_of(s.type());
     Shape shape = shape_of(s.count());
     if (!t || t->fmt.internal != fmt.internal || t->shape.row != shape.row ||
@@ -296,6 +255,7 @@ class GLSLBackend : public Backend {
       fresh->tex = new_texture(gl, fmt, shape);
       t = fresh.get();
       s.set_device_buffer(this, std::move(fresh));
+      current();  // releasing another backend's copy may have made its context current
     }
     std::vector<uint32_t> padded(static_cast<size_t>(shape.row) * static_cast<size_t>(shape.rows) *
                                  static_cast<size_t>(fmt.channels));
@@ -362,7 +322,7 @@ class GLSLBackend : public Backend {
   // discard) the elements whose state is one of rill_values[0 .. rill_nvalues).
   GLuint mask_program(const GL& gl) {
     if (mask_program_ == 0)
-      mask_program_ = link(gl, "rill_mask",
+      mask_program_ = link_program(gl, driver_, "GLSL backend", "rill_mask", {{GL_VERTEX_SHADER, vertex_shader()}, {GL_FRAGMENT_SHADER,
                            "#version 430 core\n"
                            "// Rill: the stencil mask of a masked launch.\n"
                            "uniform isampler2D rill_state;\n"
@@ -380,7 +340,7 @@ class GLSLBackend : public Backend {
                                "  for (int k = 0; k < rill_nvalues; ++k) selected = selected || s "
                                "== rill_values[k];\n"
                                "  if (!selected) discard;\n"
-                               "}\n");
+                               "}\n"}});
     return mask_program_;
   }
 
@@ -390,110 +350,16 @@ class GLSLBackend : public Backend {
   int max_texture_units() const { return max_units_; }
 
  private:
-  static std::string hex(GLenum e) {
-    char buf[16];
-    std::snprintf(buf, sizeof buf, "%04x", e);
-    return buf;
-  }
-
-  GLuint link(const GL& gl, const std::string& name, const std::string& fragment) {
-    auto compile_one = [&](GLenum kind, const std::string& src) {
-      GLuint sh = gl.glCreateShader(kind);
-      const char* text = src.c_str();
-      gl.glShaderSource(sh, 1, &text, nullptr);
-      gl.glCompileShader(sh);
-      GLint ok = 0;
-      gl.glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-      if (!ok) {
-        GLint n = 0;
-        gl.glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &n);
-        std::string log(static_cast<size_t>(std::max(n, 1)), '\0');
-        gl.glGetShaderInfoLog(sh, n, nullptr, log.data());
-        gl.glDeleteShader(sh);
-        throw Error("GLSL backend: the driver (" + session_->context->renderer +
-                    ") rejected the shader of kernel '" + name + "':\n" + log +
-                    "\ngenerated source:\n" + codegen::numbered(src));
-      }
-      return sh;
-    };
-    GLuint vs = compile_one(GL_VERTEX_SHADER, vertex_shader());
-    GLuint fs = compile_one(GL_FRAGMENT_SHADER, fragment);
-    GLuint prog = gl.glCreateProgram();
-    if (binary_formats_ > 0)
-      gl.glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
-    gl.glAttachShader(prog, vs);
-    gl.glAttachShader(prog, fs);
-    gl.glLinkProgram(prog);
-    gl.glDeleteShader(vs);
-    gl.glDeleteShader(fs);
-    GLint ok = 0;
-    gl.glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-      GLint n = 0;
-      gl.glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &n);
-      std::string log(static_cast<size_t>(std::max(n, 1)), '\0');
-      gl.glGetProgramInfoLog(prog, n, nullptr, log.data());
-      gl.glDeleteProgram(prog);
-      throw Error("GLSL backend: linking kernel '" + name + "' failed:\n" + log +
-                  "\ngenerated source:\n" + codegen::numbered(fragment));
-    }
-    return prog;
-  }
-
-  // link(), through Rill's disk cache of program binaries (see the top of this file).
-  // `from_cache`: the program was loaded from a cached binary.
-  GLuint link_cached(const GL& gl, const std::string& name, const std::string& fragment,
-                     bool& from_cache) {
-    from_cache = false;
-    // No binary format (Mesa without its shader cache): compile every time.
-    if (binary_formats_ <= 0) return link(gl, name, fragment);
-    const std::string key =
-        "backend=glsl\n" + cache_identity_ + cache::source_line(vertex_shader() + "\n" + fragment);
-    std::optional<std::string> binary = cache::load("glsl", key);
-    if (binary && binary->size() > sizeof(GLenum)) {
-      GLenum format = 0;
-      std::memcpy(&format, binary->data(), sizeof format);
-      GLuint prog = gl.glCreateProgram();
-      gl.glProgramBinary(prog, format, binary->data() + sizeof format,
-                         static_cast<GLsizei>(binary->size() - sizeof format));
-      GLint ok = 0;
-      gl.glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-      // A format this driver does not know raises GL_INVALID_ENUM: a refused binary.
-      for (int i = 0; i < 8 && gl.glGetError() != GL_NO_ERROR; ++i) ok = 0;
-      if (ok) {
-        from_cache = true;
-        return prog;
-      }
-      gl.glDeleteProgram(prog);
-      cache::remove("glsl", key);
-    }
-    GLuint prog = link(gl, name, fragment);
-    GLint length = 0;
-    gl.glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &length);
-    if (length > 0) {
-      std::string payload(sizeof(GLenum) + static_cast<size_t>(length), '\0');
-      GLenum format = 0;
-      GLsizei got = 0;
-      gl.glGetProgramBinary(prog, length, &got, &format, payload.data() + sizeof format);
-      if (gl.glGetError() == GL_NO_ERROR && got > 0) {
-        std::memcpy(payload.data(), &format, sizeof format);
-        payload.resize(sizeof format + static_cast<size_t>(got));
-        cache::store("glsl", key, payload);
-      }
-    }
-    return prog;
-  }
-
   GLContext& context() {
     std::lock_guard<std::recursive_mutex> lock(mutex());
     return context_locked();
   }
 
  public:
-  // Deletes the backend's GL objects and destroys the context (see Session): called by the
+  // Deletes the backend's GL objects and destroys the context (see GLSession.h): called by the
   // exit handler and the destructor, from any thread; the second call does nothing. Objects
   // it cannot delete (the context not current here) go with the context.
-  void shutdown() noexcept {
+  void shutdown() noexcept override {
     std::lock_guard<std::recursive_mutex> lock(mutex());
     if (const GL* gl = session_->current_if_alive()) {
       for (auto& [size, rb] : stencils_) gl->glDeleteRenderbuffers(1, &rb);
@@ -528,14 +394,7 @@ class GLSLBackend : public Backend {
       if (const char* force = std::getenv("RILL_GL_MAX_DRAW_BUFFERS"))  // to test pass splitting
         max_draw_buffers_ = std::clamp(std::atoi(force), 1, max_draw_buffers_);
       max_units_ = units;
-      gl.glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &binary_formats_);
-      auto str = [&](GLenum e) {
-        const GLubyte* s = gl.glGetString(e);
-        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
-      };
-      cache_identity_ = "vendor=" + str(GL_VENDOR) + "\nrenderer=" + str(GL_RENDERER) +
-                        "\ndriver=" + str(GL_VERSION) + "\n";
-      divsqrt_ = divsqrt_mode(c->renderer);
+      driver_ = describe_driver(gl, c->renderer);
       gl.glGenFramebuffers(1, &fbo_);
       gl.glGenVertexArrays(1, &vao_);
       gl.glGenQueries(1, &query_);
@@ -546,7 +405,7 @@ class GLSLBackend : public Backend {
       ss.context = std::move(c);
       started_ = true;
       // The GL library is loaded now: an exit handler registered after it runs before the
-      // library's own (see Session).
+      // library's own (see GLSession.h).
       shut_down_at_exit(this);
     } catch (const Error& e) {
       init_error_ = e.what();
@@ -560,9 +419,7 @@ class GLSLBackend : public Backend {
   bool started_ = false;  // a context was made (and, if session_ has none now, shut down)
   std::string init_error_;
   int max_draw_buffers_ = 1, max_units_ = 16;
-  GLint binary_formats_ = 0;    // GL_NUM_PROGRAM_BINARY_FORMATS: 0, no disk cache of programs
-  std::string cache_identity_;  // the driver, as disk cache key lines
-  DivSqrt divsqrt_ = DivSqrt::Native;  // how strict kernels divide (DivSqrt.h)
+  Driver driver_;
   GLuint fbo_ = 0, vao_ = 0, query_ = 0;
   GLuint mask_program_ = 0;
   std::map<std::pair<int, int>, GLuint> stencils_;
@@ -571,34 +428,8 @@ class GLSLBackend : public Backend {
   std::map<std::tuple<GLenum, int, int>, std::vector<GLuint>> copy_pool_;
 };
 
-// The backends that have made a context, for the exit handler. Globals, constructed before
-// main: they are destroyed after every exit handler registered later has run.
-std::mutex g_live_mutex;
-std::vector<GLSLBackend*> g_live;
-
-void shut_down_live_backends() {
-  std::vector<GLSLBackend*> live;
-  {
-    std::lock_guard<std::mutex> lock(g_live_mutex);
-    live.swap(g_live);
-  }
-  for (GLSLBackend* b : live) b->shutdown();
-}
-
-void shut_down_at_exit(GLSLBackend* b) {
-  static std::once_flag registered;
-  {
-    std::lock_guard<std::mutex> lock(g_live_mutex);
-    g_live.push_back(b);
-  }
-  std::call_once(registered, [] { std::atexit(shut_down_live_backends); });
-}
-
 GLSLBackend::~GLSLBackend() {
-  {
-    std::lock_guard<std::mutex> lock(g_live_mutex);
-    g_live.erase(std::remove(g_live.begin(), g_live.end(), this), g_live.end());
-  }
+  forget_at_exit(this);
   shutdown();
 }
 

@@ -1,9 +1,21 @@
-// Emits a kernel as a GLSL 4.30 fragment shader (the thesis's stream model).
+// Emits a kernel as GLSL 4.30, for either stage of the GLSL backends: a fragment shader (the
+// thesis's stream model, backend `glsl`) or a compute shader (`glsl-compute`). The body, the
+// helpers and the strict-mode rules are the same for both; the stages differ only in where
+// elements, streams and arrays come from and go to (the Stage switches in GLSLDialect and
+// the two emit_ functions at the end).
 //
-// One fragment per stream element: the element index comes from gl_FragCoord over a
+// Fragment stage: one fragment per stream element: the element index comes from gl_FragCoord over a
 // texture laid out in rows of `rill_row` texels. Inputs, the outputs' previous values and
 // arrays are textures read with texelFetch; outputs are render targets; RILL_DISCARD is
 // `discard`, and the occlusion query counts what was written.
+//
+// Compute stage: one invocation per element, numbered from gl_GlobalInvocationID. Streams
+// are shader storage buffers holding the host's words as they are (rill_in0.d[i * width +
+// c]); arrays, and streams gathered from, are buffer textures read with texelFetch (one
+// fetch per element, through the texture cache); RILL_DISCARD returns before the outputs
+// are stored, and the elements written (and, in a masked launch, selected) are counted with
+// atomics on a small storage buffer, one per subgroup where GL_KHR_shader_subgroup_ballot
+// exists.
 //
 // The body is printed by the shared C-family printer (scalarized, like the C and OpenCL
 // dialects); GLSL gets its own helper definitions because it has no casts or typedefs.
@@ -55,10 +67,14 @@ float rill_sel_f(bool c, float a, float b) { return intBitsToFloat(c ? floatBits
 // Ordered comparisons on bit patterns: shader compilers may assume no NaN and rewrite
 // comparisons (a > b into !(a <= b)). key() orders floats as integers, -0 equal to +0.
 bool rill_isnan(float x) { return (floatBitsToInt(x) & 0x7fffffff) > 0x7f800000; }
-// Denormals compare as zero, as the arithmetic of flushing GPUs and llvmpipe treats them.
+// Where the arithmetic flushes denormals (RILL_FLUSHES_DENORMALS: GPUs, llvmpipe's fragment
+// shaders), they compare as zero too; elsewhere (llvmpipe's compute shaders) they order as
+// IEEE says, as on the CPU.
 int rill_key(float x) {
   int b = floatBitsToInt(x);
+#if RILL_FLUSHES_DENORMALS
   if ((b & 0x7f800000) == 0) return 0;
+#endif
   return b >= 0 ? b : int(0x80000000u) - b;
 }
 bool rill_lt(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) < rill_key(b); }
@@ -129,8 +145,8 @@ const char kComp[] = "xyzw";
 
 class GLSLDialect : public codegen::Dialect {
  public:
-  GLSLDialect(Accuracy a, const std::vector<int>& pass_outputs)
-      : strict_(a != Accuracy::Fast), pass_outputs_(pass_outputs) {}
+  GLSLDialect(Accuracy a, Stage stage, const std::vector<int>& pass_outputs)
+      : strict_(a != Accuracy::Fast), stage_(stage), pass_outputs_(pass_outputs) {}
 
   // Strict: through rill_div_f, correctly rounded on every driver (DivSqrt.h).
   std::string float_div(const std::string& a, const std::string& b) const override {
@@ -179,7 +195,10 @@ class GLSLDialect : public codegen::Dialect {
     return "?";
   }
   std::string loop_header() const override { return "while (true)"; }
-  std::string discard() const override { return "discard;"; }
+  // Compute: returning before the stores at the end of main leaves the outputs as they were.
+  std::string discard() const override {
+    return stage_ == Stage::Fragment ? "discard;" : "return;";
+  }
   std::string float_qualifier() const override { return strict_ ? "precise " : ""; }
 
   std::string initial_value(const Function& f, VarId v, int c) const override {
@@ -210,9 +229,12 @@ class GLSLDialect : public codegen::Dialect {
     if (index.size() > 2)
       lin += " + " + dim(0) + " * " + dim(1) + " * " + fn + "(" + index[2] + ", " + dim(2) + ")";
     const char* vec = a.elem.is_float() ? "vec4" : "ivec4";
-    // The array's own row length (its texture's width), not the launch's.
-    std::string out = "{\n  int g = " + lin + ";\n  int w = textureSize(rill_arr" + id + ", 0).x;\n  " + vec +
-                      " e = texelFetch(rill_arr" + id + ", ivec2(g % w, g / w), 0);\n";
+    std::string out = "{\n  int g = " + lin + ";\n";
+    if (stage_ == Stage::Fragment)  // the array's own row length (its texture's width)
+      out += "  int w = textureSize(rill_arr" + id + ", 0).x;\n  " + std::string(vec) +
+             " e = texelFetch(rill_arr" + id + ", ivec2(g % w, g / w), 0);\n";
+    else  // a buffer texture: element g is texel g
+      out += "  " + std::string(vec) + " e = texelFetch(rill_arr" + id + ", g);\n";
     const bool border = a.boundary == Boundary::Constant;
     if (border) {
       std::string inside;
@@ -253,6 +275,7 @@ class GLSLDialect : public codegen::Dialect {
 
  private:
   bool strict_;
+  Stage stage_;
   std::vector<int> pass_outputs_;
 };
 
@@ -270,31 +293,83 @@ std::string vertex_shader() {
          "}\n";
 }
 
+namespace {
+
+// What both stages print the same way.
+// `extensions`: #extension lines, which must precede everything but preprocessor lines.
+std::string header(const Function& f, Accuracy accuracy, const char* stage, const std::string& extensions = "") {
+  std::string src = "#version 430 core\n" + extensions + "// Generated by Rill from kernel '" +
+                    codegen::comment_safe(f.name) + "' (" + accuracy_name(accuracy) + ", " + stage + " stage).\n";
+  src += accuracy == Accuracy::Fast ? "#define RILL_PRECISE\n#define RILL_ONE 1.0\n"
+                                    : "#define RILL_PRECISE precise\n#define RILL_ONE uintBitsToFloat(rill_one)\nuniform uint rill_one;\n";
+  return src;
+}
+
+// The launch's uniforms: strict constants, the kernel's uniform words, array shapes.
+std::string uniform_declarations(const Function& f, const GLSLDialect& d) {
+  std::string src;
+  if (!d.constants.empty()) src += "uniform uint rill_k[" + std::to_string(d.constants.size()) + "];\n";
+  if (!f.uniforms.empty()) src += "uniform uint rill_u[" + std::to_string(f.uniforms.size() * 4) + "];\n";
+  if (!f.arrays.empty()) src += "uniform int rill_shapes[" + std::to_string(f.arrays.size() * 3) + "];\n";
+  src += "uniform int rill_count;\nuniform int rill_width;\n";
+  return src;
+}
+
+std::string helper_definitions(Accuracy accuracy, DivSqrt divsqrt, bool flushes_denormals) {
+  return std::string("#define RILL_FLUSHES_DENORMALS ") + (flushes_denormals ? "1" : "0") + "\n" +
+         (accuracy == Accuracy::Fast ? std::string(kFastDivSqrt) : divsqrt_helpers(divsqrt)) + kHelpers;
+}
+
+// The kernel's uniforms as named scalars, at the top of main.
+std::string unpack_uniforms(const Function& f, const GLSLDialect& d) {
+  std::string src;
+  for (size_t i = 0; i < f.uniforms.size(); ++i) {
+    const Variable& v = f.var(f.uniforms[i]);
+    for (int c = 0; c < v.type.width; ++c) {
+      std::string word = "rill_u[" + std::to_string(i * 4 + static_cast<size_t>(c)) + "]";
+      std::string value = v.type.is_float() ? "uintBitsToFloat(" + word + ")"
+                          : v.type.is_int() ? "int(" + word + ")"
+                                            : "(" + word + " != 0u)";
+      src += "  " + d.float_qualifier() + d.scalar_type(v.type.kind) + " u" + std::to_string(i) + "_" +
+             std::to_string(c) + " = " + value + ";\n";
+    }
+  }
+  return src;
+}
+
+// The final value of output o as a vec4 / ivec4 constructor's arguments.
+std::string output_components(const Function& f, const codegen::CFamilyPrinter& p, int o) {
+  VarId v = f.outputs[static_cast<size_t>(o)];
+  const Variable& var = f.var(v);
+  std::string parts;
+  for (int c = 0; c < 4; ++c)
+    parts += (c ? ", " : "") + (c < var.type.width ? p.component(v, c) : std::string(var.type.is_float() ? "0.0" : "0"));
+  return parts;
+}
+
+}  // namespace
+
 GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs, DivSqrt divsqrt) {
-  GLSLDialect d(accuracy, outputs);
+  GLSLDialect d(accuracy, Stage::Fragment, outputs);
   codegen::CFamilyPrinter p(f, d);
   // The body first: printing it collects the constants that the declarations need.
   std::string body = p.declarations(1) + p.body(1);
-  std::string src = "#version 430 core\n// Generated by Rill from kernel '" + codegen::comment_safe(f.name) + "' (" + accuracy_name(accuracy) + ").\n";
-  src += accuracy == Accuracy::Fast ? "#define RILL_PRECISE\n#define RILL_ONE 1.0\n"
-                                    : "#define RILL_PRECISE precise\n#define RILL_ONE uintBitsToFloat(rill_one)\nuniform uint rill_one;\n";
+  std::string src = header(f, accuracy, "fragment");
   for (size_t i = 0; i < f.inputs.size(); ++i)
     src += "uniform " + sampler(f.var(f.inputs[i]).type.kind) + " rill_in" + std::to_string(i) + ";\n";
   for (int o : outputs)
     src += "uniform " + sampler(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) + " rill_prev" + std::to_string(o) + ";\n";
-  if (!d.constants.empty()) src += "uniform uint rill_k[" + std::to_string(d.constants.size()) + "];\n";
   for (size_t i = 0; i < f.arrays.size(); ++i)
     src += "uniform " + sampler(f.arrays[i].elem.kind) + " rill_arr" + std::to_string(i) + ";\n";
-  if (!f.uniforms.empty()) src += "uniform uint rill_u[" + std::to_string(f.uniforms.size() * 4) + "];\n";
-  if (!f.arrays.empty()) src += "uniform int rill_shapes[" + std::to_string(f.arrays.size() * 3) + "];\n";
-  src += "uniform int rill_count;\nuniform int rill_row;\nuniform int rill_width;\n";
+  src += uniform_declarations(f, d);
+  src += "uniform int rill_row;\n";
   for (size_t k = 0; k < outputs.size(); ++k) {
     int o = outputs[k];
     src += "layout(location = " + std::to_string(k) + ") out " + vec4_of(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) +
            " rill_out" + std::to_string(o) + ";\n";
   }
-  src += accuracy == Accuracy::Fast ? std::string(kFastDivSqrt) : divsqrt_helpers(divsqrt);
-  src += kHelpers;
+  // Every driver's fragment stage that Rill has met flushes (NVIDIA, llvmpipe).
+  src += helper_definitions(accuracy, divsqrt, true);
   src += "\nvoid main() {\n";
   src += "  ivec2 rill_pos = ivec2(gl_FragCoord.xy);\n";
   src += "  int rill_i = rill_pos.y * rill_row + rill_pos.x;\n";
@@ -305,26 +380,97 @@ GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int
   for (int o : outputs)
     src += "  " + vec4_of(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) + " rill_prev" + std::to_string(o) +
            "_v = texelFetch(rill_prev" + std::to_string(o) + ", rill_pos, 0);\n";
-  for (size_t i = 0; i < f.uniforms.size(); ++i) {
-    const Variable& v = f.var(f.uniforms[i]);
-    for (int c = 0; c < v.type.width; ++c) {
-      std::string word = "rill_u[" + std::to_string(i * 4 + static_cast<size_t>(c)) + "]";
-      std::string value = v.type.is_float() ? "uintBitsToFloat(" + word + ")"
-                          : v.type.is_int() ? "int(" + word + ")"
-                                            : "(" + word + " != 0u)";
-      src += "  " + d.float_qualifier() + d.scalar_type(v.type.kind) + " u" + std::to_string(i) + "_" + std::to_string(c) +
-             " = " + value + ";\n";
-    }
-  }
+  src += unpack_uniforms(f, d);
   src += body;
-  for (int o : outputs) {
-    VarId v = f.outputs[static_cast<size_t>(o)];
-    const Variable& var = f.var(v);
+  for (int o : outputs)
+    src += "  rill_out" + std::to_string(o) + " = " + vec4_of(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) +
+           "(" + output_components(f, p, o) + ");\n";
+  src += "}\n";
+  return GLSLShader{src, d.constants};
+}
+
+ComputeBindings compute_bindings(const Function& f, size_t pass_outputs) {
+  ComputeBindings b;
+  b.inputs = 0;
+  b.outputs = static_cast<int>(f.inputs.size());
+  b.counts = b.outputs + static_cast<int>(pass_outputs);
+  b.mask = b.counts + 1;
+  return b;
+}
+
+GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::vector<int>& outputs, bool counts,
+                             DivSqrt divsqrt, bool flushes_denormals, int local_size) {
+  GLSLDialect d(accuracy, Stage::Compute, outputs);
+  codegen::CFamilyPrinter p(f, d);
+  std::string body = p.declarations(1) + p.body(1);
+  const ComputeBindings bind = compute_bindings(f, outputs.size());
+  // Counting one atomic per subgroup where the driver has ballots (NVIDIA, recent Mesa); an
+  // extension the driver lacks is a warning, and its macro stays undefined.
+  std::string src = header(f, accuracy, "compute",
+                           "#extension GL_KHR_shader_subgroup_basic : enable\n"
+                           "#extension GL_KHR_shader_subgroup_ballot : enable\n");
+  src += "layout(local_size_x = " + std::to_string(local_size) + ") in;\n";
+  auto block = [&](const std::string& name, int binding, ScalarKind k, bool readonly) {
+    return "layout(std430, binding = " + std::to_string(binding) + ") " + (readonly ? "readonly " : "") + "buffer " +
+           name + "_b { " + (k == ScalarKind::Float ? "float" : "int") + " d[]; } " + name + ";\n";
+  };
+  for (size_t i = 0; i < f.inputs.size(); ++i)
+    src += block("rill_in" + std::to_string(i), bind.inputs + static_cast<int>(i), f.var(f.inputs[i]).type.kind, true);
+  for (size_t k = 0; k < outputs.size(); ++k)
+    src += block("rill_out" + std::to_string(outputs[k]), bind.outputs + static_cast<int>(k),
+                 f.var(f.outputs[static_cast<size_t>(outputs[k])]).type.kind, false);
+  src += "layout(std430, binding = " + std::to_string(bind.counts) +
+         ") buffer rill_counts_b { uint written; uint selected; } rill_counts;\n";
+  src += block("rill_mask", bind.mask, ScalarKind::Int, true);
+  for (size_t i = 0; i < f.arrays.size(); ++i)
+    src += "layout(binding = " + std::to_string(i) + ") uniform " +
+           (f.arrays[i].elem.is_float() ? "samplerBuffer" : "isamplerBuffer") + " rill_arr" + std::to_string(i) + ";\n";
+  src += uniform_declarations(f, d);
+  src += "uniform int rill_values[" + std::to_string(kMaskValues) + "];\nuniform int rill_nvalues;  // 0: no mask\n";
+  src += R"(#if defined(GL_KHR_shader_subgroup_ballot)
+#define RILL_COUNT(field) { uvec4 rill_b = subgroupBallot(true); if (subgroupElect()) atomicAdd(rill_counts.field, subgroupBallotBitCount(rill_b)); }
+#else
+#define RILL_COUNT(field) atomicAdd(rill_counts.field, 1u)
+#endif
+)";
+  if (!counts) src += "#undef RILL_COUNT\n#define RILL_COUNT(field)  // counted by the kernel's first pass\n";
+  src += helper_definitions(accuracy, divsqrt, flushes_denormals);
+  src += "\nvoid main() {\n";
+  src += "  int rill_i = int(gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x);\n";
+  src += "  if (rill_i >= rill_count) return;  // past the last element\n";
+  src += "  if (rill_nvalues > 0) {  // a masked launch: only elements whose state is listed\n"
+         "    int rill_state = rill_mask.d[rill_i];\n"
+         "    bool rill_selected = false;\n"
+         "    for (int k = 0; k < rill_nvalues; ++k) rill_selected = rill_selected || rill_state == rill_values[k];\n"
+         "    if (!rill_selected) return;\n"
+         "    RILL_COUNT(selected);\n"
+         "  }\n";
+  // The element's inputs and outputs' previous values, as the fragment stage's texel reads.
+  auto load = [&](const std::string& buffer, const std::string& local, ir::Type t) {
     std::string parts;
     for (int c = 0; c < 4; ++c)
-      parts += (c ? ", " : "") + (c < var.type.width ? p.component(v, c) : std::string(var.type.is_float() ? "0.0" : "0"));
-    src += "  rill_out" + std::to_string(o) + " = " + vec4_of(var.type.kind) + "(" + parts + ");\n";
+      parts += (c ? ", " : "") +
+               (c < t.width ? buffer + ".d[rill_i * " + std::to_string(t.width) + " + " + std::to_string(c) + "]"
+                            : std::string(t.is_float() ? "0.0" : "0"));
+    return "  " + vec4_of(t.kind) + " " + local + " = " + vec4_of(t.kind) + "(" + parts + ");\n";
+  };
+  for (size_t i = 0; i < f.inputs.size(); ++i)
+    src += load("rill_in" + std::to_string(i), "rill_in" + std::to_string(i) + "_v", f.var(f.inputs[i]).type);
+  for (int o : outputs)
+    src += load("rill_out" + std::to_string(o), "rill_prev" + std::to_string(o) + "_v",
+                f.var(f.outputs[static_cast<size_t>(o)]).type);
+  src += unpack_uniforms(f, d);
+  src += body;
+  // Reached only where the element was not discarded.
+  for (int o : outputs) {
+    const ir::Type t = f.var(f.outputs[static_cast<size_t>(o)]).type;
+    const std::string v = "rill_v" + std::to_string(o);
+    src += "  " + vec4_of(t.kind) + " " + v + " = " + vec4_of(t.kind) + "(" + output_components(f, p, o) + ");\n";
+    for (int c = 0; c < t.width; ++c)
+      src += "  rill_out" + std::to_string(o) + ".d[rill_i * " + std::to_string(t.width) + " + " + std::to_string(c) +
+             "] = " + v + "." + kComp[c] + ";\n";
   }
+  src += "  RILL_COUNT(written);\n";
   src += "}\n";
   return GLSLShader{src, d.constants};
 }

@@ -1,4 +1,4 @@
-// Emits a kernel as a GLSL fragment shader (see GLSLEmitter.cpp).
+// Emits a kernel as a GLSL fragment or compute shader (see GLSLEmitter.cpp).
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,12 @@
 
 namespace rill::glsl {
 
+// The two stages the GLSL backends run kernels in: `glsl` and `glsl-compute`.
+enum class Stage { Fragment, Compute };
+
+// How many state values a masked compute launch can select (StateMask::kMaxValues).
+constexpr int kMaskValues = 8;
+
 struct GLSLShader {
   std::string source;
   std::vector<uint32_t> constants;  // bits of uniform uint rill_k[] (strict mode)
@@ -21,6 +27,25 @@ struct GLSLShader {
 // Strict kernels divide and take square roots as `divsqrt` says (DivSqrt.h).
 GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std::vector<int>& outputs,
                      DivSqrt divsqrt = DivSqrt::Native);
+// The compute shader computing `optimized` over `local_size` invocations per work group and
+// storing the outputs listed (indices into Function::outputs; a kernel with more outputs
+// than the driver has storage buffers runs in several passes, as on the fragment stage).
+// `counts`: this pass counts the elements written and selected (the first pass does).
+// Storage buffer bindings are compute_bindings(); array i is a buffer texture on unit i.
+// `flushes_denormals`: whether the driver's compute arithmetic flushes denormals (then
+// comparisons treat them as zero too, as on the fragment stage).
+GLSLShader emit_glsl_compute(const ir::Function& optimized, Accuracy accuracy,
+                             const std::vector<int>& outputs, bool counts, DivSqrt divsqrt,
+                             bool flushes_denormals, int local_size);
+// Where a compute pass's storage buffers are bound: inputs from `inputs` on, the pass's
+// outputs from `outputs` on, then the two counters (elements written, selected) and the
+// mask's states.
+struct ComputeBindings {
+  int inputs = 0, outputs = 0, counts = 0, mask = 0;
+  int total() const { return mask + 1; }
+};
+ComputeBindings compute_bindings(const ir::Function& f, size_t pass_outputs);
+
 // The vertex shader every kernel is drawn with.
 std::string vertex_shader();
 

@@ -37,6 +37,7 @@
 #include <tuple>
 #include <type_traits>
 #include <vector>
+#include "ParamName.h"
 
 namespace rill::testing {
 
@@ -180,7 +181,7 @@ class BackendTest : public ::testing::TestWithParam<std::string> {
 #define RILL_BACKEND_TEST_SUITE(Suite)                                        \
   INSTANTIATE_TEST_SUITE_P(                                                   \
       Backends, Suite, ::testing::ValuesIn(::rill::testing::backend_names()), \
-      [](const ::testing::TestParamInfo<std::string>& info) { return info.param; })
+      [](const ::testing::TestParamInfo<std::string>& info) { return ::rill::testing::param_name(info.param); })
 
 // ---- comparisons ----------------------------------------------------------------------------
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "Conformance.h"
+#include "ParamName.h"
 
 namespace {
 
@@ -133,7 +134,7 @@ TEST(FastBounds, MeasuredDriversAndOthers) {
 
 INSTANTIATE_TEST_SUITE_P(Suite, Conformance, ::testing::ValuesIn(params()),
                          [](const ::testing::TestParamInfo<Param>& info) {
-                           return info.param.backend + "_" +
+                           return rill::testing::param_name(info.param.backend) + "_" +
                                   rill::accuracy_name(info.param.accuracy);
                          });
 

@@ -26,6 +26,7 @@
 #include <sstream>
 
 #include "Harness.h"
+#include "ParamName.h"
 
 namespace rill::difftest {
 namespace {
@@ -222,7 +223,7 @@ TEST_P(Differential, RandomPrograms) {
 
 INSTANTIATE_TEST_SUITE_P(Backends, Differential, ::testing::ValuesIn(backend_names()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
-                           return info.param;
+                           return rill::testing::param_name(info.param);
                          });
 
 TEST(DifferentialCross, AllBackends) {

@@ -336,7 +336,7 @@ TEST_P(GridTraversal, FindsTheSameClosestHitAsBruteForce) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, GridTraversal, ::testing::ValuesIn(testing::backend_names()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
 
 }  // namespace
 }  // namespace rt

@@ -830,7 +830,7 @@ TEST_P(HardCases, RefractionAtTheCriticalAngleStaysFinite) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, HardCases, ::testing::ValuesIn(testing::backend_names()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
 
 }  // namespace
 }  // namespace rt

@@ -88,7 +88,7 @@ TEST_P(KnobsOnBackend, StrictIsIdenticalAcrossBackendsAndStrategies) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, KnobsOnBackend, ::testing::ValuesIn(testing::backend_names()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
 
 }  // namespace
 }  // namespace rt

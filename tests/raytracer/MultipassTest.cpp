@@ -93,7 +93,7 @@ TEST_P(Multipass, MaskingAndThresholdsKeepTheBitsAndStatsAreConsistent) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Multipass, ::testing::ValuesIn(testing::backend_names()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
 
 }  // namespace
 }  // namespace rt

@@ -295,7 +295,7 @@ TEST_P(Render, MultipassMatchesMegakernel) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Render, ::testing::ValuesIn(testing::backend_names()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
 
 }  // namespace
 }  // namespace rt

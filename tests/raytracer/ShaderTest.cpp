@@ -307,7 +307,7 @@ TEST_P(ShaderRender, TexturedUserShadersMatchCpuWithBothStrategies) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ShaderRender, ::testing::ValuesIn(testing::backend_names()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
 
 }  // namespace
 }  // namespace rt

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "rill/rt/scene/Scene.h"
+#include "ParamName.h"
 
 namespace rt::testing {
 
