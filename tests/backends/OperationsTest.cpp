@@ -861,3 +861,38 @@ RILL_BACKEND_TEST_SUITE(ConstantsTest);
 
 }  // namespace
 }  // namespace rill::testing
+
+namespace rill::testing {
+namespace {
+
+// A float made from an int constant (int_to_float(0), as_float of a literal) is a constant
+// to the driver's compiler too, which may fold it into the operations using it with rules
+// that are wrong for zeros, infinities and NaN (Mesa: x * 0.0 -> 0.0). With the optimizer
+// off the constants reach the backend unfolded; the results must still be IEEE's.
+TEST_P(OperationsTest, FloatsMadeFromIntConstantsAreNotFoldedByTheDriver) {
+  Program p = program("int_constants", [] {
+    Output<Float3> o("o");
+    Output<Float2> o2("o2");
+    Output<Float> nan_out("nan_out");
+    Float3 d = Float3(Float(o2.x()), Float(o2.y()), Float(o2.x())) / to_float(Int3(0));
+    o = Float3(Float(o.y()), Float(o.x()), Float(o.z())) / d;
+    nan_out = as_float(Int(0x7f800000)) * to_float(Int(0));  // inf * 0: NaN
+    o2 = Float2(Float(o2.x()), Float(o2.y()));
+  });
+  Kernel k = compile(p, Accuracy::Strict, PassOptions{false, false, false, false});
+  const float inf = std::numeric_limits<float>::infinity();
+  Stream<Float3> o(std::vector<glm::vec3>(37, {3343711.5f, -103.9f, -inf}));
+  Stream<Float2> o2(std::vector<glm::vec2>(37, {8.26980972f, -6.0f}));
+  Stream<Float> nan_out(37);
+  k.outputs(o, o2, nan_out);
+  k.execute();
+  const glm::vec3 r = o.download()[36];
+  // (-103.9 / inf, 3343711.5 / -inf, -inf / inf) in the order x, y, z of the swizzle.
+  EXPECT_EQ(bits_of(r.x), bits_of(-0.0f)) << show(r.x);
+  EXPECT_EQ(bits_of(r.y), bits_of(-0.0f)) << show(r.y);
+  EXPECT_TRUE(std::isnan(r.z)) << show(r.z);
+  EXPECT_TRUE(std::isnan(nan_out.download()[36])) << show(nan_out.download()[36]);
+}
+
+}  // namespace
+}  // namespace rill::testing
