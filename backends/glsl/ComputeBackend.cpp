@@ -158,7 +158,7 @@ class ComputeBackend : public Backend, public SessionOwner {
     auto* self = const_cast<ComputeBackend*>(this);
     const GLContext& c = self->context();
     return std::string(kName) + ": compute shaders; " + c.kind() + ", " + c.renderer +
-           "; strict / and sqrt: " + divsqrt_name(driver_.divsqrt) +
+           "; strict / and sqrt: " + divsqrt_name(driver_.rules.divsqrt) + ", comparisons: " + compare_name(driver_.rules.native_compare) +
            "; denormals: " + (flushes_denormals_ ? "flushed" : "kept") + "; " +
            std::to_string(limits_.storage_blocks) + " storage buffers, " +
            std::to_string(limits_.texture_units) + " array units; disk cache: " +
@@ -201,7 +201,7 @@ class ComputeBackend : public Backend, public SessionOwner {
            ++o)
         p.outputs.push_back(static_cast<int>(o));
       GLSLShader shader = emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(),
-                                            driver_.divsqrt, flushes_denormals_, local_size_);
+                                            driver_.rules, flushes_denormals_, local_size_);
       codegen_ms += stage.lap();
       bool cached = false;
       p.program = link_program_cached(gl, driver_, kName, kWho, f.name,

@@ -47,7 +47,7 @@ namespace rill::glsl {
 
 namespace {
 
-constexpr int64_t kMaxRow = 4096;
+constexpr int64_t kMaxRow = kTextureRow;  // GLSLEmitter.h
 
 struct Format {
   GLenum internal, format, type;
@@ -162,7 +162,8 @@ class GLSLBackend : public Backend, public SessionOwner {
     if (!why.empty()) return "glsl: unavailable: " + why;
     auto* self = const_cast<GLSLBackend*>(this);
     return "glsl: fragment shaders; " + self->context().kind() + ", " + self->context().renderer +
-           "; strict / and sqrt: " + divsqrt_name(self->driver_.divsqrt) + "; disk cache: " +
+           "; strict / and sqrt: " + divsqrt_name(self->driver_.rules.divsqrt) +
+           ", comparisons: " + compare_name(self->driver_.rules.native_compare) + "; disk cache: " +
            (self->driver_.binary_formats > 0
                 ? std::string("program binaries")
                 : std::string("none (the driver offers no program binary format)"));
@@ -188,7 +189,7 @@ class GLSLBackend : public Backend, public SessionOwner {
       for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group));
            ++i)
         p.outputs.push_back(static_cast<int>(i));
-      GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, driver_.divsqrt);
+      GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, driver_.rules);
       codegen_ms += stage.lap();
       p.source = std::move(shader.source);
       p.constants = std::move(shader.constants);

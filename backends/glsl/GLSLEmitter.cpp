@@ -77,9 +77,18 @@ int rill_key(float x) {
 #endif
   return b >= 0 ? b : int(0x80000000u) - b;
 }
+// RILL_NATIVE_COMPARE: the driver's own comparisons, on drivers whose comparisons the
+// conformance suite found IEEE-exact in strict kernels (NVIDIA); they cost far less than
+// the bit-pattern ones (the ray tracer's traversal compares a lot).
+#if RILL_NATIVE_COMPARE
+bool rill_lt(float a, float b) { return a < b; }
+bool rill_le(float a, float b) { return a <= b; }
+bool rill_eq(float a, float b) { return a == b; }
+#else
 bool rill_lt(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) < rill_key(b); }
 bool rill_le(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) <= rill_key(b); }
 bool rill_eq(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) == rill_key(b); }
+#endif
 float rill_min_f(float a, float b) { return rill_sel_f(rill_lt(b, a), b, a); }
 float rill_max_f(float a, float b) { return rill_sel_f(rill_lt(a, b), b, a); }
 float rill_sign_f(float x) {
@@ -233,9 +242,9 @@ class GLSLDialect : public codegen::Dialect {
       lin += " + " + dim(0) + " * " + dim(1) + " * " + fn + "(" + index[2] + ", " + dim(2) + ")";
     const char* vec = a.elem.is_float() ? "vec4" : "ivec4";
     std::string out = "{\n  int g = " + lin + ";\n";
-    if (stage_ == Stage::Fragment)  // the array's own row length (its texture's width)
-      out += "  int w = textureSize(rill_arr" + id + ", 0).x;\n  " + std::string(vec) +
-             " e = texelFetch(rill_arr" + id + ", ivec2(g % w, g / w), 0);\n";
+    if (stage_ == Stage::Fragment)  // rows of min(n, kTextureRow) texels: a shift and a mask
+      out += "  " + std::string(vec) + " e = texelFetch(rill_arr" + id + ", ivec2(g & " +
+             std::to_string(kTextureRow - 1) + ", g >> " + std::to_string(kTextureRowBits) + "), 0);\n";
     else  // a buffer texture: element g is texel g
       out += "  " + std::string(vec) + " e = texelFetch(rill_arr" + id + ", g);\n";
     const bool border = a.boundary == Boundary::Constant;
@@ -319,9 +328,10 @@ std::string uniform_declarations(const Function& f, const GLSLDialect& d) {
   return src;
 }
 
-std::string helper_definitions(Accuracy accuracy, DivSqrt divsqrt, bool flushes_denormals) {
-  return std::string("#define RILL_FLUSHES_DENORMALS ") + (flushes_denormals ? "1" : "0") + "\n" +
-         (accuracy == Accuracy::Fast ? std::string(kFastDivSqrt) : divsqrt_helpers(divsqrt)) + kHelpers;
+std::string helper_definitions(Accuracy accuracy, const DriverRules& rules, bool flushes_denormals) {
+  return std::string("#define RILL_NATIVE_COMPARE ") + (rules.native_compare ? "1" : "0") +
+         "\n#define RILL_FLUSHES_DENORMALS " + (flushes_denormals ? "1" : "0") + "\n" +
+         (accuracy == Accuracy::Fast ? std::string(kFastDivSqrt) : divsqrt_helpers(rules.divsqrt)) + kHelpers;
 }
 
 // The kernel's uniforms as named scalars, at the top of main.
@@ -353,7 +363,7 @@ std::string output_components(const Function& f, const codegen::CFamilyPrinter& 
 
 }  // namespace
 
-GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs, DivSqrt divsqrt) {
+GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs, const DriverRules& rules) {
   GLSLDialect d(accuracy, Stage::Fragment, outputs);
   codegen::CFamilyPrinter p(f, d);
   // The body first: printing it collects the constants that the declarations need.
@@ -373,7 +383,7 @@ GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int
            " rill_out" + std::to_string(o) + ";\n";
   }
   // Every driver's fragment stage that Rill has met flushes (NVIDIA, llvmpipe).
-  src += helper_definitions(accuracy, divsqrt, true);
+  src += helper_definitions(accuracy, rules, true);
   src += "\nvoid main() {\n";
   src += "  ivec2 rill_pos = ivec2(gl_FragCoord.xy);\n";
   src += "  int rill_i = rill_pos.y * rill_row + rill_pos.x;\n";
@@ -403,7 +413,7 @@ ComputeBindings compute_bindings(const Function& f, size_t pass_outputs) {
 }
 
 GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::vector<int>& outputs, bool counts,
-                             DivSqrt divsqrt, bool flushes_denormals, int local_size) {
+                             const DriverRules& rules, bool flushes_denormals, int local_size) {
   GLSLDialect d(accuracy, Stage::Compute, outputs);
   codegen::CFamilyPrinter p(f, d);
   std::string body = p.declarations(1) + p.body(1);
@@ -438,7 +448,7 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
 #endif
 )";
   if (!counts) src += "#undef RILL_COUNT\n#define RILL_COUNT(field)  // counted by the kernel's first pass\n";
-  src += helper_definitions(accuracy, divsqrt, flushes_denormals);
+  src += helper_definitions(accuracy, rules, flushes_denormals);
   src += "\nvoid main() {\n";
   src += "  int rill_i = int(gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + gl_GlobalInvocationID.x);\n";
   src += "  if (rill_i >= rill_count) return;  // past the last element\n";

@@ -14,8 +14,20 @@ namespace rill::glsl {
 // The two stages the GLSL backends run kernels in: `glsl` and `glsl-compute`.
 enum class Stage { Fragment, Compute };
 
+// The fragment stage's textures hold a stream or array of n elements in rows of
+// min(n, kTextureRow) texels, so element g is texel (g % kTextureRow, g / kTextureRow) for
+// every n (a row shorter than kTextureRow is the only row).
+constexpr int kTextureRowBits = 12;
+constexpr int kTextureRow = 1 << kTextureRowBits;
+
 // How many state values a masked compute launch can select (StateMask::kMaxValues).
 constexpr int kMaskValues = 8;
+
+// What the generated code does differently per driver (found by the conformance suite).
+struct DriverRules {
+  DivSqrt divsqrt = DivSqrt::Native;  // strict / and sqrt (DivSqrt.h)
+  bool native_compare = false;        // strict float comparisons: the driver's, or on bits
+};
 
 struct GLSLShader {
   std::string source;
@@ -24,9 +36,9 @@ struct GLSLShader {
 
 // The fragment shader computing `optimized` and writing the outputs listed (indices into
 // Function::outputs), at draw-buffer locations 0, 1, ... in that order.
-// Strict kernels divide and take square roots as `divsqrt` says (DivSqrt.h).
+// Strict kernels divide, take square roots and compare as `rules` says.
 GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std::vector<int>& outputs,
-                     DivSqrt divsqrt = DivSqrt::Native);
+                     const DriverRules& rules = {});
 // The compute shader computing `optimized` over `local_size` invocations per work group and
 // storing the outputs listed (indices into Function::outputs; a kernel with more outputs
 // than the driver has storage buffers runs in several passes, as on the fragment stage).
@@ -35,8 +47,8 @@ GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std
 // `flushes_denormals`: whether the driver's compute arithmetic flushes denormals (then
 // comparisons treat them as zero too, as on the fragment stage).
 GLSLShader emit_glsl_compute(const ir::Function& optimized, Accuracy accuracy,
-                             const std::vector<int>& outputs, bool counts, DivSqrt divsqrt,
-                             bool flushes_denormals, int local_size);
+                             const std::vector<int>& outputs, bool counts,
+                             const DriverRules& rules, bool flushes_denormals, int local_size);
 // Where a compute pass's storage buffers are bound: inputs from `inputs` on, the pass's
 // outputs from `outputs` on, then the two counters (elements written, selected) and the
 // mask's states.

@@ -35,8 +35,22 @@ Driver describe_driver(const GL& gl, const std::string& renderer_line) {
   gl.glGetIntegerv(GL_MAJOR_VERSION, &d.major);
   gl.glGetIntegerv(GL_MINOR_VERSION, &d.minor);
   gl.glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &d.binary_formats);
-  d.divsqrt = divsqrt_mode(renderer_line);
+  d.rules.divsqrt = divsqrt_mode(renderer_line);
+  d.rules.native_compare = native_compare_mode(renderer_line);
   return d;
+}
+
+bool native_compare_mode(const std::string& renderer) {
+  const char* env = std::getenv("RILL_GLSL_COMPARE");
+  const std::string v = env ? env : "auto";
+  if (v == "auto" || v.empty()) return renderer.find("NVIDIA") != std::string::npos;
+  if (v == "native") return true;
+  if (v == "bits") return false;
+  throw Error("RILL_GLSL_COMPARE='" + v + "' is not one of auto, native, bits");
+}
+
+const char* compare_name(bool native) {
+  return native ? "native" : "bits";
 }
 
 std::string Driver::cache_identity() const {

@@ -35,6 +35,7 @@
 
 #include "DivSqrt.h"
 #include "GLContext.h"
+#include "GLSLEmitter.h"
 
 namespace rill::glsl {
 
@@ -53,11 +54,18 @@ struct Driver {
   std::string vendor, renderer, version;  // GL_VENDOR, GL_RENDERER, GL_VERSION
   int major = 0, minor = 0;               // the context's GL version
   GLint binary_formats = 0;           // GL_NUM_PROGRAM_BINARY_FORMATS: 0, no disk cache of programs
-  DivSqrt divsqrt = DivSqrt::Native;  // how strict kernels divide (DivSqrt.h)
+  DriverRules rules;  // how strict kernels divide and compare here (GLSLEmitter.h)
   std::string cache_identity() const;  // the driver, as disk cache key lines
   std::string version_text() const;    // "4.5 (Mesa 22.3.6)"
 };
 Driver describe_driver(const GL& gl, const std::string& renderer_line);
+
+// RILL_GLSL_COMPARE = auto (default) | native | bits: how strict kernels compare floats.
+// auto: native on NVIDIA's driver (its comparisons pass the strict conformance suite, NaN,
+// signed zeros and denormals included, and cost far less), on bit patterns elsewhere
+// (Mesa may rewrite comparisons as if there were no NaN). Throws on an unknown value.
+bool native_compare_mode(const std::string& renderer);
+const char* compare_name(bool native);  // "native", "bits"
 
 // A backend whose context must go before the GL library's exit handlers run.
 class SessionOwner {

@@ -212,6 +212,39 @@ TEST_P(StreamGatherTest, GathersAcrossBackends) {
 
 }  // namespace
 
+// Arrays and streams longer than a texture row (4096 texels on the fragment stage, where
+// element g is texel (g % 4096, g / 4096)): gathers reach every row, the last one partial.
+TEST_P(StreamGatherTest, GathersReachEveryRowOfLongArraysAndStreams) {
+  const int n = 10007;
+  std::vector<int32_t> values(n);
+  std::vector<glm::vec3> triples(n);
+  for (int i = 0; i < n; ++i) {
+    values[static_cast<size_t>(i)] = 3 * i + 1;
+    triples[static_cast<size_t>(i)] = glm::vec3(static_cast<float>(i), 0.5f * static_cast<float>(i), -1.0f);
+  }
+  Array<Int> table(values, "table");
+  Stream<Float3> stream(triples);
+  const int m = 3000;
+  Program p = program("long_gather", [&] {
+    Output<Int> a("a");
+    Output<Float3> b("b");
+    Int i = element_index();
+    Int j = (i * 7919 + 4090) % n;  // spread over all rows, across the 4096 boundaries
+    a = table[j];
+    b = stream[j];
+  });
+  Stream<Int> a(m);
+  Stream<Float3> b(m);
+  compile(p).bind("a", a).bind("b", b).execute();
+  const std::vector<int32_t> ga = a.download();
+  const std::vector<glm::vec3> gb = b.download();
+  for (int i = 0; i < m; ++i) {
+    const int j = (i * 7919 + 4090) % n;
+    ASSERT_EQ(ga[static_cast<size_t>(i)], 3 * j + 1) << "element " << i << " reads " << j;
+    ASSERT_EQ(gb[static_cast<size_t>(i)], triples[static_cast<size_t>(j)]) << "element " << i << " reads " << j;
+  }
+}
+
 RILL_BACKEND_TEST_SUITE(StreamGatherTest);
 
 }  // namespace rill::testing
