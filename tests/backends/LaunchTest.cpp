@@ -719,6 +719,58 @@ TEST_P(LaunchTest, OutputsOfDifferentSizes) {
   expect_error([&] { k.execute(); }, {"two_outputs", "'z'", "9", "8"});
 }
 
+// A kernel over a driver's limits is an error naming the kernel and the limit, not a driver
+// crash or garbage: 40 arrays are more textures than GL contexts give a shader (llvmpipe
+// and NVIDIA: 32), and 20 input streams more storage buffers than a compute shader gets
+// (16). Backends without such limits run both kernels.
+TEST_P(LaunchTest, KernelsOverADriversLimitsAreNamedErrors) {
+  constexpr int kArrays = 40, kInputs = 20;
+  std::vector<std::unique_ptr<Array<Float>>> arrays;
+  for (int i = 0; i < kArrays; ++i)
+    arrays.push_back(std::make_unique<Array<Float>>(std::vector<float>{static_cast<float>(i)},
+                                                    "a" + std::to_string(i)));
+  Program many_arrays = program("many_arrays", [&] {
+    Output<Float> y("y");
+    Float sum = 0.0f;
+    for (auto& a : arrays) sum += (*a)[Int(0)];
+    y = sum;
+  });
+  Program many_inputs = program("many_inputs", [&] {
+    std::vector<std::unique_ptr<Input<Float>>> in;
+    for (int i = 0; i < kInputs; ++i)
+      in.push_back(std::make_unique<Input<Float>>("x" + std::to_string(i)));
+    Output<Float> y("y");
+    Float sum = 0.0f;
+    for (auto& x : in) sum += *x;
+    y = sum;
+  });
+  const bool gl = backend_name().rfind("glsl", 0) == 0;
+  auto run_arrays = [&] {
+    Kernel k = compile(many_arrays);
+    Stream<Float> y(4);
+    k.outputs(y).execute();
+    return y.download()[3];
+  };
+  auto run_inputs = [&] {
+    Kernel k = compile(many_inputs);
+    std::vector<Stream<Float>> xs;
+    for (int i = 0; i < kInputs; ++i) xs.emplace_back(std::vector<float>(4, 1.0f));
+    Stream<Float> y(4);
+    for (int i = 0; i < kInputs; ++i) k.bind("x" + std::to_string(i), xs[static_cast<size_t>(i)]);
+    k.bind("y", y).execute();
+    return y.download()[3];
+  };
+  if (gl)
+    expect_error(run_arrays, {"many_arrays", "texture"});
+  else
+    EXPECT_EQ(run_arrays(), 780.0f);  // 0 + 1 + ... + 39
+  if (backend_name() == "glsl-compute")
+    expect_error(run_inputs,
+                 {"many_inputs", "20 input streams", "GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS"});
+  else
+    EXPECT_EQ(run_inputs(), static_cast<float>(kInputs));
+}
+
 RILL_BACKEND_TEST_SUITE(LaunchTest);
 
 }  // namespace

@@ -118,10 +118,13 @@ TEST_P(StreamGatherTest, VectorStreamsGatherWholeElements) {
 TEST_P(StreamGatherTest, BoundaryModesApplyToStreams) {
   const int n = 10;
   Stream<Int> ramp(n, "ramp");
-  compile(program("ramp_i", [] {
-    Output<Int> o("o");
-    o = element_index() * 10;
-  })).bind("o", ramp).execute();
+  compile(program("ramp_i",
+                  [] {
+                    Output<Int> o("o");
+                    o = element_index() * 10;
+                  }))
+      .bind("o", ramp)
+      .execute();
   Stream<Int> wrap_view = ramp, constant_view = ramp;  // handles on the same data
   wrap_view.boundary(Boundary::Wrap);
   constant_view.boundary(Boundary::Constant, -7);
@@ -220,7 +223,8 @@ TEST_P(StreamGatherTest, GathersReachEveryRowOfLongArraysAndStreams) {
   std::vector<glm::vec3> triples(n);
   for (int i = 0; i < n; ++i) {
     values[static_cast<size_t>(i)] = 3 * i + 1;
-    triples[static_cast<size_t>(i)] = glm::vec3(static_cast<float>(i), 0.5f * static_cast<float>(i), -1.0f);
+    triples[static_cast<size_t>(i)] =
+        glm::vec3(static_cast<float>(i), 0.5f * static_cast<float>(i), -1.0f);
   }
   Array<Int> table(values, "table");
   Stream<Float3> stream(triples);
@@ -241,7 +245,8 @@ TEST_P(StreamGatherTest, GathersReachEveryRowOfLongArraysAndStreams) {
   for (int i = 0; i < m; ++i) {
     const int j = (i * 7919 + 4090) % n;
     ASSERT_EQ(ga[static_cast<size_t>(i)], 3 * j + 1) << "element " << i << " reads " << j;
-    ASSERT_EQ(gb[static_cast<size_t>(i)], triples[static_cast<size_t>(j)]) << "element " << i << " reads " << j;
+    ASSERT_EQ(gb[static_cast<size_t>(i)], triples[static_cast<size_t>(j)])
+        << "element " << i << " reads " << j;
   }
 }
 
