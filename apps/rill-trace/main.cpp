@@ -1,6 +1,7 @@
 // rill-trace: the Rill ray tracer's command line.
 //
-//   rill-trace render SCENE [--backend cpu|simd|opencl|glsl|glsl-compute] [--accuracy strict|fast|double]
+//   rill-trace render SCENE [--backend cpu|simd|opencl|glsl|glsl-compute] [--accuracy
+//   strict|fast|double]
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
 //                           [--grid N|auto] [--grid-density D] [--subgrids N|off]
@@ -18,6 +19,7 @@
 // builtin:NAME. Exit status: 0 on success, 1 on an error (one line on stderr), 2 on bad
 // options.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -61,6 +63,9 @@ struct RenderOptions {
   bool stats = false;
   double wait_threshold = 0.2;
   std::string masking = "on";
+  // Frame-rate mode: after the first render (which compiles), render this many more frames
+  // of the same scene back to back and report their times.
+  int bench_frames = 0;
 };
 
 void parse_size(const std::string& s, int& w, int& h) {
@@ -134,6 +139,18 @@ int render(const RenderOptions& o) {
   const double render_ms = ms_since(t_render);
   const double compile_ms = setup_ms + (render_ms - r.trace_ms);
 
+  // --bench-frames: the same frame again, each timed as the user's program would see it
+  // (Tracer::render from call to return: launch, kernel, reductions, read-back, host work).
+  std::vector<double> frame_ms;
+  for (int f = 0; f < o.bench_frames; ++f) {
+    const auto t_frame = Clock::now();
+    tracer.render(rs, scene.camera);
+    frame_ms.push_back(ms_since(t_frame));
+  }
+  std::vector<double> sorted = frame_ms;
+  std::sort(sorted.begin(), sorted.end());
+  const double median_ms = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+
   std::vector<std::string> written;
   std::string out = o.out;
   if (out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
@@ -200,6 +217,14 @@ int render(const RenderOptions& o) {
                               {"backend_compile", r.stages.backend_compile_ms},
                               {"driver_finish", r.stages.driver_finish_ms},
                               {"compile", r.stages.compile_ms}};
+    if (!frame_ms.empty())
+      j["bench_frames"] = {{"frames", frame_ms.size()},
+                           {"frame_ms", frame_ms},
+                           {"median_ms", median_ms},
+                           {"min_ms", sorted.front()},
+                           {"max_ms", sorted.back()},
+                           {"fps", median_ms > 0 ? 1000.0 / median_ms : 0.0},
+                           {"device", rill::backend(o.backend).description()}};
     j["time_ms"] = {{"load", load_ms},
                     {"grid_build", grid.build_ms},
                     {"compile", compile_ms},
@@ -224,6 +249,12 @@ int render(const RenderOptions& o) {
       std::printf("note: %zu degenerate and %zu non-finite triangles are never hit\n",
                   grid.degenerate, grid.non_finite);
   }
+  if (!frame_ms.empty())
+    std::printf(
+        "%zu frames of %dx%d after the first: median %.2f ms (%.1f fps), min %.2f ms, max "
+        "%.2f ms; %s\n",
+        frame_ms.size(), r.width, r.height, median_ms, median_ms > 0 ? 1000.0 / median_ms : 0.0,
+        sorted.front(), sorted.back(), rill::backend(o.backend).description().c_str());
   if (o.stats)
     std::printf(
         "compile stages, summed over %d kernel(s) (%s): capture %.1f ms, optimize %.1f ms, "
@@ -351,7 +382,8 @@ int main(int argc, char** argv) {
   RenderOptions ro;
   CLI::App* r = app.add_subcommand("render", "render a scene");
   r->add_option("scene", ro.scene, "JSON scene, OBJ file or builtin:NAME")->required();
-  r->add_option("--backend", ro.backend, "cpu, simd, opencl, glsl or glsl-compute")->default_str("cpu");
+  r->add_option("--backend", ro.backend, "cpu, simd, opencl, glsl or glsl-compute")
+      ->default_str("cpu");
   r->add_option("--accuracy", ro.accuracy, "strict, fast or double")->default_str("strict");
   r->add_option("--size", ro.size, "image size WxH (default: the scene's)");
   r->add_option("--out", ro.out, "PNG output (sRGB)");
@@ -376,6 +408,10 @@ int main(int argc, char** argv) {
   r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
   r->add_option("--source", ro.source, "write the generated kernel source");
   r->add_flag("--quiet", ro.quiet, "print only the stats line");
+  r->add_option("--bench-frames", ro.bench_frames,
+                "frame-rate mode: render N more frames back to back after the first and report "
+                "their times and frames per second")
+      ->check(CLI::Range(0, 100000));
   r->add_option("--triangle", ro.triangle, "triangle test: moller or watertight")
       ->default_str("moller");
   r->add_option("--offset", ro.offset, "self-intersection: scaled (Wachter-Binder) or epsilon")
