@@ -273,17 +273,6 @@ Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a) {
   return kernels_.emplace(key, compile_for(program_, backend_name, a)).first->second;
 }
 
-struct Megakernel::Outputs {
-  Outputs(int w, int h)
-      : width(w), height(h), color(w, h), normal(w, h), dist(w, h), prim(w, h), rays(w, h) {}
-  int width, height;
-  Stream<Float3> color, normal;
-  Stream<Float> dist;
-  Stream<Int> prim, rays;
-};
-
-Megakernel::~Megakernel() = default;
-
 RenderResult Megakernel::render(const RenderSettings& rs, int width, int height, int depth,
                                 int spp) {
   RenderResult r;
@@ -302,13 +291,9 @@ RenderResult Megakernel::render(const RenderSettings& rs, int width, int height,
   const int64_t iters =
       int64_t{depth + 1} * (static_cast<int64_t>(S_.light_count) + 1) * stack_factor * 2 + 8;
 
-  if (!outputs_ || outputs_->width != width || outputs_->height != height)
-    outputs_ = std::make_unique<Outputs>(width, height);
-  Stream<Float3>& color = outputs_->color;
-  Stream<Float>& dist = outputs_->dist;
-  Stream<Int>& prim = outputs_->prim;
-  Stream<Float3>& normal = outputs_->normal;
-  Stream<Int>& rays = outputs_->rays;
+  Stream<Float3> color(width, height), normal(width, height);
+  Stream<Float> dist(width, height);
+  Stream<Int> prim(width, height), rays(width, height);
   k.outputs(color, dist, prim, normal, rays);
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time

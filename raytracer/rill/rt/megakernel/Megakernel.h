@@ -10,7 +10,6 @@
 #include <rill/rill.h>
 
 #include <map>
-#include <memory>
 #include <set>
 #include <string>
 
@@ -22,7 +21,6 @@ namespace rt {
 class Megakernel {
  public:
   explicit Megakernel(DeviceScene& scene);
-  ~Megakernel();
   const rill::Program& program() const { return program_; }
   // Compiled once per backend and accuracy.
   rill::Kernel& kernel(const std::string& backend, rill::Accuracy a);
@@ -47,12 +45,6 @@ class Megakernel {
   rill::Program program_;
   std::map<std::string, rill::Kernel> kernels_;
   std::set<std::pair<std::string, int64_t>> warmed_;  // kernels launched at a size before
-  // The render's output streams, kept for the next render of the same size: no allocation
-  // per frame, and on GPU backends no upload of previous values (a stream read back is
-  // current on the device as well). Every element writes every output, so nothing of an
-  // earlier frame shows through.
-  struct Outputs;
-  std::unique_ptr<Outputs> outputs_;
 };
 
 // Compiles `program` for a backend, with a clear error when the backend cannot run here or
