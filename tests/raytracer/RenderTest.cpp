@@ -220,6 +220,31 @@ TEST_P(Render, OptionsKeepBackendsIdentical) {
   expect_identical(a, b, "glass, spp 3, depth 2, grid 9");
 }
 
+// A tracer that rendered other frames (other depth, other samples, a miss-only view) renders
+// the same frame as a fresh tracer, bit for bit: whatever a tracer keeps between frames
+// (compiled kernels, warm-up state, and any buffers it may reuse) must not show through.
+TEST_P(Render, FramesBackToBackEqualFreshFrames) {
+  RT_REQUIRE_BACKEND(GetParam());
+  Scene s = builtin_scene("glass");
+  Grid g = build_grid(s, 9);
+  RenderSettings rs;
+  rs.backend = GetParam();
+  rs.width = 16;
+  rs.height = 12;
+  rs.max_depth = 2;
+  Tracer fresh(s, g);
+  const RenderResult want = fresh.render(rs, s.camera);
+  Tracer reused(s, g);
+  RenderSettings other = rs;
+  other.max_depth = 0;
+  other.spp = 2;
+  reused.render(other, s.camera);
+  Camera away = s.camera;
+  away.look_at = away.eye + (away.eye - s.camera.look_at);  // the other way: mostly misses
+  reused.render(rs, away);
+  expect_identical(want, reused.render(rs, s.camera), "glass after two other frames");
+}
+
 TEST_P(Render, BadGeometryAndEmptyScenes) {
   RT_REQUIRE_BACKEND(GetParam());
   // NaN, infinite and degenerate triangles are never hit; the rest renders normally.
