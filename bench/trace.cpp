@@ -1,9 +1,10 @@
 // rill-bench-trace: the ray tracer's benchmarks (issue #6, docs/raytracer.md, Performance).
 //
 //   rill-bench-trace [--sections throughput,embree,grid,depth,spec] [--size WxH]
-//                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends all|cpu,simd,opencl,glsl,glsl-compute]
-//                    [--repeats R] [--subgrids N|off] [--grid-density D] [--grid-scene S] [--grids
-//                    auto,16,32,...]
+//                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends
+//                    all|cpu,simd,opencl,glsl,glsl-compute]
+//                    [--repeats R] [--subgrids N|off|auto] [--grid-density D] [--grid-scene S]
+//                    [--grids auto,16,32,...]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu] [--md F] [--csv F]
 //
 // Sections (each a table; all timings are medians of R interleaved repeats, after an
@@ -12,7 +13,8 @@
 //               tracer's intersector kernel alone, launch only: rays and results stay where
 //               the backend keeps them) and full shading (Tracer::render, its rays/s counted
 //               as rill-trace counts them: camera, shadow and secondary rays over the trace
-//               time, which includes downloading the image and AOVs).
+//               time, which includes what `rill-trace render` reads back by default: the
+//               8-bit image for its PNG).
 //   embree      the same primary rays through Intel Embree 3 (rtcIntersect1, one ray at a
 //               time, oneTBB over the same cores), interleaved with Rill's CPU backend:
 //               Mrays/s of both, the ratio, and how many rays agree (same primitive, or the
@@ -110,7 +112,7 @@ struct Options {
   int repeats = 3;
   std::string grid_scene = "builtin:thesis-c";
   std::string grids = "auto,16,20,32,48,64,96,128";
-  std::string subgrids;             // empty: the scene's (default off)
+  std::string subgrids;             // empty: the scene's (default auto: per backend)
   std::string grid_density;         // empty: the scene's (default 4)
   std::string accuracy = "strict";  // of the throughput and Embree sections
   rill::Accuracy acc = rill::Accuracy::Strict;
@@ -212,9 +214,21 @@ struct PrimaryRun {
   }
 };
 
+// What `rill-trace render` reads back by default: the 8-bit image for its PNG.
+rt::FrameOutputs png_only() {
+  rt::FrameOutputs o;
+  o.color = o.depth = o.prim = o.normal = false;
+  o.rgb8 = true;
+  return o;
+}
+
+// A render as rill-trace makes it: one sample, reading back what a PNG needs (timed
+// sections); `outputs` for sections that compare images.
 rt::RenderSettings settings(const std::string& be, const rt::Scene& s, int max_depth = -1,
-                            rill::Accuracy a = rill::Accuracy::Strict) {
+                            rill::Accuracy a = rill::Accuracy::Strict,
+                            rt::FrameOutputs outputs = png_only()) {
   rt::RenderSettings rs;
+  rs.outputs = outputs;
   rs.backend = be;
   rs.accuracy = a;
   rs.width = s.width;
@@ -255,20 +269,42 @@ class Bench {
              {}};
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
-      rt::Grid grid = rt::build_grid_for(scene);
-      rt::Tracer tracer(scene, grid);
+      // Each backend renders with the grid rill-trace would build for it (subgrid_min_for:
+      // the CPU and GPUs may want different ones); backends that want the same share it.
+      struct Setup {
+        int32_t subgrid_min;
+        rt::Grid grid;
+        std::unique_ptr<rt::Tracer> tracer;
+      };
+      std::vector<std::unique_ptr<Setup>> setups;
+      std::vector<Setup*> setup_of;
+      for (const auto& be : bes) {
+        const int32_t want = rt::subgrid_min_for(scene.options.subgrid_min, be);
+        auto it = std::find_if(setups.begin(), setups.end(),
+                               [&](const auto& u) { return u->subgrid_min == want; });
+        if (it == setups.end()) {
+          rt::Scene with = scene;
+          with.options.subgrid_min = want;
+          auto u = std::make_unique<Setup>(Setup{want, rt::build_grid_for(with), nullptr});
+          u->tracer = std::make_unique<rt::Tracer>(scene, u->grid);
+          std::printf("%s: %zu triangles, grid %s (for %s), features: %s\n", scene.name.c_str(),
+                      scene.triangle_count(), res_str(u->grid).c_str(), be.c_str(),
+                      u->tracer->features().str().c_str());
+          setups.push_back(std::move(u));
+          it = setups.end() - 1;
+        }
+        setup_of.push_back(it->get());
+      }
+      std::fflush(stdout);
       const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
       const std::vector<glm::vec3> dirs =
-          tracer.camera_rays("cpu", scene.camera, scene.width, scene.height);
+          setup_of[0]->tracer->camera_rays("cpu", scene.camera, scene.width, scene.height);
       const std::vector<glm::vec3> origins(n, scene.camera.eye);
-      std::printf("%s: %zu triangles, grid %s, features: %s\n", scene.name.c_str(),
-                  scene.triangle_count(), res_str(grid).c_str(), tracer.features().str().c_str());
-      std::fflush(stdout);
 
       std::vector<std::unique_ptr<PrimaryRun>> runs;
-      for (const auto& be : bes) {
-        runs.push_back(std::make_unique<PrimaryRun>(tracer, be, origins, dirs, scene.width,
-                                                    scene.height, o_.acc));
+      for (size_t b = 0; b < bes.size(); ++b) {
+        runs.push_back(std::make_unique<PrimaryRun>(*setup_of[b]->tracer, bes[b], origins, dirs,
+                                                    scene.width, scene.height, o_.acc));
         runs.back()->run();  // warm-up: uploads, driver compiles
       }
 #ifdef RILL_BENCH_HAVE_EMBREE
@@ -285,7 +321,7 @@ class Bench {
       std::vector<int64_t> full_rays(bes.size());
       if (throughput)
         for (size_t b = 0; b < bes.size(); ++b)  // warm-up and compile
-          tracer.render(settings(bes[b], scene, -1, o_.acc), scene.camera);
+          setup_of[b]->tracer->render(settings(bes[b], scene, -1, o_.acc), scene.camera);
       for (int r = 0; r < o_.repeats; ++r) {
         for (size_t b = 0; b < bes.size(); ++b) {
           prim_ms[b].push_back(runs[b]->run());
@@ -299,15 +335,18 @@ class Bench {
         }
         if (throughput)
           for (size_t b = 0; b < bes.size(); ++b) {
-            rt::RenderResult res = tracer.render(settings(bes[b], scene, -1, o_.acc), scene.camera);
+            rt::RenderResult res =
+                setup_of[b]->tracer->render(settings(bes[b], scene, -1, o_.acc), scene.camera);
             full_ms[b].push_back(res.trace_ms);
             full_rays[b] = res.rays;
           }
       }
       const std::vector<int32_t> cpu_prim = runs[0]->hits(n);
-      const double build_ms = grid.build_ms;
-      const double bpt = static_cast<double>(grid_bytes(grid)) /
-                         static_cast<double>(std::max<size_t>(scene.triangle_count(), 1));
+      auto build_ms_of = [&](size_t b) { return setup_of[b]->grid.build_ms; };
+      auto bpt_of = [&](size_t b) {
+        return static_cast<double>(grid_bytes(setup_of[b]->grid)) /
+               static_cast<double>(std::max<size_t>(scene.triangle_count(), 1));
+      };
       for (size_t b = 0; b < bes.size(); ++b) {
         std::string vs = "-";
         if (b > 0) {  // every backend's hits must equal cpu's
@@ -322,8 +361,9 @@ class Bench {
         }
         if (!throughput) continue;
         const double pm = median(prim_ms[b]), fm = median(full_ms[b]);
-        tp.rows.push_back({scene.name, std::to_string(scene.triangle_count()), res_str(grid),
-                           fmt("%.1f", build_ms), fmt("%.1f", bpt), bes[b], fmt("%.2f", pm),
+        tp.rows.push_back({scene.name, std::to_string(scene.triangle_count()),
+                           res_str(setup_of[b]->grid), fmt("%.1f", build_ms_of(b)),
+                           fmt("%.1f", bpt_of(b)), bes[b], fmt("%.2f", pm),
                            fmt("%.3f", mrays(static_cast<double>(n), pm)), fmt("%.1f", fm),
                            fmt("%.2f", static_cast<double>(full_rays[b]) / static_cast<double>(n)),
                            fmt("%.3f", mrays(static_cast<double>(full_rays[b]), fm)), vs});
@@ -351,7 +391,7 @@ class Bench {
                fmt("%.3f", mrays(static_cast<double>(n), rm)), fmt("%.2f", emm),
                fmt("%.3f", mrays(static_cast<double>(n), emm)), fmt("%.3f", emm / rm),
                fmt("%.4f%%", 100.0 * static_cast<double>(same) / static_cast<double>(n)),
-               fmt("%.4f%%", 100.0 * frac), fmt("%.1f", build_ms), fmt("%.1f", bpt),
+               fmt("%.4f%%", 100.0 * frac), fmt("%.1f", build_ms_of(b)), fmt("%.1f", bpt_of(b)),
                fmt("%.1f", ebr->build_ms()),
                fmt("%.1f", static_cast<double>(ebr->bytes()) /
                                static_cast<double>(std::max<size_t>(scene.triangle_count(), 1)))});
@@ -399,8 +439,8 @@ class Bench {
       if (g != "auto" && (*end != '\0' || p.res < 1 || p.res > 512))
         throw rt::SceneError("--grids: 'auto' or 1..512 (got " + g + ")");
       for (int r = 0; r < o_.repeats; ++r) {  // the build time is a median too
-        p.grid =
-            rt::build_grid(scene, p.res, scene.options.subgrid_min, scene.options.grid_density);
+        p.grid = rt::build_grid(scene, p.res, rt::subgrid_min_for(scene.options.subgrid_min, "cpu"),
+                                scene.options.grid_density);
         p.build.push_back(p.grid.build_ms);
       }
       p.tracer = std::make_unique<rt::Tracer>(scene, p.grid);
@@ -497,8 +537,10 @@ class Bench {
       rt::Grid grid = rt::build_grid_for(scene);
       rt::Tracer special(scene, grid), generic(scene, grid, all);
       for (const auto& be : bes) {
-        rt::RenderResult a = special.render(settings(be, scene), scene.camera);
-        rt::RenderResult b = generic.render(settings(be, scene), scene.camera);
+        const rt::FrameOutputs images{};  // colour and AOVs, compared below
+        const auto strict = rill::Accuracy::Strict;
+        rt::RenderResult a = special.render(settings(be, scene, -1, strict, images), scene.camera);
+        rt::RenderResult b = generic.render(settings(be, scene, -1, strict, images), scene.camera);
         size_t differ = 0;
         float maxdiff = 0;
         for (size_t p = 0; p < a.color.size(); ++p) {
@@ -567,7 +609,8 @@ int main(int argc, char** argv) {
   app.add_option("--size", o.size, "image size WxH")->default_str(o.size);
   app.add_option("--scenes", o.scenes, "comma list: builtin:NAME, OBJ or JSON files")
       ->default_str(o.scenes);
-  app.add_option("--backends", o.backends, "all, or a comma list of cpu,simd,opencl,glsl,glsl-compute")
+  app.add_option("--backends", o.backends,
+                 "all, or a comma list of cpu,simd,opencl,glsl,glsl-compute")
       ->default_str(o.backends);
   app.add_option("--repeats", o.repeats, "timed repeats (medians)")
       ->check(CLI::Range(1, 1000))
@@ -576,8 +619,9 @@ int main(int argc, char** argv) {
       ->default_str(o.grid_scene);
   app.add_option(
       "--subgrids", o.subgrids,
-      "voxels listing more triangles than this get a subgrid (12 is a good value), or off "
-      "(default)");
+      "voxels listing more triangles than this get a subgrid, off, or auto (default: the "
+      "renderer's choice per backend, 12 on the CPU and off on a GPU; the grid, depth and spec "
+      "sections build one grid, the CPU's)");
   app.add_option("--grid-density", o.grid_density,
                  "voxels per triangle of the auto grid, 0.125..256 (default: the scene's, 4)");
   app.add_option("--accuracy", o.accuracy,

@@ -4,7 +4,7 @@
 //   strict|fast|double]
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
-//                           [--grid N|auto] [--grid-density D] [--subgrids N|off]
+//                           [--grid N|auto] [--grid-density D] [--subgrids N|off|auto]
 //                           [--strategy megakernel|multipass]
 //                           [--stats-json FILE] [--source FILE] [--quiet]
 //                           [--triangle moller|watertight] [--offset epsilon|scaled]
@@ -97,6 +97,14 @@ std::vector<float> to_float(const std::vector<int32_t>& v) {
   return f;
 }
 
+nlohmann::json split_json(const rt::FrameTimes& t) {
+  return {{"setup", t.setup},
+          {"launch", t.launch},
+          {"accumulate", t.accumulate},
+          {"reduce", t.reduce},
+          {"read_back", t.read_back}};
+}
+
 int render(const RenderOptions& o) {
   if (o.strategy != "megakernel" && o.strategy != "multipass")
     throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
@@ -114,7 +122,7 @@ int render(const RenderOptions& o) {
   scene.validate();
   const double load_ms = ms_since(t_load);
 
-  rt::Grid grid = rt::build_grid_for(scene);
+  rt::Grid grid = rt::build_grid_for(scene, o.backend);  // settings left open: for the backend
 
   const auto t_setup = Clock::now();
   rt::TracerOptions knobs;
@@ -134,6 +142,15 @@ int render(const RenderOptions& o) {
     throw rt::SceneError("--masking expects on or off (got '" + o.masking + "')");
   rs.wait_threshold = o.wait_threshold;
   rs.masking = o.masking == "on";
+  // Only what is written comes back from the device (the PNG: 8-bit, encoded there).
+  std::string out = o.out;
+  if (out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
+    out = (scene.name.empty() ? std::string("render") : scene.name) + ".png";
+  rs.outputs.rgb8 = !out.empty();
+  rs.outputs.color = !o.pfm.empty();
+  rs.outputs.depth = !o.depth.empty();
+  rs.outputs.prim = !o.prim.empty();
+  rs.outputs.normal = !o.normal.empty();
   const auto t_render = Clock::now();
   rt::RenderResult r = tracer.render(rs, scene.camera);
   const double render_ms = ms_since(t_render);
@@ -142,20 +159,29 @@ int render(const RenderOptions& o) {
   // --bench-frames: the same frame again, each timed as the user's program would see it
   // (Tracer::render from call to return: launch, kernel, reductions, read-back, host work).
   std::vector<double> frame_ms;
+  std::vector<rt::FrameTimes> frame_times;
   for (int f = 0; f < o.bench_frames; ++f) {
     const auto t_frame = Clock::now();
-    tracer.render(rs, scene.camera);
+    frame_times.push_back(tracer.render(rs, scene.camera).times);
     frame_ms.push_back(ms_since(t_frame));
   }
   std::vector<double> sorted = frame_ms;
   std::sort(sorted.begin(), sorted.end());
   const double median_ms = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+  // The median of each step over the frames (they need not add up to the median frame).
+  auto median_of = [&](double rt::FrameTimes::*step) {
+    std::vector<double> v;
+    for (const rt::FrameTimes& t : frame_times) v.push_back(t.*step);
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  rt::FrameTimes median_split;
+  for (auto step : {&rt::FrameTimes::setup, &rt::FrameTimes::launch, &rt::FrameTimes::accumulate,
+                    &rt::FrameTimes::reduce, &rt::FrameTimes::read_back})
+    median_split.*step = median_of(step);
 
   std::vector<std::string> written;
-  std::string out = o.out;
-  if (out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
-    out = (scene.name.empty() ? std::string("render") : scene.name) + ".png";
-  if (!out.empty()) rt::write_png(out, r.width, r.height, r.color), written.push_back(out);
+  if (!out.empty()) rt::write_png_rgb8(out, r.width, r.height, r.rgb8), written.push_back(out);
   if (!o.pfm.empty()) rt::write_pfm(o.pfm, r.width, r.height, r.color), written.push_back(o.pfm);
   if (!o.depth.empty())
     rt::write_pfm(o.depth, r.width, r.height, r.depth), written.push_back(o.depth);
@@ -224,12 +250,15 @@ int render(const RenderOptions& o) {
                            {"min_ms", sorted.front()},
                            {"max_ms", sorted.back()},
                            {"fps", median_ms > 0 ? 1000.0 / median_ms : 0.0},
-                           {"device", rill::backend(o.backend).description()}};
+                           {"device", rill::backend(o.backend).description()},
+                           {"median_split_ms", split_json(median_split)}};
     j["time_ms"] = {{"load", load_ms},
                     {"grid_build", grid.build_ms},
                     {"compile", compile_ms},
                     {"trace", r.trace_ms},
                     {"total", load_ms + grid.build_ms + compile_ms + r.trace_ms}};
+    // The first frame's trace time, step by step (Tracer.h, FrameTimes).
+    j["trace_split_ms"] = split_json(r.times);
     std::ofstream f(o.stats_json);
     f << j.dump(2) << "\n";
     if (!f) throw rt::SceneError("cannot write " + o.stats_json);
@@ -255,6 +284,12 @@ int render(const RenderOptions& o) {
         "%.2f ms; %s\n",
         frame_ms.size(), r.width, r.height, median_ms, median_ms > 0 ? 1000.0 / median_ms : 0.0,
         sorted.front(), sorted.back(), rill::backend(o.backend).description().c_str());
+  if (!frame_ms.empty())
+    std::printf(
+        "  median per step: set-up %.3f ms, launch %.3f ms, accumulate %.3f ms, reduce %.3f ms, "
+        "read-back %.3f ms\n",
+        median_split.setup, median_split.launch, median_split.accumulate, median_split.reduce,
+        median_split.read_back);
   if (o.stats)
     std::printf(
         "compile stages, summed over %d kernel(s) (%s): capture %.1f ms, optimize %.1f ms, "
@@ -398,10 +433,9 @@ int main(int argc, char** argv) {
   r->add_option("--grid-density", ro.grid_density,
                 "voxels per triangle of the auto grid, 0.125..256 (default 4; 16 is faster on "
                 "the CPU backends for large meshes, at 3.5x the memory)");
-  r->add_option(
-      "--subgrids", ro.subgrids,
-      "voxels listing more triangles than this get a subgrid (12 is a good value), or off "
-      "(default)");
+  r->add_option("--subgrids", ro.subgrids,
+                "voxels listing more triangles than this get a subgrid (1..1048576), off, or auto "
+                "(default: 12 when the backend runs on the CPU, off on a GPU)");
   r->add_option("--strategy", ro.strategy,
                 "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
       ->default_str("megakernel");

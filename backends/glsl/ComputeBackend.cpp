@@ -158,7 +158,8 @@ class ComputeBackend : public Backend, public SessionOwner {
     auto* self = const_cast<ComputeBackend*>(this);
     const GLContext& c = self->context();
     return std::string(kName) + ": compute shaders; " + c.kind() + ", " + c.renderer +
-           "; strict / and sqrt: " + divsqrt_name(driver_.rules.divsqrt) + ", comparisons: " + compare_name(driver_.rules.native_compare) +
+           "; strict / and sqrt: " + divsqrt_name(driver_.rules.divsqrt) +
+           ", comparisons: " + compare_name(driver_.rules.native_compare) +
            "; denormals: " + (flushes_denormals_ ? "flushed" : "kept") + "; " +
            std::to_string(limits_.storage_blocks) + " storage buffers, " +
            std::to_string(limits_.texture_units) + " array units; disk cache: " +
@@ -166,6 +167,10 @@ class ComputeBackend : public Backend, public SessionOwner {
                                        : "none (the driver offers no program binary format)");
   }
   bool supports(Accuracy a) const override { return a != Accuracy::Double; }
+  bool runs_on_gpu() const override {
+    return unavailable_reason().empty() &&
+           !is_software_renderer(const_cast<ComputeBackend*>(this)->context().renderer);
+  }
   bool single_threaded() const override { return true; }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
@@ -200,8 +205,8 @@ class ComputeBackend : public Backend, public SessionOwner {
       for (size_t o = first; o < std::min(f.outputs.size(), first + static_cast<size_t>(group));
            ++o)
         p.outputs.push_back(static_cast<int>(o));
-      GLSLShader shader = emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(),
-                                            driver_.rules, flushes_denormals_, local_size_);
+      GLSLShader shader = emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), driver_.rules,
+                                            flushes_denormals_, local_size_);
       codegen_ms += stage.lap();
       bool cached = false;
       p.program = link_program_cached(gl, driver_, kName, kWho, f.name,

@@ -36,8 +36,8 @@
 
 #include "../codegen/SourceText.h"
 #include "GLContext.h"
-#include "GLSession.h"
 #include "GLSLEmitter.h"
+#include "GLSession.h"
 #include "WarmUpLaunch.h"
 #include "rill/Parameters.h"
 #include "rill/StateMask.h"
@@ -169,6 +169,10 @@ class GLSLBackend : public Backend, public SessionOwner {
                 : std::string("none (the driver offers no program binary format)"));
   }
   bool supports(Accuracy a) const override { return a != Accuracy::Double; }
+  bool runs_on_gpu() const override {
+    return unavailable_reason().empty() &&
+           !is_software_renderer(const_cast<GLSLBackend*>(this)->context().renderer);
+  }
   bool single_threaded() const override { return true; }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
@@ -323,25 +327,28 @@ class GLSLBackend : public Backend, public SessionOwner {
   // discard) the elements whose state is one of rill_values[0 .. rill_nvalues).
   GLuint mask_program(const GL& gl) {
     if (mask_program_ == 0)
-      mask_program_ = link_program(gl, driver_, "GLSL backend", "rill_mask", {{GL_VERTEX_SHADER, vertex_shader()}, {GL_FRAGMENT_SHADER,
-                           "#version 430 core\n"
-                           "// Rill: the stencil mask of a masked launch.\n"
-                           "uniform isampler2D rill_state;\n"
-                           "uniform int rill_values[" +
-                               std::to_string(StateMask::kMaxValues) +
-                               "];\n"
-                               "uniform int rill_nvalues;\n"
-                               "uniform int rill_count;\n"
-                               "uniform int rill_row;\n"
-                               "void main() {\n"
-                               "  ivec2 p = ivec2(gl_FragCoord.xy);\n"
-                               "  if (p.y * rill_row + p.x >= rill_count) discard;\n"
-                               "  int s = texelFetch(rill_state, p, 0).r;\n"
-                               "  bool selected = false;\n"
-                               "  for (int k = 0; k < rill_nvalues; ++k) selected = selected || s "
-                               "== rill_values[k];\n"
-                               "  if (!selected) discard;\n"
-                               "}\n"}});
+      mask_program_ =
+          link_program(gl, driver_, "GLSL backend", "rill_mask",
+                       {{GL_VERTEX_SHADER, vertex_shader()},
+                        {GL_FRAGMENT_SHADER,
+                         "#version 430 core\n"
+                         "// Rill: the stencil mask of a masked launch.\n"
+                         "uniform isampler2D rill_state;\n"
+                         "uniform int rill_values[" +
+                             std::to_string(StateMask::kMaxValues) +
+                             "];\n"
+                             "uniform int rill_nvalues;\n"
+                             "uniform int rill_count;\n"
+                             "uniform int rill_row;\n"
+                             "void main() {\n"
+                             "  ivec2 p = ivec2(gl_FragCoord.xy);\n"
+                             "  if (p.y * rill_row + p.x >= rill_count) discard;\n"
+                             "  int s = texelFetch(rill_state, p, 0).r;\n"
+                             "  bool selected = false;\n"
+                             "  for (int k = 0; k < rill_nvalues; ++k) selected = selected || s "
+                             "== rill_values[k];\n"
+                             "  if (!selected) discard;\n"
+                             "}\n"}});
     return mask_program_;
   }
 

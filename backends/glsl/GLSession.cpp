@@ -49,6 +49,12 @@ bool native_compare_mode(const std::string& renderer) {
   throw Error("RILL_GLSL_COMPARE='" + v + "' is not one of auto, native, bits");
 }
 
+bool is_software_renderer(const std::string& renderer) {
+  for (const char* cpu : {"llvmpipe", "softpipe", "swrast", "SwiftShader"})
+    if (renderer.find(cpu) != std::string::npos) return true;
+  return false;
+}
+
 const char* compare_name(bool native) {
   return native ? "native" : "bits";
 }

@@ -53,8 +53,8 @@ struct Session {
 struct Driver {
   std::string vendor, renderer, version;  // GL_VENDOR, GL_RENDERER, GL_VERSION
   int major = 0, minor = 0;               // the context's GL version
-  GLint binary_formats = 0;           // GL_NUM_PROGRAM_BINARY_FORMATS: 0, no disk cache of programs
-  DriverRules rules;  // how strict kernels divide and compare here (GLSLEmitter.h)
+  GLint binary_formats = 0;  // GL_NUM_PROGRAM_BINARY_FORMATS: 0, no disk cache of programs
+  DriverRules rules;         // how strict kernels divide and compare here (GLSLEmitter.h)
   std::string cache_identity() const;  // the driver, as disk cache key lines
   std::string version_text() const;    // "4.5 (Mesa 22.3.6)"
 };
@@ -66,6 +66,9 @@ Driver describe_driver(const GL& gl, const std::string& renderer_line);
 // (Mesa may rewrite comparisons as if there were no NaN). Throws on an unknown value.
 bool native_compare_mode(const std::string& renderer);
 const char* compare_name(bool native);  // "native", "bits"
+// Whether GL_RENDERER names a software rasterizer on the CPU (llvmpipe, softpipe, swrast,
+// SwiftShader) rather than a GPU.
+bool is_software_renderer(const std::string& renderer);
 
 // A backend whose context must go before the GL library's exit handlers run.
 class SessionOwner {

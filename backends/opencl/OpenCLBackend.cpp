@@ -104,6 +104,9 @@ Found enumerate() {
       info.version = device_string(devs[d], CL_DEVICE_VERSION);
       info.fp64 =
           device_string(devs[d], CL_DEVICE_EXTENSIONS).find("cl_khr_fp64") != std::string::npos;
+      cl_device_type type = 0;
+      clGetDeviceInfo(devs[d], CL_DEVICE_TYPE, sizeof type, &type, nullptr);
+      info.gpu = (type & CL_DEVICE_TYPE_GPU) != 0;
       f.infos.push_back(info);
       f.ids.push_back(devs[d]);
     }
@@ -281,6 +284,10 @@ class OpenCLBackend : public Backend {
     const Device& d = const_cast<OpenCLBackend*>(this)->device();
     return "opencl: " + d.info.platform_name + " / " + d.info.device_name + " (" + d.info.version +
            ")";
+  }
+
+  bool runs_on_gpu() const override {
+    return unavailable_reason().empty() && const_cast<OpenCLBackend*>(this)->device().info.gpu;
   }
 
   bool supports(Accuracy a) const override {

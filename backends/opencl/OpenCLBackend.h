@@ -22,6 +22,7 @@ struct DeviceInfo {
   int platform = 0, device = 0;
   std::string platform_name, device_name, version;
   bool fp64 = false;
+  bool gpu = false;  // CL_DEVICE_TYPE_GPU
 };
 
 // Every OpenCL device on this machine (empty when there is no platform).

@@ -300,6 +300,24 @@ TEST_P(LaunchTest, StreamsMoveBetweenBackends) {
   EXPECT_TRUE(bits_equal(b.download(), {2.0f, 3.0f}));
 }
 
+// Backends on the host's CPU cores (cpu, simd, PoCL, Mesa's llvmpipe) do not claim a GPU,
+// and a GPU driver's device is one (what device-tuned defaults, like the ray tracer's grid,
+// go by).
+TEST_P(LaunchTest, RunsOnGpuNamesTheDeviceKind) {
+  Backend& be = rill::backend(backend_name());
+  const std::string d = be.description();
+  const bool software = backend_name() == "cpu" || backend_name() == "simd" ||
+                        d.find("llvmpipe") != std::string::npos ||
+                        d.find("Portable Computing Language") != std::string::npos;
+  const bool gpu_driver = d.find("NVIDIA") != std::string::npos;
+  if (software) {
+    EXPECT_FALSE(be.runs_on_gpu()) << d;
+  }
+  if (gpu_driver) {
+    EXPECT_TRUE(be.runs_on_gpu()) << d;
+  }
+}
+
 TEST_P(LaunchTest, EmptyStream) {
   Kernel k = compile(grow_program());
   Stream<Float> s(0);

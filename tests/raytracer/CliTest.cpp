@@ -111,7 +111,39 @@ TEST(Cli, InfoListsShadersAndTheirParameters) {
       << out;
 }
 
+// The grid settings left open ("subgrids": auto, the default) are chosen for the backend:
+// subgrids on the CPU backends, none where asked; and the stats JSON splits the frame time.
+TEST(Cli, GridSettingsFollowTheBackendAndStatsSplitTheFrame) {
+  testing::TempDir dir;
+  auto stats_of = [&](const std::string& extra) {
+    const auto r =
+        run("render builtin:thesis-c --size 8x8 --out a.png --stats-json s.json " + extra, dir);
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::ifstream f(dir.path("s.json"));
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  };
+  auto subgrids_in = [](const std::string& json) {
+    const size_t at = json.find("\"subgrids\": ");
+    EXPECT_NE(at, std::string::npos) << json;
+    return at == std::string::npos ? -1 : std::atoi(json.c_str() + at + 12);
+  };
+  for (const char* backend : {"cpu", "simd"}) {
+    const std::string json = stats_of(std::string("--backend ") + backend);
+    EXPECT_GT(subgrids_in(json), 0) << backend << ": " << json;
+    for (const char* step :
+         {"\"setup\"", "\"launch\"", "\"accumulate\"", "\"reduce\"", "\"read_back\""})
+      EXPECT_NE(json.find(step, json.find("\"trace_split_ms\"")), std::string::npos) << step;
+  }
+  EXPECT_EQ(subgrids_in(stats_of("--subgrids off")), 0);
+  EXPECT_GT(subgrids_in(stats_of("--subgrids auto")), 0);
+}
+
 #else
+TEST(Cli, GridSettingsFollowTheBackendAndStatsSplitTheFrame) {
+  GTEST_SKIP() << "rill-trace is not built";
+}
 TEST(Cli, BadCommandLinesAndInputs) {
   GTEST_SKIP() << "rill-trace is not built";
 }

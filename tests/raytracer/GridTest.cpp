@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <random>
 
-#include "rill/rt/accel/Grid.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
 
 namespace rt {
 namespace {
@@ -194,6 +194,28 @@ TEST(Grid, ResolutionHeuristic) {
   r = auto_grid_resolution(glm::dvec3(1.0), 100000000);
   EXPECT_LE(int64_t{r.x} * r.y * r.z, int64_t{1} << 22);
   EXPECT_EQ(build_grid(builtin_scene("thesis-a"), 9).res, glm::ivec3(9));
+}
+
+// Subgrids left to the renderer (kSubgridsAuto) are on for a backend that runs on the CPU and
+// off for one on a GPU; a value the user gave is kept as it is.
+TEST(Grid, SubgridsLeftOpenFollowTheBackendsDevice) {
+  EXPECT_EQ(subgrid_min_for(kSubgridsAuto, "cpu"), kSubgridMin);
+  EXPECT_EQ(subgrid_min_for(kSubgridsAuto, "simd"), kSubgridMin);
+  for (rill::Backend* b : rill::backends()) {
+    EXPECT_EQ(subgrid_min_for(kSubgridsAuto, b->name()),
+              b->runs_on_gpu() ? kNoSubgrids : kSubgridMin)
+        << b->description();
+    EXPECT_EQ(subgrid_min_for(kNoSubgrids, b->name()), kNoSubgrids);
+    EXPECT_EQ(subgrid_min_for(30, b->name()), 30);
+  }
+  EXPECT_EQ(parse_subgrid_min("auto"), kSubgridsAuto);
+  EXPECT_EQ(parse_subgrid_min("off"), kNoSubgrids);
+  EXPECT_EQ(parse_subgrid_min("7"), 7);
+  // The default grid of a clustered scene on the CPU has subgrids; with them off, none.
+  Scene s = builtin_scene("thesis-c");
+  EXPECT_GT(build_grid_for(s, "cpu").subgrids, 0);
+  s.options.subgrid_min = kNoSubgrids;
+  EXPECT_EQ(build_grid_for(s, "cpu").subgrids, 0);
 }
 
 TEST(Grid, DensitySetsVoxelsPerTriangle) {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <filesystem>
 
-#include "rill/rt/scene/Camera.h"
-#include "rill/rt/accel/Grid.h"
-#include "rill/rt/scene/Scene.h"
 #include "TestUtil.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Camera.h"
+#include "rill/rt/scene/Scene.h"
 
 namespace rt {
 namespace {
@@ -235,6 +235,11 @@ TEST(Scene, JsonShapesOptionsAndBuiltinBase) {
   EXPECT_EQ(
       parse_json_scene(R"({"options": {"subgrids": "off"}})", ".", "off.json").options.subgrid_min,
       kNoSubgrids);
+  // Left open by default ("auto"): the renderer chooses per backend (GridTest).
+  EXPECT_EQ(parse_json_scene("{}", ".", "default.json").options.subgrid_min, kSubgridsAuto);
+  EXPECT_EQ(
+      parse_json_scene(R"({"options": {"subgrids": "auto"}})", ".", "a.json").options.subgrid_min,
+      kSubgridsAuto);
   EXPECT_EQ(s.options.spp, 4);
   EXPECT_FLOAT_EQ(s.options.ambient, 0.2f);
   EXPECT_FALSE(s.options.smooth_normals);

@@ -103,6 +103,10 @@ class Backend {
   // Device and driver in one line, for `info` listings.
   virtual std::string description() const { return name(); }
   virtual bool supports(Accuracy a) const { return a != Accuracy::Double; }
+  // Whether kernels run on a GPU rather than on the host's CPU cores (cpu, simd, PoCL,
+  // llvmpipe): programs that tune for the device, like the ray tracer's grid settings, ask.
+  // False when the backend cannot run here.
+  virtual bool runs_on_gpu() const { return false; }
   // Whether compile() must stay on one thread: a GL context is current on one thread at a
   // time (EGL refuses to make it current on a second). compile_all() runs such a backend's
   // compiles on its calling thread, alongside the other backends' on oneTBB's workers.

@@ -65,7 +65,8 @@ struct Tracer::Impl {
   SceneOptions options;  // depth and samples per pixel by default
   DeviceScene device;
   Megakernel megakernel;
-  std::unique_ptr<Multipass> multipass;  // built at its first render
+  std::unique_ptr<Multipass> multipass;
+  Film film;  // both strategies' samples meet here  // built at its first render
   Program intersect_program, camera_program;
 };
 
@@ -103,9 +104,9 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
   I.device.camera.set(camera, width, height);
   if (rs.strategy == Strategy::Multipass) {
     if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);
-    return I.multipass->render(rs, width, height, depth, spp);
+    return I.multipass->render(rs, I.film, width, height, depth, spp);
   }
-  return I.megakernel.render(rs, width, height, depth, spp);
+  return I.megakernel.render(rs, I.film, width, height, depth, spp);
 }
 
 std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Camera& camera,

@@ -38,6 +38,16 @@ enum class Strategy {
   Multipass,   // the thesis's kernel sequence with ray states, no refraction (multipass/)
 };
 
+// What a render reads back to the host (RenderResult): everything else stays on the device.
+// A PNG needs only `rgb8`; a PFM needs `color`; the AOVs only when asked for.
+struct FrameOutputs {
+  bool color = true;   // RenderResult::color: the linear mean colour, 3 floats per pixel
+  bool rgb8 = false;   // RenderResult::rgb8: the 8-bit sRGB encoding, encoded on the device
+  bool depth = true;   // RenderResult::depth
+  bool prim = true;    // RenderResult::prim
+  bool normal = true;  // RenderResult::normal
+};
+
 struct RenderSettings {
   std::string backend = "cpu";
   Strategy strategy = Strategy::Megakernel;
@@ -49,6 +59,17 @@ struct RenderSettings {
   // of the traced rays waits for it (thesis 5.6: 20%); launch each pass masked to its state.
   double wait_threshold = 0.2;
   bool masking = true;
+  FrameOutputs outputs;  // what comes back to the host
+};
+
+// A render's time, step by step, in milliseconds (wall clock on the host; they add up to
+// RenderResult::trace_ms, less a little bookkeeping).
+struct FrameTimes {
+  double setup = 0;       // output buffers made or resized (0 when a frame reuses them)
+  double launch = 0;      // the tracing kernels' launches, each until its kernel has run
+  double accumulate = 0;  // samples added up on the device (spp > 1) and their mean
+  double reduce = 0;      // the ray count, reduced on the device
+  double read_back = 0;   // the outputs asked for, encoded (8-bit) and read back
 };
 
 // One multipass pass (kernel) over a render: launches, elements run and written, time.
@@ -58,21 +79,25 @@ struct PassStats {
   double ms = 0;
 };
 
+// The image and AOVs of a render: those RenderSettings::outputs asked for (the others are
+// left empty).
 struct RenderResult {
   int width = 0, height = 0;
-  std::vector<glm::vec3> color;   // linear, row 0 at the top; the mean over the samples
-  std::vector<float> depth;       // first-sample AOVs: hit distance (+inf: miss)
-  std::vector<int32_t> prim;      // primitive id (-1: miss)
-  std::vector<glm::vec3> normal;  // shading normal as stored (0 on a miss)
-  int64_t rays = 0;               // rays traced (camera, shadow, secondary), all samples
-  double compile_ms = 0;          // 0 when the compiled kernel came from a cache
+  std::vector<glm::vec3> color;     // linear, row 0 at the top; the mean over the samples
+  std::vector<unsigned char> rgb8;  // the same as 8-bit sRGB (to_srgb8), 3 bytes per pixel
+  std::vector<float> depth;         // first-sample AOVs: hit distance (+inf: miss)
+  std::vector<int32_t> prim;        // primitive id (-1: miss)
+  std::vector<glm::vec3> normal;    // shading normal as stored (0 on a miss)
+  int64_t rays = 0;                 // rays traced (camera, shadow, secondary), all samples
+  double compile_ms = 0;            // 0 when the compiled kernel came from a cache
   bool from_cache = false;
   // The render's kernels' compile stages (Kernel::info()), summed over them: the multipass
   // strategy compiles its nine at once (compile_all), so the sum exceeds compile_ms. origin
   // is the first kernel's.
   rill::CompileInfo stages;
-  int kernels = 0;  // how many kernels `stages` sums
-  double trace_ms = 0;
+  int kernels = 0;                // how many kernels `stages` sums
+  double trace_ms = 0;            // the frame: launches, accumulation, reduction, read-back
+  FrameTimes times;               // trace_ms, step by step
   int64_t launches = 0;           // kernel launches while tracing
   std::vector<PassStats> passes;  // multipass only: per pass (Multipass.cpp)
   std::string backend;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include <rill/Backend.h>
 #include <tbb/parallel_for.h>
 
 namespace rt {
@@ -138,11 +139,12 @@ Subgrid make_subgrid(const Grid& g, const Scene& s, int64_t v, double mag) {
 
 int32_t parse_subgrid_min(const std::string& s) {
   if (s == "off") return kNoSubgrids;
+  if (s == "auto") return kSubgridsAuto;
   char* end = nullptr;
   const long v = std::strtol(s.c_str(), &end, 10);
   if (s.empty() || end == s.c_str() || *end != '\0' || v < 1 || v > (1 << 20))
-    throw SceneError("subgrids: expected 'off' or a triangle count in 1..1048576 (got '" + s +
-                     "')");
+    throw SceneError("subgrids: expected 'auto', 'off' or a triangle count in 1..1048576 (got '" +
+                     s + "')");
   return static_cast<int32_t>(v);
 }
 
@@ -269,8 +271,14 @@ void compute_empty_distances(Grid& g) {
       }
 }
 
-Grid build_grid_for(const Scene& s) {
-  return build_grid(s, s.options.grid, s.options.subgrid_min, s.options.grid_density);
+int32_t subgrid_min_for(int32_t subgrid_min, const std::string& backend) {
+  if (subgrid_min != kSubgridsAuto) return subgrid_min;
+  return rill::backend(backend).runs_on_gpu() ? kNoSubgrids : kSubgridMin;
+}
+
+Grid build_grid_for(const Scene& s, const std::string& backend) {
+  return build_grid(s, s.options.grid, subgrid_min_for(s.options.subgrid_min, backend),
+                    s.options.grid_density);
 }
 
 Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double density) {

@@ -54,12 +54,14 @@ namespace rt {
 
 constexpr double kGridDensity = 4.0;
 constexpr double kGridDensityMin = 0.125, kGridDensityMax = 256.0;
-// The suggested threshold when subgrids are on (--subgrids 12): more triangles than this in a
-// voxel, a subgrid. Off by default (kNoSubgrids): measured in docs/raytracer.md, they help
-// the CPU backend here and GLSL on thesis C but cost NVIDIA's OpenCL 16-35%, and take 2.5x
-// the memory and 2-3x the build time.
+// The threshold when subgrids are on: more triangles than this in a voxel, a subgrid.
+// Measured (docs/raytracer.md, Performance settings), they help backends that run on the CPU
+// (thesis C 1.4-1.5x) but cost NVIDIA's OpenCL 16-35%, and take 2.5x the memory and 2-3x the
+// build time. So by default (kSubgridsAuto) a grid gets them for a backend on the CPU and not
+// for one on a GPU (subgrid_min_for).
 constexpr int32_t kSubgridMin = 12;
 constexpr int32_t kNoSubgrids = 0;
+constexpr int32_t kSubgridsAuto = -1;
 constexpr double kSubgridDensity = 4.0;  // sub-voxels per triangle of the voxel
 constexpr int32_t kSubgridMaxRes = 8;
 
@@ -92,20 +94,26 @@ void build_subgrids(Grid& g, const Scene& s, int32_t min_count = kSubgridMin);
 void compute_empty_distances(Grid& g);
 constexpr int32_t kMaxSkip = 1 << 16;
 
-// The --subgrids / "subgrids" value: "off" (kNoSubgrids) or a triangle count in 1..2^20;
-// throws SceneError naming the bad value.
+// The --subgrids / "subgrids" value: "auto" (kSubgridsAuto), "off" (kNoSubgrids) or a
+// triangle count in 1..2^20; throws SceneError naming the bad value.
 int32_t parse_subgrid_min(const std::string& s);
 // The --grid-density / "grid_density" value: voxels per triangle in kGridDensityMin..Max;
 // throws SceneError naming the bad value.
 double parse_grid_density(const std::string& s);
 double checked_grid_density(double d);  // the same range check on a number
 
+// The subgrid threshold a grid for `backend` gets: `subgrid_min` itself unless it is
+// kSubgridsAuto, then kSubgridMin when the backend runs on the CPU and kNoSubgrids when it
+// runs on a GPU (Backend::runs_on_gpu).
+int32_t subgrid_min_for(int32_t subgrid_min, const std::string& backend);
+
 // resolution: voxels per axis, 0 = auto (at `density` voxels per triangle). subgrid_min:
-// voxels listing more triangles than this get a subgrid (kNoSubgrids, or any value <= 0: a
-// one-level grid).
+// voxels listing more triangles than this get a subgrid (kNoSubgrids, or any value <= 0,
+// kSubgridsAuto included: a one-level grid; build_grid_for resolves kSubgridsAuto).
 Grid build_grid(const Scene& s, int resolution = 0, int32_t subgrid_min = kNoSubgrids,
                 double density = kGridDensity);
-// The grid the scene's options ask for (grid, subgrid_min, grid_density).
-Grid build_grid_for(const Scene& s);
+// The grid the scene's options ask for (grid, subgrid_min, grid_density), with the settings
+// left to the renderer chosen for `backend` (subgrid_min_for). Images never depend on them.
+Grid build_grid_for(const Scene& s, const std::string& backend = "cpu");
 
 }  // namespace rt

@@ -11,21 +11,17 @@ namespace rt {
 
 using namespace rill;
 
-Kernel compile_for(const Program& program, const std::string& backend_name, Accuracy a) {
-  Backend& be = backend(backend_name);
-  if (std::string why = be.unavailable_reason(); !why.empty())
-    throw std::runtime_error("backend " + backend_name + " cannot run here: " + why);
-  if (!be.supports(a))
-    throw std::runtime_error(std::string("backend ") + backend_name + " has no " +
-                             accuracy_name(a) + " accuracy mode");
-  CompileOptions opt;
-  opt.accuracy = a;
-  return compile(program, backend_name, opt);
+namespace {
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
+}  // namespace
 
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
   program_ = capture();
 }
+
+Megakernel::~Megakernel() = default;
 
 // The loop's state, carried from one iteration (one traced ray) to the next: the ray being
 // traced and what it is for, the path (colour, weight, depth), the light loop's position
@@ -273,8 +269,34 @@ Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a) {
   return kernels_.emplace(key, compile_for(program_, backend_name, a)).first->second;
 }
 
-RenderResult Megakernel::render(const RenderSettings& rs, int width, int height, int depth,
-                                int spp) {
+// One backend's output streams, kept for its next frame of the same size (Film.h says why
+// per backend).
+struct Megakernel::Frame {
+  Frame(int w, int h)
+      : width(w),
+        height(h),
+        color(w, h, "color"),
+        normal(w, h, "normal"),
+        dist(w, h, "depth"),
+        prim(w, h, "prim"),
+        rays(w, h, "rays") {}
+  int width, height;
+  Stream<Float3> color, normal;
+  Stream<Float> dist;
+  Stream<Int> prim, rays;
+};
+
+Megakernel::Frame& Megakernel::frame(const std::string& key, int width, int height) {
+  std::unique_ptr<Frame>& f = frames_[key];
+  if (!f || f->width != width || f->height != height) {
+    f.reset();  // the old streams go before the new ones are made
+    f = std::make_unique<Frame>(width, height);
+  }
+  return *f;
+}
+
+RenderResult Megakernel::render(const RenderSettings& rs, Film& film, int width, int height,
+                                int depth, int spp) {
   RenderResult r;
   r.backend = rs.backend;
   r.width = width;
@@ -291,49 +313,39 @@ RenderResult Megakernel::render(const RenderSettings& rs, int width, int height,
   const int64_t iters =
       int64_t{depth + 1} * (static_cast<int64_t>(S_.light_count) + 1) * stack_factor * 2 + 8;
 
-  Stream<Float3> color(width, height), normal(width, height);
-  Stream<Float> dist(width, height);
-  Stream<Int> prim(width, height), rays(width, height);
-  k.outputs(color, dist, prim, normal, rays);
+  const std::string key = rs.backend + "/" + accuracy_name(rs.accuracy);
+  const auto t_setup = std::chrono::steady_clock::now();
+  Frame& out = frame(key, width, height);
+  k.outputs(out.color, out.dist, out.prim, out.normal, out.rays);
+  film.begin(rs.backend, rs.accuracy, width, height, spp);
+  r.times.setup = ms_since(t_setup);
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
   // below is tracing alone. The ray count's reduction kernels compile here too.
-  const auto warm_key =
-      std::make_pair(rs.backend + "/" + accuracy_name(rs.accuracy), int64_t{width} * height);
+  const auto warm_key = std::make_pair(key, int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
     max_iter_.set(0);
     k.execute();
-    (void)rill::sum(rays);
+    (void)rill::sum(out.rays);
     warmed_.insert(warm_key);
   }
   max_iter_.set(static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
-  r.compile_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  r.compile_ms = ms_since(t0) - r.times.setup;
 
-  const size_t npix = static_cast<size_t>(width) * static_cast<size_t>(height);
-  std::vector<glm::dvec3> sum(spp > 1 ? npix : 0, glm::dvec3(0.0));
   const auto start = std::chrono::steady_clock::now();
   for (int s = 0; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
+    auto t = std::chrono::steady_clock::now();
     k.execute();
     ++r.launches;
-    r.rays += rill::sum(rays);  // on the device: only the total comes back
-    if (s == 0) {
-      r.color = color.download();
-      r.depth = dist.download();
-      r.prim = prim.download();
-      r.normal = normal.download();
-      if (spp > 1)
-        for (size_t p = 0; p < npix; ++p) sum[p] = glm::dvec3(r.color[p]);
-    } else {
-      std::vector<glm::vec3> c = color.download();
-      for (size_t p = 0; p < npix; ++p) sum[p] += glm::dvec3(c[p]);
-    }
+    r.times.launch += ms_since(t);
+    t = std::chrono::steady_clock::now();
+    r.rays += rill::sum(out.rays);  // on the device: only the total comes back
+    r.times.reduce += ms_since(t);
+    film.add_sample(out.color, s);
   }
-  if (spp > 1)
-    for (size_t p = 0; p < npix; ++p) r.color[p] = glm::vec3(sum[p] / static_cast<double>(spp));
-  r.trace_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  film.finish(AovStreams{out.dist, out.prim, out.normal}, rs.outputs, r);
+  r.trace_ms = ms_since(start);
   return r;
 }
 

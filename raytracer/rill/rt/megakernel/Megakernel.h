@@ -10,10 +10,13 @@
 #include <rill/rill.h>
 
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 
 #include "rill/rt/Tracer.h"
+#include "rill/rt/film/Film.h"
+#include "rill/rt/kernel/Compile.h"
 #include "rill/rt/kernel/DeviceScene.h"
 
 namespace rt {
@@ -21,15 +24,22 @@ namespace rt {
 class Megakernel {
  public:
   explicit Megakernel(DeviceScene& scene);
+  ~Megakernel();
   const rill::Program& program() const { return program_; }
   // Compiled once per backend and accuracy.
   rill::Kernel& kernel(const std::string& backend, rill::Accuracy a);
-  // Renders spp samples through the camera set in the scene's CameraRays.
-  RenderResult render(const RenderSettings& rs, int width, int height, int depth, int spp);
+  // Renders spp samples through the camera set in the scene's CameraRays; the samples meet
+  // on `film`.
+  RenderResult render(const RenderSettings& rs, Film& film, int width, int height, int depth,
+                      int spp);
 
  private:
   struct PathLoop;
   struct Aovs;
+  struct Frame;
+  // The output streams for a frame on a backend ("backend/accuracy"): the last frame's when
+  // the size is the same.
+  Frame& frame(const std::string& key, int width, int height);
   rill::Program capture() const;
   // The loop body's steps, in order (Megakernel.cpp).
   Hit trace(PathLoop& L) const;
@@ -44,12 +54,8 @@ class Megakernel {
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
   rill::Program program_;
   std::map<std::string, rill::Kernel> kernels_;
-  std::set<std::pair<std::string, int64_t>> warmed_;  // kernels launched at a size before
+  std::map<std::string, std::unique_ptr<Frame>> frames_;  // per backend and accuracy
+  std::set<std::pair<std::string, int64_t>> warmed_;      // kernels launched at a size before
 };
-
-// Compiles `program` for a backend, with a clear error when the backend cannot run here or
-// lacks the accuracy mode.
-rill::Kernel compile_for(const rill::Program& program, const std::string& backend,
-                         rill::Accuracy a);
 
 }  // namespace rt

@@ -47,6 +47,12 @@ using namespace rill;
 
 using namespace mp;
 
+namespace {
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+}  // namespace
+
 struct Multipass::Buffers {
   Buffers(int64_t w, int64_t h)
       : ray(w, h, "ray"),
@@ -56,13 +62,16 @@ struct Multipass::Buffers {
         tr(w, h, "tr"),
         path(w, h, "path"),
         aov(w, h, "aov"),
-        local(w, h, "local") {}
+        local(w, h, "local"),
+        width(w),
+        height(h) {}
   Stream<Ray> ray, shadow;      // the path's ray; the shadow ray towards the current light
   Stream<Hit> hit, shadow_hit;  // their hits
   Stream<TraceState> tr;        // the traversal of the ray being traced (either)
   Stream<PathState> path;
   Stream<Aov> aov;
   Stream<Float3> local;  // local light at the path's surface
+  int64_t width, height;
 };
 
 Multipass::Multipass(DeviceScene& scene) : S_(scene) {
@@ -84,6 +93,8 @@ Multipass::Multipass(DeviceScene& scene) : S_(scene) {
   }
   combine_ = capture_combine();
 }
+
+Multipass::~Multipass() = default;
 
 Multipass::Kernels& Multipass::kernels(const std::string& backend, Accuracy a) {
   const std::string key = backend + "/" + accuracy_name(a);
@@ -110,8 +121,8 @@ Multipass::Kernels& Multipass::kernels(const std::string& backend, Accuracy a) {
   return compiled_.emplace(key, std::move(k)).first->second;
 }
 
-RenderResult Multipass::render(const RenderSettings& rs, int width, int height, int depth,
-                               int spp) {
+RenderResult Multipass::render(const RenderSettings& rs, Film& film, int width, int height,
+                               int depth, int spp) {
   const Features& F = S_.F;
   RenderResult r;
   r.backend = rs.backend;
@@ -131,13 +142,20 @@ RenderResult Multipass::render(const RenderSettings& rs, int width, int height, 
     if (!k->backend_name().empty()) add_stages(r, k->info());
 
   S_.shading.max_depth.set(depth);
-  Buffers B(width, height);
+  const auto t_setup = std::chrono::steady_clock::now();
+  std::unique_ptr<Buffers>& kept = buffers_[rs.backend + "/" + accuracy_name(rs.accuracy)];
+  if (!kept || kept->width != width || kept->height != height) {
+    kept.reset();  // the old streams go before the new ones are made
+    kept = std::make_unique<Buffers>(width, height);
+  }
+  Buffers& B = *kept;
+  film.begin(rs.backend, rs.accuracy, width, height, spp);
+  r.times.setup = ms_since(t_setup);
   // The ray count is a reduction on the device (rill::sum): its kernels compile here, not in
   // the first sample's trace time.
   const Stream<Int> path_rays = B.path.field<Int>("rays");
   (void)rill::sum(path_rays, rs.backend);
-  r.compile_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  r.compile_ms = ms_since(t0) - r.times.setup;
 
   if (!(rs.wait_threshold > 0.0 && rs.wait_threshold <= 1.0))
     throw std::runtime_error("multipass: the wait threshold must be in (0, 1] (got " +
@@ -198,8 +216,6 @@ RenderResult Multipass::render(const RenderSettings& rs, int width, int height, 
     }
   };
 
-  const size_t npix = static_cast<size_t>(width) * static_cast<size_t>(height);
-  std::vector<glm::dvec3> sum(spp > 1 ? npix : 0, glm::dvec3(0.0));
   // The shading kernels bind the record fields they declare, by name (the trace kernels
   // are bound per trace, above).
   K.raygen.bind_fields("ray", B.ray).bind_fields("path", B.path).bind_fields("aov", B.aov);
@@ -233,22 +249,18 @@ RenderResult Multipass::render(const RenderSettings& rs, int width, int height, 
       }
       run(K.combine, kCombine, with_surface);
     }
+    const auto t = std::chrono::steady_clock::now();
     r.rays += rill::sum(path_rays);
-    std::vector<glm::vec3> c = B.path.field<Float3>("color").download();
-    if (sample == 0) {
-      r.color = c;
-      r.depth = B.aov.field<Float>("depth").download();
-      r.prim = B.aov.field<Int>("prim").download();
-      r.normal = B.aov.field<Float3>("normal").download();
-    }
-    if (spp > 1)
-      for (size_t p = 0; p < npix; ++p) sum[p] += glm::dvec3(c[p]);
+    r.times.reduce += ms_since(t);
+    film.add_sample(B.path.field<Float3>("color"), sample);
   }
-  if (spp > 1)
-    for (size_t p = 0; p < npix; ++p) r.color[p] = glm::vec3(sum[p] / static_cast<double>(spp));
+  r.times.launch = 0;
+  for (const PassStats& p : r.passes) r.times.launch += p.ms;
+  film.finish(AovStreams{B.aov.field<Float>("depth"), B.aov.field<Int>("prim"),
+                         B.aov.field<Float3>("normal")},
+              rs.outputs, r);
   r.launches = launches;
-  r.trace_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  r.trace_ms = ms_since(start);
   return r;
 }
 

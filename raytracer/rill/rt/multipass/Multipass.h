@@ -8,9 +8,11 @@
 #include <rill/rill.h>
 
 #include <map>
+#include <memory>
 #include <string>
 
 #include "rill/rt/Tracer.h"
+#include "rill/rt/film/Film.h"
 #include "rill/rt/kernel/DeviceScene.h"
 
 namespace rt {
@@ -19,8 +21,11 @@ class Multipass {
  public:
   // Captures the passes' programs; throws std::runtime_error for a scene with refraction.
   explicit Multipass(DeviceScene& scene);
-  // Renders spp samples through the camera set in the scene's CameraRays.
-  RenderResult render(const RenderSettings& rs, int width, int height, int depth, int spp);
+  ~Multipass();
+  // Renders spp samples through the camera set in the scene's CameraRays; the samples meet
+  // on `film`.
+  RenderResult render(const RenderSettings& rs, Film& film, int width, int height, int depth,
+                      int spp);
 
  private:
   struct Kernels {
@@ -51,6 +56,8 @@ class Multipass {
   rill::Program raygen_, setup_, traverse_, intersect_, finish_, surface_, shadow_gen_, shadow_acc_,
       combine_;
   std::map<std::string, Kernels> compiled_;
+  // Per backend and accuracy, the state streams of its last frame, reused at the same size.
+  std::map<std::string, std::unique_ptr<Buffers>> buffers_;
 };
 
 }  // namespace rt

@@ -22,6 +22,14 @@ void write_png(const std::string& path, int w, int h, const std::vector<glm::vec
   std::vector<unsigned char> px(rgb.size() * 3);
   for (size_t i = 0; i < rgb.size(); ++i)
     for (int c = 0; c < 3; ++c) px[i * 3 + static_cast<size_t>(c)] = to_srgb8(rgb[i][c]);
+  write_png_rgb8(path, w, h, px);
+}
+
+void write_png_rgb8(const std::string& path, int w, int h, const std::vector<unsigned char>& px) {
+  if (px.size() != static_cast<size_t>(w) * static_cast<size_t>(h) * 3)
+    throw std::runtime_error("cannot write " + path + ": " + std::to_string(px.size()) +
+                             " bytes for a " + std::to_string(w) + "x" + std::to_string(h) +
+                             " RGB image");
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;

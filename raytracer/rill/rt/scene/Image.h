@@ -10,6 +10,8 @@ namespace rt {
 
 // Linear colour -> 8-bit sRGB PNG (clamped to [0, 1]). Rows top to bottom.
 void write_png(const std::string& path, int w, int h, const std::vector<glm::vec3>& rgb);
+// An image already encoded as 8-bit sRGB (3 bytes per pixel, RenderResult::rgb8) as PNG.
+void write_png_rgb8(const std::string& path, int w, int h, const std::vector<unsigned char>& rgb8);
 // 8-bit sRGB encoding of one linear value.
 unsigned char to_srgb8(float linear);
 // PFM, little-endian, rows stored bottom to top as the format requires.

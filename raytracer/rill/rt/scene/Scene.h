@@ -71,11 +71,13 @@ struct Camera {
 };
 
 struct SceneOptions {
-  bool shadows = true;         // hard shadows from every light
-  float ambient = 0.1f;        // ambient term: ambient * Kd
-  int max_depth = 5;           // reflection / refraction bounces after the primary ray
-  int grid = 0;                // grid cells per axis; 0 = automatic (see Grid.h)
-  int subgrid_min = 0;         // voxels listing more triangles get a subgrid; 0 = none (Grid.h)
+  bool shadows = true;   // hard shadows from every light
+  float ambient = 0.1f;  // ambient term: ambient * Kd
+  int max_depth = 5;     // reflection / refraction bounces after the primary ray
+  int grid = 0;          // grid cells per axis; 0 = automatic (see Grid.h)
+  // Voxels listing more triangles get a subgrid; 0 = none; -1 (kSubgridsAuto, the default):
+  // chosen for the backend that renders (Grid.h, subgrid_min_for).
+  int subgrid_min = -1;
   double grid_density = 4.0;   // voxels per triangle of the automatic resolution (Grid.h)
   int spp = 1;                 // samples per pixel
   bool smooth_normals = true;  // interpolate vertex normals where the mesh has them

@@ -445,7 +445,9 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
       }
       if (o.contains("subgrids")) {
         if (o["subgrids"].is_string() && o["subgrids"].get<std::string>() == "off")
-          s.options.subgrid_min = 0;
+          s.options.subgrid_min = kNoSubgrids;
+        else if (o["subgrids"].is_string() && o["subgrids"].get<std::string>() == "auto")
+          s.options.subgrid_min = kSubgridsAuto;
         else
           s.options.subgrid_min = integer(c, o["subgrids"], "options.subgrids", 1, 1 << 20);
       }

@@ -1,0 +1,61 @@
+// The film (after pbrt's): where a render's samples meet, on the device, and what of them
+// comes back to the host.
+//
+// A strategy launches its kernels once per sample and hands each sample's colour stream to
+// the film, which adds it to a running sum on the same backend (a compensated sum: a float
+// sum and the rounding error it dropped, so many samples lose almost nothing). At the end,
+// the film makes the mean and reads back only what FrameOutputs asks for: the 8-bit image
+// is encoded on the device (Srgb8.h), so a PNG costs one Int per pixel to read back.
+//
+// Its buffers and kernels are kept per backend and accuracy and reused by later frames of
+// the same size: a frame allocates nothing and uploads nothing. They are never shared
+// between backends, so a tracer that renders on several in turn moves no data between them.
+#pragma once
+
+#include <rill/rill.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "rill/rt/Tracer.h"
+
+namespace rt {
+
+// The first sample's AOV streams, as a strategy wrote them.
+struct AovStreams {
+  rill::Stream<rill::Float> depth;
+  rill::Stream<rill::Int> prim;
+  rill::Stream<rill::Float3> normal;
+};
+
+class Film {
+ public:
+  Film();
+  ~Film();
+  Film(const Film&) = delete;
+  Film& operator=(const Film&) = delete;
+
+  // Starts a frame of spp samples on a backend.
+  void begin(const std::string& backend, rill::Accuracy a, int width, int height, int spp);
+  // Sample s's colour, just written by the strategy on the frame's backend.
+  void add_sample(const rill::Stream<rill::Float3>& color, int s);
+  // The mean, encoded and read back as `want` asks, with the first sample's AOVs; adds the
+  // time it took to r.times.
+  void finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r);
+
+ private:
+  struct Buffers;
+  rill::Uniform<rill::Int> first_{0, "first_sample"};
+  rill::Uniform<rill::Float> samples_{1.0f, "samples"};
+  rill::Array<rill::Float> thresholds_;
+  rill::Program add_, mean_, encode_;
+  std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
+  Buffers* now_ = nullptr;                                   // the frame's
+  int spp_ = 1;
+  std::optional<rill::Stream<rill::Float3>> single_;  // spp == 1: the sample itself
+  double accumulate_ms_ = 0;
+};
+
+}  // namespace rt

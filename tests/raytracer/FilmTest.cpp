@@ -1,0 +1,147 @@
+// The film (raytracer/rill/rt/film/), per backend: the device's 8-bit sRGB encoding gives
+// the host's bytes for every kind of float, samples add up on the device without losing
+// small ones, and a render reads back only the outputs asked for.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "RenderCompare.h"
+#include "TestUtil.h"
+#include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/film/Film.h"
+#include "rill/rt/film/Srgb8.h"
+#include "rill/rt/scene/Image.h"
+
+namespace rt {
+namespace {
+
+using namespace rill;
+
+class FilmTest : public ::testing::TestWithParam<std::string> {};
+
+// The values where encodings change (each threshold and its neighbours), the ends of the
+// range and the special values, and random values over [0, 1.25).
+std::vector<float> hard_linear_values() {
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> v{0.0f,          -0.0f,  -1.0f,  1.0f,       1.5f, inf,  -inf,
+                       std::nanf(""), 1e-45f, 1e-40f, 0.0031308f, 0.5f, 2e38f};
+  for (float t : srgb8_thresholds())
+    v.insert(v.end(), {std::nextafter(t, 0.0f), t, std::nextafter(t, 2.0f)});
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.25f);
+  for (int i = 0; i < 20000; ++i) v.push_back(u(rng));
+  return v;
+}
+
+TEST(Srgb8Thresholds, AreWhereTheHostEncodingSteps) {
+  const auto& t = srgb8_thresholds();
+  for (int level = 1; level <= 255; ++level) {
+    const float at = t[static_cast<size_t>(level - 1)];
+    EXPECT_EQ(to_srgb8(at), level) << "threshold " << level;
+    EXPECT_EQ(to_srgb8(std::nextafter(at, 0.0f)), level - 1) << "below threshold " << level;
+  }
+}
+
+TEST_P(FilmTest, DeviceSrgb8EqualsTheHostsForEveryKindOfFloat) {
+  RT_REQUIRE_BACKEND(GetParam());
+  const std::vector<float> all = hard_linear_values();
+  const Array<Float> thresholds(
+      std::vector<float>(srgb8_thresholds().begin(), srgb8_thresholds().end()), "thresholds");
+  Program p = program("srgb8_test", [&] {
+    Input<Float> linear("linear");
+    Output<Int> level("level");
+    level = encode_srgb8(linear, thresholds);
+  });
+  for (Accuracy a : {Accuracy::Strict, Accuracy::Fast}) {
+    CompileOptions opt;
+    opt.accuracy = a;
+    Kernel k = compile(p, GetParam(), opt);
+    // fast may assume that no value is NaN or infinite (-ffinite-math-only): finite ones only.
+    std::vector<float> values = all;
+    if (a == Accuracy::Fast) std::erase_if(values, [](float x) { return !std::isfinite(x); });
+    Stream<Float> in(values);
+    Stream<Int> out(static_cast<int64_t>(values.size()));
+    k.inputs(in).outputs(out);
+    k.execute();
+    const std::vector<int32_t> got = out.download();
+    size_t differ = 0;
+    for (size_t i = 0; i < values.size(); ++i)
+      if (got[i] != to_srgb8(values[i]) && differ++ < 5)
+        ADD_FAILURE() << accuracy_name(a) << ": " << values[i] << " encodes to " << got[i]
+                      << " on the device, " << int{to_srgb8(values[i])} << " on the host";
+    EXPECT_EQ(differ, 0u) << accuracy_name(a);
+  }
+}
+
+// One large sample and small ones: a plain float sum drops the small ones (1 + 3e-8 == 1),
+// the film's compensated sum keeps them, and its mean is the exact mean rounded once.
+TEST_P(FilmTest, SamplesAddUpWithoutLosingSmallOnes) {
+  RT_REQUIRE_BACKEND(GetParam());
+  rt::Film film;
+  const int spp = 4;
+  film.begin(GetParam(), Accuracy::Strict, 2, 1, spp);
+  Stream<Float3> sample(2, 1, "sample");
+  for (int s = 0; s < spp; ++s) {
+    const float x = s == 0 ? 1.0f : 3e-8f;
+    sample.upload(std::vector<glm::vec3>{glm::vec3(x, 0.5f, 0.0f), glm::vec3(x * 2.0f)});
+    film.add_sample(sample, s);
+  }
+  RenderResult r;
+  FrameOutputs want;
+  want.depth = want.prim = want.normal = false;
+  Stream<Float> depth(2, 1);
+  Stream<Int> prim(2, 1);
+  Stream<Float3> normal(2, 1);
+  film.finish(AovStreams{depth, prim, normal}, want, r);
+  ASSERT_EQ(r.color.size(), 2u);
+  EXPECT_TRUE(r.depth.empty() && r.prim.empty() && r.normal.empty() && r.rgb8.empty());
+  auto exact_mean = [&](double first, double rest) {
+    return static_cast<float>((first + (spp - 1) * rest) / spp);
+  };
+  EXPECT_EQ(r.color[0].x, exact_mean(1.0, 3e-8f));
+  EXPECT_NE(r.color[0].x, 0.25f);  // what a plain float sum gives
+  EXPECT_EQ(r.color[0].y, 0.5f);
+  EXPECT_EQ(r.color[0].z, 0.0f);
+  EXPECT_EQ(r.color[1].x, exact_mean(2.0, 6e-8f));
+}
+
+// A render reads back what FrameOutputs asks for and nothing else; its 8-bit image is the
+// host's encoding of its colour.
+TEST_P(FilmTest, RendersReadBackOnlyWhatIsAskedFor) {
+  RT_REQUIRE_BACKEND(GetParam());
+  Scene s = builtin_scene("thesis-b");
+  Grid g = build_grid(s, 8);
+  Tracer t(s, g);
+  RenderSettings rs;
+  rs.backend = GetParam();
+  rs.width = 20;
+  rs.height = 14;
+  rs.spp = 2;
+  for (Strategy strategy : {Strategy::Megakernel, Strategy::Multipass}) {
+    rs.strategy = strategy;
+    rs.outputs = FrameOutputs{};
+    const RenderResult all = t.render(rs, s.camera);
+    rs.outputs = FrameOutputs{false, true, false, false, false};
+    const RenderResult png = t.render(rs, s.camera);
+    EXPECT_TRUE(png.color.empty() && png.depth.empty() && png.prim.empty() && png.normal.empty());
+    ASSERT_EQ(png.rgb8.size(), all.color.size() * 3);
+    for (size_t p = 0; p < all.color.size(); ++p)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(png.rgb8[p * 3 + static_cast<size_t>(c)], to_srgb8(all.color[p][c]))
+            << "pixel " << p;
+    EXPECT_EQ(png.rays, all.rays);
+    rs.outputs = FrameOutputs{false, false, false, true, false};
+    const RenderResult prim = t.render(rs, s.camera);
+    EXPECT_EQ(prim.prim, all.prim);
+    EXPECT_TRUE(prim.color.empty() && prim.rgb8.empty() && prim.depth.empty());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, FilmTest, ::testing::ValuesIn(testing::backend_names()),
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
+
+}  // namespace
+}  // namespace rt
