@@ -10,7 +10,9 @@
 //     compute_bindings()) and arrays, including streams gathered from, as buffer textures on
 //     units 0, 1, ... (read-only data through the texture cache);
 //   - one invocation per element, in work groups of 64 (RILL_GLSL_LOCAL_SIZE changes it),
-//     over a 2D grid of groups so that large streams stay within the group-count limit;
+//     over a 2D grid of groups so that large streams stay within the group-count limit; a 2D
+//     launch runs its elements in 8 x 4 tiles, 32 neighbours per subgroup (RILL_GLSL_TILES=off:
+//     along rows);
 //   - discarded elements return before storing, so outputs keep their previous values; the
 //     counts of elements written and selected come back through a small storage buffer
 //     (reading it is the launch's only wait);
@@ -88,7 +90,8 @@ class ComputeBackend;
 class ComputeKernel : public CompiledKernel {
  public:
   struct Locations {
-    GLint count = -1, width = -1, u = -1, k = -1, one = -1, shapes = -1, values = -1, nvalues = -1;
+    GLint count = -1, width = -1, u = -1, k = -1, one = -1, shapes = -1, values = -1, nvalues = -1,
+          tiled = -1;
   };
   // One dispatch: every element computes the whole kernel and stores these outputs.
   struct Pass {
@@ -245,6 +248,7 @@ class ComputeBackend : public Backend, public SessionOwner {
   }
   const Limits& limits() const { return limits_; }
   GLuint counter() const { return counter_; }
+  bool tiles() const { return tiles_; }
 
   // The buffer holding s, current with the host copy.
   Buffer& to_device(const GL& gl, detail::Storage& s) {
@@ -329,6 +333,12 @@ class ComputeBackend : public Backend, public SessionOwner {
       gl.glGetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &invocations);
       if (const char* size = std::getenv("RILL_GLSL_LOCAL_SIZE"))  // for measuring
         local_size_ = std::clamp(std::atoi(size), 1, invocations);
+      if (const char* t = std::getenv("RILL_GLSL_TILES"); t && *t) {
+        const std::string v = t;
+        if (v != "on" && v != "off")
+          throw Error("RILL_GLSL_TILES='" + v + "' is not one of on, off");
+        tiles_ = v == "on";
+      }
       gl.glGenBuffers(1, &counter_);
       gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, counter_);
       gl.glBufferData(GL_SHADER_STORAGE_BUFFER, 16, nullptr, GL_DYNAMIC_READ);
@@ -379,6 +389,7 @@ class ComputeBackend : public Backend, public SessionOwner {
   Driver driver_;
   Limits limits_;
   int local_size_ = 64;
+  bool tiles_ = true;   // 2D launches in 8 x 4 tiles (RILL_GLSL_TILES)
   GLuint counter_ = 0;  // the launch's counts: elements written, selected
 };
 
@@ -411,6 +422,7 @@ void ComputeKernel::dispatch(const GL& gl, Pass& p, const LaunchArgs& a,
     auto at = [&](const char* name) { return gl.glGetUniformLocation(p.program, name); };
     loc.count = at("rill_count");
     loc.width = at("rill_width");
+    loc.tiled = at("rill_tiled");
     loc.u = at("rill_u");
     loc.k = at("rill_k");
     loc.one = at("rill_one");
@@ -444,9 +456,13 @@ void ComputeKernel::dispatch(const GL& gl, Pass& p, const LaunchArgs& a,
     gl.glUniform1i(loc.nvalues, a.mask ? static_cast<GLint>(a.mask_values.size()) : 0);
   if (a.mask && loc.values >= 0)
     gl.glUniform1iv(loc.values, static_cast<GLsizei>(a.mask_values.size()), a.mask_values.data());
+  // 2D launches run in 8 x 4 tiles (GLSLEmitter.cpp) unless RILL_GLSL_TILES=off.
+  const bool tiled = be_.tiles() && a.height > 1 && !a.warm_up;
+  if (loc.tiled >= 0) gl.glUniform1i(loc.tiled, tiled ? 1 : 0);
+  const int64_t span = tiled ? (a.width + 7) / 8 * ((a.height + 3) / 4) * 32 : a.count;
   check(gl, "preparing a launch", kWho);
   // Groups over a 2D grid: x up to the driver's limit, y as many rows of them as needed.
-  const int64_t groups = std::max<int64_t>(1, (a.count + local_size_ - 1) / local_size_);
+  const int64_t groups = std::max<int64_t>(1, (span + local_size_ - 1) / local_size_);
   const int64_t gx = std::min<int64_t>(groups, be_.limits().groups_x);
   const int64_t gy = (groups + gx - 1) / gx;
   gl.glDispatchCompute(static_cast<GLuint>(gx), static_cast<GLuint>(gy), 1);

@@ -204,6 +204,36 @@ struct ClBuffer : detail::DeviceBuffer {
 
 class OpenCLBackend;
 
+// How launches are laid out, read once from the environment:
+//   RILL_OPENCL_GROUP=N      work-items per group (default 64; the kernel's and the device's
+//                            limits cap it)
+//   RILL_OPENCL_TILES=on|off 2D launches in 8 x 4 tiles (default on)
+struct LaunchTuning {
+  size_t group = 64;
+  bool tiles = true;
+};
+
+const LaunchTuning& launch_tuning() {
+  static const LaunchTuning t = [] {
+    LaunchTuning t;
+    if (const char* g = std::getenv("RILL_OPENCL_GROUP"); g && *g) {
+      char* end = nullptr;
+      const long v = std::strtol(g, &end, 10);
+      if (*end != '\0' || v < 1 || v > 1024)
+        throw Error(std::string("RILL_OPENCL_GROUP='") + g + "' is not a group size in 1..1024");
+      t.group = static_cast<size_t>(v);
+    }
+    if (const char* s = std::getenv("RILL_OPENCL_TILES"); s && *s) {
+      const std::string v = s;
+      if (v != "on" && v != "off")
+        throw Error("RILL_OPENCL_TILES='" + v + "' is not one of on, off");
+      t.tiles = v == "on";
+    }
+    return t;
+  }();
+  return t;
+}
+
 // A small table a kernel reads (array shapes, uniform words, mask values), kept in one device
 // buffer across launches and written again only when its contents change.
 template <class T>
@@ -478,6 +508,10 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
   set_mem(a.mask ? be_.to_device(*a.mask) : values_buf);
   set_mem(values_buf);
   check(clSetKernelArg(kernel_, arg++, sizeof mask_count, &mask_count), "clSetKernelArg");
+  // 2D launches run in 8 x 4 tiles (OpenCLEmitter.cpp) unless RILL_OPENCL_TILES=off.
+  const LaunchTuning& tuning = launch_tuning();
+  cl_int tiled = tuning.tiles && a.height > 1 && !a.warm_up ? 1 : 0;
+  check(clSetKernelArg(kernel_, arg++, sizeof tiled, &tiled), "clSetKernelArg");
 
   cl_uint written[2] = {0, 0};
   if (a.count > 0 || a.warm_up) {
@@ -486,10 +520,12 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
       clGetKernelWorkGroupInfo(kernel_, d.id, CL_KERNEL_WORK_GROUP_SIZE, sizeof kernel_group,
                                &kernel_group, nullptr);
       group_ = std::max<size_t>(
-          1, std::min({size_t{64}, kernel_group ? kernel_group : size_t{64}, d.max_group}));
+          1, std::min({tuning.group, kernel_group ? kernel_group : tuning.group, d.max_group}));
     }
     // A warm-up runs no element (count 0) but spans warm_up_grid_ work-items (warm_up()).
-    const size_t span = a.warm_up ? warm_up_grid_ : static_cast<size_t>(a.count);
+    size_t span = a.warm_up ? warm_up_grid_ : static_cast<size_t>(a.count);
+    if (tiled)
+      span = static_cast<size_t>((a.width + 7) / 8) * static_cast<size_t>((a.height + 3) / 4) * 32;
     size_t global = (span + group_ - 1) / group_ * group_;
     cl_uint totals[2] = {0, 0};
     // The blocking read of the counter is the launch's only wait: it returns once the kernel

@@ -39,6 +39,15 @@ const uint32_t* Storage::host_data_for_read() {
   return host_.data();
 }
 
+void Storage::read_into(uint32_t* dst) {
+  if (host_valid_) {
+    if (!host_.empty()) std::memcpy(dst, host_.data(), host_.size() * 4);
+    return;
+  }
+  if (!device_owner_ || !device_) throw Error("internal: stream has no valid copy");
+  device_owner_->read_back(*this, dst);
+}
+
 uint32_t* Storage::host_data_for_write() {
   sync_to_host();
   return host_data_for_overwrite();

@@ -61,6 +61,10 @@ class Storage {
 
   // The host copy, current (read back from the device first if the device copy is newer).
   const uint32_t* host_data_for_read();
+  // Copies the current data (words() words) into dst: straight from the device copy when it
+  // is the newer one (one transfer, nothing through the host copy, which stays as it was),
+  // else from the host copy.
+  void read_into(uint32_t* dst);
   // The host copy, current, for changing in place (a kernel writing some elements and
   // keeping the others): the device copy becomes stale.
   uint32_t* host_data_for_write();
@@ -138,10 +142,17 @@ void copy_in(Storage& s, std::span<const HostOf<V>> data) {
 }
 
 template <class V>
+void copy_out(Storage& s, std::span<HostOf<V>> out) {
+  if (static_cast<int64_t>(out.size()) != s.count())
+    throw Error("download of a stream of " + std::to_string(s.count()) + " elements into " +
+                std::to_string(out.size()));
+  if (s.words() != 0) s.read_into(reinterpret_cast<uint32_t*>(out.data()));
+}
+
+template <class V>
 std::vector<HostOf<V>> copy_out(Storage& s) {
-  const uint32_t* host = s.host_data_for_read();
   std::vector<HostOf<V>> out(static_cast<size_t>(s.count()));
-  if (!out.empty()) std::memcpy(out.data(), host, s.words() * 4);
+  copy_out<V>(s, std::span<HostOf<V>>(out));
   return out;
 }
 
@@ -179,7 +190,8 @@ class StreamRef {
 
 template <class V>
 class Stream {
-  static_assert(sizeof(detail::HostOf<V>) == 4 * V::width || std::is_same_v<typename V::scalar_type, bool>,
+  static_assert(sizeof(detail::HostOf<V>) == 4 * V::width ||
+                    std::is_same_v<typename V::scalar_type, bool>,
                 "rill: unexpected host layout");
   static_assert(!std::is_same_v<typename V::scalar_type, bool>,
                 "rill: streams hold Float or Int elements (store a Bool as an Int)");
@@ -213,7 +225,11 @@ class Stream {
 
   void upload(std::span<const host_type> data) { detail::copy_in<V>(*s_, data); }
   void upload(const std::vector<host_type>& data) { upload(std::span<const host_type>(data)); }
+  // The elements, from whichever copy is newer (a device copy is read straight into the
+  // result; the stream's host copy is left as it was).
   std::vector<host_type> download() const { return detail::copy_out<V>(*s_); }
+  // The same into memory of the caller's (size() elements), for frames that reuse it.
+  void download_into(std::span<host_type> out) const { detail::copy_out<V>(*s_, out); }
   // Sets every element to v.
   void fill(const host_type& v) { upload(std::vector<host_type>(static_cast<size_t>(size()), v)); }
 
@@ -254,7 +270,6 @@ class Stream {
   ir::Constant border_{};
 };
 
-
 template <class V>
 class Array {
   static_assert(!std::is_same_v<typename V::scalar_type, bool>,
@@ -264,7 +279,8 @@ class Array {
   using host_type = detail::HostOf<V>;
 
   explicit Array(int64_t n, std::string name = "array") : Array(1, {n, 1, 1}, std::move(name)) {}
-  Array(int64_t nx, int64_t ny, std::string name = "array") : Array(2, {nx, ny, 1}, std::move(name)) {}
+  Array(int64_t nx, int64_t ny, std::string name = "array")
+      : Array(2, {nx, ny, 1}, std::move(name)) {}
   Array(int64_t nx, int64_t ny, int64_t nz, std::string name = "array")
       : Array(3, {nx, ny, nz}, std::move(name)) {}
   Array(const std::vector<host_type>& data, std::string name = "array")
@@ -339,8 +355,8 @@ class Array {
   }
   V gather(std::vector<ir::Operand> idx, int dims) const {
     if (dims != s_->dims)
-      throw Error("array '" + s_->name + "' is " + std::to_string(s_->dims) + "D but was indexed with " +
-                  std::to_string(dims) + " indices");
+      throw Error("array '" + s_->name + "' is " + std::to_string(s_->dims) +
+                  "D but was indexed with " + std::to_string(dims) + " indices");
     return V(detail::emit_gather(s_, std::move(idx), boundary_, border_), detail::AdoptTag{});
   }
   void upload_shaped(const std::vector<host_type>& data) {

@@ -95,6 +95,20 @@ std::string Tracer::source(const std::string& backend, Accuracy a) {
 }
 
 RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
+  RenderResult r;
+  render(rs, camera, r);
+  return r;
+}
+
+void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult& r) {
+  // A fresh frame's result, but with the memory of the last frame's images.
+  RenderResult fresh;
+  fresh.color.swap(r.color);
+  fresh.rgb8.swap(r.rgb8);
+  fresh.depth.swap(r.depth);
+  fresh.prim.swap(r.prim);
+  fresh.normal.swap(r.normal);
+  r = std::move(fresh);
   Impl& I = *d_;
   const int width = rs.width > 0 ? rs.width : 0;
   const int height = rs.height > 0 ? rs.height : 0;
@@ -104,9 +118,9 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
   I.device.camera.set(camera, width, height);
   if (rs.strategy == Strategy::Multipass) {
     if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);
-    return I.multipass->render(rs, I.film, width, height, depth, spp);
+    return I.multipass->render(rs, I.film, width, height, depth, spp, r);
   }
-  return I.megakernel.render(rs, I.film, width, height, depth, spp);
+  I.megakernel.render(rs, I.film, width, height, depth, spp, r);
 }
 
 std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Camera& camera,

@@ -125,6 +125,9 @@ class Tracer {
   std::vector<std::string> shaders() const;
   // Compiles (cached per backend and accuracy) and renders through the camera.
   RenderResult render(const RenderSettings& settings, const Camera& camera);
+  // The same into `result`, whose image memory is reused: frame after frame into one
+  // RenderResult allocates nothing on the host.
+  void render(const RenderSettings& settings, const Camera& camera, RenderResult& result);
   // The generated source on a backend (compiles if needed).
   std::string source(const std::string& backend, rill::Accuracy a = rill::Accuracy::Strict);
 

@@ -2,7 +2,11 @@
 // read-back of what was asked for.
 #include "rill/rt/film/Film.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <chrono>
+#include <span>
 
 #include "rill/rt/film/Srgb8.h"
 #include "rill/rt/kernel/Compile.h"
@@ -42,6 +46,7 @@ struct Film::Buffers {
   int width = 0, height = 0;  // of sum, carry and mean_color (made for frames of spp > 1)
   std::optional<Stream<Float3>> sum, carry, mean_color;
   std::optional<Stream<Int>> packed;  // the 8-bit image, at the size last encoded
+  std::vector<int32_t> packed_host;   // and its host copy, kept for the next frame
 };
 
 Film::Film() : thresholds_(threshold_data(), "srgb8_thresholds") {
@@ -108,21 +113,32 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     t = std::chrono::steady_clock::now();
   }
   r.times.accumulate += accumulate_ms_;
-  if (want.color) r.color = color.download();
+  // Each output asked for is read straight into the result (whose memory a caller that
+  // renders frame after frame into one RenderResult keeps); the others are emptied.
+  auto read = [](const auto& stream, auto& into, bool wanted) {
+    if (!wanted) return into.clear();
+    into.resize(static_cast<size_t>(stream.size()));
+    stream.download_into(std::span(into));
+  };
+  read(color, r.color, want.color);
+  read(aovs.depth, r.depth, want.depth);
+  read(aovs.prim, r.prim, want.prim);
+  read(aovs.normal, r.normal, want.normal);
+  r.rgb8.clear();
   if (want.rgb8) {
     if (!now_->packed || now_->packed->width() != color.width() ||
         now_->packed->height() != color.height())
       now_->packed.emplace(color.width(), color.height(), "film_rgb8");
     now_->encode.inputs(color).outputs(*now_->packed);
     now_->encode.execute();
-    const std::vector<int32_t> packed = now_->packed->download();
-    r.rgb8.resize(packed.size() * 3);
-    for (size_t p = 0; p < packed.size(); ++p)
-      unpack_rgb8(static_cast<uint32_t>(packed[p]), &r.rgb8[p * 3]);
+    read(*now_->packed, now_->packed_host, true);
+    const size_t n = now_->packed_host.size();
+    r.rgb8.resize(n * 3);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& range) {
+      for (size_t p = range.begin(); p < range.end(); ++p)
+        unpack_rgb8(static_cast<uint32_t>(now_->packed_host[p]), &r.rgb8[p * 3]);
+    });
   }
-  if (want.depth) r.depth = aovs.depth.download();
-  if (want.prim) r.prim = aovs.prim.download();
-  if (want.normal) r.normal = aovs.normal.download();
   r.times.read_back += ms_since(t);
 }
 

@@ -295,9 +295,8 @@ Megakernel::Frame& Megakernel::frame(const std::string& key, int width, int heig
   return *f;
 }
 
-RenderResult Megakernel::render(const RenderSettings& rs, Film& film, int width, int height,
-                                int depth, int spp) {
-  RenderResult r;
+void Megakernel::render(const RenderSettings& rs, Film& film, int width, int height, int depth,
+                        int spp, RenderResult& r) {
   r.backend = rs.backend;
   r.width = width;
   r.height = height;
@@ -346,7 +345,6 @@ RenderResult Megakernel::render(const RenderSettings& rs, Film& film, int width,
   }
   film.finish(AovStreams{out.dist, out.prim, out.normal}, rs.outputs, r);
   r.trace_ms = ms_since(start);
-  return r;
 }
 
 }  // namespace rt

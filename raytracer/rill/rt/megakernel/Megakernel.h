@@ -30,8 +30,8 @@ class Megakernel {
   rill::Kernel& kernel(const std::string& backend, rill::Accuracy a);
   // Renders spp samples through the camera set in the scene's CameraRays; the samples meet
   // on `film`.
-  RenderResult render(const RenderSettings& rs, Film& film, int width, int height, int depth,
-                      int spp);
+  void render(const RenderSettings& rs, Film& film, int width, int height, int depth, int spp,
+              RenderResult& r);
 
  private:
   struct PathLoop;

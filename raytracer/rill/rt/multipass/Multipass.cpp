@@ -121,10 +121,9 @@ Multipass::Kernels& Multipass::kernels(const std::string& backend, Accuracy a) {
   return compiled_.emplace(key, std::move(k)).first->second;
 }
 
-RenderResult Multipass::render(const RenderSettings& rs, Film& film, int width, int height,
-                               int depth, int spp) {
+void Multipass::render(const RenderSettings& rs, Film& film, int width, int height, int depth,
+                       int spp, RenderResult& r) {
   const Features& F = S_.F;
-  RenderResult r;
   r.backend = rs.backend;
   r.width = width;
   r.height = height;
@@ -261,7 +260,6 @@ RenderResult Multipass::render(const RenderSettings& rs, Film& film, int width, 
               rs.outputs, r);
   r.launches = launches;
   r.trace_ms = ms_since(start);
-  return r;
 }
 
 }  // namespace rt
