@@ -520,6 +520,33 @@ TEST_P(LaunchTest, BindByName) {
 
 // ---- large streams --------------------------------------------------------------------------
 
+// Read-backs of growing size, straight into the caller's memory (download_into) and into a
+// new vector: backends that stage large read-backs (OpenCL's pinned buffer) grow the stage.
+TEST_P(LaunchTest, LargeReadBacksOfGrowingSize) {
+  Program p = program("indices", [] {
+    Output<Int> idx("idx");
+    idx = element_index() * 3;
+  });
+  Kernel k = compile(p);
+  std::vector<int32_t> into;
+  for (int64_t n : {int64_t{300000}, int64_t{1} << 21, int64_t{300001}}) {
+    Stream<Int> out(n);
+    k.outputs(out);
+    k.execute();
+    into.assign(static_cast<size_t>(n), -1);
+    out.download_into(std::span(into));
+    const std::vector<int32_t> fresh = out.download();
+    for (int64_t i = 0; i < n; i += 997) {
+      ASSERT_EQ(into[static_cast<size_t>(i)], i * 3) << n;
+      ASSERT_EQ(fresh[static_cast<size_t>(i)], i * 3) << n;
+    }
+    EXPECT_EQ(into.back(), (n - 1) * 3);
+    EXPECT_EQ(into, fresh);
+  }
+  Stream<Int> small(10);
+  EXPECT_THROW(small.download_into(std::span(into)), rill::Error);  // sizes differ
+}
+
 TEST_P(LaunchTest, LargeStreamWithDiscards) {
   const int64_t n = 1000000;
   std::vector<float> xs(static_cast<size_t>(n));
