@@ -121,6 +121,8 @@ int render(const RenderOptions& o) {
   if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
   scene.validate();
   const double load_ms = ms_since(t_load);
+  for (const std::string& w : scene.warnings)
+    std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
 
   rt::Grid grid = rt::build_grid_for(scene, o.backend);  // settings left open: for the backend
 
@@ -219,6 +221,7 @@ int render(const RenderOptions& o) {
                  {"triangles", grid.usable},
                  {"degenerate", grid.degenerate},
                  {"non_finite", grid.non_finite}};
+    j["warnings"] = scene.warnings;
     j["rays"] = r.rays;
     j["launches"] = r.launches;
     if (o.strategy == "multipass") {

@@ -3,7 +3,11 @@
 // backend in RenderTest.cpp.)
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <random>
 
 #include "TestUtil.h"
@@ -39,6 +43,65 @@ TEST(BadInput, MissingFiles) {
   std::string json = dir.file("s.json", R"({"meshes": [{"file": "missing.obj"}]})");
   EXPECT_NE(error_of([&] { load_json(json); }).find("missing.obj: no such file"),
             std::string::npos);
+}
+
+// A path naming a device or a pipe is refused before anything is read (reading /dev/zero
+// grew memory without bound), and so is a file over the input limit.
+TEST(BadInput, OnlyRegularFilesWithinTheLimitAreRead) {
+  TempDir dir;
+  const std::string fifo = dir.path("pipe.obj");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& device : {std::string("/dev/zero"), fifo}) {
+    SCOPED_TRACE(device);
+    EXPECT_NE(error_of([&] { load_obj(device); }).find("not a regular file"), std::string::npos);
+    EXPECT_NE(error_of([&] { load_json(device); }).find("not a regular file"), std::string::npos);
+    const std::string json =
+        dir.file("mesh.json", R"({"meshes": [{"file": ")" + device + R"("}]})");
+    EXPECT_NE(error_of([&] { load_json(json); }).find("not a regular file"), std::string::npos);
+    // An mtllib naming one.
+    const std::string obj =
+        dir.file("m.obj", "mtllib " + device + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_NE(error_of([&] { load_obj(obj); }).find("not a regular file"), std::string::npos);
+  }
+  // Over the limit (RILL_MAX_INPUT_MB): the size and the limit are named.
+  const std::string big = dir.file("big.obj", std::string(3 << 20, '#'));
+  ASSERT_EQ(setenv("RILL_MAX_INPUT_MB", "2", 1), 0);
+  const std::string e = error_of([&] { load_obj(big); });
+  unsetenv("RILL_MAX_INPUT_MB");
+  EXPECT_NE(e.find("over the input limit of 2 MiB"), std::string::npos) << e;
+  EXPECT_NE(e.find("3 MiB"), std::string::npos) << e;
+}
+
+// An mtllib is found the same way however the OBJ's path is spelled: a relative name from the
+// OBJ's folder, an absolute one as it is. A missing MTL is a warning that names it.
+TEST(BadInput, MtllibResolvesOneWayAndMissingOnesAreWarnings) {
+  TempDir dir;
+  dir.file("red.mtl", "newmtl red\nKd 1 0 0\n");
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+  const std::string rel = dir.file("rel.obj", "mtllib red.mtl\n" + tri);
+  const std::string abs = dir.file("abs.obj", "mtllib " + dir.path("red.mtl") + "\n" + tri);
+  const std::string cwd = std::filesystem::current_path().string();
+  for (const std::string& obj : {rel, abs}) {
+    for (int spelling = 0; spelling < 3; ++spelling) {
+      std::filesystem::current_path(dir.dir());
+      const std::string name = std::filesystem::path(obj).filename().string();
+      const std::string as_given = spelling == 0 ? name : spelling == 1 ? "./" + name : obj;
+      Scene s = load_obj(as_given);
+      std::filesystem::current_path(cwd);
+      SCOPED_TRACE(obj + " as " + as_given);
+      ASSERT_EQ(s.triangle_count(), 1u);
+      EXPECT_EQ(s.materials[static_cast<size_t>(s.material[0])].diffuse, glm::vec3(1, 0, 0));
+      EXPECT_TRUE(s.warnings.empty());
+    }
+  }
+  const std::string missing = dir.file("missing.obj", "mtllib gone.mtl\n" + tri);
+  Scene s = load_obj(missing);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find(dir.path("gone.mtl") + ": no such file"), std::string::npos)
+      << s.warnings[0];
+  // They reach a JSON scene that names the OBJ.
+  const std::string json = dir.file("w.json", R"({"meshes": [{"file": "missing.obj"}]})");
+  EXPECT_EQ(load_json(json).warnings.size(), 1u);
 }
 
 TEST(BadInput, ObjIndicesOutOfRange) {

@@ -140,7 +140,26 @@ TEST(Cli, GridSettingsFollowTheBackendAndStatsSplitTheFrame) {
   EXPECT_GT(subgrids_in(stats_of("--subgrids auto")), 0);
 }
 
+// What loading noticed (an MTL file that is not there) is a warning on stderr that names the
+// file, and a line of the stats JSON's "warnings"; the render goes on.
+TEST(Cli, LoadWarningsArePrintedAndInTheStats) {
+  testing::TempDir dir;
+  dir.file("m.obj", "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const auto r = run("render m.obj --size 8x8 --out m.png --stats-json s.json", dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("rill-trace: warning: m.obj: mtllib gone.mtl: no such file"),
+            std::string::npos)
+      << r.err;
+  std::ifstream f(dir.path("s.json"));
+  std::stringstream s;
+  s << f.rdbuf();
+  EXPECT_NE(s.str().find("gone.mtl: no such file"), std::string::npos) << s.str();
+}
+
 #else
+TEST(Cli, LoadWarningsArePrintedAndInTheStats) {
+  GTEST_SKIP() << "rill-trace is not built";
+}
 TEST(Cli, GridSettingsFollowTheBackendAndStatsSplitTheFrame) {
   GTEST_SKIP() << "rill-trace is not built";
 }

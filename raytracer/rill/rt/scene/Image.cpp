@@ -1,5 +1,7 @@
 #include "rill/rt/scene/Image.h"
 
+#include "rill/rt/scene/InputFile.h"
+
 #include <png.h>
 
 #include <cmath>
@@ -66,6 +68,7 @@ void write_pfm(const std::string& path, int w, int h, const std::vector<float>& 
 }
 
 std::vector<float> read_pfm(const std::string& path, int& w, int& h, int& channels) {
+  check_input_file(path, "PFM file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open " + path);
   std::string magic;

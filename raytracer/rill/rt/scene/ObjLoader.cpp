@@ -11,11 +11,45 @@
 #include <map>
 #include <sstream>
 
+#include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt {
 
 namespace {
+
+namespace fs = std::filesystem;
+
+// The MTL files an OBJ names with `mtllib`: an absolute name as it is, a relative one from
+// the OBJ's folder, however the OBJ's own path was spelled (tinyobjloader's reader joins the
+// folder to absolute names too). Only regular files within the input limit (InputFile.h);
+// a file that is not there is a warning, and the faces keep the default material.
+class MtlReader : public tinyobj::MaterialReader {
+ public:
+  MtlReader(const std::string& obj_path, std::vector<std::string>& warnings)
+      : obj_(obj_path), dir_(fs::path(obj_path).parent_path()), warnings_(warnings) {}
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* by_name, std::string* warn,
+                  std::string* err) override {
+    fs::path file(name);
+    if (file.is_relative()) file = dir_ / file;
+    std::error_code ec;
+    if (!fs::exists(file, ec)) {
+      warnings_.push_back(obj_ + ": mtllib " + file.string() +
+                          ": no such file (its materials are missing; faces that use them get "
+                          "the default grey)");
+      return false;
+    }
+    std::istringstream text(read_input_file(file.string(), "MTL file"));
+    tinyobj::LoadMtl(by_name, materials, &text, warn, err);
+    return true;
+  }
+
+ private:
+  std::string obj_;
+  fs::path dir_;
+  std::vector<std::string>& warnings_;
+};
 
 // The first line of a parser's message, without trailing blanks.
 std::string first_line(const std::string& s) {
@@ -48,9 +82,7 @@ Material from_mtl(const tinyobj::material_t& m) {
 // tinyobjloader keeps: its lines starting with "f" and at least 3 vertices, in file order.
 // tinyobjloader reports only the last line of the file for a bad index, so an error that
 // names a face's line scans the file again.
-size_t face_line(const std::string& path, size_t face) {
-  std::ifstream in(path, std::ios::binary);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+size_t face_line(const std::string& text, size_t face) {
   size_t line = 0, seen = 0, pos = 0;
   while (pos < text.size()) {
     // tinyobjloader's lines end at \n, \r\n or a lone \r.
@@ -71,26 +103,20 @@ size_t face_line(const std::string& path, size_t face) {
 }  // namespace
 
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
-  namespace fs = std::filesystem;
-  {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw SceneError(path + ": no such file");
-    if (fs::is_directory(path, ec)) throw SceneError(path + ": is a directory, not an OBJ file");
-    std::ifstream probe(path);
-    if (!probe) throw SceneError(path + ": cannot open for reading");
-  }
+  const std::string text = read_input_file(path, "OBJ file");
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> mtls;
   std::string warn, err;
-  std::string base = fs::path(path).parent_path().string();
-  if (!base.empty()) base += "/";
+  Scene s;
+  MtlReader mtl_reader(path, s.warnings);
+  std::istringstream in(text);
   // triangulate = false: we fan polygons ourselves (tinyobjloader's triangulation does not).
-  bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtls, &warn, &err, path.c_str(), base.c_str(),
+  bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtls, &warn, &err, &in, &mtl_reader,
                              /*triangulate=*/false, /*default_vcols_fallback=*/false);
   if (!ok) throw SceneError(path + ": " + (err.empty() ? "cannot parse" : first_line(err)));
+  const fs::path dir = fs::path(path).parent_path();  // relative names start here
 
-  Scene s;
   s.name = fs::path(path).stem().string();
   const size_t nv = attrib.vertices.size() / 3;
   const size_t nn = attrib.normals.size() / 3;
@@ -110,7 +136,7 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
       Material m = from_mtl(mtls[i]);
       if (const std::string& map = mtls[i].diffuse_texname; !map.empty()) {
         fs::path file(map);
-        if (file.is_relative()) file = fs::path(base) / file;
+        if (file.is_relative()) file = dir / file;
         auto [it, added] = texture_of_file.emplace(file.string(), 0);
         if (added) {
           try {
@@ -144,7 +170,7 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
       const long long written = ix.texcoord_index >= 0 ? ix.texcoord_index + 1LL
                                                        : static_cast<long long>(ix.texcoord_index) -
                                                              static_cast<long long>(nt);
-      throw SceneError(path + ":" + std::to_string(face_line(path, faces_before + face)) +
+      throw SceneError(path + ":" + std::to_string(face_line(text, faces_before + face)) +
                        ": vt index " + std::to_string(written) + " out of range (the file has " +
                        std::to_string(nt) + ")");
     }

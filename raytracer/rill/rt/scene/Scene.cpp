@@ -120,6 +120,7 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
 }
 
 void Scene::append(const Scene& o) {
+  warnings.insert(warnings.end(), o.warnings.begin(), o.warnings.end());
   const int base = static_cast<int>(materials.size());
   const int tex_base = static_cast<int>(textures.size());
   textures.insert(textures.end(), o.textures.begin(), o.textures.end());

@@ -85,6 +85,9 @@ struct SceneOptions {
 
 struct Scene {
   std::string name;
+  // What loading the scene noticed without failing (an MTL file that is not there, ...),
+  // one line each naming the file; rill-trace prints them and puts them in --stats-json.
+  std::vector<std::string> warnings;
   Camera camera;
   bool has_camera = false;  // false: frame the geometry (default_camera)
   int width = 512, height = 512;

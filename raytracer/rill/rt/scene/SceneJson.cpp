@@ -12,6 +12,7 @@
 
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/kernel/Shader.h"
+#include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/shaders/Builtin.h"
 
@@ -479,15 +480,8 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
 }
 
 Scene load_json(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw SceneError(path + ": no such file");
-  if (fs::is_directory(path, ec)) throw SceneError(path + ": is a directory, not a scene file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_json_scene(text.str(), fs::path(path).parent_path().string(), path);
+  return parse_json_scene(read_input_file(path, "scene file"),
+                          std::filesystem::path(path).parent_path().string(), path);
 }
 
 }  // namespace rt

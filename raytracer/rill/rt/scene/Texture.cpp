@@ -12,6 +12,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt {
@@ -56,10 +57,7 @@ float srgb8_to_linear(unsigned char c) {
 }
 
 Texture load_png_texture(const std::string& path, bool srgb) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw SceneError(path + ": no such file");
-  if (fs::is_directory(path, ec)) throw SceneError(path + ": is a directory, not a PNG file");
+  check_input_file(path, "PNG file");
   // The signature first: libpng's own message for another format ("Not a PNG file") does not
   // name the file, and a short or unreadable file should say so.
   {
@@ -91,7 +89,7 @@ Texture load_png_texture(const std::string& path, bool srgb) {
     throw SceneError(path + ": cannot read the PNG: " + image.message);
 
   Texture t;
-  t.name = fs::path(path).filename().string();
+  t.name = std::filesystem::path(path).filename().string();
   t.type = "bitmap";
   t.file = path;
   t.width = static_cast<int>(image.width);
