@@ -104,11 +104,41 @@ TEST(BadInput, MtllibResolvesOneWayAndMissingOnesAreWarnings) {
   EXPECT_EQ(load_json(json).warnings.size(), 1u);
 }
 
+// Errors name the exact place (an array element, a file's line and shape), and quote long
+// user strings only in part.
+TEST(BadInput, ErrorsNameThePlaceAndClipLongStrings) {
+  TempDir dir;
+  auto json_error = [&](const std::string& text) {
+    return error_of([&] { load_json(dir.file("e.json", text)); });
+  };
+  EXPECT_NE(
+      json_error(R"({"camera": {"eye": [0, [1], 5]}})").find("camera.eye[1] must be a number"),
+      std::string::npos);
+  EXPECT_NE(
+      json_error(R"({"lights": [{"position": [0, 1, "x"]}]})").find("position[2] must be a number"),
+      std::string::npos);
+  EXPECT_NE(
+      json_error(R"({"meshes": [{"shape": "triangle", "vertices": [[0,0,0],[1,0,0],[0,1]]}]})")
+          .find("meshes[0].vertices[2] must be an array of 3 numbers"),
+      std::string::npos);
+  const std::string long_name(100000, 'n');
+  const std::string unknown = json_error("{\"" + long_name + "\": 1}");
+  EXPECT_LT(unknown.size(), 600u) << unknown.size();
+  EXPECT_NE(unknown.find("(100000 characters)"), std::string::npos);
+  const std::string obj =
+      dir.file("long.obj", "o " + long_name + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+  const std::string face = error_of([&] { load_obj(obj); });
+  EXPECT_LT(face.size(), 600u) << face.size();
+  EXPECT_NE(face.find("long.obj:6: face 2 of shape 'nnn"), std::string::npos)
+      << face.substr(0, 200);
+  EXPECT_NE(face.find("refers to vertex 9"), std::string::npos);
+}
+
 TEST(BadInput, ObjIndicesOutOfRange) {
   TempDir dir;
-  EXPECT_NE(error_of([&] {
-              load_obj(dir.file("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"));
-            }).find("refers to vertex 4, but the file has 3 vertices"),
+  EXPECT_NE(error_of([&] { load_obj(dir.file("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")); })
+                .find("a.obj:4: face 1 of an unnamed shape refers to vertex 4, but the file has 3 "
+                      "vertices"),
             std::string::npos);
   EXPECT_FALSE(error_of([&] {
                  load_obj(dir.file("b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -5 1 2\n"));

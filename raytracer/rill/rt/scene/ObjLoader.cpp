@@ -142,7 +142,7 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
           try {
             s.textures.push_back(load_png_texture(file.string()));
           } catch (const SceneError& e) {
-            throw SceneError(path + ": material '" + m.name + "': map_Kd " + e.what());
+            throw SceneError(path + ": material '" + clipped(m.name) + "': map_Kd " + e.what());
           }
           s.textures.back().name = map;
           it->second = static_cast<int>(s.textures.size()) - 1;
@@ -174,17 +174,21 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
                        ": vt index " + std::to_string(written) + " out of range (the file has " +
                        std::to_string(nt) + ")");
     }
+    // file:line of the face, and which shape's face it is (tinyobjloader's shapes may be
+    // unnamed).
+    auto where = [&] {
+      return path + ":" + std::to_string(face_line(text, faces_before + face)) + ": " +
+             (shape.empty()
+                  ? "face " + std::to_string(face + 1) + " of an unnamed shape"
+                  : "face " + std::to_string(face + 1) + " of shape '" + clipped(shape) + "'");
+    };
     if (ix.vertex_index < 0 || static_cast<size_t>(ix.vertex_index) >= nv)
-      throw SceneError(path + ": shape '" + shape + "' face " + std::to_string(face + 1) +
-                       " refers to vertex " + std::to_string(ix.vertex_index + 1) +
+      throw SceneError(where() + " refers to vertex " + std::to_string(ix.vertex_index + 1) +
                        ", but the file has " + std::to_string(nv) + " vertices");
     if (ix.normal_index >= 0 && static_cast<size_t>(ix.normal_index) >= nn)
-      throw SceneError(path + ": shape '" + shape + "' face " + std::to_string(face + 1) +
-                       " refers to normal " + std::to_string(ix.normal_index + 1) +
+      throw SceneError(where() + " refers to normal " + std::to_string(ix.normal_index + 1) +
                        ", but the file has " + std::to_string(nn) + " normals");
-    if (ix.normal_index < -1)
-      throw SceneError(path + ": shape '" + shape + "' face " + std::to_string(face + 1) +
-                       " has an invalid normal index");
+    if (ix.normal_index < -1) throw SceneError(where() + " has an invalid normal index");
   };
 
   for (const tinyobj::shape_t& sh : shapes) {

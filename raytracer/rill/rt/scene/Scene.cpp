@@ -119,6 +119,11 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
   }
 }
 
+std::string clipped(const std::string& s, size_t max) {
+  if (s.size() <= max) return s;
+  return s.substr(0, max) + "... (" + std::to_string(s.size()) + " characters)";
+}
+
 void Scene::append(const Scene& o) {
   warnings.insert(warnings.end(), o.warnings.begin(), o.warnings.end());
   const int base = static_cast<int>(materials.size());

@@ -25,6 +25,10 @@ struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A user's string for a message: whole up to `max` characters, else its start and its length
+// (a 100 KB shape name must not make a 100 KB error line).
+std::string clipped(const std::string& s, size_t max = 80);
+
 // A value of a shader parameter (kernel/Shader.h): a number, a colour, or a texture (an
 // index into Scene::textures) bound to a colour parameter.
 struct ParamValue {

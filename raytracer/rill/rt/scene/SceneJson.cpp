@@ -28,7 +28,8 @@ struct Ctx {
 };
 
 [[noreturn]] void fail(const Ctx& c, const std::string& msg) {
-  throw SceneError(c.file + ": " + msg);
+  // The message may quote the user's keys and names: clipped, so one line stays one line.
+  throw SceneError(c.file + ": " + clipped(msg, 400));
 }
 
 void check_keys(const Ctx& c, const json& j, const std::string& where,
@@ -37,7 +38,7 @@ void check_keys(const Ctx& c, const json& j, const std::string& where,
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool ok = false;
     for (const char* a : allowed) ok = ok || it.key() == a;
-    if (!ok) fail(c, where + ": unknown key '" + it.key() + "'");
+    if (!ok) fail(c, where + ": unknown key '" + clipped(it.key()) + "'");
   }
 }
 
@@ -64,7 +65,8 @@ bool boolean(const Ctx& c, const json& j, const std::string& where) {
 
 glm::vec3 vec3(const Ctx& c, const json& j, const std::string& where) {
   if (!j.is_array() || j.size() != 3) fail(c, where + " must be an array of 3 numbers");
-  return glm::vec3(num(c, j[0], where), num(c, j[1], where), num(c, j[2], where));
+  return glm::vec3(num(c, j[0], where + "[0]"), num(c, j[1], where + "[1]"),
+                   num(c, j[2], where + "[2]"));
 }
 
 // A number gives a grey colour / uniform scale.
@@ -272,7 +274,7 @@ std::vector<glm::vec3> points(const Ctx& c, const json& j, const std::string& wh
   if (!j.is_array() || j.size() != n)
     fail(c, where + " must be an array of " + std::to_string(n) + " points");
   std::vector<glm::vec3> p;
-  for (size_t i = 0; i < n; ++i) p.push_back(vec3(c, j[i], where));
+  for (size_t i = 0; i < n; ++i) p.push_back(vec3(c, j[i], where + "[" + std::to_string(i) + "]"));
   return p;
 }
 
