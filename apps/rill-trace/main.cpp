@@ -22,9 +22,11 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -39,6 +41,28 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A number option's check. CLI::Range says "Value x not in range 0 to 64" for a word, as if x
+// were a number: this says that it is not one, and else whether it is out of range.
+CLI::Validator number_in(double lo, double hi, bool integer) {
+  auto text = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  return CLI::Validator(
+      [=](std::string& s) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const double v = integer ? static_cast<double>(std::strtoll(s.c_str(), &end, 10))
+                                 : std::strtod(s.c_str(), &end);
+        if (s.empty() || end == s.c_str() || *end != '\0' || errno == ERANGE || v != v)
+          return "'" + rt::clipped(s) + "' is not " + (integer ? "an integer" : "a number");
+        if (v < lo || v > hi) return s + " is out of range (" + text(lo) + " to " + text(hi) + ")";
+        return {};
+      },
+      std::string(integer ? "INT" : "NUMBER") + " in [" + text(lo) + " - " + text(hi) + "]");
+}
 
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -432,8 +456,8 @@ int main(int argc, char** argv) {
   r->add_option("--prim", ro.prim, "primitive id AOV as PFM (-1: miss)");
   r->add_option("--normal", ro.normal, "shading normal AOV as PFM");
   r->add_option("--max-depth", ro.max_depth, "reflection/refraction bounces")
-      ->check(CLI::Range(0, 64));
-  r->add_option("--spp", ro.spp, "samples per pixel")->check(CLI::Range(1, 4096));
+      ->check(number_in(0, 64, true));
+  r->add_option("--spp", ro.spp, "samples per pixel")->check(number_in(1, 4096, true));
   r->add_option("--grid", ro.grid, "voxels per axis, or auto");
   r->add_option("--grid-density", ro.grid_density,
                 "voxels per triangle of the auto grid, 0.125..256 (default 4; 16 is faster on "
@@ -450,7 +474,7 @@ int main(int argc, char** argv) {
   r->add_option("--bench-frames", ro.bench_frames,
                 "frame-rate mode: render N more frames back to back after the first and report "
                 "their times and frames per second")
-      ->check(CLI::Range(0, 100000));
+      ->check(number_in(0, 100000, true));
   r->add_option("--triangle", ro.triangle, "triangle test: moller or watertight")
       ->default_str("moller");
   r->add_option("--offset", ro.offset, "self-intersection: scaled (Wachter-Binder) or epsilon")
@@ -466,7 +490,8 @@ int main(int argc, char** argv) {
   acc->add_option("--scenes", acc_scenes,
                   "comma-separated subset of closed,inside,floor-far,floor-tiny,cornell,glass");
   acc->add_option("--size", acc_size, "image size WxH (default 64x48)");
-  acc->add_option("--repeats", ao.repeats, "timing repeats (median)")->check(CLI::Range(1, 100));
+  acc->add_option("--repeats", ao.repeats, "timing repeats (median)")
+      ->check(number_in(1, 100, true));
   acc->add_flag(
       "--one-at-a-time", [&](int64_t) { ao.factorial = false; },
       "vary one knob at a time instead of every combination");
@@ -476,7 +501,7 @@ int main(int argc, char** argv) {
   r->add_option("--wait-threshold", ro.wait_threshold,
                 "multipass: rerun the intersector while this fraction of rays waits (0..1]")
       ->default_str("0.2")
-      ->check(CLI::Range(1e-6, 1.0));
+      ->check(number_in(1e-6, 1.0, false));
   r->add_option("--masking", ro.masking, "multipass: launch each pass masked to its state (on|off)")
       ->default_str("on");
 

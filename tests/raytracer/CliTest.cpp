@@ -69,8 +69,11 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --subgrids some", "subgrids");
   expect_clean_failure("render builtin:thesis-a --grid-density 0", "grid density");
   expect_clean_failure("render builtin:thesis-a --grid-density lots", "grid density");
-  expect_clean_failure("render builtin:thesis-a --spp 0");
-  expect_clean_failure("render builtin:thesis-a --max-depth -3");
+  expect_clean_failure("render builtin:thesis-a --spp 0", "0 is out of range (1 to 4096)");
+  expect_clean_failure("render builtin:thesis-a --max-depth -3", "out of range (0 to 64)");
+  expect_clean_failure("render builtin:thesis-a --max-depth x", "'x' is not an integer");
+  expect_clean_failure("render builtin:thesis-a --spp 2.5", "'2.5' is not an integer");
+  expect_clean_failure("render builtin:thesis-a --bench-frames lots", "'lots' is not an integer");
   expect_clean_failure("render builtin:thesis-a --accuracy sloppy --size 4x4");
   expect_clean_failure("render builtin:thesis-a --backend nope --size 4x4", "nope");
   expect_clean_failure("render builtin:thesis-a --strategy quantum --size 4x4", "strategy");
