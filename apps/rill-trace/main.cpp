@@ -296,7 +296,8 @@ int render(const RenderOptions& o) {
     for (const auto& w : written) std::printf("wrote %s\n", w.c_str());
     glm::vec3 lo, hi;
     if (rt::scene_bounds(scene, lo, hi)) {
-      const float size = glm::length(hi - lo);
+      // In double: the float length of a 1e20-unit box overflows.
+      const double size = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
       if (size < 1e-10f || size > 1e10f)
         std::printf(
             "note: the scene is %g units across; the intersection test's cubic terms underflow "

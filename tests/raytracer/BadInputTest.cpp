@@ -134,6 +134,22 @@ TEST(BadInput, ErrorsNameThePlaceAndClipLongStrings) {
   EXPECT_NE(face.find("refers to vertex 9"), std::string::npos);
 }
 
+// An OBJ the default camera cannot frame says so, instead of blaming a camera or a light the
+// user never gave: every vertex at one point, or coordinates too large to place an eye.
+TEST(BadInput, ScenesTheDefaultCameraCannotFrameSaySo) {
+  TempDir dir;
+  const std::string point = dir.file("point.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n");
+  const std::string e = error_of([&] { load_scene(point); });
+  EXPECT_NE(e.find("the scene has no extent (every vertex is at [1, 2, 3])"), std::string::npos)
+      << e;
+  const std::string huge = dir.file("huge.obj", "v -3e38 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n");
+  const std::string h = error_of([&] { load_scene(huge); });
+  EXPECT_NE(h.find("too large or too far out for the default camera"), std::string::npos) << h;
+  // 1e20 is framed (and renders).
+  const std::string far = dir.file("far.obj", "v -1e20 0 0\nv 1e20 0 0\nv 0 1e20 0\nf 1 2 3\n");
+  EXPECT_NO_THROW(load_scene(far).validate());
+}
+
 TEST(BadInput, ObjIndicesOutOfRange) {
   TempDir dir;
   EXPECT_NE(error_of([&] { load_obj(dir.file("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")); })

@@ -236,7 +236,12 @@ Camera default_camera(const Scene& s) {
   if (!scene_bounds(s, lo, hi)) return c;
   glm::dvec3 center = (glm::dvec3(lo) + glm::dvec3(hi)) * 0.5;
   double radius = glm::length(glm::dvec3(hi) - glm::dvec3(lo)) * 0.5;
-  if (!(radius > 0)) radius = 1;
+  // A scene of no extent (every vertex at one point) has no view to frame: the eye would sit
+  // on the point it looks at.
+  if (!(radius > 0))
+    throw SceneError("the scene has no extent (every vertex is at " + vec_str(lo) +
+                     "): the default camera cannot frame it; give the scene a camera (a JSON "
+                     "scene's \"camera\")");
   const double t = std::tan(c.fov_y * 0.5 * 3.14159265358979323846 / 180.0) * 0.95;
   const glm::dvec3 dir = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
   const glm::dvec3 right = glm::normalize(glm::cross(-dir, glm::dvec3(0, 1, 0)));
@@ -264,6 +269,11 @@ Camera default_camera(const Scene& s) {
   }
   c.look_at = glm::vec3(center);
   c.eye = glm::vec3(center + dir * far);
+  if (!std::isfinite(c.eye.x) || !std::isfinite(c.eye.y) || !std::isfinite(c.eye.z) ||
+      c.eye == c.look_at)
+    throw SceneError("the scene's box, " + vec_str(lo) + " to " + vec_str(hi) +
+                     ", is too large or too far out for the default camera to frame in floats; "
+                     "give the scene a camera (a JSON scene's \"camera\")");
   return c;
 }
 
