@@ -307,6 +307,34 @@ TEST(BadInput, AbsurdSizesAndOptions) {
   bad([](Scene& c) { c.background.z = -INFINITY; }, "background");
 }
 
+// Negative colours (they rendered negative radiance): an error that names the colour, from
+// JSON, from an MTL file, for lights and the background.
+TEST(BadInput, NegativeColoursAreErrors) {
+  TempDir dir;
+  auto error_for = [&](auto change) {
+    Scene c = builtin_scene("thesis-a");
+    change(c);
+    return error_of([&] { c.validate(); });
+  };
+  EXPECT_NE(error_for([](Scene& c) {
+              c.materials[0].diffuse = glm::vec3(-1, 0, 0);
+            }).find("diffuse [-1, 0, 0] has a negative component"),
+            std::string::npos);
+  EXPECT_NE(error_for([](Scene& c) { c.lights[0].color.y = -0.5f; }).find("negative component"),
+            std::string::npos);
+  EXPECT_NE(error_for([](Scene& c) { c.background.x = -0.1f; }).find("background"),
+            std::string::npos);
+  const std::string json = dir.file("neg.json", R"({"materials": {"m": {"diffuse": [0.5, -2, 0]}},
+      "meshes": [{"shape": "triangle", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "material": "m"}]})");
+  EXPECT_NE(error_of([&] { load_json(json).validate(); }).find("has a negative component"),
+            std::string::npos);
+  dir.file("neg.mtl", "newmtl n\nKd 0.5 0.5 0.5\nKs -1 0 0\n");
+  const std::string obj =
+      dir.file("neg.obj", "mtllib neg.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl n\nf 1 2 3\n");
+  EXPECT_NE(error_of([&] { load_scene(obj).validate(); }).find("material 'n': specular [-1, 0, 0]"),
+            std::string::npos);
+}
+
 TEST(BadInput, MalformedJson) {
   auto err = [](const std::string& text) {
     return error_of([&] { parse_json_scene(text, ".", "t.json"); });

@@ -168,6 +168,17 @@ void Scene::validate() const {
     if (!finite3(m.diffuse) || !finite3(m.specular) || !std::isfinite(m.shininess) ||
         !std::isfinite(m.reflect) || !std::isfinite(m.transmit) || !std::isfinite(m.ior))
       throw SceneError(where + "values must be finite numbers");
+    // Colours are reflectances and light: a negative one would render negative radiance.
+    auto negative = [](const glm::vec3& c) { return c.x < 0.0f || c.y < 0.0f || c.z < 0.0f; };
+    if (negative(m.diffuse) || negative(m.specular))
+      throw SceneError(where +
+                       (negative(m.diffuse) ? "diffuse " + vec_str(m.diffuse)
+                                            : "specular " + vec_str(m.specular)) +
+                       " has a negative component; colours must be >= 0");
+    for (const auto& [name, v] : m.params)
+      if (v.kind == ParamValue::Kind::Color && negative(v.color))
+        throw SceneError(where + name + " " + vec_str(v.color) +
+                         " has a negative component; colours must be >= 0");
     if (m.reflect < 0 || m.transmit < 0 || m.reflect + m.transmit > 1.0f)
       throw SceneError(where + "reflect and transmit must be >= 0 with reflect + transmit <= 1");
     if (m.shininess < 0 || m.shininess > 1e4f)
@@ -184,10 +195,17 @@ void Scene::validate() const {
                          ", but the scene has " + std::to_string(textures.size()));
     }
   }
-  for (const Light& l : lights)
+  for (const Light& l : lights) {
     if (!finite3(l.position) || !finite3(l.color))
       throw SceneError("light at " + vec_str(l.position) + ": values must be finite numbers");
+    if (l.color.x < 0.0f || l.color.y < 0.0f || l.color.z < 0.0f)
+      throw SceneError("light at " + vec_str(l.position) + ": colour " + vec_str(l.color) +
+                       " has a negative component; colours must be >= 0");
+  }
   if (!finite3(background)) throw SceneError("background must be finite");
+  if (background.x < 0.0f || background.y < 0.0f || background.z < 0.0f)
+    throw SceneError("background " + vec_str(background) +
+                     " has a negative component; colours must be >= 0");
   if (!finite3(camera.eye) || !finite3(camera.look_at) || !finite3(camera.up) ||
       !std::isfinite(camera.fov_y))
     throw SceneError("camera: values must be finite numbers");
