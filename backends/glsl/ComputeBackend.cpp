@@ -30,6 +30,7 @@
 #include <memory>
 #include <vector>
 
+#include "../codegen/Tiles.h"
 #include "GLContext.h"
 #include "GLSLEmitter.h"
 #include "GLSession.h"
@@ -459,7 +460,7 @@ void ComputeKernel::dispatch(const GL& gl, Pass& p, const LaunchArgs& a,
   // 2D launches run in 8 x 4 tiles (GLSLEmitter.cpp) unless RILL_GLSL_TILES=off.
   const bool tiled = be_.tiles() && a.height > 1 && !a.warm_up;
   if (loc.tiled >= 0) gl.glUniform1i(loc.tiled, tiled ? 1 : 0);
-  const int64_t span = tiled ? (a.width + 7) / 8 * ((a.height + 3) / 4) * 32 : a.count;
+  const int64_t span = tiled ? codegen::tiled_invocations(a.width, a.height) : a.count;
   check(gl, "preparing a launch", kWho);
   // Groups over a 2D grid: x up to the driver's limit, y as many rows of them as needed.
   const int64_t groups = std::max<int64_t>(1, (span + local_size_ - 1) / local_size_);

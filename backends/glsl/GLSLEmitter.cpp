@@ -31,6 +31,7 @@
 
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/SourceText.h"
+#include "../codegen/Tiles.h"
 #include "DivSqrt.h"
 
 namespace rill::glsl {
@@ -487,16 +488,9 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   src +=
       "  int rill_i = int(gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + "
       "gl_GlobalInvocationID.x);\n";
-  // Tiled order (2D launches): invocations 32k..32k+31 run the 8 x 4 elements of tile k, so a
-  // subgroup's elements are neighbours in both directions (as in the OpenCL backend).
-  src +=
-      "  if (rill_tiled != 0) {\n"
-      "    int rill_tile = rill_i >> 5, rill_lane = rill_i & 31, rill_tiles_x = (rill_width + 7) "
-      ">> 3;\n"
-      "    int rill_x = (rill_tile % rill_tiles_x) * 8 + (rill_lane & 7);\n"
-      "    if (rill_x >= rill_width) return;  // right of the last column\n"
-      "    rill_i = ((rill_tile / rill_tiles_x) * 4 + (rill_lane >> 3)) * rill_width + rill_x;\n"
-      "  }\n";
+  // Tiled order for 2D launches (rill_tiled; codegen/Tiles.h).
+  src += "  if (rill_tiled != 0)\n" +
+         codegen::tiled_element("int", "rill_i", "rill_width", "return;", "  ");
   src += "  if (rill_i >= rill_count) return;  // past the last element\n";
   src +=
       "  if (rill_nvalues > 0) {  // a masked launch: only elements whose state is listed\n"

@@ -11,6 +11,7 @@
 
 #include "../cache/DiskCache.h"
 #include "../codegen/SourceText.h"
+#include "../codegen/Tiles.h"
 #include "OpenCLEmitter.h"
 #include "WarmUpLaunch.h"
 #include "rill/Parameters.h"
@@ -524,8 +525,7 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
     }
     // A warm-up runs no element (count 0) but spans warm_up_grid_ work-items (warm_up()).
     size_t span = a.warm_up ? warm_up_grid_ : static_cast<size_t>(a.count);
-    if (tiled)
-      span = static_cast<size_t>((a.width + 7) / 8) * static_cast<size_t>((a.height + 3) / 4) * 32;
+    if (tiled) span = static_cast<size_t>(codegen::tiled_invocations(a.width, a.height));
     size_t global = (span + group_ - 1) / group_ * group_;
     cl_uint totals[2] = {0, 0};
     // The blocking read of the counter is the launch's only wait: it returns once the kernel

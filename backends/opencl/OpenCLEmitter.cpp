@@ -12,6 +12,7 @@
 #include "../codegen/CDialect.h"
 #include "../codegen/Helpers.h"
 #include "../codegen/SourceText.h"
+#include "../codegen/Tiles.h"
 
 namespace rill::opencl {
 
@@ -89,19 +90,16 @@ std::string emit_opencl(const Function& f, Accuracy accuracy) {
   src += "__kernel void rill_run(" + joined(params) +
          ", long rill_count, __global uint* rill_written, __global const int* rill_mask, "
          "__global const int* rill_mask_values, int rill_mask_count, int rill_tiled) {\n";
-  // Tiled order (rill_tiled, 2D launches): work-items 32k..32k+31 run the 8 x 4 pixels of
-  // tile k (tiles in rows of the image), so a warp's elements are neighbours in both
-  // directions, not 32 along a row; the elements and what each computes are the same.
-  src += R"(  __local uint group_written, group_selected;
-  long rill_i = get_global_id(0);
-  int rill_sel = rill_i < rill_count;
-  if (rill_tiled) {
-    const long tile = rill_i >> 5, lane = rill_i & 31, tiles_x = (rill_width + 7) >> 3;
-    const long x = (tile % tiles_x) * 8 + (lane & 7), y = (tile / tiles_x) * 4 + (lane >> 3);
-    rill_i = y * rill_width + x;
-    rill_sel = x < rill_width && rill_i < rill_count;
-  }
-  if (get_local_id(0) == 0) group_written = group_selected = 0;
+  // Tiled order for 2D launches (rill_tiled; codegen/Tiles.h). No work-item returns early:
+  // every one reaches the barriers.
+  src +=
+      "  __local uint group_written, group_selected;\n"
+      "  long rill_i = get_global_id(0);\n"
+      "  int rill_sel = 1;\n"
+      "  if (rill_tiled)\n" +
+      codegen::tiled_element("long", "rill_i", "rill_width", "rill_sel = 0;", "  ") +
+      "  rill_sel = rill_sel && rill_i < rill_count;\n";
+  src += R"(  if (get_local_id(0) == 0) group_written = group_selected = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
   if (rill_sel && rill_mask_count > 0) {
     const int s = rill_mask[rill_i];

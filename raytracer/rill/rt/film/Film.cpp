@@ -5,21 +5,19 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <chrono>
 #include <span>
+
+#include "rill/Stopwatch.h"
 
 #include "rill/rt/film/Srgb8.h"
 #include "rill/rt/kernel/Compile.h"
+#include "rill/rt/kernel/PerBackend.h"
 
 namespace rt {
 
 using namespace rill;
 
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
 
 std::vector<float> threshold_data() {
   const auto& t = srgb8_thresholds();
@@ -79,7 +77,7 @@ Film::Film() : thresholds_(threshold_data(), "srgb8_thresholds") {
 Film::~Film() = default;
 
 void Film::begin(const std::string& backend, Accuracy a, int width, int height, int spp) {
-  const std::string key = backend + "/" + accuracy_name(a);
+  const std::string key = backend_key(backend, a);
   auto it = buffers_.find(key);
   if (it == buffers_.end())
     it = buffers_.emplace(key, std::make_unique<Buffers>(*this, backend, a)).first;
@@ -95,22 +93,21 @@ void Film::add_sample(const Stream<Float3>& color, int s) {
     single_ = color;
     return;
   }
-  const auto t = std::chrono::steady_clock::now();
+  Stopwatch add;
   first_.set(s == 0 ? 1 : 0);
   now_->add.inputs(*now_->sum, *now_->carry, color).outputs(*now_->sum, *now_->carry);
   now_->add.execute();
-  accumulate_ms_ += ms_since(t);
+  accumulate_ms_ += add.ms();
 }
 
 void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r) {
-  auto t = std::chrono::steady_clock::now();
+  Stopwatch step;
   Stream<Float3> color = spp_ == 1 ? *single_ : *now_->mean_color;
   if (spp_ > 1) {
     samples_.set(static_cast<float>(spp_));
     now_->mean.inputs(*now_->sum, *now_->carry).outputs(color);
     now_->mean.execute();
-    accumulate_ms_ += ms_since(t);
-    t = std::chrono::steady_clock::now();
+    accumulate_ms_ += step.lap();
   }
   r.times.accumulate += accumulate_ms_;
   // Each output asked for is read straight into the result (whose memory a caller that
@@ -139,7 +136,7 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
         unpack_rgb8(static_cast<uint32_t>(now_->packed_host[p]), &r.rgb8[p * 3]);
     });
   }
-  r.times.read_back += ms_since(t);
+  r.times.read_back += step.ms();
 }
 
 }  // namespace rt

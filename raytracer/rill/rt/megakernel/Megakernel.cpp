@@ -1,21 +1,15 @@
 // The megakernel (Megakernel.h): its program and its render loop over samples.
 #include "rill/rt/megakernel/Megakernel.h"
 
-#include <chrono>
 #include <stdexcept>
 #include <vector>
 
 #include "rill/Reduce.h"
+#include "rill/Stopwatch.h"
 
 namespace rt {
 
 using namespace rill;
-
-namespace {
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-}  // namespace
 
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
   program_ = capture();
@@ -263,7 +257,7 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
 }
 
 Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a) {
-  const std::string key = backend_name + "/" + accuracy_name(a);
+  const std::string key = backend_key(backend_name, a);
   auto it = kernels_.find(key);
   if (it != kernels_.end()) return it->second;
   return kernels_.emplace(key, compile_for(program_, backend_name, a)).first->second;
@@ -286,21 +280,12 @@ struct Megakernel::Frame {
   Stream<Int> prim, rays;
 };
 
-Megakernel::Frame& Megakernel::frame(const std::string& key, int width, int height) {
-  std::unique_ptr<Frame>& f = frames_[key];
-  if (!f || f->width != width || f->height != height) {
-    f.reset();  // the old streams go before the new ones are made
-    f = std::make_unique<Frame>(width, height);
-  }
-  return *f;
-}
-
 void Megakernel::render(const RenderSettings& rs, Film& film, int width, int height, int depth,
                         int spp, RenderResult& r) {
   r.backend = rs.backend;
   r.width = width;
   r.height = height;
-  const auto t0 = std::chrono::steady_clock::now();
+  Stopwatch since_start;
   Kernel& k = kernel(rs.backend, rs.accuracy);
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
   add_stages(r, k.info());
@@ -312,12 +297,12 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   const int64_t iters =
       int64_t{depth + 1} * (static_cast<int64_t>(S_.light_count) + 1) * stack_factor * 2 + 8;
 
-  const std::string key = rs.backend + "/" + accuracy_name(rs.accuracy);
-  const auto t_setup = std::chrono::steady_clock::now();
-  Frame& out = frame(key, width, height);
+  const std::string key = backend_key(rs.backend, rs.accuracy);
+  Stopwatch setup;
+  Frame& out = buffers_for(frames_, key, width, height);
   k.outputs(out.color, out.dist, out.prim, out.normal, out.rays);
   film.begin(rs.backend, rs.accuracy, width, height, spp);
-  r.times.setup = ms_since(t_setup);
+  r.times.setup = setup.ms();
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
   // below is tracing alone. The ray count's reduction kernels compile here too.
@@ -329,22 +314,21 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
     warmed_.insert(warm_key);
   }
   max_iter_.set(static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
-  r.compile_ms = ms_since(t0) - r.times.setup;
+  r.compile_ms = since_start.ms() - r.times.setup;
 
-  const auto start = std::chrono::steady_clock::now();
+  Stopwatch trace, step;
   for (int s = 0; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
-    auto t = std::chrono::steady_clock::now();
+    step.lap();
     k.execute();
     ++r.launches;
-    r.times.launch += ms_since(t);
-    t = std::chrono::steady_clock::now();
+    r.times.launch += step.lap();
     r.rays += rill::sum(out.rays);  // on the device: only the total comes back
-    r.times.reduce += ms_since(t);
+    r.times.reduce += step.lap();
     film.add_sample(out.color, s);
   }
   film.finish(AovStreams{out.dist, out.prim, out.normal}, rs.outputs, r);
-  r.trace_ms = ms_since(start);
+  r.trace_ms = trace.ms();
 }
 
 }  // namespace rt

@@ -18,6 +18,7 @@
 #include "rill/rt/film/Film.h"
 #include "rill/rt/kernel/Compile.h"
 #include "rill/rt/kernel/DeviceScene.h"
+#include "rill/rt/kernel/PerBackend.h"
 
 namespace rt {
 
@@ -36,10 +37,7 @@ class Megakernel {
  private:
   struct PathLoop;
   struct Aovs;
-  struct Frame;
-  // The output streams for a frame on a backend ("backend/accuracy"): the last frame's when
-  // the size is the same.
-  Frame& frame(const std::string& key, int width, int height);
+  struct Frame;  // a backend's output streams (PerBackend.h: buffers_for)
   rill::Program capture() const;
   // The loop body's steps, in order (Megakernel.cpp).
   Hit trace(PathLoop& L) const;

@@ -31,7 +31,6 @@
 // The kernels read only the fields they use and write only the fields they change: on GLSL
 // every input and output is a texture unit, and a kernel with more outputs than draw buffers
 // (8 on Mesa) is drawn once per group of outputs.
-#include <chrono>
 #include <optional>
 #include <stdexcept>
 
@@ -40,6 +39,8 @@
 
 #include "rill/Record.h"
 #include "rill/Reduce.h"
+#include "rill/Stopwatch.h"
+#include "rill/rt/kernel/PerBackend.h"
 
 namespace rt {
 
@@ -47,14 +48,8 @@ using namespace rill;
 
 using namespace mp;
 
-namespace {
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
-}  // namespace
-
 struct Multipass::Buffers {
-  Buffers(int64_t w, int64_t h)
+  Buffers(int w, int h)
       : ray(w, h, "ray"),
         shadow(w, h, "shadow"),
         hit(w, h, "hit"),
@@ -64,14 +59,14 @@ struct Multipass::Buffers {
         aov(w, h, "aov"),
         local(w, h, "local"),
         width(w),
-        height(h) {}
+        height(h) {}            // shape of every stream (PerBackend.h: buffers_for)
   Stream<Ray> ray, shadow;      // the path's ray; the shadow ray towards the current light
   Stream<Hit> hit, shadow_hit;  // their hits
   Stream<TraceState> tr;        // the traversal of the ray being traced (either)
   Stream<PathState> path;
   Stream<Aov> aov;
   Stream<Float3> local;  // local light at the path's surface
-  int64_t width, height;
+  int width, height;
 };
 
 Multipass::Multipass(DeviceScene& scene) : S_(scene) {
@@ -97,7 +92,7 @@ Multipass::Multipass(DeviceScene& scene) : S_(scene) {
 Multipass::~Multipass() = default;
 
 Multipass::Kernels& Multipass::kernels(const std::string& backend, Accuracy a) {
-  const std::string key = backend + "/" + accuracy_name(a);
+  const std::string key = backend_key(backend, a);
   auto it = compiled_.find(key);
   if (it != compiled_.end()) return it->second;
   CompileOptions opt;
@@ -127,7 +122,7 @@ void Multipass::render(const RenderSettings& rs, Film& film, int width, int heig
   r.backend = rs.backend;
   r.width = width;
   r.height = height;
-  const auto t0 = std::chrono::steady_clock::now();
+  Stopwatch since_start;
   Backend& be = backend(rs.backend);
   if (std::string why = be.unavailable_reason(); !why.empty())
     throw std::runtime_error("backend " + rs.backend + " cannot run here: " + why);
@@ -141,20 +136,15 @@ void Multipass::render(const RenderSettings& rs, Film& film, int width, int heig
     if (!k->backend_name().empty()) add_stages(r, k->info());
 
   S_.shading.max_depth.set(depth);
-  const auto t_setup = std::chrono::steady_clock::now();
-  std::unique_ptr<Buffers>& kept = buffers_[rs.backend + "/" + accuracy_name(rs.accuracy)];
-  if (!kept || kept->width != width || kept->height != height) {
-    kept.reset();  // the old streams go before the new ones are made
-    kept = std::make_unique<Buffers>(width, height);
-  }
-  Buffers& B = *kept;
+  Stopwatch setup;
+  Buffers& B = buffers_for(buffers_, backend_key(rs.backend, rs.accuracy), width, height);
   film.begin(rs.backend, rs.accuracy, width, height, spp);
-  r.times.setup = ms_since(t_setup);
+  r.times.setup = setup.ms();
   // The ray count is a reduction on the device (rill::sum): its kernels compile here, not in
   // the first sample's trace time.
   const Stream<Int> path_rays = B.path.field<Int>("rays");
   (void)rill::sum(path_rays, rs.backend);
-  r.compile_ms = ms_since(t0) - r.times.setup;
+  r.compile_ms = since_start.ms() - r.times.setup;
 
   if (!(rs.wait_threshold > 0.0 && rs.wait_threshold <= 1.0))
     throw std::runtime_error("multipass: the wait threshold must be in (0, 1] (got " +
@@ -182,11 +172,10 @@ void Multipass::render(const RenderSettings& rs, Film& film, int width, int heig
   // Runs one pass, masked to the elements in `state` when masking is on.
   auto run = [&](Kernel& k, Pass pass, const std::optional<rill::StateMask>& mask) {
     ++launches;
-    const auto t = std::chrono::steady_clock::now();
+    Stopwatch launch;
     const int64_t written = mask && rs.masking ? k.execute(*mask) : k.execute();
     PassStats& st = r.passes[static_cast<size_t>(pass)];
-    st.ms +=
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    st.ms += launch.ms();
     ++st.calls;
     st.processed += k.last_launch().processed;
     st.written += written;
@@ -230,7 +219,7 @@ void Multipass::render(const RenderSettings& rs, Film& film, int width, int heig
     K.shadow_acc.bind_fields("tr", B.tr).bind_fields("shadow_hit", B.shadow_hit);
     K.shadow_acc.bind("local", B.local);
   }
-  const auto start = std::chrono::steady_clock::now();
+  Stopwatch since_samples;
   for (int sample = 0; sample < spp; ++sample) {
     S_.camera.offset.set(sample_offset(sample));
     run(K.raygen, kRaygen, std::nullopt);
@@ -248,9 +237,9 @@ void Multipass::render(const RenderSettings& rs, Film& film, int width, int heig
       }
       run(K.combine, kCombine, with_surface);
     }
-    const auto t = std::chrono::steady_clock::now();
+    Stopwatch reduce;
     r.rays += rill::sum(path_rays);
-    r.times.reduce += ms_since(t);
+    r.times.reduce += reduce.ms();
     film.add_sample(B.path.field<Float3>("color"), sample);
   }
   r.times.launch = 0;
@@ -259,7 +248,7 @@ void Multipass::render(const RenderSettings& rs, Film& film, int width, int heig
                          B.aov.field<Float3>("normal")},
               rs.outputs, r);
   r.launches = launches;
-  r.trace_ms = ms_since(start);
+  r.trace_ms = since_samples.ms();
 }
 
 }  // namespace rt
