@@ -81,6 +81,8 @@ struct RenderOptions {
   std::string grid_density = "";
   std::string strategy = "megakernel";
   bool quiet = false;
+  // Input files (Scene.h, InputOptions): malformed lines as errors; mesh files without faces.
+  bool strict_input = false, allow_empty = false;
   // Accuracy knobs (Tracer.h, TracerOptions).
   std::string triangle = "moller", offset = "scaled", traversal = "incremental";
   // Multipass: per-pass statistics, the intersector's rerun threshold, masked launches.
@@ -134,7 +136,10 @@ int render(const RenderOptions& o) {
     throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
   const rill::Accuracy acc = rill::parse_accuracy(o.accuracy);
   const auto t_load = Clock::now();
-  rt::Scene scene = rt::load_scene(o.scene);
+  rt::InputOptions input;
+  input.strict = o.strict_input;
+  input.allow_empty = o.allow_empty;
+  rt::Scene scene = rt::load_scene(o.scene, input);
   if (!o.size.empty()) parse_size(o.size, scene.width, scene.height);
   if (o.max_depth >= 0) scene.options.max_depth = o.max_depth;
   if (o.spp > 0) scene.options.spp = o.spp;
@@ -149,6 +154,10 @@ int render(const RenderOptions& o) {
     std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
 
   rt::Grid grid = rt::build_grid_for(scene, o.backend);  // settings left open: for the backend
+  for (const std::string& w : grid.warnings) {
+    std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
+    scene.warnings.push_back(w);  // for --stats-json
+  }
 
   const auto t_setup = Clock::now();
   rt::TracerOptions knobs;
@@ -338,11 +347,12 @@ int render(const RenderOptions& o) {
   }
   std::printf(
       "rill-trace: %s, %zu triangles, %dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
-      "load %.1f ms, grid build %.1f ms, compile %.1f ms%s, trace %.1f ms%s\n",
+      "load %.1f ms, grid build %.1f ms, compile %.1f ms%s, set-up %.1f ms, trace %.1f ms%s\n",
       scene.name.c_str(), scene.triangle_count(), r.width, r.height, o.backend.c_str(),
       o.accuracy.c_str(), o.strategy == "multipass" ? " multipass" : "", grid.res.x, grid.res.y,
       grid.res.z, rays_per_s * 1e-6, static_cast<long long>(r.rays), load_ms, grid.build_ms,
-      compile_ms, r.from_cache ? " (cached)" : "", r.trace_ms,
+      r.stages.compile_ms, r.from_cache ? " (cached)" : "",
+      std::max(0.0, compile_ms - r.stages.compile_ms), r.trace_ms,
       o.strategy == "multipass" ? (" (" + std::to_string(r.launches) + " launches)").c_str() : "");
   return 0;
 }
@@ -472,6 +482,11 @@ int main(int argc, char** argv) {
   r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
   r->add_option("--source", ro.source, "write the generated kernel source");
   r->add_flag("--quiet", ro.quiet, "print only the stats line");
+  r->add_flag("--strict-input", ro.strict_input,
+              "malformed lines in OBJ and MTL files are errors (default: warnings naming the "
+              "first few lines, then a count)");
+  r->add_flag("--allow-empty", ro.allow_empty,
+              "a mesh file without faces loads as no triangles instead of an error");
   r->add_option("--bench-frames", ro.bench_frames,
                 "frame-rate mode: render N more frames back to back after the first and report "
                 "their times and frames per second")

@@ -345,6 +345,16 @@ class Generator {
   template <class T, int N>
   void add(Value<T, N>* v, bool writable, int output = -1) {
     pools_[type_index<T, N>()].push_back(Slot{v, writable, output});
+    const detail::Ref& ref = v->ref();
+    slot_vars_.insert(ref.var);
+  }
+  // Whether e is a temporary of its own: moving it into a new variable must not make that
+  // variable an alias of a slot (a uniform, which is read-only, or another variable, whose
+  // writes it would share). fresh_ alone can be wrong: an operation may return an operand
+  // as it is, and the shrinker's leaves are slots.
+  template <class T, int N>
+  bool own_temporary(const Value<T, N>& e) const {
+    return e.ref().kind == detail::Ref::Kind::Var && !slot_vars_.count(e.ref().var);
   }
   template <class T, int N>
   static Value<T, N>& get(const Slot& s) {
@@ -1019,7 +1029,7 @@ class Generator {
       int how = r.below(100);
       auto e = expr<T, N>(eid, depth);
       std::shared_ptr<V> v;
-      if (how < 50 && fresh_) {
+      if (how < 50 && fresh_ && own_temporary(e)) {
         v = std::make_shared<V>(std::move(e));
       } else if (how < 85) {
         v = std::make_shared<V>(static_cast<const V&>(e));
@@ -1308,6 +1318,7 @@ class Generator {
   std::vector<std::shared_ptr<void>> owned_;
   int loop_depth_ = 0;
   bool fresh_ = false;  // whether the last expression is a fresh temporary (not a variable)
+  std::set<ir::VarId> slot_vars_;  // the variables that slots are
 };
 
 }  // namespace

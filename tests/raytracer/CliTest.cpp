@@ -4,6 +4,8 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -159,7 +161,69 @@ TEST(Cli, LoadWarningsArePrintedAndInTheStats) {
   EXPECT_NE(s.str().find("gone.mtl: no such file"), std::string::npos) << s.str();
 }
 
+// The cases a new user met (issue: reliability): random bytes as an OBJ, "v abc def" lines,
+// and a grid far too fine for its triangles, each with its message; --strict-input and
+// --allow-empty change what is an error.
+TEST(Cli, MalformedAndEmptyInputsAreNamed) {
+  testing::TempDir dir;
+  std::string noise;
+  uint32_t x = 7;
+  for (int i = 0; i < 100000; ++i) {
+    x = x * 1664525u + 1013904223u;
+    noise.push_back(static_cast<char>(x >> 24));
+  }
+  dir.file("random.obj", noise);
+  auto r = run("render random.obj --size 8x8 --out r.png", dir);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("rill-trace: random.obj: no faces in "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is it an OBJ file? (--allow-empty loads it as no triangles)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("r.png")));
+  // --allow-empty: it renders (the background), with the malformed lines as warnings.
+  dir.file("empty.obj", "");
+  r = run("render empty.obj --size 8x8 --out e.png --allow-empty", dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+
+  dir.file("v.obj", "v 0 0 0\nv abc def\nv 1 0 0\nv 0 1 0\nf 1 3 4\n");
+  r = run("render v.obj --size 8x8 --out v.png --stats-json s.json", dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("rill-trace: warning: v.obj:2: 'v' expects numbers ('v abc def'); the "
+                       "line is skipped"),
+            std::string::npos)
+      << r.err;
+  std::ifstream f(dir.path("s.json"));
+  std::stringstream json;
+  json << f.rdbuf();
+  EXPECT_NE(json.str().find("v.obj:2: 'v' expects numbers"), std::string::npos) << json.str();
+  r = run("render v.obj --size 8x8 --out v.png --strict-input", dir);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "rill-trace: v.obj:2: 'v' expects numbers ('v abc def') (an error under "
+            "--strict-input)\n");
+
+  // A grid of 134 million voxels for one triangle: refused over the memory limit, with the
+  // estimate, before allocating; a finer grid than auto's within it: a warning that it is
+  // mostly empty space.
+  dir.file("t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  setenv("RILL_MAX_GRID_MB", "100", 1);  // the child inherits it
+  r = run("render t.obj --size 8x8 --out t.png --grid 512", dir);
+  unsetenv("RILL_MAX_GRID_MB");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("needs about 3072.0 MiB, over the limit of 100.0 MiB (RILL_MAX_GRID_MB)"),
+            std::string::npos)
+      << r.err;
+  r = run("render t.obj --size 8x8 --out t.png --grid 128", dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the grid 128x128x128 has 2097152 voxels for 1 triangles"),
+            std::string::npos)
+      << r.err;
+}
+
 #else
+TEST(Cli, MalformedAndEmptyInputsAreNamed) {
+  GTEST_SKIP() << "rill-trace is not built";
+}
 TEST(Cli, LoadWarningsArePrintedAndInTheStats) {
   GTEST_SKIP() << "rill-trace is not built";
 }

@@ -1,9 +1,12 @@
 #include "rill/rt/accel/Grid.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include <rill/Backend.h>
@@ -281,6 +284,47 @@ Grid build_grid_for(const Scene& s, const std::string& backend) {
                     s.options.grid_density);
 }
 
+uint64_t grid_memory_limit() {
+  if (const char* env = std::getenv("RILL_MAX_GRID_MB"); env != nullptr && *env != '\0') {
+    char* end = nullptr;
+    const unsigned long long mb = std::strtoull(env, &end, 10);
+    if (*end != '\0' || mb < 1 || mb > (uint64_t{1} << 30))
+      throw SceneError(std::string("RILL_MAX_GRID_MB='") + clipped(env) +
+                       "' is not a size in MiB (1..1073741824)");
+    return static_cast<uint64_t>(mb) << 20;
+  }
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return uint64_t{4} << 30;  // unknown: 4 GiB
+  return static_cast<uint64_t>(pages) * static_cast<uint64_t>(page) / 2;
+}
+
+namespace {
+
+std::string mib(uint64_t bytes) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
+  return b;
+}
+
+std::string res_str(const glm::ivec3& r) {
+  return std::to_string(r.x) + "x" + std::to_string(r.y) + "x" + std::to_string(r.z);
+}
+
+// Throws when the grid's estimated memory is over the limit, naming both.
+void check_grid_memory(const glm::ivec3& res, uint64_t voxels, uint64_t refs, uint64_t limit) {
+  const uint64_t need = voxels * kGridBytesPerVoxel + refs * kGridBytesPerReference;
+  if (need <= limit) return;
+  const bool env = std::getenv("RILL_MAX_GRID_MB") != nullptr;
+  throw SceneError(
+      "the grid " + res_str(res) + " (" + std::to_string(voxels) + " voxels" +
+      (refs > 0 ? ", " + std::to_string(refs) + " triangle references so far" : "") +
+      ") needs about " + mib(need) + ", over the limit of " + mib(limit) +
+      (env ? " (RILL_MAX_GRID_MB)" : " (half this machine's memory; RILL_MAX_GRID_MB sets it)") +
+      ": use a smaller --grid, or --grid auto");
+}
+
+}  // namespace
+
 Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double density) {
   const auto start = std::chrono::steady_clock::now();
   Grid g;
@@ -335,6 +379,23 @@ Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double dens
   const int64_t nv = g.voxel_count();
   // (--grid allows 512^3; voxel indices are 32-bit here and in the kernel.)
   if (nv > INT32_MAX) throw SceneError("grid too large: reduce --grid");
+  // Memory, before allocating: the voxels now, the triangle references as they come.
+  const uint64_t limit = grid_memory_limit();
+  check_grid_memory(g.res, static_cast<uint64_t>(nv), 0, limit);
+  // A resolution far above what auto picks is mostly empty space: it costs memory and build
+  // time and does not make tracing faster.
+  if (resolution > 0) {
+    const glm::ivec3 a = auto_grid_resolution(hi - lo, g.usable, density);
+    const int64_t auto_voxels = int64_t{a.x} * a.y * a.z;
+    if (nv > (int64_t{1} << 20) && nv > 64 * auto_voxels)
+      g.warnings.push_back("the grid " + res_str(g.res) + " has " + std::to_string(nv) +
+                           " voxels for " + std::to_string(g.usable) + " triangles, " +
+                           std::to_string(nv / std::max<int64_t>(auto_voxels, 1)) +
+                           " times what --grid auto picks (" + res_str(a) +
+                           "): mostly empty space, which costs memory (about " +
+                           mib(static_cast<uint64_t>(nv) * kGridBytesPerVoxel) +
+                           ") and build time without making tracing faster");
+  }
   // Each triangle's voxels, once (triangles in id order), then a counting sort by voxel:
   // each voxel's list stays ascending.
   std::vector<std::pair<int32_t, int32_t>> refs;  // (voxel, triangle)
@@ -345,6 +406,7 @@ Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double dens
     for_each_overlapped_cell(tri, glo, cell, g.res, margin, [&](int x, int y, int z) {
       refs.emplace_back(x + g.res.x * (y + g.res.y * z), static_cast<int32_t>(t));
     });
+    check_grid_memory(g.res, static_cast<uint64_t>(nv), refs.size(), limit);  // a compare
   }
   if (refs.size() > (size_t{1} << 30)) throw SceneError("grid too large: reduce --grid");
   g.voxels.assign(static_cast<size_t>(nv), glm::ivec2(0));

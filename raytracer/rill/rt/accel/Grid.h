@@ -76,6 +76,9 @@ struct Grid {
   size_t degenerate = 0;  // zero area: left out
   size_t non_finite = 0;  // a NaN or infinite vertex: left out
   double build_ms = 0;
+  // What the user should know about the grid they asked for (a resolution that is mostly
+  // empty space); rill-trace prints them and puts them in --stats-json.
+  std::vector<std::string> warnings;
   bool empty() const { return usable == 0; }
   int64_t voxel_count() const { return int64_t{res.x} * res.y * res.z; }
 };
@@ -106,6 +109,15 @@ double checked_grid_density(double d);  // the same range check on a number
 // kSubgridsAuto, then kSubgridMin when the backend runs on the CPU and kNoSubgrids when it
 // runs on a GPU (Backend::runs_on_gpu).
 int32_t subgrid_min_for(int32_t subgrid_min, const std::string& backend);
+
+// The memory a grid may take while it is built and traced, in bytes: RILL_MAX_GRID_MB, else
+// half the machine's physical memory. build_grid refuses a grid whose estimate is over it
+// before allocating, with a SceneError giving the estimate and the limit.
+uint64_t grid_memory_limit();
+// The estimate: bytes per voxel (the cell table, the build's counters, the empty-space
+// distances and the tracer's copy, measured at about 24) and per triangle reference.
+constexpr uint64_t kGridBytesPerVoxel = 24;
+constexpr uint64_t kGridBytesPerReference = 12;
 
 // resolution: voxels per axis, 0 = auto (at `density` voxels per triangle). subgrid_min:
 // voxels listing more triangles than this get a subgrid (kNoSubgrids, or any value <= 0,

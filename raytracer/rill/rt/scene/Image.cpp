@@ -4,10 +4,12 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace rt {
@@ -67,24 +69,38 @@ void write_pfm(const std::string& path, int w, int h, const std::vector<float>& 
   write_pfm_raw(path, w, h, 1, grey.data());
 }
 
-std::vector<float> read_pfm(const std::string& path, int& w, int& h, int& channels) {
-  check_input_file(path, "PFM file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open " + path);
+std::vector<float> parse_pfm(const std::string& bytes, const std::string& path, int& w, int& h,
+                             int& channels) {
+  std::istringstream in(bytes);
   std::string magic;
   double scale = 0;
   in >> magic >> w >> h >> scale;
-  in.get();
-  if (!in || (magic != "PF" && magic != "Pf") || w < 1 || h < 1 || scale >= 0)
+  if (!in || (magic != "PF" && magic != "Pf") || w < 1 || h < 1 || !(scale < 0))
     throw std::runtime_error(path + ": not a little-endian PFM file");
+  in.get();  // the one whitespace byte before the data
   channels = magic == "PF" ? 3 : 1;
+  // The header's size against the bytes that follow it, before allocating: a header that
+  // claims 100000x100000 pixels in a 20-byte file is an error, not a 120 GB allocation.
+  const auto at = static_cast<uint64_t>(std::max<std::streamoff>(in.tellg(), 0));
+  const uint64_t left = bytes.size() - std::min<uint64_t>(at, bytes.size());
+  const uint64_t need = static_cast<uint64_t>(w) * static_cast<uint64_t>(h) *
+                        static_cast<uint64_t>(channels) * sizeof(float);
+  if (need > left)
+    throw std::runtime_error(path + ": truncated PFM file (" + std::to_string(w) + "x" +
+                             std::to_string(h) + " needs " + std::to_string(need) +
+                             " bytes of data, the file has " + std::to_string(left) + ")");
   const size_t row = static_cast<size_t>(w) * static_cast<size_t>(channels);
   std::vector<float> data(row * static_cast<size_t>(h));
+  // Rows are stored bottom to top.
   for (int y = h - 1; y >= 0; --y)
-    if (!in.read(reinterpret_cast<char*>(data.data() + static_cast<size_t>(y) * row),
-                 static_cast<std::streamsize>(row * sizeof(float))))
-      throw std::runtime_error(path + ": truncated PFM file");
+    std::memcpy(data.data() + static_cast<size_t>(y) * row,
+                bytes.data() + at + static_cast<size_t>(h - 1 - y) * row * sizeof(float),
+                row * sizeof(float));
   return data;
+}
+
+std::vector<float> read_pfm(const std::string& path, int& w, int& h, int& channels) {
+  return parse_pfm(read_input_file(path, "a PFM file"), path, w, h, channels);
 }
 
 }  // namespace rt

@@ -40,9 +40,9 @@ uint64_t check_input_file(const std::string& path, const std::string& kind) {
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (ec || !fs::exists(st)) throw SceneError(path + ": no such file");
-  if (fs::is_directory(st)) throw SceneError(path + ": is a directory, not a " + kind);
+  if (fs::is_directory(st)) throw SceneError(path + ": is a directory, not " + kind);
   if (!fs::is_regular_file(st))
-    throw SceneError(path + ": is not a regular file (a device, pipe or socket), not a " + kind +
+    throw SceneError(path + ": is not a regular file (a device, pipe or socket), not " + kind +
                      "; input is read from regular files only");
   const uint64_t size = fs::file_size(path, ec);
   if (ec) throw SceneError(path + ": cannot read its size: " + ec.message());

@@ -16,7 +16,7 @@ uint64_t max_input_bytes();
 
 // Throws SceneError naming the path when it is missing, a directory, not a regular file
 // (a device, pipe or socket), unreadable, or over max_input_bytes(). `kind` names what the
-// file should be ("OBJ file", "scene file", ...). Returns the file's size.
+// file should be, with its article ("an OBJ file", "a scene file", ...). Returns the file's size.
 uint64_t check_input_file(const std::string& path, const std::string& kind);
 
 // The whole file, after check_input_file.

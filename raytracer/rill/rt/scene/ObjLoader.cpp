@@ -9,9 +9,11 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "rill/rt/scene/InputFile.h"
+#include "rill/rt/scene/ObjSyntax.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt {
@@ -20,14 +22,38 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Turns the line checks' findings (ObjSyntax.h) into errors and warnings naming `file` and the
+// line: a bad value is an error; a malformed line is one too under --strict-input, else the
+// first few are warnings and the rest a count.
+void report_lines(const std::string& file, const std::vector<LineIssue>& issues,
+                  const InputOptions& input, std::vector<std::string>& warnings) {
+  if (issues.empty()) return;
+  auto at = [&](const LineIssue& i) { return file + ":" + std::to_string(i.line) + ": " + i.what; };
+  for (const LineIssue& i : issues)
+    if (i.value || input.strict)
+      throw SceneError(at(i) + (i.value ? "" : " (an error under --strict-input)"));
+  constexpr size_t kShown = 3;
+  for (size_t k = 0; k < issues.size() && k < kShown; ++k)
+    warnings.push_back(at(issues[k]) + "; the line is skipped");
+  if (issues.size() > kShown)
+    warnings.push_back(file + ": " + std::to_string(issues.size() - kShown) +
+                       " more malformed lines skipped (" + std::to_string(issues.size()) +
+                       " in all; --strict-input makes them errors)");
+}
+
 // The MTL files an OBJ names with `mtllib`: an absolute name as it is, a relative one from
 // the OBJ's folder, however the OBJ's own path was spelled (tinyobjloader's reader joins the
 // folder to absolute names too). Only regular files within the input limit (InputFile.h);
-// a file that is not there is a warning, and the faces keep the default material.
+// a file that is not there is a warning, and the faces keep the default material. Their
+// lines are checked like the OBJ's (report_lines).
 class MtlReader : public tinyobj::MaterialReader {
  public:
-  MtlReader(const std::string& obj_path, std::vector<std::string>& warnings)
-      : obj_(obj_path), dir_(fs::path(obj_path).parent_path()), warnings_(warnings) {}
+  MtlReader(const std::string& obj_path, const InputOptions& input,
+            std::vector<std::string>& warnings)
+      : obj_(obj_path),
+        dir_(fs::path(obj_path).parent_path()),
+        input_(input),
+        warnings_(warnings) {}
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* by_name, std::string* warn,
                   std::string* err) override {
@@ -35,20 +61,30 @@ class MtlReader : public tinyobj::MaterialReader {
     if (file.is_relative()) file = dir_ / file;
     std::error_code ec;
     if (!fs::exists(file, ec)) {
-      warnings_.push_back(obj_ + ": mtllib " + file.string() +
+      warnings_.push_back(obj_ + ": mtllib " + clipped(file.string()) +
                           ": no such file (its materials are missing; faces that use them get "
                           "the default grey)");
+      missing_ = true;
       return false;
     }
-    std::istringstream text(read_input_file(file.string(), "MTL file"));
-    tinyobj::LoadMtl(by_name, materials, &text, warn, err);
+    if (fs::equivalent(file, obj_, ec))
+      throw SceneError(obj_ + ": mtllib " + clipped(name) +
+                       " names this OBJ file itself, not an MTL file");
+    const std::string text = read_input_file(file.string(), "an MTL file");
+    const MtlLines lines = check_mtl_lines(text);
+    report_lines(file.string(), lines.issues, input_, warnings_);
+    std::istringstream in(without_lines(text, lines.issues));
+    tinyobj::LoadMtl(by_name, materials, &in, warn, err);
     return true;
   }
+  bool missing() const { return missing_; }
 
  private:
   std::string obj_;
   fs::path dir_;
+  InputOptions input_;
   std::vector<std::string>& warnings_;
+  bool missing_ = false;
 };
 
 // The first line of a parser's message, without trailing blanks.
@@ -103,18 +139,47 @@ size_t face_line(const std::string& text, size_t face) {
 }  // namespace
 
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
-  const std::string text = read_input_file(path, "OBJ file");
+  const std::string text = read_input_file(path, "an OBJ file");
+  Scene s;
+  const ObjLines lines = check_obj_lines(text);
+  report_lines(path, lines.issues, opt.input, s.warnings);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> mtls;
   std::string warn, err;
-  Scene s;
-  MtlReader mtl_reader(path, s.warnings);
-  std::istringstream in(text);
+  MtlReader mtl_reader(path, opt.input, s.warnings);
+  std::istringstream in(without_lines(text, lines.issues));  // malformed lines skipped
   // triangulate = false: we fan polygons ourselves (tinyobjloader's triangulation does not).
   bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtls, &warn, &err, &in, &mtl_reader,
                              /*triangulate=*/false, /*default_vcols_fallback=*/false);
-  if (!ok) throw SceneError(path + ": " + (err.empty() ? "cannot parse" : first_line(err)));
+  if (!ok)
+    throw SceneError(path + ": tinyobjloader cannot read it: " +
+                     (err.empty() ? "no reason given" : clipped(first_line(err), 200)));
+  // Files that give nothing to render: an error (a mistyped path, a file of another kind),
+  // unless the user says an empty mesh is what they mean.
+  if (!opt.input.allow_empty) {
+    if (text.empty())
+      throw SceneError(path + ": the file is empty (--allow-empty loads it as no triangles)");
+    if (lines.faces == 0)
+      throw SceneError(path + ": no faces in " + std::to_string(lines.lines) + " lines (" +
+                       std::to_string(lines.vertices) + " vertices, " +
+                       std::to_string(lines.issues.size()) +
+                       " malformed lines): is it an OBJ file? (--allow-empty loads it as no "
+                       "triangles)");
+  }
+  // usemtl names that no MTL file defines (unless an MTL file was missing, which has its own
+  // warning): their faces get the default grey.
+  if (opt.override_material == nullptr && !mtl_reader.missing()) {
+    std::set<std::string> defined, reported;
+    for (const tinyobj::material_t& m : mtls) defined.insert(m.name);
+    for (const auto& [line, name] : lines.usemtl)
+      if (!defined.count(name) && reported.insert(name).second && reported.size() <= 3)
+        s.warnings.push_back(
+            path + ":" + std::to_string(line) + ": usemtl '" + clipped(name) +
+            "': no material of that name in " +
+            (mtls.empty() ? "any MTL file (the OBJ loads none)" : "its MTL files") +
+            "; its faces get the default grey");
+  }
   const fs::path dir = fs::path(path).parent_path();  // relative names start here
 
   s.name = fs::path(path).stem().string();

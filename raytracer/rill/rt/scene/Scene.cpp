@@ -120,8 +120,34 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
 }
 
 std::string clipped(const std::string& s, size_t max) {
-  if (s.size() <= max) return s;
-  return s.substr(0, max) + "... (" + std::to_string(s.size()) + " characters)";
+  // Control bytes and bytes that are not UTF-8 as \xNN: an error message stays one line of
+  // text whatever the file held. Well-formed UTF-8 (a name in any script) is kept.
+  auto utf8_length = [&](size_t i) -> size_t {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const size_t n = c >= 0xf0 && c <= 0xf4 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 && c <= 0xdf ? 2 : 0;
+    if (n == 0 || i + n > s.size()) return 0;
+    for (size_t k = 1; k < n; ++k)
+      if ((static_cast<unsigned char>(s[i + k]) & 0xc0) != 0x80) return 0;
+    return n;
+  };
+  std::string out;
+  size_t i = 0;
+  for (; i < s.size() && out.size() < max; ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out.push_back(static_cast<char>(c));
+    } else if (const size_t n = c >= 0x80 ? utf8_length(i) : 0; n > 0) {
+      out.append(s, i, n);
+      i += n - 1;
+    } else {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out.push_back(hex[c >> 4]);
+      out.push_back(hex[c & 15]);
+    }
+  }
+  if (i < s.size()) out += "... (" + std::to_string(s.size()) + " bytes)";
+  return out;
 }
 
 void Scene::append(const Scene& o) {
@@ -311,7 +337,7 @@ bool Transform::identity() const {
 
 // ---- SCENE argument ------------------------------------------------------------------------
 
-Scene load_scene(const std::string& spec) {
+Scene load_scene(const std::string& spec, const InputOptions& input) {
   namespace fs = std::filesystem;
   if (spec.rfind("builtin:", 0) == 0) return builtin_scene(spec.substr(8));
   const std::string ext = lower(fs::path(spec).extension().string());
@@ -321,9 +347,11 @@ Scene load_scene(const std::string& spec) {
       if (n == spec) return builtin_scene(spec);
     throw SceneError(spec + ": no such file (built-in scenes are named builtin:NAME)");
   }
-  if (ext == ".json") return load_json(spec);
+  if (ext == ".json") return load_json(spec, input);
   if (ext == ".obj") {
-    Scene s = load_obj(spec);
+    ObjLoadOptions o;
+    o.input = input;
+    Scene s = load_obj(spec, o);
     s.camera = default_camera(s);
     s.has_camera = true;
     s.lights.push_back(Light{s.camera.eye, glm::vec3(1.0f)});

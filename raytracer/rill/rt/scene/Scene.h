@@ -26,7 +26,8 @@ struct SceneError : std::runtime_error {
 };
 
 // A user's string for a message: whole up to `max` characters, else its start and its length
-// (a 100 KB shape name must not make a 100 KB error line).
+// in bytes (a 100 KB shape name must not make a 100 KB error line); control bytes and bytes
+// that are not UTF-8 written as \xNN.
 std::string clipped(const std::string& s, size_t max = 80);
 
 // A value of a shader parameter (kernel/Shader.h): a number, a colour, or a texture (an
@@ -150,19 +151,30 @@ struct Transform {
 // OBJ + MTL. Polygons are fanned (v0, vk, vk+1). Materials come from the MTL files the OBJ
 // names (Kd, Ks, Ns, Ni, d, illum: see docs/scene-format.md); faces without one get
 // `fallback` (or a default grey). If `override_material` is set, every face gets it.
+//
+// Lines that Rill's reading of OBJ and MTL does not accept (ObjSyntax.h: "v abc def", an
+// unknown statement, a face of two vertices) are warnings naming file and line (the first
+// few, then a count), or errors under InputOptions::strict. A file that gives no triangles is
+// an error unless InputOptions::allow_empty.
+struct InputOptions {
+  bool strict = false;       // rill-trace --strict-input: malformed lines are errors
+  bool allow_empty = false;  // rill-trace --allow-empty: a mesh file without faces is no error
+};
 struct ObjLoadOptions {
   Transform transform;
   const Material* override_material = nullptr;
+  InputOptions input;
 };
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
 
-// A JSON scene file (format: docs/scene-format.md).
-Scene load_json(const std::string& path);
+// A JSON scene file (format: docs/scene-format.md). The OBJ files it names are read with
+// `input`.
+Scene load_json(const std::string& path, const InputOptions& input = {});
 Scene parse_json_scene(const std::string& text, const std::string& base_dir,
-                       const std::string& name = "scene");
+                       const std::string& name = "scene", const InputOptions& input = {});
 
 // SCENE argument of rill-trace: "builtin:NAME", a .json file or a .obj file.
-Scene load_scene(const std::string& spec);
+Scene load_scene(const std::string& spec, const InputOptions& input = {});
 
 // Built-in scenes: "thesis-a" (3 boxes, 36 triangles), "thesis-b" (cubes in a room, 2064),
 // "thesis-c" (high- and low-polygon objects with a tessellated Utah teapot, 61562),

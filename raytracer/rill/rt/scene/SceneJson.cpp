@@ -25,6 +25,7 @@ using nlohmann::json;
 struct Ctx {
   std::string file;  // for messages
   std::string base_dir;
+  InputOptions input;  // for the OBJ files it names
 };
 
 [[noreturn]] void fail(const Ctx& c, const std::string& msg) {
@@ -301,6 +302,7 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     ObjLoadOptions o;
     o.transform = t;
     o.override_material = mat;
+    o.input = c.input;
     const size_t first = s.materials.size();
     s.append(load_obj(p.string(), o));
     // append() renumbers the OBJ's texture indices as its own; the override's already refer
@@ -368,8 +370,8 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
 }  // namespace
 
 Scene parse_json_scene(const std::string& text, const std::string& base_dir,
-                       const std::string& name) {
-  Ctx c{name, base_dir};
+                       const std::string& name, const InputOptions& input) {
+  Ctx c{name, base_dir, input};
   json j;
   try {
     j = json::parse(text);
@@ -481,9 +483,9 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
   }
 }
 
-Scene load_json(const std::string& path) {
-  return parse_json_scene(read_input_file(path, "scene file"),
-                          std::filesystem::path(path).parent_path().string(), path);
+Scene load_json(const std::string& path, const InputOptions& input) {
+  return parse_json_scene(read_input_file(path, "a scene file"),
+                          std::filesystem::path(path).parent_path().string(), path, input);
 }
 
 }  // namespace rt

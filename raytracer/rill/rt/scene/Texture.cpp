@@ -56,22 +56,15 @@ float srgb8_to_linear(unsigned char c) {
   return table[c];
 }
 
-Texture load_png_texture(const std::string& path, bool srgb) {
-  check_input_file(path, "PNG file");
+Texture decode_png_texture(const std::string& bytes, const std::string& path, bool srgb) {
   // The signature first: libpng's own message for another format ("Not a PNG file") does not
-  // name the file, and a short or unreadable file should say so.
-  {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
-    if (!f) throw SceneError(path + ": cannot open for reading");
-    png_byte sig[8] = {};
-    const size_t got = std::fread(sig, 1, sizeof sig, f.get());
-    if (got != sizeof sig || png_sig_cmp(sig, 0, sizeof sig) != 0)
-      throw SceneError(path + ": not a PNG file");
-  }
+  // name the file, and a short file should say so.
+  if (bytes.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8) != 0)
+    throw SceneError(path + ": not a PNG file");
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str()))
+  if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size()))
     throw SceneError(path + ": cannot read the PNG: " + image.message);
   // 16-bit files without gamma information are taken as sRGB-encoded like 8-bit ones (libpng
   // would assume linear and re-encode them), so that 16-bit data maps keep their values.
@@ -79,6 +72,8 @@ Texture load_png_texture(const std::string& path, bool srgb) {
   // RGBA, whose alpha is then dropped: alpha is ignored, as Texture.h says (reading RGB would
   // composite onto black). libpng converts grey, palettes and 16 bits.
   image.format = PNG_FORMAT_RGBA;
+  // The size the header claims, checked before allocating: compressed data can claim far more
+  // pixels than it holds, and a 16384x16384 texture is 3 GiB of linear floats already.
   if (image.width > 16384 || image.height > 16384) {
     png_image_free(&image);
     throw SceneError(path + ": " + std::to_string(image.width) + "x" +
@@ -101,6 +96,10 @@ Texture load_png_texture(const std::string& path, bool srgb) {
       t.texels[i][c] = srgb ? srgb8_to_linear(v) : v / 255.0f;
     }
   return t;
+}
+
+Texture load_png_texture(const std::string& path, bool srgb) {
+  return decode_png_texture(read_input_file(path, "a PNG file"), path, srgb);
 }
 
 }  // namespace rt

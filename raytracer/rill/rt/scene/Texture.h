@@ -37,6 +37,8 @@ struct Texture {
 // values are taken as they are (data maps). Throws SceneError naming the file when it is
 // missing, unreadable or not a PNG.
 Texture load_png_texture(const std::string& path, bool srgb = true);
+// The same from a PNG's bytes; `path` names it in errors and in the texture.
+Texture decode_png_texture(const std::string& bytes, const std::string& path, bool srgb = true);
 
 // The linear value of an 8-bit sRGB code (the exact curve, IEC 61966-2-1).
 float srgb8_to_linear(unsigned char c);
