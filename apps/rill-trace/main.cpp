@@ -18,6 +18,7 @@
 // SCENE is a JSON scene file, an OBJ file (framed by a default camera, lit from the eye) or
 // builtin:NAME. Exit status: 0 on success, 1 on an error (one line on stderr), 2 on bad
 // options.
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <nlohmann/json.hpp>
@@ -30,12 +31,15 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
+#include <optional>
 #include <sstream>
 
 #include "AccuracyBench.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/Image.h"
+#include "rill/rt/scene/OutputFile.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace {
@@ -83,6 +87,7 @@ struct RenderOptions {
   bool quiet = false;
   // Input files (Scene.h, InputOptions): malformed lines as errors; mesh files without faces.
   bool strict_input = false, allow_empty = false;
+  int threads = 0;  // CPU backends' worker threads; 0: all cores
   // Accuracy knobs (Tracer.h, TracerOptions).
   std::string triangle = "moller", offset = "scaled", traversal = "incremental";
   // Multipass: per-pass statistics, the intersector's rerun threshold, masked launches.
@@ -131,7 +136,16 @@ nlohmann::json split_json(const rt::FrameTimes& t) {
           {"read_back", t.read_back}};
 }
 
+// What rill-trace is doing, for the message when memory runs out ("out of memory while
+// building the grid 512x512x512").
+std::string g_doing = "starting";
+
 int render(const RenderOptions& o) {
+  // --threads: the CPU backends' worker threads (oneTBB), for the whole render.
+  std::optional<tbb::global_control> threads;
+  if (o.threads > 0)
+    threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(o.threads));
+  g_doing = "loading " + rt::clipped(o.scene);
   if (o.strategy != "megakernel" && o.strategy != "multipass")
     throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
   const rill::Accuracy acc = rill::parse_accuracy(o.accuracy);
@@ -153,6 +167,7 @@ int render(const RenderOptions& o) {
   for (const std::string& w : scene.warnings)
     std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
 
+  g_doing = "building the grid of " + std::to_string(scene.triangle_count()) + " triangles";
   rt::Grid grid = rt::build_grid_for(scene, o.backend);  // settings left open: for the backend
   for (const std::string& w : grid.warnings) {
     std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
@@ -164,6 +179,7 @@ int render(const RenderOptions& o) {
   knobs.triangle = rt::parse_triangle_test(o.triangle);
   knobs.offset = rt::parse_self_intersection(o.offset);
   knobs.traversal = rt::parse_traversal(o.traversal);
+  g_doing = "uploading the scene and grid (" + std::to_string(grid.voxel_count()) + " voxels)";
   rt::Tracer tracer(scene, grid, knobs);
   const double setup_ms = ms_since(t_setup);
 
@@ -187,6 +203,8 @@ int render(const RenderOptions& o) {
   rs.outputs.prim = !o.prim.empty();
   rs.outputs.normal = !o.normal.empty();
   const auto t_render = Clock::now();
+  g_doing = "rendering " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " on " +
+            o.backend;
   rt::RenderResult r = tracer.render(rs, scene.camera);
   const double render_ms = ms_since(t_render);
   const double compile_ms = setup_ms + (render_ms - r.trace_ms);
@@ -217,6 +235,7 @@ int render(const RenderOptions& o) {
                     &rt::FrameTimes::reduce, &rt::FrameTimes::read_back})
     median_split.*step = median_of(step);
 
+  g_doing = "writing the outputs";
   std::vector<std::string> written;
   if (!out.empty()) rt::write_png_rgb8(out, r.width, r.height, r.rgb8), written.push_back(out);
   if (!o.pfm.empty()) rt::write_pfm(o.pfm, r.width, r.height, r.color), written.push_back(o.pfm);
@@ -452,6 +471,8 @@ int info() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Ctrl-C or a kill while an image is written leaves no partial file (OutputFile.h).
+  rt::remove_partial_output_on_interrupt();
   CLI::App app{"rill-trace: the Rill ray tracer (one DSL kernel, every backend)"};
   app.require_subcommand(1);
   RenderOptions ro;
@@ -482,6 +503,10 @@ int main(int argc, char** argv) {
   r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
   r->add_option("--source", ro.source, "write the generated kernel source");
   r->add_flag("--quiet", ro.quiet, "print only the stats line");
+  r->add_option("--threads", ro.threads,
+                "worker threads of the CPU backends (cpu, simd); default: one per core. Images "
+                "do not depend on it")
+      ->check(number_in(1, 4096, true));
   r->add_flag("--strict-input", ro.strict_input,
               "malformed lines in OBJ and MTL files are errors (default: warnings naming the "
               "first few lines, then a count)");
@@ -558,6 +583,9 @@ int main(int argc, char** argv) {
       if (!acc_size.empty()) parse_size(acc_size, ao.width, ao.height);
       rc = rt::accuracy_bench(ao);
     }
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "rill-trace: out of memory while %s\n", g_doing.c_str());
+    rc = 1;
   } catch (const std::exception& e) {
     std::string msg = e.what();
     for (char& c : msg)

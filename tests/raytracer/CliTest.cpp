@@ -21,11 +21,12 @@ struct Run {
   std::string err;
 };
 
-Run run(const std::string& args, const testing::TempDir& dir) {
+// Runs a shell command line in dir, its stdout dropped and its stderr kept.
+Run run_command(const std::string& command, const testing::TempDir& dir) {
   const std::string err = dir.path("stderr.txt");
   // timeout: a hang fails the test instead of the whole suite.
-  std::string cmd = "cd '" + dir.dir() + "' && timeout 60 '" RILL_TRACE_EXE "' " + args +
-                    " > /dev/null 2> '" + err + "'";
+  std::string cmd =
+      "cd '" + dir.dir() + "' && timeout 60 " + command + " > /dev/null 2> '" + err + "'";
   int rc = std::system(cmd.c_str());
   Run r;
   if (WIFEXITED(rc)) r.status = WEXITSTATUS(rc);
@@ -34,6 +35,10 @@ Run run(const std::string& args, const testing::TempDir& dir) {
   s << f.rdbuf();
   r.err = s.str();
   return r;
+}
+
+Run run(const std::string& args, const testing::TempDir& dir) {
+  return run_command("'" RILL_TRACE_EXE "' " + args, dir);
 }
 
 void expect_clean_failure(const std::string& args, const std::string& needle = "") {
@@ -220,7 +225,65 @@ TEST(Cli, MalformedAndEmptyInputsAreNamed) {
       << r.err;
 }
 
+std::string file_bytes(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// Determinism: the image and every AOV are the same bytes for 1, 2 and all threads, for
+// repeated runs, for OpenCL work-group sizes and for the GPU backends' launch orders (tiles on
+// and off), as the cpu backend's on one thread. Each variant is a process of its own: the
+// group size and tile settings are read once per process.
+TEST(Cli, OutputsDoNotDependOnThreadsGroupSizesOrRuns) {
+  testing::TempDir dir;
+  const std::string outs =
+      " --size 32x24 --spp 2 --out o.png --pfm o.pfm --depth d.pfm --prim "
+      "p.pfm --normal n.pfm";
+  auto render = [&](const std::string& env, const std::string& args) {
+    const std::string cmd = env + " '" RILL_TRACE_EXE "' render builtin:glass" + outs + " " + args;
+    auto r = run_command(cmd, dir);
+    EXPECT_EQ(r.status, 0) << cmd << ": " << r.err;
+    std::string all;
+    for (const char* f : {"o.png", "o.pfm", "d.pfm", "p.pfm", "n.pfm"}) {
+      all += file_bytes(dir.path(f));
+      std::filesystem::remove(dir.path(f));
+    }
+    return all;
+  };
+  const std::string want = render("env", "--backend cpu --threads 1");
+  ASSERT_GT(want.size(), 32u * 24 * 4);
+  struct Variant {
+    std::string backend, env, args;
+  };
+  const std::vector<Variant> variants = {
+      {"cpu", "", "--backend cpu --threads 2"},
+      {"cpu", "", "--backend cpu"},
+      {"cpu", "", "--backend cpu"},  // a repeated run
+      {"simd", "", "--backend simd --threads 1"},
+      {"simd", "", "--backend simd"},
+      {"opencl", "RILL_OPENCL_GROUP=1", "--backend opencl"},
+      {"opencl", "RILL_OPENCL_GROUP=256 RILL_OPENCL_TILES=off", "--backend opencl"},
+      {"opencl", "", "--backend opencl"},
+      {"glsl-compute", "RILL_GLSL_TILES=off", "--backend glsl-compute"},
+      {"glsl-compute", "", "--backend glsl-compute"},
+  };
+  for (const Variant& v : variants) {
+    std::string why;
+    if (!testing::backend_available(v.backend, why)) {
+      std::printf("[  SKIPPED ] %s: %s\n", v.args.c_str(), why.c_str());
+      continue;
+    }
+    EXPECT_TRUE(render("env " + v.env, v.args) == want)
+        << v.env << " " << v.args << ": the outputs differ from cpu --threads 1";
+  }
+}
+
 #else
+TEST(Cli, OutputsDoNotDependOnThreadsGroupSizesOrRuns) {
+  GTEST_SKIP() << "rill-trace is not built";
+}
 TEST(Cli, MalformedAndEmptyInputsAreNamed) {
   GTEST_SKIP() << "rill-trace is not built";
 }

@@ -1,6 +1,14 @@
-// The image files the ray tracer writes and reads back (scene/Image.h): PFM round trips, and
-// PFM headers that do not match their data (the image fuzzer's findings stay fixed here).
+// The image files the ray tracer writes and reads back (scene/Image.h): PFM round trips, PFM
+// headers that do not match their data (the image fuzzer's findings stay fixed here), and
+// whole-or-nothing writes (scene/OutputFile.h).
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <cstring>
 #include <functional>
@@ -10,6 +18,7 @@
 
 #include "TestUtil.h"
 #include "rill/rt/scene/Image.h"
+#include "rill/rt/scene/OutputFile.h"
 
 namespace rt {
 namespace {
@@ -76,6 +85,55 @@ TEST(ImageTest, NotAPfmNamesTheFile) {
     EXPECT_EQ(runtime_error_of([&] { parse_pfm(bad, "x.pfm", w, h, c); }),
               "x.pfm: not a little-endian PFM file")
         << bad;
+}
+
+// Outputs are written whole or not at all (OutputFile.h).
+TEST(OutputFile, AFailedWriteLeavesTheEarlierFileAndNoPartialOne) {
+  TempDir dir;
+  const std::string path = dir.file("o.png", "the earlier image");
+  EXPECT_THROW(write_output_file(path,
+                                 [&](const std::string& tmp) {
+                                   std::ofstream(tmp) << "half an ima";
+                                   EXPECT_NE(tmp, path);
+                                   throw std::runtime_error("the backend failed");
+                                 }),
+               std::runtime_error);
+  std::ifstream f(path);
+  std::string content((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(content, "the earlier image");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.dir()), {}), 1);
+  // A write that completes replaces it.
+  write_output_file(path, [&](const std::string& tmp) {
+    std::ofstream(tmp) << "new";
+    EXPECT_TRUE(std::filesystem::exists(path));  // the old one, until the rename
+  });
+  std::ifstream g(path);
+  std::string now((std::istreambuf_iterator<char>(g)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(now, "new");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.dir()), {}), 1);
+  // Writing into a folder that does not exist: an error naming the file, nothing left.
+  EXPECT_THROW(write_pfm(dir.path("no/such/x.pfm"), 1, 1, std::vector<float>{1.0f}),
+               std::runtime_error);
+}
+
+TEST(OutputFile, AnInterruptRemovesThePartialFile) {
+  TempDir dir;
+  const std::string path = dir.path("o.pfm");
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    remove_partial_output_on_interrupt();
+    write_output_file(path, [&](const std::string& tmp) {
+      std::ofstream(tmp) << "PF\n8 8\n-1\n";  // then Ctrl-C
+      std::raise(SIGINT);
+    });
+    _exit(0);  // not reached
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << status;
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.dir()), {}), 0)
+      << "a partial file was left";
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "rill/rt/scene/Image.h"
 
 #include "rill/rt/scene/InputFile.h"
+#include "rill/rt/scene/OutputFile.h"
 
 #include <png.h>
 
@@ -40,14 +41,17 @@ void write_png_rgb8(const std::string& path, int w, int h, const std::vector<uns
   image.width = static_cast<png_uint_32>(w);
   image.height = static_cast<png_uint_32>(h);
   image.format = PNG_FORMAT_RGB;
-  if (!png_image_write_to_file(&image, path.c_str(), 0, px.data(), 0, nullptr))
-    throw std::runtime_error("cannot write " + path + ": " + image.message);
+  write_output_file(path, [&](const std::string& tmp) {
+    if (!png_image_write_to_file(&image, tmp.c_str(), 0, px.data(), 0, nullptr))
+      throw std::runtime_error("cannot write " + path + ": " + image.message);
+  });
 }
 
 namespace {
 
-void write_pfm_raw(const std::string& path, int w, int h, int channels, const float* data) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
+void write_pfm_to(const std::string& tmp, const std::string& path, int w, int h, int channels,
+                  const float* data) {
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (f == nullptr) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
   std::fprintf(f, "%s\n%d %d\n-1.0\n", channels == 3 ? "PF" : "Pf", w, h);
   const size_t row = static_cast<size_t>(w) * static_cast<size_t>(channels);
@@ -56,6 +60,11 @@ void write_pfm_raw(const std::string& path, int w, int h, int channels, const fl
     ok = ok && std::fwrite(data + static_cast<size_t>(y) * row, sizeof(float), row, f) == row;
   ok = std::fclose(f) == 0 && ok;
   if (!ok) throw std::runtime_error("cannot write " + path);
+}
+
+void write_pfm_raw(const std::string& path, int w, int h, int channels, const float* data) {
+  write_output_file(path,
+                    [&](const std::string& tmp) { write_pfm_to(tmp, path, w, h, channels, data); });
 }
 
 }  // namespace

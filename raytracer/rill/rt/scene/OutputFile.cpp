@@ -1,0 +1,67 @@
+// Whole-or-nothing output files (OutputFile.h).
+#include "rill/rt/scene/OutputFile.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+namespace rt {
+
+namespace {
+
+// The temporary file being written, for the signal handler: a fixed buffer (a handler may not
+// allocate), published by `busy` once complete.
+char g_partial[4096];
+std::atomic<bool> g_busy{false};
+
+void on_signal(int sig) {
+  remove_partial_output();
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+}  // namespace
+
+void remove_partial_output() {
+  if (g_busy.load()) ::unlink(g_partial);
+}
+
+void write_output_file(const std::string& path,
+                       const std::function<void(const std::string&)>& write) {
+  const std::string tmp = path + ".partial-" + std::to_string(::getpid());
+  const bool track = tmp.size() < sizeof g_partial && !g_busy.load();
+  if (track) {
+    std::memcpy(g_partial, tmp.c_str(), tmp.size() + 1);
+    g_busy.store(true);
+  }
+  auto done = [&] {
+    if (track) g_busy.store(false);
+  };
+  try {
+    write(tmp);
+  } catch (...) {
+    std::remove(tmp.c_str());
+    done();
+    throw;
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    done();
+    throw std::runtime_error("cannot write " + path + ": " + ec.message());
+  }
+  done();
+}
+
+void remove_partial_output_on_interrupt() {
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+}
+
+}  // namespace rt
