@@ -2,10 +2,13 @@
 
 #include <dlfcn.h>
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <memory>
 
 #include "CEmitter.h"
 #include "LockstepEmitter.h"
@@ -16,6 +19,24 @@
 namespace rill::cpu {
 
 namespace {
+
+// RILL_THREADS=N caps the worker threads of the CPU backends (cpu, simd) for the whole
+// process, through a oneTBB global_control kept until exit; unset, oneTBB's default (one per
+// core). Results never depend on it (each element is computed alone); it is for sharing a
+// machine and for the determinism tests.
+void apply_thread_setting() {
+  static const std::unique_ptr<tbb::global_control> limit =
+      []() -> std::unique_ptr<tbb::global_control> {
+    const char* v = std::getenv("RILL_THREADS");
+    if (v == nullptr || *v == '\0') return nullptr;
+    char* end = nullptr;
+    const long n = std::strtol(v, &end, 10);
+    if (*end != '\0' || n < 1 || n > 4096)
+      throw Error(std::string("RILL_THREADS='") + v + "' is not a thread count (1..4096)");
+    return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                 static_cast<size_t>(n));
+  }();
+}
 
 // Mirrors rill_launch in the generated C.
 struct Launch {
@@ -155,7 +176,7 @@ class CpuKernel : public CompiledKernel {
 // docs/backends.md).
 class CpuBackend : public Backend {
  public:
-  explicit CpuBackend(bool lockstep) : lockstep_(lockstep) {}
+  explicit CpuBackend(bool lockstep) : lockstep_(lockstep) { apply_thread_setting(); }
 
   std::string name() const override { return lockstep_ ? "simd" : "cpu"; }
   std::string description() const override {
@@ -163,8 +184,9 @@ class CpuBackend : public Backend {
                                        vector_isa() + "), compiled by "
                                  : "generated C compiled by ";
     return name() + ": " + what + c_compiler() + ", " +
-           std::to_string(tbb::info::default_concurrency()) + " threads (oneTBB), cache " +
-           cache_directory();
+           std::to_string(
+               tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)) +
+           " threads (oneTBB), cache " + cache_directory();
   }
   bool supports(Accuracy) const override { return true; }
 

@@ -149,8 +149,21 @@ struct Device {
   cl_context context = nullptr;
   cl_command_queue queue = nullptr;
   size_t max_group = 64;
-  std::string identity;  // the platform, device and driver, as disk cache key lines
+  cl_ulong max_alloc = 0;           // CL_DEVICE_MAX_MEM_ALLOC_SIZE: the largest buffer (0: unknown)
+  bool max_alloc_from_env = false;  // lowered by RILL_OPENCL_MAX_ALLOC_MB
+  std::string identity;             // the platform, device and driver, as disk cache key lines
 };
+
+// A buffer over the device's largest allocation is an error naming both sizes and the device,
+// before the driver is asked (some drivers fail later, at the launch, or not at all).
+void check_allocation(const Device& d, size_t bytes) {
+  if (d.max_alloc == 0 || bytes <= d.max_alloc) return;
+  auto mib = [](uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20) + " MiB"; };
+  throw Error("OpenCL backend: a buffer of " + mib(bytes) + " is over the largest allocation of " +
+              d.info.device_name + " (" +
+              (d.max_alloc_from_env ? "RILL_OPENCL_MAX_ALLOC_MB" : "CL_DEVICE_MAX_MEM_ALLOC_SIZE") +
+              ", " + mib(d.max_alloc) + ")");
+}
 
 // The device and driver lines of Rill's disk cache keys: a binary is only valid for the
 // driver version that produced it.
@@ -381,6 +394,7 @@ class OpenCLBackend : public Backend {
     if (!buf || buf->bytes != bytes) {
       auto fresh = std::make_unique<ClBuffer>();
       cl_int e = CL_SUCCESS;
+      check_allocation(d, bytes);
       fresh->mem = clCreateBuffer(d.context, CL_MEM_READ_WRITE, bytes, nullptr, &e);
       check(e, "clCreateBuffer");
       fresh->bytes = bytes;
@@ -409,6 +423,7 @@ class OpenCLBackend : public Backend {
     // Kernels always get a buffer, even for an empty table; pad to 8 bytes.
     std::vector<unsigned char> copy(std::max<size_t>(bytes, 8), 0);
     if (bytes) std::memcpy(copy.data(), data, bytes);
+    check_allocation(d, copy.size());
     cl_mem m = clCreateBuffer(d.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, copy.size(),
                               copy.data(), &e);
     check(e, "clCreateBuffer");
@@ -435,6 +450,20 @@ class OpenCLBackend : public Backend {
       check(e, "clCreateCommandQueue");
       clGetDeviceInfo(d->id, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof d->max_group, &d->max_group,
                       nullptr);
+      clGetDeviceInfo(d->id, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof d->max_alloc, &d->max_alloc,
+                      nullptr);
+      if (const char* m = std::getenv("RILL_OPENCL_MAX_ALLOC_MB"); m && *m) {
+        char* end = nullptr;
+        const unsigned long long mb = std::strtoull(m, &end, 10);
+        if (*end != '\0' || mb < 1 || mb > (1ull << 30))
+          throw Error(std::string("RILL_OPENCL_MAX_ALLOC_MB='") + m +
+                      "' is not a size in MiB (1..1073741824)");
+        const cl_ulong lower = static_cast<cl_ulong>(mb) << 20;
+        if (d->max_alloc == 0 || lower < d->max_alloc) {
+          d->max_alloc = lower;
+          d->max_alloc_from_env = true;
+        }
+      }
       dev_ = std::move(d);
     } catch (const Error& e) {
       init_error_ = e.what();

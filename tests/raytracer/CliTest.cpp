@@ -225,6 +225,31 @@ TEST(Cli, MalformedAndEmptyInputsAreNamed) {
       << r.err;
 }
 
+// A buffer over the OpenCL device's largest allocation (lowered here with
+// RILL_OPENCL_MAX_ALLOC_MB) is an error naming both sizes and the device, and a bad
+// RILL_THREADS an error naming it; neither leaves an image behind.
+TEST(Cli, BackendLimitsAreNamed) {
+  testing::TempDir dir;
+  std::string why;
+  if (testing::backend_available("opencl", why)) {
+    auto r = run_command("env RILL_OPENCL_MAX_ALLOC_MB=1 '" RILL_TRACE_EXE
+                         "' render builtin:thesis-a --backend opencl --size 1024x1024 --out o.png",
+                         dir);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("OpenCL backend: a buffer of "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(RILL_OPENCL_MAX_ALLOC_MB, 1 MiB)"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path("o.png")));
+  } else {
+    std::printf("[  SKIPPED ] the OpenCL part: %s\n", why.c_str());
+  }
+  auto r = run_command("env RILL_THREADS=zero '" RILL_TRACE_EXE
+                       "' render builtin:thesis-a --size 8x8 --out t.png",
+                       dir);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("RILL_THREADS='zero' is not a thread count (1..4096)"), std::string::npos)
+      << r.err;
+}
+
 std::string file_bytes(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   std::stringstream s;
@@ -281,6 +306,9 @@ TEST(Cli, OutputsDoNotDependOnThreadsGroupSizesOrRuns) {
 }
 
 #else
+TEST(Cli, BackendLimitsAreNamed) {
+  GTEST_SKIP() << "rill-trace is not built";
+}
 TEST(Cli, OutputsDoNotDependOnThreadsGroupSizesOrRuns) {
   GTEST_SKIP() << "rill-trace is not built";
 }
