@@ -250,6 +250,32 @@ TEST(Cli, BackendLimitsAreNamed) {
       << r.err;
 }
 
+// Memory that runs out anyway (here under a 1 GiB address-space limit, while the grid's own
+// estimate is within half the machine's memory) ends with a message naming the step.
+TEST(Cli, RunningOutOfMemoryNamesTheStep) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: ulimit -v cannot apply";
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: ulimit -v cannot apply";
+#endif
+#endif
+  testing::TempDir dir;
+  // 400^3 voxels: about 1.5 GB by the estimate, over the 1 GiB limit when allocated.
+  auto r = run_command("sh -c \"ulimit -v 1048576; exec '" RILL_TRACE_EXE
+                       "' render builtin:thesis-a --size 8x8 --grid 400 --out m.png\"",
+                       dir);
+  EXPECT_EQ(r.status, 1) << r.err;
+  // Building or uploading the grid, as the allocator decides; the error is the last line.
+  const std::string last = r.err.substr(r.err.rfind('\n', r.err.size() - 2) + 1);
+  EXPECT_TRUE(last == "rill-trace: out of memory while building the grid of 36 triangles\n" ||
+              last ==
+                  "rill-trace: out of memory while uploading the scene and grid (64000000 "
+                  "voxels)\n")
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("m.png")));
+}
+
 std::string file_bytes(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   std::stringstream s;
@@ -306,6 +332,9 @@ TEST(Cli, OutputsDoNotDependOnThreadsGroupSizesOrRuns) {
 }
 
 #else
+TEST(Cli, RunningOutOfMemoryNamesTheStep) {
+  GTEST_SKIP() << "rill-trace is not built";
+}
 TEST(Cli, BackendLimitsAreNamed) {
   GTEST_SKIP() << "rill-trace is not built";
 }
