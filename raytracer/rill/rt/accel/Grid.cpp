@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <climits>
 #include <cmath>
@@ -103,11 +104,20 @@ struct Subgrid {
   std::vector<int32_t> counts, ids;
 };
 
+// A subgrid that does not pay is not built (m = 0 comes back): one whose sub-voxels would
+// list on average more than half the voxel's triangles (triangles that span the voxel, as in
+// a pile of coplanar ones), or more than kSubgridMaxGrowth times its references in all. The
+// second bound keeps the subgrids' memory within a fixed multiple of the top level's, which
+// build_grid checks before allocating.
+constexpr int64_t kSubgridMaxGrowth = 8;
+
 Subgrid make_subgrid(const Grid& g, const Scene& s, int64_t v, double mag) {
   const glm::ivec2 e = g.voxels[static_cast<size_t>(v)];
   Subgrid r;
   const int m = r.m = static_cast<int>(std::clamp(std::lround(std::cbrt(kSubgridDensity * e.y)), 2l,
                                                   static_cast<long>(kSubgridMaxRes)));
+  const int64_t cells = int64_t{m} * m * m;
+  const int64_t max_refs = std::min(kSubgridMaxGrowth * e.y, cells * e.y / 2);
   const glm::ivec3 vi(v % g.res.x, (v / g.res.x) % g.res.y, v / (int64_t{g.res.x} * g.res.y));
   // The voxel's corner and the sub-voxel size as the kernel computes them, in float
   // (walk_subgrid); the margin covers the rounding of its DDA, as on the top level.
@@ -125,6 +135,10 @@ Subgrid make_subgrid(const Grid& g, const Scene& s, int64_t v, double mag) {
     for_each_overlapped_cell(tri, corner, sub, glm::ivec3(m), margin, [&](int x, int y, int z) {
       refs.emplace_back(x + m * (y + m * z), t);
     });
+    if (static_cast<int64_t>(refs.size()) > max_refs) {
+      r.m = 0;  // does not pay
+      return r;
+    }
   }
   // Grouped by sub-voxel; stable, so each list stays ascending like the voxel's.
   std::stable_sort(refs.begin(), refs.end(),
@@ -187,13 +201,28 @@ void build_subgrids(Grid& g, const Scene& s, int32_t min_count) {
   if (dense.empty()) return;
   // The subgrids are independent: built in parallel, then laid out in voxel order.
   std::vector<Subgrid> subs(dense.size());
-  tbb::parallel_for(size_t{0}, dense.size(),
-                    [&](size_t i) { subs[i] = make_subgrid(g, s, dense[i], mag); });
+  // Their memory, against what the grid's limit leaves (grid_memory_limit): counted as each
+  // subgrid is built, so that an error comes before the memory is gone.
+  const uint64_t limit = grid_memory_limit();
+  const uint64_t used = static_cast<uint64_t>(g.voxels.size()) * kGridBytesPerVoxel +
+                        static_cast<uint64_t>(g.elements.size()) * kGridBytesPerReference;
+  std::atomic<uint64_t> added{0};
+  tbb::parallel_for(size_t{0}, dense.size(), [&](size_t i) {
+    subs[i] = make_subgrid(g, s, dense[i], mag);
+    const uint64_t bytes = static_cast<uint64_t>(subs[i].counts.size()) * kGridBytesPerVoxel +
+                           static_cast<uint64_t>(subs[i].ids.size()) * kGridBytesPerReference;
+    if (used + (added += bytes) > limit)
+      throw SceneError("the grid's subgrids need more than the limit of " +
+                       std::to_string(limit >> 20) +
+                       " MiB (half this machine's memory, or RILL_MAX_GRID_MB): use --subgrids "
+                       "off, or a smaller --grid");
+  });
   std::vector<int32_t> elements;
   elements.reserve(g.elements.size());
   size_t next = 0;
   for (int64_t v = 0; v < nv; ++v) {
     glm::ivec2& e = g.voxels[static_cast<size_t>(v)];
+    if (next < dense.size() && dense[next] == v && subs[next].m == 0) ++next;  // did not pay
     if (next < dense.size() && dense[next] == v) {
       const Subgrid& sg = subs[next++];
       const size_t base = g.voxels.size();  // (g.voxels grows: e is not used after this)
