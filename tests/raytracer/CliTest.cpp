@@ -283,10 +283,10 @@ std::string file_bytes(const std::string& path) {
   return s.str();
 }
 
-// Determinism: the image and every AOV are the same bytes for 1, 2 and all threads, for
-// repeated runs, for OpenCL work-group sizes and for the GPU backends' launch orders (tiles on
-// and off), as the cpu backend's on one thread. Each variant is a process of its own: the
-// group size and tile settings are read once per process.
+// Determinism: the image and every AOV are the same bytes for 1, 2 and all threads (Rill's and
+// the CPU drivers'), for repeated runs, for OpenCL work-group sizes and for the GPU backends'
+// launch orders (tiles on and off), as the cpu backend's on one thread. Each variant is a process
+// of its own: the group size and tile settings are read once per process.
 TEST(Cli, OutputsDoNotDependOnThreadsGroupSizesOrRuns) {
   testing::TempDir dir;
   const std::string outs =
@@ -319,6 +319,12 @@ TEST(Cli, OutputsDoNotDependOnThreadsGroupSizesOrRuns) {
       {"opencl", "", "--backend opencl"},
       {"glsl-compute", "RILL_GLSL_TILES=off", "--backend glsl-compute"},
       {"glsl-compute", "", "--backend glsl-compute"},
+      // The drivers' own threads where they run on the CPU (PoCL's worker threads, llvmpipe's
+      // rasterizer threads); other drivers ignore these variables.
+      {"opencl", "POCL_MAX_PTHREAD_COUNT=1", "--backend opencl"},
+      {"glsl-compute", "LP_NUM_THREADS=1", "--backend glsl-compute"},
+      {"glsl", "LP_NUM_THREADS=1", "--backend glsl"},
+      {"glsl", "", "--backend glsl"},
   };
   for (const Variant& v : variants) {
     std::string why;
