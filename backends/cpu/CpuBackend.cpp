@@ -32,7 +32,8 @@ void apply_thread_setting() {
     char* end = nullptr;
     const long n = std::strtol(v, &end, 10);
     if (*end != '\0' || n < 1 || n > 4096)
-      throw Error(std::string("RILL_THREADS='") + v + "' is not a thread count (1..4096)");
+      throw Error("RILL_THREADS='" + std::string(v).substr(0, 40) +
+                  "' is not a thread count (1..4096)");
     return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                  static_cast<size_t>(n));
   }();
@@ -98,6 +99,9 @@ class CpuKernel : public CompiledKernel {
     }
     const int32_t* mask = nullptr;
     if (a.mask) mask = reinterpret_cast<const int32_t*>(a.mask->host_data_for_read());
+    // Here, not when the backend is made: a bad RILL_THREADS is an error of the launches that
+    // would use it, not of the registry (which would take every backend down with it).
+    apply_thread_setting();
     // Last, once nothing can throw before the kernel runs: asking for an output's host copy
     // to write makes its device copy stale. (A stream that is also an input was read back
     // above and stays current on the host.)
@@ -176,7 +180,7 @@ class CpuKernel : public CompiledKernel {
 // docs/backends.md).
 class CpuBackend : public Backend {
  public:
-  explicit CpuBackend(bool lockstep) : lockstep_(lockstep) { apply_thread_setting(); }
+  explicit CpuBackend(bool lockstep) : lockstep_(lockstep) {}
 
   std::string name() const override { return lockstep_ ? "simd" : "cpu"; }
   std::string description() const override {

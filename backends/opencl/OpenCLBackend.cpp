@@ -421,9 +421,9 @@ class OpenCLBackend : public Backend {
     Device& d = device();
     cl_int e = CL_SUCCESS;
     // Kernels always get a buffer, even for an empty table; pad to 8 bytes.
+    check_allocation(d, std::max<size_t>(bytes, 8));
     std::vector<unsigned char> copy(std::max<size_t>(bytes, 8), 0);
     if (bytes) std::memcpy(copy.data(), data, bytes);
-    check_allocation(d, copy.size());
     cl_mem m = clCreateBuffer(d.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, copy.size(),
                               copy.data(), &e);
     check(e, "clCreateBuffer");

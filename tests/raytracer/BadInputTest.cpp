@@ -229,6 +229,37 @@ TEST(BadInput, MessagesEscapeControlAndNonUtf8Bytes) {
   EXPECT_EQ(clipped("a\nb\x01\xff"), "a\\x0ab\\x01\\xff");
   EXPECT_EQ(clipped("caf\xc3\xa9"), "caf\xc3\xa9");  // UTF-8 kept
   EXPECT_EQ(clipped(std::string(10, 'x'), 4), "xxxx... (10 bytes)");
+  // Not UTF-8: bytes past U+10FFFF, C1 controls, overlong forms, surrogates.
+  EXPECT_EQ(clipped("\xf5\x80\x80\x80"), "\\xf5\\x80\\x80\\x80");
+  EXPECT_EQ(clipped("\xc2\x85"), "\\xc2\\x85");
+  EXPECT_EQ(clipped("\xe0\x80\xaf"), "\\xe0\\x80\\xaf");
+  EXPECT_EQ(clipped("\xed\xa0\x80"), "\\xed\\xa0\\x80");
+}
+
+// What exporters write and tinyobjloader reads is not malformed: comments after values, a
+// byte order mark, usemtl's first word, Kt, negative colours Rill does not render.
+TEST(BadInput, CommonExporterLinesAreAccepted) {
+  TempDir dir;
+  dir.file("m.mtl", "newmtl red # the red one\nKd 1 0 0 # red\nKa -0.1 0 0\nKt 1 1 1\nNs 10 #x\n");
+  const std::string p = dir.file("e.obj",
+                                 "\xef\xbb\xbfmtllib m.mtl\nv 0 0 0 # tip\nv 1 0 0\nv 0 1 0\t\n"
+                                 "usemtl red # c\nf 1 2 3 # face\n");
+  Scene s = load_obj(p);
+  EXPECT_EQ(s.triangle_count(), 1u);
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+}
+
+TEST(BadInput, SkippedLinesKeepColoursAndFaceLines) {
+  TempDir dir;
+  // A bad v line in a file with vertex colours: the others keep theirs.
+  Scene c =
+      load_obj(dir.file("c.obj", "v 0 0 0 1 0 0\nv x\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 3 4\n"));
+  ASSERT_EQ(c.triangle_count(), 1u);
+  ASSERT_EQ(c.colors.size(), 3u);
+  EXPECT_EQ(c.colors[1], glm::vec3(0, 1, 0));
+  // An error after a skipped face names its own line.
+  const std::string p = dir.file("f.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/x\nf 1 2 9\n");
+  EXPECT_NE(error_of([&] { load_obj(p); }).find(p + ":5: face 1"), std::string::npos);
 }
 
 TEST(BadInput, ObjFaceIndexZeroIsAnErrorNamingTheLine) {

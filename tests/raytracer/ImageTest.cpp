@@ -73,6 +73,15 @@ TEST(ImageTest, PfmHeaderLargerThanItsDataIsAnErrorBeforeAllocating) {
               parse_pfm(short_grey, "s.pfm", w, h, c);
             }).find("s.pfm: truncated PFM file"),
             std::string::npos);
+  // A header and nothing after it; a size whose byte count would wrap 64 bits.
+  EXPECT_NE(runtime_error_of([&] {
+              parse_pfm("Pf\n1 1\n-1", "e.pfm", w, h, c);
+            }).find("e.pfm: truncated PFM file (no data after the header)"),
+            std::string::npos);
+  EXPECT_NE(runtime_error_of([&] {
+              parse_pfm("PF\n2147483647 2147483647\n-1\n....", "w.pfm", w, h, c);
+            }).find("w.pfm: truncated PFM file"),
+            std::string::npos);
   // Exactly enough.
   EXPECT_EQ(parse_pfm("Pf\n2 1\n-1\n" + std::string(8, '\0'), "ok.pfm", w, h, c).size(), 2u);
 }

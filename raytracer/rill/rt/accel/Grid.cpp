@@ -104,11 +104,11 @@ struct Subgrid {
   std::vector<int32_t> counts, ids;
 };
 
-// A subgrid that does not pay is not built (m = 0 comes back): one whose sub-voxels would
-// list on average more than half the voxel's triangles (triangles that span the voxel, as in
-// a pile of coplanar ones), or more than kSubgridMaxGrowth times its references in all. The
-// second bound keeps the subgrids' memory within a fixed multiple of the top level's, which
-// build_grid checks before allocating.
+// A subgrid that does not pay is not built (m = 0 comes back): one that would list more than
+// kSubgridMaxGrowth times the voxel's references in all (triangles that span the voxel, as in
+// a pile of coplanar ones, are listed in every sub-voxel), or, for the smallest subgrids,
+// whose sub-voxels would list on average more than half the voxel's triangles. The first
+// bound also keeps the subgrids' memory within a fixed multiple of the top level's.
 constexpr int64_t kSubgridMaxGrowth = 8;
 
 Subgrid make_subgrid(const Grid& g, const Scene& s, int64_t v, double mag) {

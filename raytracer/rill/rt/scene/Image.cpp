@@ -86,15 +86,18 @@ std::vector<float> parse_pfm(const std::string& bytes, const std::string& path, 
   in >> magic >> w >> h >> scale;
   if (!in || (magic != "PF" && magic != "Pf") || w < 1 || h < 1 || !(scale < 0))
     throw std::runtime_error(path + ": not a little-endian PFM file");
-  in.get();  // the one whitespace byte before the data
+  if (in.get() == std::char_traits<char>::eof())  // the one whitespace byte before the data
+    throw std::runtime_error(path + ": truncated PFM file (no data after the header)");
   channels = magic == "PF" ? 3 : 1;
   // The header's size against the bytes that follow it, before allocating: a header that
   // claims 100000x100000 pixels in a 20-byte file is an error, not a 120 GB allocation.
   const auto at = static_cast<uint64_t>(std::max<std::streamoff>(in.tellg(), 0));
   const uint64_t left = bytes.size() - std::min<uint64_t>(at, bytes.size());
+  // In this order, so that no product wraps: w and h are below 2^31.
+  const uint64_t floats_left = left / (static_cast<uint64_t>(channels) * sizeof(float));
   const uint64_t need = static_cast<uint64_t>(w) * static_cast<uint64_t>(h) *
                         static_cast<uint64_t>(channels) * sizeof(float);
-  if (need > left)
+  if (static_cast<uint64_t>(w) * static_cast<uint64_t>(h) > floats_left)
     throw std::runtime_error(path + ": truncated PFM file (" + std::to_string(w) + "x" +
                              std::to_string(h) + " needs " + std::to_string(need) +
                              " bytes of data, the file has " + std::to_string(left) + ")");

@@ -148,7 +148,10 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
   std::vector<tinyobj::material_t> mtls;
   std::string warn, err;
   MtlReader mtl_reader(path, opt.input, s.warnings);
-  std::istringstream in(without_lines(text, lines.issues));  // malformed lines skipped
+  // What tinyobjloader reads: malformed lines emptied (line numbers kept). face_line scans
+  // this text, so that it counts the faces tinyobjloader kept.
+  const std::string parsed = without_lines(text, lines.issues);
+  std::istringstream in(parsed);
   // triangulate = false: we fan polygons ourselves (tinyobjloader's triangulation does not).
   bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtls, &warn, &err, &in, &mtl_reader,
                              /*triangulate=*/false, /*default_vcols_fallback=*/false);
@@ -235,14 +238,14 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
       const long long written = ix.texcoord_index >= 0 ? ix.texcoord_index + 1LL
                                                        : static_cast<long long>(ix.texcoord_index) -
                                                              static_cast<long long>(nt);
-      throw SceneError(path + ":" + std::to_string(face_line(text, faces_before + face)) +
+      throw SceneError(path + ":" + std::to_string(face_line(parsed, faces_before + face)) +
                        ": vt index " + std::to_string(written) + " out of range (the file has " +
                        std::to_string(nt) + ")");
     }
     // file:line of the face, and which shape's face it is (tinyobjloader's shapes may be
     // unnamed).
     auto where = [&] {
-      return path + ":" + std::to_string(face_line(text, faces_before + face)) + ": " +
+      return path + ":" + std::to_string(face_line(parsed, faces_before + face)) + ": " +
              (shape.empty()
                   ? "face " + std::to_string(face + 1) + " of an unnamed shape"
                   : "face " + std::to_string(face + 1) + " of shape '" + clipped(shape) + "'");

@@ -28,13 +28,17 @@ void for_each_line(
     ++line;
     const std::string s = text.substr(pos, end - pos);
     words.clear();
-    for (size_t i = 0; i < s.size();) {
+    // A UTF-8 byte order mark before the first line is not part of it.
+    const size_t from = line == 1 && s.compare(0, 3, "\xef\xbb\xbf") == 0 ? 3 : 0;
+    for (size_t i = from; i < s.size();) {
       while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
       const size_t start = i;
       while (i < s.size() && s[i] != ' ' && s[i] != '\t') ++i;
-      if (i > start) words.push_back(s.substr(start, i - start));
+      if (i == start) continue;
+      if (s[start] == '#') break;  // a comment ends the line's words ("v 1 2 3 # tip")
+      words.push_back(s.substr(start, i - start));
     }
-    if (!words.empty() && words[0][0] != '#') f(line, words, s);
+    if (!words.empty()) f(line, words, s);
     pos = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
   }
 }
@@ -95,6 +99,7 @@ ObjLines check_obj_lines(const std::string& text) {
   std::map<long long, size_t> bad[3];
   const char* kinds[3] = {"v", "vt", "vn"};
   const char* placeholders[3] = {"v 0 0 0", "vt 0 0", "vn 0 0 1"};
+  bool colours = false;  // some v line has a colour
   for_each_line(text, [&](size_t line, const std::vector<std::string>& w, const std::string& s) {
     r.lines = line;
     auto malformed = [&](const std::string& what) {
@@ -118,6 +123,7 @@ ObjLines check_obj_lines(const std::string& text) {
       if (k == 2 && n != 3)
         return bad_line("'vn' expects 3 numbers (got " + std::to_string(n) + ")");
       if (k == 0) ++r.vertices;
+      if (k == 0 && n >= 6) colours = true;
     } else if (key == "f") {
       if (n < 3)
         return malformed("a face needs at least 3 vertices (got " + std::to_string(n) + ")");
@@ -158,7 +164,8 @@ ObjLines check_obj_lines(const std::string& text) {
       ++r.faces;  // well formed
     } else if (key == "usemtl" || key == "mtllib") {
       if (n == 0) return malformed("'" + key + "' expects a name");
-      if (key == "usemtl") r.usemtl.emplace_back(line, rest(s, w));
+      // tinyobjloader looks up usemtl's first word (newmtl keeps the rest of the line).
+      if (key == "usemtl") r.usemtl.emplace_back(line, w[1]);
     } else if (one_of(key, {"o",     "g",        "s",        "l",          "p",         "vp",
                             "mg",    "cstype",   "deg",      "bmat",       "step",      "curv",
                             "curv2", "surf",     "parm",     "trim",       "hole",      "scrv",
@@ -171,6 +178,11 @@ ObjLines check_obj_lines(const std::string& text) {
       malformed("unknown statement '" + clipped(key, 20) + "'");
     }
   });
+  // A placeholder without a colour in a file with vertex colours would make tinyobjloader drop
+  // every vertex's colour.
+  if (colours)
+    for (LineIssue& i : r.issues)
+      if (i.placeholder == placeholders[0]) i.placeholder = "v 0 0 0 1 1 1";
   return r;
 }
 
@@ -193,8 +205,7 @@ MtlLines check_mtl_lines(const std::string& text) {
     if (key == "newmtl") {
       if (n == 0) return malformed("'newmtl' expects a name");
       current = rest(s, w);
-      r.materials.insert(current);
-    } else if (one_of(key, {"Kd", "Ks", "Ka", "Ke", "Tf"})) {
+    } else if (one_of(key, {"Kd", "Ks", "Ka", "Ke", "Tf", "Kt"})) {
       // A colour: r [g b], or the "spectral"/"xyz" forms, which Rill does not read.
       if (n >= 1 && (w[1] == "spectral" || w[1] == "xyz"))
         return malformed("'" + key + " " + w[1] + "' is not supported (only r g b)");
@@ -202,8 +213,10 @@ MtlLines check_mtl_lines(const std::string& text) {
         return malformed("'" + key + "' expects 1 or 3 numbers");
       for (double v : nums)
         if (!std::isfinite(v)) return bad_value("must be finite numbers");
-      for (double v : nums)
-        if (v < 0) return bad_value("is negative; colours must be >= 0");
+      // Rill renders Kd and Ks; a negative one would give negative radiance.
+      if (key == "Kd" || key == "Ks")
+        for (double v : nums)
+          if (v < 0) return bad_value("is negative; colours must be >= 0");
     } else if (one_of(key, {"Ns", "Ni", "d", "Tr", "illum", "sharpness", "Pr", "Pm", "Ps", "Pc",
                             "Pcr", "aniso", "anisor"})) {
       if (!all_numbers(w, nums) || n != 1) return malformed("'" + key + "' expects one number");
@@ -224,7 +237,6 @@ MtlLines check_mtl_lines(const std::string& text) {
 }
 
 std::string without_lines(const std::string& text, const std::vector<LineIssue>& issues) {
-  if (issues.empty()) return text;
   std::string out;
   out.reserve(text.size());
   size_t pos = 0, line = 0, next = 0;
@@ -234,10 +246,22 @@ std::string without_lines(const std::string& text, const std::vector<LineIssue>&
     ++line;
     const size_t after = std::min(text.size(), end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1));
     while (next < issues.size() && issues[next].line < line) ++next;
-    if (next < issues.size() && issues[next].line == line)
-      out.append(issues[next].placeholder).append(text, end, after - end);
-    else
-      out.append(text, pos, after - pos);
+    if (next < issues.size() && issues[next].line == line) {
+      out.append(issues[next].placeholder);
+    } else {
+      // Without a byte order mark and a trailing comment, which tinyobjloader reads as part
+      // of the line ("f 1 2 3 # x" fails on '#').
+      size_t from = pos;
+      if (line == 1 && text.compare(0, 3, "\xef\xbb\xbf") == 0) from += 3;
+      size_t cut = end;
+      for (size_t k = from; k < end; ++k)
+        if (text[k] == '#' && (k == from || text[k - 1] == ' ' || text[k - 1] == '\t')) {
+          cut = k;
+          break;
+        }
+      out.append(text, from, cut - from);
+    }
+    out.append(text, end, after - end);
     pos = after;
   }
   return out;

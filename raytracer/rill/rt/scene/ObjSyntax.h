@@ -8,7 +8,6 @@
 #pragma once
 
 #include <cstddef>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -34,12 +33,12 @@ ObjLines check_obj_lines(const std::string& text);
 
 struct MtlLines {
   std::vector<LineIssue> issues;
-  std::set<std::string> materials;  // the names newmtl defines
 };
 MtlLines check_mtl_lines(const std::string& text);
 
-// The text with the lines of `issues` (in line order) replaced by their placeholders, line
-// ends kept, so that the parser skips them and its line numbers stay those of the file.
+// The text with the lines of `issues` (in line order) replaced by their placeholders, and
+// every other line without its trailing comment (and the first without a byte order mark),
+// line ends kept: what tinyobjloader reads, with the file's line numbers.
 std::string without_lines(const std::string& text, const std::vector<LineIssue>& issues);
 
 }  // namespace rt

@@ -18,6 +18,7 @@ namespace {
 // allocate), published by `busy` once complete.
 char g_partial[4096];
 std::atomic<bool> g_busy{false};
+std::atomic<bool> g_claimed{false};  // a writer owns g_partial
 
 void on_signal(int sig) {
   remove_partial_output();
@@ -34,13 +35,19 @@ void remove_partial_output() {
 void write_output_file(const std::string& path,
                        const std::function<void(const std::string&)>& write) {
   const std::string tmp = path + ".partial-" + std::to_string(::getpid());
-  const bool track = tmp.size() < sizeof g_partial && !g_busy.load();
+  // One file at a time is tracked for the signal handler (the first writer claims it).
+  bool expected = false;
+  const bool track =
+      tmp.size() < sizeof g_partial && g_claimed.compare_exchange_strong(expected, true);
   if (track) {
     std::memcpy(g_partial, tmp.c_str(), tmp.size() + 1);
     g_busy.store(true);
   }
   auto done = [&] {
-    if (track) g_busy.store(false);
+    if (track) {
+      g_busy.store(false);
+      g_claimed.store(false);
+    }
   };
   try {
     write(tmp);
@@ -60,8 +67,12 @@ void write_output_file(const std::string& path,
 }
 
 void remove_partial_output_on_interrupt() {
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  // A signal the process was started ignoring (a background job's SIGINT) stays ignored.
+  for (int sig : {SIGINT, SIGTERM}) {
+    struct sigaction old {};
+    if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    std::signal(sig, on_signal);
+  }
 }
 
 }  // namespace rt

@@ -122,12 +122,21 @@ void Scene::add_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3
 std::string clipped(const std::string& s, size_t max) {
   // Control bytes and bytes that are not UTF-8 as \xNN: an error message stays one line of
   // text whatever the file held. Well-formed UTF-8 (a name in any script) is kept.
+  // The length of the well-formed UTF-8 sequence at i (RFC 3629: no overlong forms, no
+  // surrogates, nothing past U+10FFFF, no C1 controls), or 0.
   auto utf8_length = [&](size_t i) -> size_t {
     const auto c = static_cast<unsigned char>(s[i]);
-    const size_t n = c >= 0xf0 && c <= 0xf4 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 && c <= 0xdf ? 2 : 0;
+    const size_t n = c >= 0xc2 && c <= 0xdf   ? 2
+                     : c >= 0xe0 && c <= 0xef ? 3
+                     : c >= 0xf0 && c <= 0xf4 ? 4
+                                              : 0;
     if (n == 0 || i + n > s.size()) return 0;
     for (size_t k = 1; k < n; ++k)
       if ((static_cast<unsigned char>(s[i + k]) & 0xc0) != 0x80) return 0;
+    const auto c1 = static_cast<unsigned char>(s[i + 1]);
+    if ((c == 0xc2 && c1 < 0xa0) || (c == 0xe0 && c1 < 0xa0) || (c == 0xed && c1 > 0x9f) ||
+        (c == 0xf0 && c1 < 0x90) || (c == 0xf4 && c1 > 0x8f))
+      return 0;
     return n;
   };
   std::string out;
