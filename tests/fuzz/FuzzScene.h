@@ -38,13 +38,17 @@ inline constexpr unsigned char kTinyPng[] = {
     0xd9, 0x68, 0x8b, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
 
 // A folder of this process's own under the system's temporary folder (removed at exit), for
-// fuzzers that exercise the loaders' file paths: parallel fuzzing jobs do not share it.
+// fuzzers that exercise the loaders' file paths: parallel fuzzing jobs do not share it. It
+// holds t.png (kTinyPng) for the textures inputs name.
 class ScratchDir {
  public:
   ScratchDir() {
     path_ = std::filesystem::temp_directory_path() / ("rill-fuzz-" + std::to_string(getpid()));
     std::filesystem::create_directories(path_);
+    write("t.png", reinterpret_cast<const char*>(kTinyPng), sizeof kTinyPng);
   }
+  ScratchDir(const ScratchDir&) = delete;  // one owner removes the folder
+  ScratchDir& operator=(const ScratchDir&) = delete;
   ~ScratchDir() {
     std::error_code ec;
     std::filesystem::remove_all(path_, ec);

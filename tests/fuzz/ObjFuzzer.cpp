@@ -14,12 +14,7 @@
 namespace {
 
 const rill::fuzz::ScratchDir& scratch() {
-  static const rill::fuzz::ScratchDir dir = [] {
-    rill::fuzz::ScratchDir d;
-    d.write("t.png", reinterpret_cast<const char*>(rill::fuzz::kTinyPng),
-            sizeof rill::fuzz::kTinyPng);
-    return d;
-  }();
+  static const rill::fuzz::ScratchDir dir;
   return dir;
 }
 
