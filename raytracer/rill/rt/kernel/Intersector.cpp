@@ -150,6 +150,21 @@ void Intersector::test_triangle(const Float3& o, const Float3& d, const Int& ref
   RILL_ENDIF;
 }
 
+void Intersector::test_list(const Float3& o, const Float3& d, const Int2& range,
+                            const Bool& any_hit, Hit& best) const {
+  RILL_FOR(Int k = 0, k < range.y(), k += 1) {
+    test_triangle(o, d, range.x() + k, best);
+    // A shadow ray needs only whether something is in the way: the first hit settles it
+    // (leave_voxel would end the walk after this voxel anyway). Closest-hit rays pass a
+    // constant false, and the optimizer removes the test.
+    RILL_IF(any_hit && best.id >= 0) {
+      RILL_BREAK;
+    }
+    RILL_ENDIF;
+  }
+  RILL_ENDFOR;
+}
+
 RaySteps Intersector::ray_steps(const Float3& d) const {
   RaySteps r;
   r.d = d;
@@ -197,11 +212,7 @@ void Intersector::walk_subgrid(const Float3& o, const RaySteps& r, const Float& 
   Int sub_steps = 0;
   Bool done = false;
   RILL_DO {
-    Int2 range = grid_.voxels[entry.x() + sv.x() + m * (sv.y() + m * sv.z())];
-    RILL_FOR(Int k = 0, k < range.y(), k += 1) {
-      test_triangle(o, d, range.x() + k, best);
-    }
-    RILL_ENDFOR;
+    test_list(o, d, grid_.voxels[entry.x() + sv.x() + m * (sv.y() + m * sv.z())], any_hit, best);
     Float s_leave = min(min(smx.x(), smx.y()), smx.z());
     done = best.id >= 0 && (best.t <= s_leave || any_hit);
     done = done || s_leave >= t_out;
@@ -280,10 +291,7 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit) const {
     const RaySteps rs = ray_steps(d);
     RILL_DO {
       Int2 range = grid_.voxel_range(st.vox);
-      RILL_FOR(Int k = 0, k < range.y(), k += 1) {
-        test_triangle(o, d, range.x() + k, best);
-      }
-      RILL_ENDFOR;
+      test_list(o, d, range, any, best);
       if (grid_.subgrids > 0) {  // the second level's code only where the grid has one
         RILL_IF(range.y() < 0) {
           walk_subgrid(o, rs, t_exit, any, range, st, best);

@@ -62,6 +62,10 @@ class Intersector {
   // The knob's triangle test against the triangle of element-list entry ref; keeps the
   // closest hit in best (ties: the smaller id).
   void test_triangle(const Float3& o, const Float3& d, const Int& ref, Hit& best) const;
+  // The triangles of one element-list range (base, count) in order; with any_hit true the
+  // first hit ends the list.
+  void test_list(const Float3& o, const Float3& d, const Int2& range, const Bool& any_hit,
+                 Hit& best) const;
   // The triangles of a voxel with a subgrid (entry (base, -m), Grid.h): a 3D-DDA over its
   // sub-voxels, within the voxel.
   void walk_subgrid(const Float3& o, const RaySteps& r, const Float& t_exit, const Bool& any_hit,
