@@ -105,7 +105,11 @@ struct WatertightRay {
 }  // namespace
 
 void Intersector::test_triangle(const Float3& o, const Float3& d, const Int& ref, Hit& best) const {
-  Int tri = grid_.elements[ref];
+  test_primitive(o, d, grid_.elements[ref], best);
+}
+
+void Intersector::test_primitive(const Float3& o, const Float3& d, const Int& tri,
+                                 Hit& best) const {
   if (K_.triangle == TriangleTest::Watertight) {
     WatertightRay r(d);
     Float3 a = r.permute(tris_.v0[tri] - o, true), b = r.permute(tris_.v1[tri] - o, true),
@@ -283,9 +287,13 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit) const {
   const Float3& d = ray.d;
   const Bool no(false);
   const Bool& any = any_hit != nullptr ? *any_hit : no;
+  if (F_.dynamic) walk_bvh(o, ray_steps(d), any, best);
+  if (grid_.empty) return best;
   Bool inside = false;
   Float t_enter = 0.0f, t_exit = 0.0f;
   ray_box(ray, inside, t_enter, t_exit);
+  // A shadow ray blocked by a moving triangle needs no grid.
+  if (F_.dynamic) inside = inside && !(any && best.id >= 0);
   RILL_IF(inside) {
     DdaState st = dda_init(o, d, t_enter);
     const RaySteps rs = ray_steps(d);

@@ -22,6 +22,19 @@ std::vector<T> corner(const std::vector<T>& v, size_t n, int k, const std::vecto
 }  // namespace
 
 void Triangles::upload(const Scene& scene, const TracerOptions& K, const Features& F) {
+  upload_geometry(scene, K, F);
+  const size_t n = scene.triangle_count();
+  if (F.vertex_colors) {
+    const std::vector<glm::vec3> white(n, glm::vec3(1.0f));
+    upload_padded(c0, corner(scene.colors, n, 0, white));
+    upload_padded(c1, corner(scene.colors, n, 1, white));
+    upload_padded(c2, corner(scene.colors, n, 2, white));
+  }
+  if (F.texcoords) upload_padded(uv, scene.texcoords);
+  upload_padded(material, std::vector<int32_t>(scene.material));
+}
+
+void Triangles::upload_geometry(const Scene& scene, const TracerOptions& K, const Features& F) {
   const size_t n = scene.triangle_count();
   std::vector<glm::vec3> vv0(n), ve1(n), ve2(n), vng(n);
   for (size_t t = 0; t < n; ++t) {
@@ -46,14 +59,6 @@ void Triangles::upload(const Scene& scene, const TracerOptions& K, const Feature
     upload_padded(n1, corner(scene.normals, n, 1, vng));
     upload_padded(n2, corner(scene.normals, n, 2, vng));
   }
-  if (F.vertex_colors) {
-    const std::vector<glm::vec3> white(n, glm::vec3(1.0f));
-    upload_padded(c0, corner(scene.colors, n, 0, white));
-    upload_padded(c1, corner(scene.colors, n, 1, white));
-    upload_padded(c2, corner(scene.colors, n, 2, white));
-  }
-  if (F.texcoords) upload_padded(uv, scene.texcoords);
-  upload_padded(material, std::vector<int32_t>(scene.material));
 }
 
 }  // namespace rt

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "rill/rt/scene/Animation.h"
 #include "rill/rt/scene/Texture.h"
 
 namespace rt {
@@ -114,6 +115,9 @@ struct Scene {
   std::vector<Light> lights;
   glm::vec3 background{0.1f, 0.1f, 0.15f};
   SceneOptions options;
+  // Dynamic scenes (scene/Animation.h): the time range, the objects that move (ranges of the
+  // triangles above, stored at rest) and the camera's keys. Empty for a static scene.
+  Animation animation;
 
   size_t triangle_count() const { return material.size(); }
   int add_material(const Material& m);  // returns its index
@@ -123,10 +127,12 @@ struct Scene {
                     const glm::vec3* n = nullptr, const glm::vec3* col = nullptr,
                     const glm::vec2* uv = nullptr);
   // Appends all of other's triangles, materials and textures (the appended materials'
-  // texture parameters are renumbered); lights and camera are not taken.
+  // texture parameters are renumbered) and its animated objects (their triangle ranges
+  // renumbered); lights, camera and time range are not taken.
   void append(const Scene& other);
   // Checks invariants (sizes, finite materials, texture coordinates, textures and lights,
-  // texture indices of material parameters, camera, image size); throws SceneError.
+  // texture indices of material parameters, camera, image size, animated objects' ranges and
+  // keys); throws SceneError.
   // Triangles with non-finite vertices are allowed: they are never hit.
   void validate() const;
 };
