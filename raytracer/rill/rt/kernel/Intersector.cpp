@@ -287,13 +287,19 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit) const {
   const Float3& d = ray.d;
   const Bool no(false);
   const Bool& any = any_hit != nullptr ? *any_hit : no;
+  // The grid first: its hit, usually a near one in a static room, then bounds the BVH walk,
+  // which skips every box beyond it.
+  if (!grid_.empty) walk_grid(ray, any, best);
   if (F_.dynamic) walk_bvh(o, ray_steps(d), any, best);
-  if (grid_.empty) return best;
+  return best;
+}
+
+void Intersector::walk_grid(const Ray& ray, const Bool& any, Hit& best) const {
+  const Float3& o = ray.o;
+  const Float3& d = ray.d;
   Bool inside = false;
   Float t_enter = 0.0f, t_exit = 0.0f;
   ray_box(ray, inside, t_enter, t_exit);
-  // A shadow ray blocked by a moving triangle needs no grid.
-  if (F_.dynamic) inside = inside && !(any && best.id >= 0);
   RILL_IF(inside) {
     DdaState st = dda_init(o, d, t_enter);
     const RaySteps rs = ray_steps(d);
@@ -311,7 +317,6 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit) const {
     RILL_UNTIL(st.done);
   }
   RILL_ENDIF;
-  return best;
 }
 
 }  // namespace rt

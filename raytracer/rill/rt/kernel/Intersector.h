@@ -48,12 +48,16 @@ class Intersector {
               const TracerOptions& K, const Features& F)
       : grid_(grid), bvh_(bvh), tris_(tris), K_(K), F_(F) {}
 
-  // The whole search: the BVH over the moving triangles (F.dynamic), then the grid over the
-  // static ones, each keeping the closest hit by test_triangle's rule, so the result is the
-  // closest over all triangles whichever holds them. With *any_hit true, the first hit
+  // The whole search: the grid over the static triangles, then the BVH over the moving ones
+  // (F.dynamic), each keeping the closest hit by test_triangle's rule, so the result is the
+  // closest over all triangles whichever holds them (and whichever is searched first: the
+  // multipass strategy walks the BVH first). With *any_hit true, the first hit
   // before ray.tmax ends it (shadow rays); any_hit null: closest hit only. No hit: id -1,
   // t = ray.tmax.
   Hit intersect(const Ray& ray, const Bool* any_hit) const;
+
+  // The grid's part of intersect(): box, 3D-DDA, the voxels' lists; from the hit in best.
+  void walk_grid(const Ray& ray, const Bool& any_hit, Hit& best) const;
 
   // ---- the steps --------------------------------------------------------------------------
   // The ray against the grid's box: inside, and the parameter range [t_enter, t_exit]

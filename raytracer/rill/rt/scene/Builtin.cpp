@@ -427,10 +427,73 @@ Scene scene_textured() {
   return s;
 }
 
+// "bounce": thesis scene B's room and cubes, static, with six balls bouncing (one sphere
+// mesh placed six times) and four spinning cubes orbiting the middle; 4 seconds at 24
+// frames per second, the camera panning slowly. The motion is sampled into keys 12 times a
+// second (linear in between): a parabola per bounce, a quarter turn per key at most.
+Scene scene_bounce() {
+  Scene s = scene_b();
+  s.name = "bounce";
+  const int ball_mats[3] = {
+      s.add_material(mat("ball-red", {0.9f, 0.2f, 0.15f}, glm::vec3(0.5f), 60.0f)),
+      s.add_material(mat("ball-mirror", {0.2f, 0.2f, 0.2f}, glm::vec3(0.8f), 200.0f, 0.7f)),
+      s.add_material(mat("ball-teal", {0.1f, 0.7f, 0.7f}, glm::vec3(0.5f), 60.0f))};
+  const int spin_mat = s.add_material(mat("spinner", {0.95f, 0.6f, 0.1f}, glm::vec3(0.4f), 40.0f));
+  constexpr double kSeconds = 4.0, kKeysPerSecond = 12.0;
+  const int keys = static_cast<int>(kSeconds * kKeysPerSecond) + 1;
+  auto object = [&](const std::string& name, size_t first, auto pose_at) {
+    AnimatedObject o;
+    o.name = name;
+    o.first = first;
+    o.count = s.triangle_count() - first;
+    for (int k = 0; k < keys; ++k) {
+      PoseKey key;
+      key.time = k / kKeysPerSecond;
+      key.pose = pose_at(key.time);
+      o.track.keys.push_back(key);
+    }
+    s.animation.objects.push_back(o);
+  };
+  for (int i = 0; i < 6; ++i) {
+    const double radius = 0.45 + 0.1 * (i % 3);
+    const size_t first = s.triangle_count();
+    add_sphere(s, glm::vec3(0.0f), static_cast<float>(radius), 24, 12, ball_mats[i % 3]);
+    const double x = -5.0 + 2.0 * i, z = 1.5 + 1.2 * std::sin(i * 1.7);
+    const double period = 0.9 + 0.15 * i, height = 2.5 + 0.5 * (i % 2);
+    object("ball " + std::to_string(i), first, [=](double t) {
+      const double u = std::fmod(t / period + i * 0.37, 1.0);  // 0..1 per bounce
+      Pose p;
+      p.translate = glm::dvec3(x, radius + height * 4.0 * u * (1.0 - u), z);
+      return p;
+    });
+  }
+  for (int i = 0; i < 4; ++i) {
+    const size_t first = s.triangle_count();
+    add_box(s, glm::vec3(-0.4f), glm::vec3(0.4f), spin_mat);
+    object("spinner " + std::to_string(i), first, [=](double t) {
+      const double a = 2.0 * kPi * (t / kSeconds + i / 4.0);  // one orbit in the clip
+      Pose p;
+      p.translate = glm::dvec3(3.0 * std::cos(a), 1.5 + 0.5 * std::sin(2.0 * a), 3.0 * std::sin(a));
+      p.rotation = glm::angleAxis(2.0 * kPi * t * 0.5, glm::normalize(glm::dvec3(1.0, 2.0, 0.5)));
+      return p;
+    });
+  }
+  s.animation.time = TimeRange{0.0, kSeconds, 24.0};
+  CameraKey from, to;
+  from.time = 0.0;
+  from.camera = CameraPose{s.camera.eye, s.camera.look_at, s.camera.up, s.camera.fov_y};
+  to = from;
+  to.time = kSeconds;
+  to.camera.eye = glm::vec3(4.0f, 5.0f, 8.5f);
+  s.animation.camera.keys = {from, to};
+  s.animation.camera.interpolation = Interpolation::Smooth;
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-  return {"thesis-a", "thesis-b", "thesis-c", "cornell", "glass", "textured", "empty"};
+  return {"thesis-a", "thesis-b", "thesis-c", "cornell", "glass", "textured", "bounce", "empty"};
 }
 
 Scene builtin_scene(const std::string& name) {
@@ -440,6 +503,7 @@ Scene builtin_scene(const std::string& name) {
   if (name == "cornell") return scene_cornell();
   if (name == "glass") return scene_glass();
   if (name == "textured") return scene_textured();
+  if (name == "bounce") return scene_bounce();
   if (name == "empty") {
     Scene s;
     s.name = "empty";
