@@ -3,9 +3,11 @@
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -17,8 +19,10 @@ namespace rt {
 
 namespace {
 
-// Below this many triangles a subtree is built on the calling thread.
+// Subtrees of at least this many triangles are built, binned and refitted in parallel.
 constexpr size_t kParallelMin = 4096;
+// Nodes within a subtree this large are refitted on the calling thread.
+constexpr int32_t kParallelRefitMin = 2048;
 
 struct Box {
   glm::vec3 lo{std::numeric_limits<float>::infinity()};
@@ -31,9 +35,9 @@ struct Box {
     lo = glm::min(lo, b.lo);
     hi = glm::max(hi, b.hi);
   }
-  double area() const {
-    if (!(hi.x >= lo.x)) return 0.0;
-    const glm::dvec3 e = glm::dvec3(hi) - glm::dvec3(lo);
+  float area() const {
+    if (!(hi.x >= lo.x)) return 0.0f;
+    const glm::vec3 e = hi - lo;
     return e.x * e.y + e.y * e.z + e.z * e.x;
   }
 };
@@ -45,148 +49,244 @@ struct Prim {
 };
 
 Box triangle_box(const Scene& s, int32_t id) {
+  const glm::vec3* p = &s.positions[3 * static_cast<size_t>(id)];
   Box b;
-  for (int k = 0; k < 3; ++k) b.grow(s.positions[3 * static_cast<size_t>(id) + k]);
+  b.lo = glm::min(p[0], glm::min(p[1], p[2]));
+  b.hi = glm::max(p[0], glm::max(p[1], p[2]));
   return b;
 }
 
-// The box grown by the padding of Bvh.h, rounded outwards to float.
+// The box grown by the padding of Bvh.h. In float: 4e-7 of the largest coordinate is over
+// 3 ulps of it, so the rounded box is still larger by more than 2 ulps on every side.
 void pad(const Box& b, glm::vec3& lo, glm::vec3& hi) {
-  const glm::dvec3 l(b.lo), h(b.hi);
-  const glm::dvec3 e = h - l;
-  const double ext = std::max({e.x, e.y, e.z});
-  const double mag = std::max({std::fabs(l.x), std::fabs(l.y), std::fabs(l.z), std::fabs(h.x),
-                               std::fabs(h.y), std::fabs(h.z)});
-  const double p = 1e-5 * ext + 4e-7 * mag + 1e-30;
-  for (int a = 0; a < 3; ++a) {
-    float x = static_cast<float>(l[a] - p);
-    if (static_cast<double>(x) > l[a] - p) x = std::nextafter(x, -INFINITY);
-    float y = static_cast<float>(h[a] + p);
-    if (static_cast<double>(y) < h[a] + p) y = std::nextafter(y, INFINITY);
-    lo[a] = x;
-    hi[a] = y;
+  const glm::vec3 e = b.hi - b.lo;
+  const glm::vec3 m = glm::max(glm::abs(b.lo), glm::abs(b.hi));
+  const float p = 1e-5f * std::max({e.x, e.y, e.z}) + 4e-7f * std::max({m.x, m.y, m.z}) + 1e-30f;
+  lo = b.lo - glm::vec3(p);
+  hi = b.hi + glm::vec3(p);
+}
+
+// A bin: the box and the centroid bounds of the triangles whose centroid falls in it, and
+// their count. The split's children take their bounds from the bins: no pass of their own.
+struct Bin {
+  Box box, centroids;
+  size_t count = 0;
+  void add(const Prim& p) {
+    box.grow(p.box);
+    centroids.grow(p.centroid);
+    ++count;
   }
+  void add(const Bin& b) {
+    box.grow(b.box);
+    centroids.grow(b.centroids);
+    count += b.count;
+  }
+};
+using Bins = std::array<Bin, kBvhBins>;
+
+// The bin of a centroid along an axis, for centroid bounds lo and the scale kBvhBins / extent.
+int bin_of(float c, float lo, float scale) {
+  return std::clamp(static_cast<int>((c - lo) * scale), 0, kBvhBins - 1);
 }
 
 struct BuildNode {
-  Box box;
-  size_t begin = 0, end = 0;  // prims[begin, end) for a leaf
-  std::unique_ptr<BuildNode> left, right;
+  Box box, centroids;
+  size_t begin = 0, end = 0;  // prims[begin, end)
+  int32_t left = -1;          // children at left and left + 1 (-1: a leaf)
   int depth = 1;
 };
 
-// The best SAH split of prims[begin, end): axis and bin boundary (split), or false when a leaf
-// is cheaper or the centroids cannot be told apart.
-bool best_split(const std::vector<Prim>& prims, size_t begin, size_t end, const Box& cbox,
-                int& axis, int& split) {
-  const size_t n = end - begin;
-  double best = static_cast<double>(n);  // a leaf's cost: n triangle tests, relative area 1
-  bool found = false;
-  Box all;
-  for (size_t i = begin; i < end; ++i) all.grow(prims[i].box);
-  const double area = std::max(all.area(), 1e-300);
-  for (int a = 0; a < 3; ++a) {
-    const float lo = cbox.lo[a], hi = cbox.hi[a];
-    if (!(hi > lo)) continue;
-    const double scale = kBvhBins / (static_cast<double>(hi) - lo);
-    std::array<Box, kBvhBins> bins;
-    std::array<size_t, kBvhBins> counts{};
-    for (size_t i = begin; i < end; ++i) {
-      int b = static_cast<int>((prims[i].centroid[a] - static_cast<double>(lo)) * scale);
-      b = std::clamp(b, 0, kBvhBins - 1);
-      ++counts[static_cast<size_t>(b)];
-      bins[static_cast<size_t>(b)].grow(prims[i].box);
+// Build nodes are claimed in pairs from one array, so subtrees built in parallel need no lock.
+struct Builder {
+  std::vector<Prim>& prims;
+  std::vector<BuildNode> nodes;
+  std::atomic<int32_t> used{1};
+
+  explicit Builder(std::vector<Prim>& p) : prims(p), nodes(2 * p.size() + 1) {}
+
+  // The node's triangles binned by their centroids along `axis`.
+  void bin(const BuildNode& n, int axis, float scale, Bins& bins) const {
+    const float lo = n.centroids.lo[axis];
+    auto add = [&](size_t from, size_t to, Bins& into) {
+      for (size_t i = from; i < to; ++i)
+        into[static_cast<size_t>(bin_of(prims[i].centroid[axis], lo, scale))].add(prims[i]);
+    };
+    if (n.end - n.begin < 4 * kParallelMin) {
+      add(n.begin, n.end, bins);
+      return;
     }
-    std::array<double, kBvhBins> right_cost{};
-    Box r;
-    size_t rn = 0;
-    for (int b = kBvhBins - 1; b > 0; --b) {
-      r.grow(bins[static_cast<size_t>(b)]);
-      rn += counts[static_cast<size_t>(b)];
-      right_cost[static_cast<size_t>(b)] = r.area() * static_cast<double>(rn);
-    }
-    Box l;
-    size_t ln = 0;
-    for (int b = 1; b < kBvhBins; ++b) {
-      l.grow(bins[static_cast<size_t>(b - 1)]);
-      ln += counts[static_cast<size_t>(b - 1)];
-      if (ln == 0 || ln == n) continue;
-      // One box test for the node, then the children's tests weighted by their areas.
-      const double cost =
-          0.125 + (l.area() * static_cast<double>(ln) + right_cost[static_cast<size_t>(b)]) / area;
-      if (cost < best) {
-        best = cost;
-        axis = a;
-        split = b;
-        found = true;
+    bins = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(n.begin, n.end, kParallelMin), Bins{},
+        [&](const tbb::blocked_range<size_t>& r, Bins acc) {
+          add(r.begin(), r.end(), acc);
+          return acc;
+        },
+        [](Bins a, const Bins& b) {
+          for (size_t k = 0; k < static_cast<size_t>(kBvhBins); ++k) a[k].add(b[k]);
+          return a;
+        });
+  }
+
+  // Splits node `at` where the surface area heuristic says (binned along the longest axis
+  // of its centroids, as Wald 2007 does), or leaves it a leaf, then its children.
+  void build(int32_t at) {
+    BuildNode& n = nodes[static_cast<size_t>(at)];
+    const size_t count = n.end - n.begin;
+    if (count <= 1) return;
+    const glm::vec3 ext = n.centroids.hi - n.centroids.lo;
+    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+    size_t mid = n.begin;
+    Bin n_left, n_right;  // the children's bounds (empty: to be computed)
+    if (ext[axis] > 0) {
+      const float scale = kBvhBins / ext[axis];
+      Bins bins;
+      bin(n, axis, scale, bins);
+      // The cheapest split: one box test for the node, then the children's triangle tests
+      // weighted by their areas (relative to the node's). A leaf costs its triangle count.
+      std::array<Bin, kBvhBins> right;
+      Bin r;
+      for (int k = kBvhBins - 1; k > 0; --k) {
+        r.add(bins[static_cast<size_t>(k)]);
+        right[static_cast<size_t>(k)] = r;
+      }
+      float best = static_cast<float>(count);
+      int split = 0;
+      Bin best_left, best_right;
+      const float area = std::max(n.box.area(), 1e-30f);
+      Bin l;
+      for (int k = 1; k < kBvhBins; ++k) {
+        l.add(bins[static_cast<size_t>(k - 1)]);
+        const Bin& rb = right[static_cast<size_t>(k)];
+        if (l.count == 0 || rb.count == 0) continue;
+        const float cost = 0.125f + (l.box.area() * static_cast<float>(l.count) +
+                                     rb.box.area() * static_cast<float>(rb.count)) /
+                                        area;
+        if (cost < best) {
+          best = cost;
+          split = k;
+          best_left = l;
+          best_right = rb;
+        }
+      }
+      if (split > 0) {
+        const float lo = n.centroids.lo[axis];
+        auto it = std::partition(
+            prims.begin() + static_cast<std::ptrdiff_t>(n.begin),
+            prims.begin() + static_cast<std::ptrdiff_t>(n.end),
+            [&](const Prim& p) { return bin_of(p.centroid[axis], lo, scale) < split; });
+        mid = static_cast<size_t>(it - prims.begin());
+        n_left = best_left;
+        n_right = best_right;
       }
     }
+    if (mid == n.begin && count > static_cast<size_t>(kBvhLeafMax)) {
+      // A leaf would be too large and SAH finds no split (equal centroids, or a leaf looked
+      // cheaper): halve by count.
+      mid = n.begin + count / 2;
+      std::nth_element(prims.begin() + static_cast<std::ptrdiff_t>(n.begin),
+                       prims.begin() + static_cast<std::ptrdiff_t>(mid),
+                       prims.begin() + static_cast<std::ptrdiff_t>(n.end),
+                       [&](const Prim& a, const Prim& b) {
+                         return a.centroid[axis] < b.centroid[axis] ||
+                                (a.centroid[axis] == b.centroid[axis] && a.id < b.id);
+                       });
+    }
+    if (mid == n.begin || mid == n.end) return;  // a leaf (at most kBvhLeafMax)
+    const int32_t left = used.fetch_add(2);
+    n.left = left;
+    BuildNode& l = nodes[static_cast<size_t>(left)];
+    BuildNode& r = nodes[static_cast<size_t>(left + 1)];
+    l.begin = n.begin;
+    l.end = mid;
+    r.begin = mid;
+    r.end = n.end;
+    const bool parallel = count >= kParallelMin;
+    auto child = [&](BuildNode& c, int32_t index, const Bin& from) {
+      if (from.count == c.end - c.begin) {
+        c.box = from.box;
+        c.centroids = from.centroids;
+      } else {
+        bound(c, parallel);  // the median split's halves
+      }
+      build(index);
+    };
+    if (parallel)
+      tbb::parallel_invoke([&] { child(l, left, n_left); }, [&] { child(r, left + 1, n_right); });
+    else {
+      child(l, left, n_left);
+      child(r, left + 1, n_right);
+    }
+    n.depth = 1 + std::max(l.depth, r.depth);
   }
-  return found;
-}
 
-std::unique_ptr<BuildNode> build(std::vector<Prim>& prims, size_t begin, size_t end) {
-  auto node = std::make_unique<BuildNode>();
-  node->begin = begin;
-  node->end = end;
-  Box cbox;
-  for (size_t i = begin; i < end; ++i) {
-    node->box.grow(prims[i].box);
-    cbox.grow(prims[i].centroid);
+  // A node's box and centroid bounds, from its triangles.
+  void bound(BuildNode& c, bool parallel) const {
+    struct Bounds {
+      Box box, centroids;
+    };
+    auto add = [&](size_t from, size_t to, Bounds acc) {
+      for (size_t i = from; i < to; ++i) {
+        acc.box.grow(prims[i].box);
+        acc.centroids.grow(prims[i].centroid);
+      }
+      return acc;
+    };
+    Bounds b;
+    if (parallel && c.end - c.begin >= 4 * kParallelMin)
+      b = tbb::parallel_reduce(
+          tbb::blocked_range<size_t>(c.begin, c.end, kParallelMin), Bounds{},
+          [&](const tbb::blocked_range<size_t>& r, Bounds acc) {
+            return add(r.begin(), r.end(), acc);
+          },
+          [](Bounds x, const Bounds& y) {
+            x.box.grow(y.box);
+            x.centroids.grow(y.centroids);
+            return x;
+          });
+    else
+      b = add(c.begin, c.end, b);
+    c.box = b.box;
+    c.centroids = b.centroids;
   }
-  const size_t n = end - begin;
-  if (n <= 1) return node;
-  int axis = 0, split = 0;
-  size_t mid = begin;
-  if (best_split(prims, begin, end, cbox, axis, split)) {
-    const double lo = cbox.lo[axis];
-    const double scale = kBvhBins / (static_cast<double>(cbox.hi[axis]) - lo);
-    auto it = std::partition(prims.begin() + static_cast<std::ptrdiff_t>(begin),
-                             prims.begin() + static_cast<std::ptrdiff_t>(end), [&](const Prim& p) {
-                               int b = static_cast<int>((p.centroid[axis] - lo) * scale);
-                               return std::clamp(b, 0, kBvhBins - 1) < split;
-                             });
-    mid = static_cast<size_t>(it - prims.begin());
-  } else if (n > static_cast<size_t>(kBvhLeafMax)) {
-    // A leaf would be too large and SAH finds no split (equal centroids, or a leaf looked
-    // cheaper): halve by count along the longest axis.
-    const glm::vec3 e = cbox.hi - cbox.lo;
-    axis = e.x >= e.y && e.x >= e.z ? 0 : (e.y >= e.z ? 1 : 2);
-    mid = begin + n / 2;
-    std::nth_element(prims.begin() + static_cast<std::ptrdiff_t>(begin),
-                     prims.begin() + static_cast<std::ptrdiff_t>(mid),
-                     prims.begin() + static_cast<std::ptrdiff_t>(end),
-                     [&](const Prim& a, const Prim& b) {
-                       return a.centroid[axis] < b.centroid[axis] ||
-                              (a.centroid[axis] == b.centroid[axis] && a.id < b.id);
-                     });
-  }
-  if (mid == begin || mid == end) return node;  // a leaf (at most kBvhLeafMax)
-  auto left = [&] { node->left = build(prims, begin, mid); };
-  auto right = [&] { node->right = build(prims, mid, end); };
-  if (n >= kParallelMin)
-    tbb::parallel_invoke(left, right);
-  else {
-    left();
-    right();
-  }
-  node->depth = 1 + std::max(node->left->depth, node->right->depth);
-  return node;
-}
 
-void flatten(const BuildNode& n, const std::vector<Prim>& prims, Bvh& out) {
-  const size_t at = out.nodes.size();
-  out.nodes.emplace_back();
-  pad(n.box, out.nodes[at].lo, out.nodes[at].hi);
-  if (!n.left) {
-    out.nodes[at].first = static_cast<int32_t>(out.tris.size());
-    out.nodes[at].count = static_cast<int32_t>(n.end - n.begin);
-    for (size_t i = n.begin; i < n.end; ++i) out.tris.push_back(prims[i].id);
+  // Depth-first order with skips (Bvh.h), from the build's pairs.
+  void flatten(int32_t at, Bvh& out) const {
+    const BuildNode& n = nodes[static_cast<size_t>(at)];
+    const size_t i = out.nodes.size();
+    out.nodes.emplace_back();
+    pad(n.box, out.nodes[i].lo, out.nodes[i].hi);
+    if (n.left < 0) {
+      out.nodes[i].first = static_cast<int32_t>(n.begin);
+      out.nodes[i].count = static_cast<int32_t>(n.end - n.begin);
+    } else {
+      flatten(n.left, out);
+      flatten(n.left + 1, out);
+    }
+    out.nodes[i].skip = static_cast<int32_t>(out.nodes.size());
+  }
+};
+
+// The unpadded box of node i's subtree, its nodes padded on the way (children first).
+Box refit(Bvh& b, const Scene& s, int32_t i) {
+  BvhNode& n = b.nodes[static_cast<size_t>(i)];
+  Box box;
+  if (n.count > 0) {
+    for (int32_t k = 0; k < n.count; ++k)
+      box.grow(triangle_box(s, b.tris[static_cast<size_t>(n.first + k)]));
   } else {
-    flatten(*n.left, prims, out);
-    flatten(*n.right, prims, out);
+    const int32_t left = i + 1, right = b.nodes[static_cast<size_t>(left)].skip;
+    Box l, r;
+    if (n.skip - i >= kParallelRefitMin)
+      tbb::parallel_invoke([&] { l = refit(b, s, left); }, [&] { r = refit(b, s, right); });
+    else {
+      l = refit(b, s, left);
+      r = refit(b, s, right);
+    }
+    box = l;
+    box.grow(r);
   }
-  out.nodes[at].skip = static_cast<int32_t>(out.nodes.size());
+  pad(box, n.lo, n.hi);
+  return box;
 }
 
 double ms_since(std::chrono::steady_clock::time_point t) {
@@ -209,7 +309,7 @@ Bvh build_bvh(const Scene& s, const std::vector<int32_t>& ids) {
   Bvh out;
   if (ids.empty()) return out;
   std::vector<Prim> prims(ids.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, ids.size(), 4096),
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, ids.size(), kParallelMin),
                     [&](const tbb::blocked_range<size_t>& r) {
                       for (size_t i = r.begin(); i != r.end(); ++i) {
                         prims[i].id = ids[i];
@@ -217,38 +317,29 @@ Bvh build_bvh(const Scene& s, const std::vector<int32_t>& ids) {
                         prims[i].centroid = (prims[i].box.lo + prims[i].box.hi) * 0.5f;
                       }
                     });
-  const std::unique_ptr<BuildNode> root = build(prims, 0, prims.size());
-  out.nodes.reserve(2 * ids.size());
-  out.tris.reserve(ids.size());
-  flatten(*root, prims, out);
-  out.depth = root->depth;
+  Builder builder(prims);
+  BuildNode& root = builder.nodes[0];
+  root.begin = 0;
+  root.end = prims.size();
+  builder.bound(root, true);
+  builder.build(0);
+  out.nodes.reserve(static_cast<size_t>(builder.used.load()));
+  builder.flatten(0, out);
+  out.tris.resize(prims.size());
+  for (size_t i = 0; i < prims.size(); ++i) out.tris[i] = prims[i].id;
+  out.ids = ids;
+  out.depth = builder.nodes[0].depth;
   out.build_ms = ms_since(start);
   return out;
 }
 
 bool refit_bvh(Bvh& b, const Scene& s, const std::vector<int32_t>& ids) {
   const auto start = std::chrono::steady_clock::now();
-  if (ids.size() != b.tris.size()) return false;
-  std::vector<int32_t> held = b.tris, now = ids;
-  std::sort(held.begin(), held.end());
-  std::sort(now.begin(), now.end());
-  if (held != now) return false;
-  // Children come after their parent in depth-first order: back to front, a node's children
-  // are done before it. The unpadded boxes are kept apart so padding is not compounded.
-  std::vector<Box> boxes(b.nodes.size());
-  for (size_t i = b.nodes.size(); i-- > 0;) {
-    BvhNode& n = b.nodes[i];
-    Box box;
-    if (n.count > 0) {
-      for (int32_t k = 0; k < n.count; ++k)
-        box.grow(triangle_box(s, b.tris[static_cast<size_t>(n.first + k)]));
-    } else {
-      box = boxes[i + 1];
-      box.grow(boxes[static_cast<size_t>(b.nodes[i + 1].skip)]);
-    }
-    boxes[i] = box;
-    pad(box, n.lo, n.hi);
-  }
+  if (ids.size() != b.tris.size() || b.nodes.empty()) return false;
+  // The same triangles as the tree holds (a triangle that became degenerate, or came back,
+  // changes the set: then only a rebuild will do).
+  if (!std::equal(ids.begin(), ids.end(), b.ids.begin())) return false;
+  refit(b, s, 0);
   b.build_ms = ms_since(start);
   return true;
 }

@@ -38,6 +38,7 @@ struct BvhNode {
 struct Bvh {
   std::vector<BvhNode> nodes;  // empty: no triangle to hold
   std::vector<int32_t> tris;   // primitive ids, leaf by leaf
+  std::vector<int32_t> ids;    // the ids it was built over, as given (refits compare)
   int depth = 0;
   double build_ms = 0;  // the last build or refit
   bool empty() const { return nodes.empty(); }
