@@ -194,12 +194,12 @@ TEST(Animation, SceneValidationCatchesBadObjectsBuiltInCode) {
 
 TEST(Animation, BuiltinBounceScene) {
   const Scene s = builtin_scene("bounce");
-  EXPECT_EQ(s.animation.objects.size(), 10u);
+  EXPECT_EQ(s.animation.objects.size(), 9u);
   EXPECT_EQ(s.animation.time.frame_count(), 97);
   EXPECT_EQ(s.animation.camera.keys.size(), 2u);
   // The balls leave the floor and come back: frame 0 and a later frame differ.
   EXPECT_NE(bake(s, 0.0).positions, bake(s, 0.5).positions);
-  EXPECT_EQ(build_grid(s).usable, 2064u);  // the room and its cubes
+  EXPECT_EQ(build_grid(s).usable, 40u);  // thesis A's boxes, the floor and the wall
 }
 
 }  // namespace
