@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <random>
 
+#include <tbb/global_control.h>
+
 #include "TestUtil.h"
 #include "rill/rt/accel/Bvh.h"
 #include "rill/rt/scene/Pose.h"
@@ -89,6 +91,26 @@ TEST(Bvh, BuildsADepthFirstTreeOverEveryMovingTriangle) {
     if (n >= 100) {
       EXPECT_LT(b.depth, 40);
     }
+  }
+}
+
+// Large nodes are binned and partitioned in parallel chunks: the tree must not depend on how
+// many threads ran them.
+TEST(Bvh, LargeBuildsDoNotDependOnTheThreadCount) {
+  const Scene s = random_scene(70000, 11u);
+  const std::vector<int32_t> ids = moving_triangles(s);
+  Bvh one, all;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    one = build_bvh(s, ids);
+  }
+  all = build_bvh(s, ids);
+  check_tree(all, s, ids);
+  EXPECT_EQ(one.tris, all.tris);
+  ASSERT_EQ(one.nodes.size(), all.nodes.size());
+  for (size_t i = 0; i < one.nodes.size(); ++i) {
+    EXPECT_EQ(one.nodes[i].skip, all.nodes[i].skip);
+    EXPECT_EQ(one.nodes[i].lo, all.nodes[i].lo);
   }
 }
 

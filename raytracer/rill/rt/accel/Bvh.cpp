@@ -10,8 +10,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
+#include <new>
+#include <type_traits>
 
 #include "rill/rt/accel/Grid.h"
 
@@ -19,8 +22,11 @@ namespace rt {
 
 namespace {
 
-// Subtrees of at least this many triangles are built, binned and refitted in parallel.
+// Subtrees of at least this many triangles are built in parallel, and work is split into
+// chunks of this size.
 constexpr size_t kParallelMin = 4096;
+// Nodes of at least this many triangles are partitioned in parallel (below, in place).
+constexpr size_t kParallelPartitionMin = 32768;
 // Nodes within a subtree this large are refitted on the calling thread.
 constexpr int32_t kParallelRefitMin = 2048;
 
@@ -96,13 +102,84 @@ struct BuildNode {
   int depth = 1;
 };
 
+// Memory for n objects of a type whose copies are plain bytes, left uninitialized: the
+// builder's node array and partition scratch are written before they are read, and
+// initializing them would cost as much as a small build.
+template <class T>
+class RawArray {
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+
+ public:
+  explicit RawArray(size_t n) : bytes_(new unsigned char[n * sizeof(T)]) {}
+  T* data() { return reinterpret_cast<T*>(bytes_.get()); }
+  const T* data() const { return reinterpret_cast<const T*>(bytes_.get()); }
+  T& operator[](size_t i) { return data()[i]; }
+  const T& operator[](size_t i) const { return data()[i]; }
+
+ private:
+  std::unique_ptr<unsigned char[]> bytes_;  // new[] aligns for any fundamental type
+};
+
 // Build nodes are claimed in pairs from one array, so subtrees built in parallel need no lock.
 struct Builder {
   std::vector<Prim>& prims;
-  std::vector<BuildNode> nodes;
+  RawArray<BuildNode> nodes;
+  RawArray<Prim> scratch;  // for partitions in parallel
   std::atomic<int32_t> used{1};
 
-  explicit Builder(std::vector<Prim>& p) : prims(p), nodes(2 * p.size() + 1) {}
+  explicit Builder(std::vector<Prim>& p) : prims(p), nodes(2 * p.size() + 1), scratch(p.size()) {
+    new (&nodes[0]) BuildNode{};
+  }
+
+  // prims[begin, end) reordered with those for which `left` holds first; returns the split.
+  // Large ranges are counted and scattered in parallel chunks of a fixed size, keeping the
+  // order within each side, so the tree never depends on the thread count.
+  template <class Pred>
+  size_t partition(size_t begin, size_t end, Pred left) {
+    if (end - begin < kParallelPartitionMin) {
+      auto it = std::partition(prims.begin() + static_cast<std::ptrdiff_t>(begin),
+                               prims.begin() + static_cast<std::ptrdiff_t>(end), left);
+      return static_cast<size_t>(it - prims.begin());
+    }
+    const size_t chunks = (end - begin + kParallelMin - 1) / kParallelMin;
+    std::vector<size_t> lefts(chunks);
+    auto chunk = [&](size_t c, size_t& from, size_t& to) {
+      from = begin + c * kParallelMin;
+      to = std::min(end, from + kParallelMin);
+    };
+    tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+      size_t from, to, n = 0;
+      chunk(c, from, to);
+      for (size_t i = from; i < to; ++i) n += left(prims[i]) ? 1 : 0;
+      lefts[c] = n;
+    });
+    std::vector<size_t> at_left(chunks), at_right(chunks);
+    size_t total_left = 0;
+    for (size_t c = 0; c < chunks; ++c) {
+      at_left[c] = total_left;
+      total_left += lefts[c];
+    }
+    for (size_t c = 0, right = total_left; c < chunks; ++c) {
+      size_t from, to;
+      chunk(c, from, to);
+      at_right[c] = right;
+      right += (to - from) - lefts[c];
+    }
+    tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+      size_t from, to;
+      chunk(c, from, to);
+      // The scratch slots of this range only: subtrees partition in parallel too.
+      size_t l = begin + at_left[c], r = begin + at_right[c];
+      for (size_t i = from; i < to; ++i)
+        std::memcpy(&scratch[left(prims[i]) ? l++ : r++], &prims[i], sizeof(Prim));
+    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, end - begin, kParallelMin),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        std::memcpy(&prims[begin + r.begin()], &scratch[begin + r.begin()],
+                                    (r.end() - r.begin()) * sizeof(Prim));
+                      });
+    return begin + total_left;
+  }
 
   // The node's triangles binned by their centroids along `axis`.
   void bin(const BuildNode& n, int axis, float scale, Bins& bins) const {
@@ -170,11 +247,8 @@ struct Builder {
       }
       if (split > 0) {
         const float lo = n.centroids.lo[axis];
-        auto it = std::partition(
-            prims.begin() + static_cast<std::ptrdiff_t>(n.begin),
-            prims.begin() + static_cast<std::ptrdiff_t>(n.end),
-            [&](const Prim& p) { return bin_of(p.centroid[axis], lo, scale) < split; });
-        mid = static_cast<size_t>(it - prims.begin());
+        mid = partition(n.begin, n.end,
+                        [&](const Prim& p) { return bin_of(p.centroid[axis], lo, scale) < split; });
         n_left = best_left;
         n_right = best_right;
       }
@@ -194,8 +268,8 @@ struct Builder {
     if (mid == n.begin || mid == n.end) return;  // a leaf (at most kBvhLeafMax)
     const int32_t left = used.fetch_add(2);
     n.left = left;
-    BuildNode& l = nodes[static_cast<size_t>(left)];
-    BuildNode& r = nodes[static_cast<size_t>(left + 1)];
+    BuildNode& l = *new (&nodes[static_cast<size_t>(left)]) BuildNode{};
+    BuildNode& r = *new (&nodes[static_cast<size_t>(left + 1)]) BuildNode{};
     l.begin = n.begin;
     l.end = mid;
     r.begin = mid;
