@@ -29,13 +29,23 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <fstream>
 #include <iostream>
 #include <new>
 #include <optional>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "AccuracyBench.h"
+#include "distributed/Launch.h"
+#include "distributed/SceneHash.h"
+#if RILL_HAVE_MPI
+#include "distributed/Farm.h"
+#include "distributed/MpiSession.h"
+#endif
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/Image.h"
@@ -97,6 +107,13 @@ struct RenderOptions {
   // Frame-rate mode: after the first render (which compiles), render this many more frames
   // of the same scene back to back and report their times.
   int bench_frames = 0;
+  // Distributed rendering (docs/distributed.md): tile size, how long a silent rank or a slow
+  // tile is waited for, the device, whether distribution is required.
+  int tile = 64;
+  double rank_timeout = 20, tile_timeout = 0;
+  std::string device;
+  bool distribute = false;
+  bool backend_given = false;  // --backend on the command line (else $RILL_TRACE_BACKEND)
 };
 
 void parse_size(const std::string& s, int& w, int& h) {
@@ -140,20 +157,33 @@ nlohmann::json split_json(const rt::FrameTimes& t) {
 // building the grid 512x512x512").
 std::string g_doing = "starting";
 
-int render(const RenderOptions& o) {
-  // --threads: the CPU backends' worker threads (oneTBB), for the whole render.
-  std::optional<tbb::global_control> threads;
-  if (o.threads > 0)
-    threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(o.threads));
+// Everything a render needs before its first frame: the scene with the command line's changes,
+// its grid, the tracer and the settings. Each rank of a distributed render makes its own.
+// Built in place and never moved (the tracer was made from the scene and grid beside it).
+struct Prepared {
+  rt::Scene scene;
+  rt::Grid grid;
+  rt::TracerOptions knobs;
+  std::unique_ptr<rt::Tracer> tracer;
+  rt::RenderSettings rs;
+  rill::Accuracy acc = rill::Accuracy::Strict;
+  std::string out;  // the PNG: --out, or a default name when no output is named
+  double load_ms = 0, setup_ms = 0;
+};
+
+// Warnings go to stderr when `say` (rank 0 of a distributed render; every single process).
+std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
+  auto p = std::make_unique<Prepared>();
   g_doing = "loading " + rt::clipped(o.scene);
   if (o.strategy != "megakernel" && o.strategy != "multipass")
     throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
-  const rill::Accuracy acc = rill::parse_accuracy(o.accuracy);
+  p->acc = rill::parse_accuracy(o.accuracy);
   const auto t_load = Clock::now();
   rt::InputOptions input;
   input.strict = o.strict_input;
   input.allow_empty = o.allow_empty;
-  rt::Scene scene = rt::load_scene(o.scene, input);
+  p->scene = rt::load_scene(o.scene, input);
+  rt::Scene& scene = p->scene;
   if (!o.size.empty()) parse_size(o.size, scene.width, scene.height);
   if (o.max_depth >= 0) scene.options.max_depth = o.max_depth;
   if (o.spp > 0) scene.options.spp = o.spp;
@@ -163,29 +193,28 @@ int render(const RenderOptions& o) {
   if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
   if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
   scene.validate();
-  const double load_ms = ms_since(t_load);
+  p->load_ms = ms_since(t_load);
   for (const std::string& w : scene.warnings)
-    std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
+    if (say) std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
 
   g_doing = "building the grid of " + std::to_string(scene.triangle_count()) + " triangles";
-  rt::Grid grid = rt::build_grid_for(scene, o.backend);  // settings left open: for the backend
-  for (const std::string& w : grid.warnings) {
-    std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
+  p->grid = rt::build_grid_for(scene, o.backend);  // settings left open: for the backend
+  for (const std::string& w : p->grid.warnings) {
+    if (say) std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
     scene.warnings.push_back(w);  // for --stats-json
   }
 
   const auto t_setup = Clock::now();
-  rt::TracerOptions knobs;
-  knobs.triangle = rt::parse_triangle_test(o.triangle);
-  knobs.offset = rt::parse_self_intersection(o.offset);
-  knobs.traversal = rt::parse_traversal(o.traversal);
-  g_doing = "uploading the scene and grid (" + std::to_string(grid.voxel_count()) + " voxels)";
-  rt::Tracer tracer(scene, grid, knobs);
-  const double setup_ms = ms_since(t_setup);
+  p->knobs.triangle = rt::parse_triangle_test(o.triangle);
+  p->knobs.offset = rt::parse_self_intersection(o.offset);
+  p->knobs.traversal = rt::parse_traversal(o.traversal);
+  g_doing = "uploading the scene and grid (" + std::to_string(p->grid.voxel_count()) + " voxels)";
+  p->tracer = std::make_unique<rt::Tracer>(scene, p->grid, p->knobs);
+  p->setup_ms = ms_since(t_setup);
 
-  rt::RenderSettings rs;
+  rt::RenderSettings& rs = p->rs;
   rs.backend = o.backend;
-  rs.accuracy = acc;
+  rs.accuracy = p->acc;
   rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
   rs.width = scene.width;
   rs.height = scene.height;
@@ -194,20 +223,139 @@ int render(const RenderOptions& o) {
   rs.wait_threshold = o.wait_threshold;
   rs.masking = o.masking == "on";
   // Only what is written comes back from the device (the PNG: 8-bit, encoded there).
-  std::string out = o.out;
-  if (out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
-    out = (scene.name.empty() ? std::string("render") : scene.name) + ".png";
-  rs.outputs.rgb8 = !out.empty();
+  p->out = o.out;
+  if (p->out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
+    p->out = (scene.name.empty() ? std::string("render") : scene.name) + ".png";
+  rs.outputs.rgb8 = !p->out.empty();
   rs.outputs.color = !o.pfm.empty();
   rs.outputs.depth = !o.depth.empty();
   rs.outputs.prim = !o.prim.empty();
   rs.outputs.normal = !o.normal.empty();
+  return p;
+}
+
+// Writes the outputs asked for from a render, each under name(its path) (a partial render
+// writes beside the names asked for); returns what it wrote.
+std::vector<std::string> write_outputs(
+    const RenderOptions& o, const Prepared& p, const rt::RenderResult& r,
+    const std::function<std::string(const std::string&)>& name = [](const std::string& s) {
+      return s;
+    }) {
+  g_doing = "writing the outputs";
+  std::vector<std::string> written;
+  auto pfm = [&](const std::string& path, const std::vector<float>& data) {
+    if (path.empty()) return;
+    rt::write_pfm(name(path), r.width, r.height, data);
+    written.push_back(name(path));
+  };
+  auto pfm3 = [&](const std::string& path, const std::vector<glm::vec3>& data) {
+    if (path.empty()) return;
+    rt::write_pfm(name(path), r.width, r.height, data);
+    written.push_back(name(path));
+  };
+  if (!p.out.empty()) {
+    rt::write_png_rgb8(name(p.out), r.width, r.height, r.rgb8);
+    written.push_back(name(p.out));
+  }
+  pfm3(o.pfm, r.color);
+  pfm(o.depth, r.depth);
+  if (!o.prim.empty()) pfm(o.prim, to_float(r.prim));
+  pfm3(o.normal, r.normal);
+  return written;
+}
+
+// The --stats-json fields a distributed render shares with a single-process one.
+nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, const rt::RenderResult& r) {
+  const rt::Scene& scene = p.scene;
+  const rt::Grid& grid = p.grid;
+  nlohmann::json j;
+  j["scene"] = o.scene;
+  j["triangles"] = scene.triangle_count();
+  j["width"] = r.width;
+  j["height"] = r.height;
+  j["backend"] = o.backend;
+  j["accuracy"] = o.accuracy;
+  j["strategy"] = o.strategy;
+  j["knobs"] = p.knobs.str();
+  j["spp"] = scene.options.spp;
+  j["max_depth"] = scene.options.max_depth;
+  j["features"] = p.tracer->features().str();
+  j["grid"] = {{"resolution", {grid.res.x, grid.res.y, grid.res.z}},
+               {"density", scene.options.grid_density},
+               {"subgrids", grid.subgrids},
+               {"references", grid.elements.size()},
+               {"triangles", grid.usable},
+               {"degenerate", grid.degenerate},
+               {"non_finite", grid.non_finite}};
+  j["warnings"] = scene.warnings;
+  j["rays"] = r.rays;
+  return j;
+}
+
+void write_json(const std::string& path, const nlohmann::json& j) {
+  std::ofstream f(path);
+  f << j.dump(2) << "\n";
+  if (!f) throw rt::SceneError("cannot write " + path);
+}
+
+// The notes after the outputs (unless --quiet): what was written, and scene trouble.
+void print_notes(const RenderOptions& o, const Prepared& p,
+                 const std::vector<std::string>& written) {
+  if (o.quiet) return;
+  for (const auto& w : written) std::printf("wrote %s\n", w.c_str());
+  glm::vec3 lo, hi;
+  if (rt::scene_bounds(p.scene, lo, hi)) {
+    // In double: the float length of a 1e20-unit box overflows.
+    const double size = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
+    if (size < 1e-10f || size > 1e10f)
+      std::printf(
+          "note: the scene is %g units across; the intersection test's cubic terms underflow "
+          "(GLSL flushes them) or overflow outside about 1e-10..1e10\n",
+          static_cast<double>(size));
+  }
+  if (p.grid.degenerate + p.grid.non_finite > 0)
+    std::printf("note: %zu degenerate and %zu non-finite triangles are never hit\n",
+                p.grid.degenerate, p.grid.non_finite);
+}
+
+int render_distributed(const RenderOptions& o);
+
+int render(RenderOptions o) {
+  // --threads: the CPU backends' worker threads (oneTBB), for the whole render.
+  std::optional<tbb::global_control> threads;
+  if (o.threads > 0)
+    threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(o.threads));
+  o.backend = rt::distributed::rank_backend(o.backend, o.backend_given);
+  // Started by mpirun as one of several processes: one image over all of them.
+  const int launched = rt::distributed::launcher_world_size();
+  if (launched > 1) {
+#if RILL_HAVE_MPI
+    return render_distributed(o);
+#else
+    throw rt::SceneError("started by an MPI launcher as one of " + std::to_string(launched) +
+                         " processes, but this rill-trace was built without MPI (RILL_MPI=OFF "
+                         "or no libopenmpi-dev at build time): each would render the whole "
+                         "image; rebuild with MPI, or run it without mpirun");
+#endif
+  }
+  if (o.distribute)
+    throw rt::SceneError(
+        "--distribute: not started by an MPI launcher as one of several processes; run "
+        "'mpirun -np N rill-trace render ...' with N >= 2 (docs/distributed.md)");
+  rt::distributed::use_device(o.backend, rt::distributed::rank_device(o.device, 0));
+  std::unique_ptr<Prepared> prepared = prepare(o);
+  Prepared& p = *prepared;
+  const rt::Scene& scene = p.scene;
+  const rt::Grid& grid = p.grid;
+  rt::Tracer& tracer = *p.tracer;
+  const rt::RenderSettings& rs = p.rs;
+  const double load_ms = p.load_ms;
   const auto t_render = Clock::now();
   g_doing = "rendering " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " on " +
             o.backend;
   rt::RenderResult r = tracer.render(rs, scene.camera);
   const double render_ms = ms_since(t_render);
-  const double compile_ms = setup_ms + (render_ms - r.trace_ms);
+  const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
   // Of that, the compile() calls (about 0 from a kernel cache); the rest is set-up: uploading
   // the scene and grid, and the warm-up launch (Megakernel::render).
   const double kernels_ms = std::min(r.stages.compile_ms, compile_ms);
@@ -238,57 +386,28 @@ int render(const RenderOptions& o) {
                     &rt::FrameTimes::reduce, &rt::FrameTimes::read_back})
     median_split.*step = median_of(step);
 
-  g_doing = "writing the outputs";
-  std::vector<std::string> written;
-  if (!out.empty()) rt::write_png_rgb8(out, r.width, r.height, r.rgb8), written.push_back(out);
-  if (!o.pfm.empty()) rt::write_pfm(o.pfm, r.width, r.height, r.color), written.push_back(o.pfm);
-  if (!o.depth.empty())
-    rt::write_pfm(o.depth, r.width, r.height, r.depth), written.push_back(o.depth);
-  if (!o.prim.empty())
-    rt::write_pfm(o.prim, r.width, r.height, to_float(r.prim)), written.push_back(o.prim);
-  if (!o.normal.empty())
-    rt::write_pfm(o.normal, r.width, r.height, r.normal), written.push_back(o.normal);
+  const std::vector<std::string> written = write_outputs(o, p, r);
   if (!o.source.empty()) {
     std::ofstream f(o.source);
-    f << tracer.source(o.backend, acc);
+    f << tracer.source(o.backend, p.acc);
     if (!f) throw rt::SceneError("cannot write " + o.source);
   }
 
   const double rays_per_s =
       r.trace_ms > 0 ? static_cast<double>(r.rays) / (r.trace_ms * 1e-3) : 0.0;
   if (!o.stats_json.empty()) {
-    nlohmann::json j;
-    j["scene"] = o.scene;
-    j["triangles"] = scene.triangle_count();
-    j["width"] = r.width;
-    j["height"] = r.height;
-    j["backend"] = o.backend;
-    j["accuracy"] = o.accuracy;
-    j["strategy"] = o.strategy;
-    j["knobs"] = knobs.str();
-    j["spp"] = scene.options.spp;
-    j["max_depth"] = scene.options.max_depth;
-    j["features"] = tracer.features().str();
-    j["grid"] = {{"resolution", {grid.res.x, grid.res.y, grid.res.z}},
-                 {"density", scene.options.grid_density},
-                 {"subgrids", grid.subgrids},
-                 {"references", grid.elements.size()},
-                 {"triangles", grid.usable},
-                 {"degenerate", grid.degenerate},
-                 {"non_finite", grid.non_finite}};
-    j["warnings"] = scene.warnings;
-    j["rays"] = r.rays;
+    nlohmann::json j = stats_json(o, p, r);
     j["launches"] = r.launches;
     if (o.strategy == "multipass") {
       j["wait_threshold"] = rs.wait_threshold;
       j["masking"] = rs.masking;
       nlohmann::json passes = nlohmann::json::array();
-      for (const rt::PassStats& p : r.passes)
-        passes.push_back({{"name", p.name},
-                          {"calls", p.calls},
-                          {"processed", p.processed},
-                          {"written", p.written},
-                          {"ms", p.ms}});
+      for (const rt::PassStats& ps : r.passes)
+        passes.push_back({{"name", ps.name},
+                          {"calls", ps.calls},
+                          {"processed", ps.processed},
+                          {"written", ps.written},
+                          {"ms", ps.ms}});
       j["passes"] = passes;
     }
     j["rays_per_second"] = rays_per_s;
@@ -318,26 +437,9 @@ int render(const RenderOptions& o) {
         {"trace", r.trace_ms},   {"total", load_ms + grid.build_ms + compile_ms + r.trace_ms}};
     // The first frame's trace time, step by step (Tracer.h, FrameTimes).
     j["trace_split_ms"] = split_json(r.times);
-    std::ofstream f(o.stats_json);
-    f << j.dump(2) << "\n";
-    if (!f) throw rt::SceneError("cannot write " + o.stats_json);
+    write_json(o.stats_json, j);
   }
-  if (!o.quiet) {
-    for (const auto& w : written) std::printf("wrote %s\n", w.c_str());
-    glm::vec3 lo, hi;
-    if (rt::scene_bounds(scene, lo, hi)) {
-      // In double: the float length of a 1e20-unit box overflows.
-      const double size = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
-      if (size < 1e-10f || size > 1e10f)
-        std::printf(
-            "note: the scene is %g units across; the intersection test's cubic terms underflow "
-            "(GLSL flushes them) or overflow outside about 1e-10..1e10\n",
-            static_cast<double>(size));
-    }
-    if (grid.degenerate + grid.non_finite > 0)
-      std::printf("note: %zu degenerate and %zu non-finite triangles are never hit\n",
-                  grid.degenerate, grid.non_finite);
-  }
+  print_notes(o, p, written);
   if (!frame_ms.empty())
     std::printf(
         "%zu frames of %dx%d after the first: median %.2f ms (%.1f fps), min %.2f ms, max "
@@ -361,10 +463,10 @@ int render(const RenderOptions& o) {
   if (o.stats && o.strategy == "multipass") {
     std::printf("%-14s %8s %14s %14s %10s   (masking %s, wait threshold %g)\n", "pass", "calls",
                 "processed", "written", "ms", rs.masking ? "on" : "off", rs.wait_threshold);
-    for (const rt::PassStats& p : r.passes)
-      std::printf("%-14s %8lld %14lld %14lld %10.2f\n", p.name.c_str(),
-                  static_cast<long long>(p.calls), static_cast<long long>(p.processed),
-                  static_cast<long long>(p.written), p.ms);
+    for (const rt::PassStats& ps : r.passes)
+      std::printf("%-14s %8lld %14lld %14lld %10.2f\n", ps.name.c_str(),
+                  static_cast<long long>(ps.calls), static_cast<long long>(ps.processed),
+                  static_cast<long long>(ps.written), ps.ms);
   }
   std::printf(
       "rill-trace: %s, %zu triangles, %dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
@@ -376,6 +478,152 @@ int render(const RenderOptions& o) {
       o.strategy == "multipass" ? (" (" + std::to_string(r.launches) + " launches)").c_str() : "");
   return 0;
 }
+
+#if RILL_HAVE_MPI
+// What besides the scene decides the pixels, for the scene hash (SceneHash.h): size, samples
+// and depth are in the scene by now.
+std::string pixel_settings(const RenderOptions& o, const Prepared& p) {
+  return "accuracy " + o.accuracy + "; knobs " + p.knobs.str();
+}
+
+// The note beside a partial image: what is in it and what is not, and why.
+void write_partial_note(const std::string& path, const RenderOptions& o, const Prepared& p,
+                        const rt::distributed::FarmResult& R, int tile, const std::string& why) {
+  std::ofstream f(path);
+  f << "rill-trace: a partial render of " << o.scene << ", " << R.image.width << "x"
+    << R.image.height << " in " << R.tiles << " tiles of " << tile << " pixels\n"
+    << "why: " << why << "\n"
+    << "tiles in the image: " << R.tiles_done << " of " << R.tiles
+    << "; the others are black, depth +inf, prim -1\n";
+  for (const rt::distributed::RankReport& r : R.ranks)
+    f << "rank " << r.rank << " on " << r.host << " (" << r.backend << "): " << r.tiles
+      << " tiles" << (r.lost.empty() ? "" : ", lost: " + r.lost) << "\n";
+  f << "missing tiles (x y width height):\n";
+  for (const rt::distributed::Tile& t : R.missing)
+    f << t.x << " " << t.y << " " << t.width << " " << t.height << "\n";
+  (void)p;
+  if (!f) throw rt::SceneError("cannot write " + path);
+}
+
+// One image over every rank of the MPI job (distributed/Farm.h, docs/distributed.md).
+int render_distributed(const RenderOptions& o) {
+  namespace dist = rt::distributed;
+  if (o.bench_frames > 0)
+    throw rt::SceneError("--bench-frames times one process; it does not run under mpirun");
+  dist::MpiSession mpi;
+  const bool root = mpi.rank() == 0;
+  const std::string who = "rank " + std::to_string(mpi.rank()) + " on " + mpi.host();
+  const auto t_start = Clock::now();
+  std::unique_ptr<Prepared> prepared;
+  std::optional<dist::FarmResult> result;
+  try {
+    dist::use_device(o.backend, dist::rank_device(o.device, mpi.local_rank()));
+    dist::FarmOptions fo;
+    fo.tile = o.tile;
+    fo.rank_timeout = o.rank_timeout;
+    fo.tile_timeout = o.tile_timeout;
+    fo.progress = root && !o.quiet && isatty(2);
+    dist::Farm farm(mpi, fo);
+    farm.start(
+        [&] {
+          prepared = prepare(o, root);
+          return dist::scene_hash(prepared->scene, pixel_settings(o, *prepared));
+        },
+        o.backend);
+    const rt::RenderSettings rs = prepared->rs;
+    result = farm.render(rs.width, rs.height, rs.outputs, [&](const dist::Tile& t) {
+      rt::RenderSettings s = rs;
+      s.window = {t.x, t.y, t.width, t.height};
+      return prepared->tracer->render(s, prepared->scene.camera);
+    });
+  } catch (const std::exception& e) {
+    // Rank 0: a rank failed to load or has another scene (the message names it), or rank 0
+    // itself failed. A worker: rank 0 is lost. Either way the job ends here, all of it: the
+    // other ranks may be waiting in MPI, or be hung.
+    std::string msg = e.what();
+    for (char& c : msg)
+      if (c == '\n') c = ' ';
+    std::fprintf(stderr, "rill-trace: %s%s\n", root ? "" : (who + ": ").c_str(), msg.c_str());
+    std::fflush(stderr);
+    if (root) mpi.abort(1);
+    std::_Exit(1);
+  }
+  if (!root) return 0;
+
+  const dist::FarmResult& R = *result;
+  Prepared& p = *prepared;
+  std::vector<std::string> written;
+  std::string why;
+  if (R.complete()) {
+    written = write_outputs(o, p, R.image);
+  } else {
+    why = R.interrupted ? "stopped by a signal (mpirun ends the job when a rank dies, and names "
+                          "the rank and its host; mpirun --enable-recovery goes on without it)"
+                        : "every rank was lost";
+    written = write_outputs(o, p, R.image, dist::partial_name);
+    std::string note = dist::partial_name(written.front());
+    note = note.substr(0, note.find_last_of('.')) + ".txt";
+    write_partial_note(note, o, p, R, o.tile, why);
+    written.push_back(note);
+  }
+  if (!o.source.empty()) {
+    std::ofstream f(o.source);
+    f << p.tracer->source(o.backend, p.acc);
+    if (!f) throw rt::SceneError("cannot write " + o.source);
+  }
+  if (!o.stats_json.empty()) {
+    nlohmann::json j = stats_json(o, p, R.image);
+    nlohmann::json ranks = nlohmann::json::array();
+    for (const dist::RankReport& r : R.ranks)
+      ranks.push_back({{"rank", r.rank},
+                       {"host", r.host},
+                       {"backend", r.backend},
+                       {"tiles", r.tiles},
+                       {"busy_ms", r.busy_ms},
+                       {"lost", r.lost}});
+    j["distributed"] = {{"ranks", R.ranks.size()}, {"tile", o.tile},
+                        {"tiles", R.tiles},        {"tiles_done", R.tiles_done},
+                        {"complete", R.complete()}, {"imbalance", R.imbalance},
+                        {"per_rank", ranks},       {"warnings", R.warnings}};
+    j["time_ms"] = {{"load", p.load_ms},
+                    {"grid_build", p.grid.build_ms},
+                    {"render", R.wall_ms},
+                    {"total", ms_since(t_start)}};
+    write_json(o.stats_json, j);
+  }
+  print_notes(o, p, written);
+  if (!o.quiet)
+    for (const dist::RankReport& r : R.ranks)
+      std::printf("  rank %d on %s (%s): %d tiles, busy %.1f ms%s\n", r.rank, r.host.c_str(),
+                  r.backend.c_str(), r.tiles, r.busy_ms, r.lost.empty() ? "" : ", lost");
+  std::printf(
+      "rill-trace: %s, %zu triangles, %dx%d, %s %s, %zu ranks, %d tiles of %d: %lld rays; load "
+      "%.1f ms, grid build %.1f ms, render %.1f ms, imbalance %.1f%%\n",
+      p.scene.name.c_str(), p.scene.triangle_count(), R.image.width, R.image.height,
+      o.backend.c_str(), o.accuracy.c_str(), R.ranks.size(), R.tiles, o.tile,
+      static_cast<long long>(R.image.rays), p.load_ms, p.grid.build_ms, R.wall_ms,
+      R.imbalance * 100.0);
+  std::fflush(stdout);
+  if (!R.complete()) {
+    std::fprintf(stderr,
+                 "rill-trace: the render is incomplete (%s): %d of %d tiles are in %s, the rest "
+                 "listed in %s\n",
+                 why.c_str(), R.tiles_done, R.tiles, written.front().c_str(),
+                 written.back().c_str());
+    std::fflush(stderr);
+    if (R.interrupted) std::_Exit(1);  // mpirun is ending the job
+    mpi.abort(1);
+  }
+  if (R.must_abort) {
+    std::fprintf(stderr,
+                 "rill-trace: the image is complete without the lost rank(s); ending the job "
+                 "with MPI_Abort, as MPI_Finalize would wait for them\n");
+    std::fflush(stderr);
+    mpi.abort(3);
+  }
+  return 0;
+}
+#endif
 
 int demo(const std::string& scene_spec, const std::string& size, const std::string& out_dir) {
   rt::Scene scene = rt::load_scene(scene_spec);
@@ -517,6 +765,25 @@ int main(int argc, char** argv) {
                 "frame-rate mode: render N more frames back to back after the first and report "
                 "their times and frames per second")
       ->check(number_in(0, 100000, true));
+  r->add_option("--tile", ro.tile,
+                "distributed (mpirun): tile size in pixels, handed out one at a time; images "
+                "do not depend on it")
+      ->default_str("64")
+      ->check(number_in(1, 16384, true));
+  r->add_option("--rank-timeout", ro.rank_timeout,
+                "distributed: seconds a rank may be silent before it is lost")
+      ->default_str("20")
+      ->check(number_in(1, 86400, false));
+  r->add_option("--tile-timeout", ro.tile_timeout,
+                "distributed: seconds a rank may take for a tile before it is lost (0: no limit)")
+      ->default_str("0")
+      ->check(number_in(0, 86400, false));
+  r->add_option("--device", ro.device,
+                "the device of opencl, glsl or glsl-compute (RILL_OPENCL_DEVICE or "
+                "RILL_EGL_DEVICE); {local_rank} is the rank's index on its host");
+  r->add_flag("--distribute", ro.distribute,
+              "require a distributed render: an error unless started by mpirun with 2 or more "
+              "processes");
   r->add_option("--triangle", ro.triangle, "triangle test: moller or watertight")
       ->default_str("moller");
   r->add_option("--offset", ro.offset, "self-intersection: scaled (Wachter-Binder) or epsilon")
@@ -568,6 +835,7 @@ int main(int argc, char** argv) {
   }
   int rc = 0;
   try {
+    ro.backend_given = r->count("--backend") > 0;
     if (*r) rc = render(ro);
     if (*d) rc = demo(demo_scene, demo_size, demo_out);
     if (*in) rc = info();
