@@ -29,10 +29,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <functional>
-#include <memory>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <memory>
 #include <new>
 #include <optional>
 #include <sstream>
@@ -487,7 +487,7 @@ std::string pixel_settings(const RenderOptions& o, const Prepared& p) {
 }
 
 // The note beside a partial image: what is in it and what is not, and why.
-void write_partial_note(const std::string& path, const RenderOptions& o, const Prepared& p,
+void write_partial_note(const std::string& path, const RenderOptions& o,
                         const rt::distributed::FarmResult& R, int tile, const std::string& why) {
   std::ofstream f(path);
   f << "rill-trace: a partial render of " << o.scene << ", " << R.image.width << "x"
@@ -496,14 +496,16 @@ void write_partial_note(const std::string& path, const RenderOptions& o, const P
     << "tiles in the image: " << R.tiles_done << " of " << R.tiles
     << "; the others are black, depth +inf, prim -1\n";
   for (const rt::distributed::RankReport& r : R.ranks)
-    f << "rank " << r.rank << " on " << r.host << " (" << r.backend << "): " << r.tiles
-      << " tiles" << (r.lost.empty() ? "" : ", lost: " + r.lost) << "\n";
+    f << "rank " << r.rank << " on " << r.host << " (" << r.backend << "): " << r.tiles << " tiles"
+      << (r.lost.empty() ? "" : ", lost: " + r.lost) << "\n";
   f << "missing tiles (x y width height):\n";
   for (const rt::distributed::Tile& t : R.missing)
     f << t.x << " " << t.y << " " << t.width << " " << t.height << "\n";
-  (void)p;
   if (!f) throw rt::SceneError("cannot write " + path);
 }
+
+int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distributed::FarmResult& R,
+                       rt::distributed::MpiSession& mpi, Clock::time_point t_start);
 
 // One image over every rank of the MPI job (distributed/Farm.h, docs/distributed.md).
 int render_distributed(const RenderOptions& o) {
@@ -530,7 +532,9 @@ int render_distributed(const RenderOptions& o) {
           return dist::scene_hash(prepared->scene, pixel_settings(o, *prepared));
         },
         o.backend);
-    const rt::RenderSettings rs = prepared->rs;
+    // A worker that failed to load has no settings: it renders nothing, and waits for rank 0
+    // to end the job.
+    const rt::RenderSettings rs = prepared ? prepared->rs : rt::RenderSettings{};
     result = farm.render(rs.width, rs.height, rs.outputs, [&](const dist::Tile& t) {
       rt::RenderSettings s = rs;
       s.window = {t.x, t.y, t.width, t.height};
@@ -551,21 +555,41 @@ int render_distributed(const RenderOptions& o) {
   if (!root) return 0;
 
   const dist::FarmResult& R = *result;
-  Prepared& p = *prepared;
-  std::vector<std::string> written;
-  std::string why;
-  if (R.complete()) {
-    written = write_outputs(o, p, R.image);
-  } else {
-    why = R.interrupted ? "stopped by a signal (mpirun ends the job when a rank dies, and names "
-                          "the rank and its host; mpirun --enable-recovery goes on without it)"
-                        : "every rank was lost";
-    written = write_outputs(o, p, R.image, dist::partial_name);
-    std::string note = dist::partial_name(written.front());
-    note = note.substr(0, note.find_last_of('.')) + ".txt";
-    write_partial_note(note, o, p, R, o.tile, why);
-    written.push_back(note);
+  try {
+    return finish_distributed(o, *prepared, R, mpi, t_start);
+  } catch (const std::exception& e) {
+    if (!R.must_abort) throw;  // main reports it; MPI_Finalize finds every rank
+    std::fprintf(stderr, "rill-trace: %s\n", e.what());
+    std::fflush(stderr);
+    mpi.abort(1);
   }
+}
+
+// Rank 0, the image back: writes it (or what there is of it) and reports.
+int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distributed::FarmResult& R,
+                       rt::distributed::MpiSession& mpi, Clock::time_point t_start) {
+  namespace dist = rt::distributed;
+  if (!R.complete()) {
+    // First the message: when mpirun ends the job, SIGKILL follows SIGTERM within a second.
+    const std::string why =
+        R.interrupted ? "stopped by a signal: mpirun ends the job when a rank dies, and names the "
+                        "rank and its host (mpirun --enable-recovery goes on without it)"
+                      : "every rank was lost";
+    std::fprintf(stderr,
+                 "rill-trace: the render is incomplete (%s); writing the %d of %d tiles done as "
+                 "partial outputs (NAME.partial.EXT) with a note\n",
+                 why.c_str(), R.tiles_done, R.tiles);
+    std::fflush(stderr);
+    std::vector<std::string> written = write_outputs(o, p, R.image, dist::partial_name);
+    const std::string note = written.front().substr(0, written.front().find_last_of('.')) + ".txt";
+    write_partial_note(note, o, R, o.tile, why);
+    written.push_back(note);
+    print_notes(o, p, written);
+    std::fflush(stdout);
+    if (R.interrupted) std::_Exit(1);  // mpirun is ending the job
+    mpi.abort(1);
+  }
+  const std::vector<std::string> written = write_outputs(o, p, R.image);
   if (!o.source.empty()) {
     std::ofstream f(o.source);
     f << p.tracer->source(o.backend, p.acc);
@@ -581,10 +605,10 @@ int render_distributed(const RenderOptions& o) {
                        {"tiles", r.tiles},
                        {"busy_ms", r.busy_ms},
                        {"lost", r.lost}});
-    j["distributed"] = {{"ranks", R.ranks.size()}, {"tile", o.tile},
-                        {"tiles", R.tiles},        {"tiles_done", R.tiles_done},
+    j["distributed"] = {{"ranks", R.ranks.size()},  {"tile", o.tile},
+                        {"tiles", R.tiles},         {"tiles_done", R.tiles_done},
                         {"complete", R.complete()}, {"imbalance", R.imbalance},
-                        {"per_rank", ranks},       {"warnings", R.warnings}};
+                        {"per_rank", ranks},        {"warnings", R.warnings}};
     j["time_ms"] = {{"load", p.load_ms},
                     {"grid_build", p.grid.build_ms},
                     {"render", R.wall_ms},
@@ -604,16 +628,6 @@ int render_distributed(const RenderOptions& o) {
       static_cast<long long>(R.image.rays), p.load_ms, p.grid.build_ms, R.wall_ms,
       R.imbalance * 100.0);
   std::fflush(stdout);
-  if (!R.complete()) {
-    std::fprintf(stderr,
-                 "rill-trace: the render is incomplete (%s): %d of %d tiles are in %s, the rest "
-                 "listed in %s\n",
-                 why.c_str(), R.tiles_done, R.tiles, written.front().c_str(),
-                 written.back().c_str());
-    std::fflush(stderr);
-    if (R.interrupted) std::_Exit(1);  // mpirun is ending the job
-    mpi.abort(1);
-  }
   if (R.must_abort) {
     std::fprintf(stderr,
                  "rill-trace: the image is complete without the lost rank(s); ending the job "

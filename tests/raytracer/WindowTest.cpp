@@ -71,6 +71,7 @@ TEST_P(Window, TilesEqualTheWholeRender) {
     Tracer t(s, g);
     rs.max_depth = 3;
     expect_tiles_match(t, s, rs, 7, 7, "glass, tiles 7x7");
+    expect_tiles_match(t, s, rs, 8, 8, "glass, tiles 8x8 (the last row one pixel high)");
     rs.spp = 3;
     expect_tiles_match(t, s, rs, 10, 6, "glass, spp 3, tiles 10x6");
   }

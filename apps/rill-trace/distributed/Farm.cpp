@@ -27,8 +27,7 @@ namespace {
 constexpr int kAhead = 2;
 
 double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 void nap() {
@@ -66,7 +65,8 @@ class SignalGuard {
   SignalGuard& operator=(const SignalGuard&) = delete;
 
  private:
-  struct sigaction term_ {}, int_ {};
+  struct sigaction term_ {
+  }, int_{};
 };
 
 // A function running on a thread of its own. Detached, not joined: a rank that must end while
@@ -385,8 +385,7 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
   // The tile back from a rank: into the image, once.
   auto accept = [&](int rank, int id, const RenderResult& pixels, double busy_ms) {
     if (id < 0 || id >= queue.total())
-      return lose(rank, "sent tile " + std::to_string(id) + ", which does not exist", true,
-                  &queue);
+      return lose(rank, "sent tile " + std::to_string(id) + ", which does not exist", true, &queue);
     const Tile& t = queue.tile(id);
     if (const std::string why = misfit(pixels, t, outputs); !why.empty())
       return lose(rank, "sent " + why, true, &queue);
@@ -440,8 +439,7 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
       }
     }
     if (mine.running() && o_.tile_timeout > 0 && now_s() - my_start > o_.tile_timeout) {
-      lose(0, "no tile back within --tile-timeout " + seconds_text(o_.tile_timeout), false,
-           &queue);
+      lose(0, "no tile back within --tile-timeout " + seconds_text(o_.tile_timeout), false, &queue);
       R.must_abort = true;  // its thread cannot be stopped
     }
     if (mine.idle() && peers_[0].alive) {
@@ -494,8 +492,8 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
   int counted = 0;
   for (size_t r = 0; r < peers_.size(); ++r) {
     const Peer& p = peers_[r];
-    R.ranks.push_back(RankReport{static_cast<int>(r), p.host, p.backend, p.tiles, p.busy_ms,
-                                 p.lost, p.responsive});
+    R.ranks.push_back(RankReport{static_cast<int>(r), p.host, p.backend, p.tiles, p.busy_ms, p.lost,
+                                 p.responsive});
     R.must_abort = R.must_abort || !p.responsive;
     if (!p.alive) continue;
     busiest = std::max(busiest, p.busy_ms);

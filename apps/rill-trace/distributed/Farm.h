@@ -26,28 +26,28 @@
 #include <string>
 #include <vector>
 
-#include "distributed/MpiSession.h"
 #include "distributed/Messages.h"
+#include "distributed/MpiSession.h"
 #include "distributed/TileQueue.h"
 #include "rill/rt/Tracer.h"
 
 namespace rt::distributed {
 
 struct FarmOptions {
-  int tile = 64;               // tile size in pixels (square; smaller at the edges)
-  double rank_timeout = 20;    // seconds of silence before a rank is lost
-  double tile_timeout = 0;     // seconds a rank may take for a tile; 0: no limit
-  double heartbeat = 0.5;      // seconds between heartbeats
-  bool progress = false;       // rank 0 draws a progress bar on stderr
+  int tile = 64;             // tile size in pixels (square; smaller at the edges)
+  double rank_timeout = 20;  // seconds of silence before a rank is lost
+  double tile_timeout = 0;   // seconds a rank may take for a tile; 0: no limit
+  double heartbeat = 0.5;    // seconds between heartbeats
+  bool progress = false;     // rank 0 draws a progress bar on stderr
 };
 
 // One rank's part, as rank 0 saw it.
 struct RankReport {
   int rank = 0;
   std::string host, backend;
-  int tiles = 0;        // tiles it rendered that are in the image
-  double busy_ms = 0;   // time rendering them, measured on the rank
-  std::string lost;     // why it was lost; empty if it was not
+  int tiles = 0;           // tiles it rendered that are in the image
+  double busy_ms = 0;      // time rendering them, measured on the rank
+  std::string lost;        // why it was lost; empty if it was not
   bool responsive = true;  // false: lost without a word (died or hung)
 };
 

@@ -8,8 +8,7 @@ namespace {
 class Writer {
  public:
   template <class T>
-    requires std::is_trivially_copyable_v<T>
-  Writer& put(const T& v) {
+  requires std::is_trivially_copyable_v<T> Writer& put(const T& v) {
     const char* p = reinterpret_cast<const char*>(&v);
     b_.insert(b_.end(), p, p + sizeof v);
     return *this;
@@ -36,8 +35,7 @@ class Reader {
  public:
   explicit Reader(const Bytes& b) : b_(b) {}
   template <class T>
-    requires std::is_trivially_copyable_v<T>
-  Reader& get(T& v) {
+  requires std::is_trivially_copyable_v<T> Reader& get(T& v) {
     std::memcpy(&v, take(sizeof v), sizeof v);
     return *this;
   }
@@ -80,13 +78,20 @@ class Reader {
 
 const char* tag_name(int tag) {
   switch (tag) {
-    case kHello: return "hello";
-    case kAbort: return "abort";
-    case kAssign: return "assign";
-    case kTileDone: return "tile done";
-    case kFailed: return "failed";
-    case kStop: return "stop";
-    case kHeartbeat: return "heartbeat";
+    case kHello:
+      return "hello";
+    case kAbort:
+      return "abort";
+    case kAssign:
+      return "assign";
+    case kTileDone:
+      return "tile done";
+    case kFailed:
+      return "failed";
+    case kStop:
+      return "stop";
+    case kHeartbeat:
+      return "heartbeat";
   }
   return "unknown";
 }

@@ -20,8 +20,7 @@ void check(int rc, const char* what) {
 }
 
 double seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
@@ -58,8 +57,8 @@ MpiSession::~MpiSession() {
 
 void MpiSession::post(int dest, int tag, Bytes bytes) {
   auto* p = new Pending{dest, std::move(bytes), MPI_REQUEST_NULL};
-  const int rc = MPI_Isend(p->bytes.data(), static_cast<int>(p->bytes.size()), MPI_BYTE, dest,
-                           tag, MPI_COMM_WORLD, &p->request);
+  const int rc = MPI_Isend(p->bytes.data(), static_cast<int>(p->bytes.size()), MPI_BYTE, dest, tag,
+                           MPI_COMM_WORLD, &p->request);
   if (rc != MPI_SUCCESS) {
     delete p;
     check(rc, "MPI_Isend");

@@ -16,10 +16,8 @@ class Fnv1a {
     for (size_t i = 0; i < n; ++i) h_ = (h_ ^ b[i]) * 0x100000001b3ull;
   }
   template <class T>
-    requires std::is_arithmetic_v<T> || std::is_enum_v<T>
-  void add(T v) {
-    bytes(&v, sizeof v);
-  }
+  requires std::is_arithmetic_v<T> || std::is_enum_v<T>
+  void add(T v) { bytes(&v, sizeof v); }
   void add(const glm::vec2& v) { bytes(&v, sizeof v); }
   void add(const glm::vec3& v) { bytes(&v, sizeof v); }
   void add(const std::string& s) {
@@ -28,7 +26,7 @@ class Fnv1a {
   }
   // Vectors of plain values (floats, ints, glm vectors): their length, then their bytes.
   template <class T>
-    requires std::is_trivially_copyable_v<T>
+  requires std::is_trivially_copyable_v<T>
   void add(const std::vector<T>& v) {
     add(v.size());
     bytes(v.data(), v.size() * sizeof(T));
