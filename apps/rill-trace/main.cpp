@@ -10,6 +10,8 @@
 //                           [--triangle moller|watertight] [--offset epsilon|scaled]
 //                           [--traversal incremental|recompute]
 //                           [--stats] [--wait-threshold F] [--masking on|off]   (multipass)
+//                           [--device SPEC] [--tile N] [--rank-timeout S] [--tile-timeout S]
+//                           [--progress] [--distribute]   (under mpirun: docs/distributed.md)
 //   rill-trace accuracy [--backends LIST] [--scenes LIST] [--size WxH] [--repeats N]
 //                       [--one-at-a-time] [--out-dir DIR]
 //   rill-trace demo [--scene SCENE] [--size WxH] [--out-dir DIR]
@@ -36,8 +38,6 @@
 #include <new>
 #include <optional>
 #include <sstream>
-
-#include <unistd.h>
 
 #include "AccuracyBench.h"
 #include "distributed/Launch.h"
@@ -113,6 +113,7 @@ struct RenderOptions {
   double rank_timeout = 20, tile_timeout = 0;
   std::string device;
   bool distribute = false;
+  bool progress = false;
   bool backend_given = false;  // --backend on the command line (else $RILL_TRACE_BACKEND)
 };
 
@@ -243,12 +244,7 @@ std::vector<std::string> write_outputs(
     }) {
   g_doing = "writing the outputs";
   std::vector<std::string> written;
-  auto pfm = [&](const std::string& path, const std::vector<float>& data) {
-    if (path.empty()) return;
-    rt::write_pfm(name(path), r.width, r.height, data);
-    written.push_back(name(path));
-  };
-  auto pfm3 = [&](const std::string& path, const std::vector<glm::vec3>& data) {
+  auto pfm = [&](const std::string& path, const auto& data) {
     if (path.empty()) return;
     rt::write_pfm(name(path), r.width, r.height, data);
     written.push_back(name(path));
@@ -257,10 +253,10 @@ std::vector<std::string> write_outputs(
     rt::write_png_rgb8(name(p.out), r.width, r.height, r.rgb8);
     written.push_back(name(p.out));
   }
-  pfm3(o.pfm, r.color);
+  pfm(o.pfm, r.color);
   pfm(o.depth, r.depth);
   if (!o.prim.empty()) pfm(o.prim, to_float(r.prim));
-  pfm3(o.normal, r.normal);
+  pfm(o.normal, r.normal);
   return written;
 }
 
@@ -524,7 +520,7 @@ int render_distributed(const RenderOptions& o) {
     fo.tile = o.tile;
     fo.rank_timeout = o.rank_timeout;
     fo.tile_timeout = o.tile_timeout;
-    fo.progress = root && !o.quiet && isatty(2);
+    fo.progress = root && o.progress;
     dist::Farm farm(mpi, fo);
     farm.start(
         [&] {
@@ -795,6 +791,9 @@ int main(int argc, char** argv) {
   r->add_option("--device", ro.device,
                 "the device of opencl, glsl or glsl-compute (RILL_OPENCL_DEVICE or "
                 "RILL_EGL_DEVICE); {local_rank} is the rank's index on its host");
+  r->add_flag("--progress", ro.progress,
+              "distributed: rank 0 draws a progress bar on stderr, the tiles done per rank "
+              "(mpirun passes stderr through a pipe, so rill-trace cannot tell a terminal)");
   r->add_flag("--distribute", ro.distribute,
               "require a distributed render: an error unless started by mpirun with 2 or more "
               "processes");

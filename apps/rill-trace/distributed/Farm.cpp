@@ -185,8 +185,9 @@ void Farm::beat() {
   if (t - last_beat_ < o_.heartbeat) return;
   last_beat_ = t;
   if (mpi_.rank() != 0) return mpi_.post(0, kHeartbeat);
+  // Lost ranks that said why (a failed render) wait for the stop: they hear from rank 0 too.
   for (int r = 1; r < mpi_.size(); ++r)
-    if (peers_[static_cast<size_t>(r)].alive) mpi_.post(r, kHeartbeat);
+    if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kHeartbeat);
 }
 
 void Farm::lose(int rank, const std::string& why, bool responsive, TileQueue* queue) {
@@ -195,12 +196,14 @@ void Farm::lose(int rank, const std::string& why, bool responsive, TileQueue* qu
   p.alive = false;
   p.responsive = responsive;
   p.lost = why;
+  for (char& c : p.lost)
+    if (c == '\n') c = ' ';  // a backend's message may list devices line by line
   p.in_flight = 0;
   if (!responsive) mpi_.forget(rank);
   const int back = queue != nullptr ? queue->requeue(rank) : 0;
   const std::string w = "rank " + std::to_string(rank) + " on " +
                         (p.host.empty() ? std::string("an unknown host") : p.host) + " is lost (" +
-                        why + "); " +
+                        p.lost + "); " +
                         (back > 0 ? std::to_string(back) + " of its tiles go to the other ranks"
                                   : std::string("the other ranks go on"));
   std::fprintf(stderr, "%srill-trace: warning: %s\n", o_.progress ? "\n" : "", w.c_str());
@@ -476,7 +479,7 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
     }
     check_silence(&queue);
     for (int r = 1; r < mpi_.size(); ++r) feed(r);
-    bool anyone = peers_[0].alive;
+    bool anyone = false;
     for (const Peer& p : peers_) anyone = anyone || p.alive;
     if (!anyone) break;
     beat();

@@ -196,6 +196,32 @@ TEST_F(Distributed, AnotherSceneOrAFailedLoadStopsTheStart) {
   }
 }
 
+// Ranks on different backends give the same bytes under strict; a rank whose backend fails
+// at its first tile (an OpenCL device that is not there) is lost with its message, and the
+// others complete the image without it.
+TEST_F(Distributed, MixedBackendsAndARankWhoseRenderFails) {
+  RT_REQUIRE_MPI();
+  RT_REQUIRE_BACKEND("opencl");
+  TempDir dir;
+  const std::string scene =
+      " render builtin:thesis-a --size 60x40 --quiet --tile 8 --rank-timeout 5";
+  ASSERT_EQ(run_command(kExe + scene + outputs("ref"), dir).status, 0);
+  Result mixed = run_command(kMpirun + " -np 2 " + kExe + scene + outputs("mixed") + " : -np 1 " +
+                                 kExe + scene + outputs("mixed") + " --backend opencl",
+                             dir, 120);
+  ASSERT_EQ(mixed.status, 0) << mixed.err;
+  expect_same_files(dir, "ref", "mixed", kSuffixes, std::size(kSuffixes));
+  Result failed =
+      run_command(kMpirun + " -np 2 " + kExe + scene + outputs("failed") + " : -np 1 " + kExe +
+                      scene + outputs("failed") + " --backend opencl --device 7:7",
+                  dir, 120);
+  ASSERT_EQ(failed.status, 0) << failed.err;
+  EXPECT_TRUE(has(failed.err, "rill-trace: warning: rank 2 on ")) << failed.err;
+  EXPECT_TRUE(has(failed.err, "is lost (rendering failed: ")) << failed.err;
+  EXPECT_TRUE(has(failed.err, "7:7")) << failed.err;
+  expect_same_files(dir, "ref", "failed", kSuffixes, std::size(kSuffixes));
+}
+
 // Without MPI in the build, a process started by a launcher as one of several refuses to
 // render the whole image beside the others.
 TEST(DistributedWithoutMpi, ALaunchedProcessIsAClearError) {
