@@ -314,7 +314,9 @@ void print_notes(const RenderOptions& o, const Prepared& p,
                 p.grid.degenerate, p.grid.non_finite);
 }
 
+#if RILL_HAVE_MPI
 int render_distributed(const RenderOptions& o);
+#endif
 
 int render(RenderOptions o) {
   // --threads: the CPU backends' worker threads (oneTBB), for the whole render.
