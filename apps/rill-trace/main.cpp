@@ -11,7 +11,8 @@
 //                           [--traversal incremental|recompute]
 //                           [--stats] [--wait-threshold F] [--masking on|off]   (multipass)
 //                           [--device SPEC] [--tile N] [--rank-timeout S] [--tile-timeout S]
-//                           [--progress] [--distribute]   (under mpirun: docs/distributed.md)
+//                           [--checkpoint S] [--progress] [--distribute]
+//                           (under mpirun: docs/distributed.md)
 //   rill-trace accuracy [--backends LIST] [--scenes LIST] [--size WxH] [--repeats N]
 //                       [--one-at-a-time] [--out-dir DIR]
 //   rill-trace demo [--scene SCENE] [--size WxH] [--out-dir DIR]
@@ -28,6 +29,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -110,7 +112,7 @@ struct RenderOptions {
   // Distributed rendering (docs/distributed.md): tile size, how long a silent rank or a slow
   // tile is waited for, the device, whether distribution is required.
   int tile = 64;
-  double rank_timeout = 20, tile_timeout = 0;
+  double rank_timeout = 20, tile_timeout = 0, checkpoint = 2;
   std::string device;
   bool distribute = false;
   bool progress = false;
@@ -484,12 +486,31 @@ std::string pixel_settings(const RenderOptions& o, const Prepared& p) {
   return "accuracy " + o.accuracy + "; knobs " + p.knobs.str();
 }
 
-// The note beside a partial image: what is in it and what is not, and why.
-void write_partial_note(const std::string& path, const RenderOptions& o,
-                        const rt::distributed::FarmResult& R, int tile, const std::string& why) {
-  std::ofstream f(path);
+// The outputs asked for, in the order write_outputs writes them.
+std::vector<std::string> output_paths(const RenderOptions& o, const Prepared& p) {
+  std::vector<std::string> paths;
+  for (const std::string* path : {&p.out, &o.pfm, &o.depth, &o.prim, &o.normal})
+    if (!path->empty()) paths.push_back(*path);
+  return paths;
+}
+
+// The note beside a partial image: NAME.partial.txt after the first output.
+std::string partial_note_path(const RenderOptions& o, const Prepared& p) {
+  const std::string first = rt::distributed::partial_name(output_paths(o, p).front());
+  const size_t dot = first.find_last_of('.');
+  return (dot == std::string::npos ? first : first.substr(0, dot)) + ".txt";
+}
+
+// Writes the image so far as partial outputs (NAME.partial.EXT), and the note: what is in it
+// and what is not, and why. Returns what it wrote.
+std::vector<std::string> write_partial(const RenderOptions& o, const Prepared& p,
+                                       const rt::distributed::FarmResult& R,
+                                       const std::string& why) {
+  std::vector<std::string> written = write_outputs(o, p, R.image, rt::distributed::partial_name);
+  const std::string note = partial_note_path(o, p);
+  std::ostringstream f;
   f << "rill-trace: a partial render of " << o.scene << ", " << R.image.width << "x"
-    << R.image.height << " in " << R.tiles << " tiles of " << tile << " pixels\n"
+    << R.image.height << " in " << R.tiles << " tiles of " << o.tile << " pixels\n"
     << "why: " << why << "\n"
     << "tiles in the image: " << R.tiles_done << " of " << R.tiles
     << "; the others are black, depth +inf, prim -1\n";
@@ -499,7 +520,13 @@ void write_partial_note(const std::string& path, const RenderOptions& o,
   f << "missing tiles (x y width height):\n";
   for (const rt::distributed::Tile& t : R.missing)
     f << t.x << " " << t.y << " " << t.width << " " << t.height << "\n";
-  if (!f) throw rt::SceneError("cannot write " + path);
+  rt::write_output_file(note, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out << f.str();
+    if (!out) throw rt::SceneError("cannot write " + note);
+  });
+  written.push_back(note);
+  return written;
 }
 
 int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distributed::FarmResult& R,
@@ -523,6 +550,7 @@ int render_distributed(const RenderOptions& o) {
     fo.rank_timeout = o.rank_timeout;
     fo.tile_timeout = o.tile_timeout;
     fo.progress = root && o.progress;
+    fo.checkpoint = o.checkpoint;
     dist::Farm farm(mpi, fo);
     farm.start(
         [&] {
@@ -533,11 +561,18 @@ int render_distributed(const RenderOptions& o) {
     // A worker that failed to load has no settings: it renders nothing, and waits for rank 0
     // to end the job.
     const rt::RenderSettings rs = prepared ? prepared->rs : rt::RenderSettings{};
-    result = farm.render(rs.width, rs.height, rs.outputs, [&](const dist::Tile& t) {
+    auto render_tile = [&](const dist::Tile& t) {
       rt::RenderSettings s = rs;
       s.window = {t.x, t.y, t.width, t.height};
       return prepared->tracer->render(s, prepared->scene.camera);
-    });
+    };
+    // Rank 0 keeps the image so far on disk: mpirun may kill it without warning.
+    auto checkpoint = [&](const dist::FarmResult& so_far) {
+      write_partial(o, *prepared, so_far,
+                    "a checkpoint: the render was still running when this was written (it is "
+                    "removed when the render completes)");
+    };
+    result = farm.render(rs.width, rs.height, rs.outputs, render_tile, checkpoint);
   } catch (const std::exception& e) {
     // Rank 0: a rank failed to load or has another scene (the message names it), or rank 0
     // itself failed. A worker: rank 0 is lost. Either way the job ends here, all of it: the
@@ -568,7 +603,14 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distribute
                        rt::distributed::MpiSession& mpi, Clock::time_point t_start) {
   namespace dist = rt::distributed;
   if (!R.complete()) {
-    // First the message: when mpirun ends the job, SIGKILL follows SIGTERM within a second.
+    // mpirun may send SIGTERM more than once while it ends the job: the partial outputs are
+    // written through them (only SIGKILL stops that; the last checkpoint is on disk already).
+    if (R.interrupted) {
+      std::signal(SIGTERM, SIG_IGN);
+      std::signal(SIGINT, SIG_IGN);
+    }
+    // First the message: when mpirun ends the job, SIGKILL follows SIGTERM within a second,
+    // at times within milliseconds.
     const std::string why =
         R.interrupted ? "stopped by a signal: mpirun ends the job when a rank dies, and names the "
                         "rank and its host (mpirun --enable-recovery goes on without it)"
@@ -578,16 +620,17 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distribute
                  "partial outputs (NAME.partial.EXT) with a note\n",
                  why.c_str(), R.tiles_done, R.tiles);
     std::fflush(stderr);
-    std::vector<std::string> written = write_outputs(o, p, R.image, dist::partial_name);
-    const std::string note = written.front().substr(0, written.front().find_last_of('.')) + ".txt";
-    write_partial_note(note, o, R, o.tile, why);
-    written.push_back(note);
-    print_notes(o, p, written);
+    print_notes(o, p, write_partial(o, p, R, why));
     std::fflush(stdout);
     if (R.interrupted) std::_Exit(1);  // mpirun is ending the job
     mpi.abort(1);
   }
   const std::vector<std::string> written = write_outputs(o, p, R.image);
+  // The checkpoints are out of date now.
+  std::error_code ignored;
+  for (const std::string& path : output_paths(o, p))
+    std::filesystem::remove(dist::partial_name(path), ignored);
+  std::filesystem::remove(partial_note_path(o, p), ignored);
   if (!o.source.empty()) {
     std::ofstream f(o.source);
     f << p.tracer->source(o.backend, p.acc);
@@ -789,6 +832,11 @@ int main(int argc, char** argv) {
   r->add_option("--tile-timeout", ro.tile_timeout,
                 "distributed: seconds a rank may take for a tile before it is lost (0: no limit)")
       ->default_str("0")
+      ->check(number_in(0, 86400, false));
+  r->add_option("--checkpoint", ro.checkpoint,
+                "distributed: rank 0 writes the image so far as NAME.partial.EXT this often, in "
+                "seconds, while it renders (0: never); removed when the render completes")
+      ->default_str("2")
       ->check(number_in(0, 86400, false));
   r->add_option("--device", ro.device,
                 "the device of opencl, glsl or glsl-compute (RILL_OPENCL_DEVICE or "

@@ -319,10 +319,10 @@ void Farm::start_master(const std::function<uint64_t()>& load) {
   }
 }
 
-std::optional<FarmResult> Farm::render(
-    int width, int height, const FrameOutputs& outputs,
-    const std::function<RenderResult(const Tile&)>& render_tile) {
-  if (mpi_.rank() == 0) return render_master(width, height, outputs, render_tile);
+std::optional<FarmResult> Farm::render(int width, int height, const FrameOutputs& outputs,
+                                       const std::function<RenderResult(const Tile&)>& render_tile,
+                                       const std::function<void(const FarmResult&)>& checkpoint) {
+  if (mpi_.rank() == 0) return render_master(width, height, outputs, render_tile, checkpoint);
   render_worker(render_tile);
   return std::nullopt;
 }
@@ -376,8 +376,31 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
                              seconds_text(o_.rank_timeout));
 }
 
+void Farm::report(FarmResult& R, const TileQueue& queue) const {
+  R.tiles_done = queue.done();
+  R.missing.clear();
+  for (int id = 0; id < queue.total(); ++id)
+    if (!queue.is_done(id)) R.missing.push_back(queue.tile(id));
+  double busiest = 0, sum = 0;
+  int counted = 0;
+  R.ranks.clear();
+  for (size_t r = 0; r < peers_.size(); ++r) {
+    const Peer& p = peers_[r];
+    R.ranks.push_back(RankReport{static_cast<int>(r), p.host, p.backend, p.tiles, p.busy_ms, p.lost,
+                                 p.responsive});
+    R.must_abort = R.must_abort || !p.responsive;
+    if (!p.alive) continue;
+    busiest = std::max(busiest, p.busy_ms);
+    sum += p.busy_ms;
+    ++counted;
+  }
+  R.imbalance = sum > 0 ? busiest / (sum / counted) - 1.0 : 0.0;
+  R.warnings = warnings_;
+}
+
 FarmResult Farm::render_master(int width, int height, const FrameOutputs& outputs,
-                               const std::function<RenderResult(const Tile&)>& render_tile) {
+                               const std::function<RenderResult(const Tile&)>& render_tile,
+                               const std::function<void(const FarmResult&)>& checkpoint) {
   const double t0 = now_s();
   FarmResult R;
   R.image = blank_image(width, height, outputs);
@@ -412,17 +435,18 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
     if (!o_.progress || (!final && now_s() - last < 0.1)) return;
     last = now_s();
     const int bar = 30, filled = bar * queue.done() / std::max(1, queue.total());
-    std::string line = "\rrill-trace: [" + std::string(static_cast<size_t>(filled), '#') +
-                       std::string(static_cast<size_t>(bar - filled), '.') + "] " +
-                       std::to_string(queue.done()) + "/" + std::to_string(queue.total()) +
-                       " tiles; per rank";
+    std::string line(static_cast<size_t>(filled), '#');
+    line.append(static_cast<size_t>(bar - filled), '.');
+    std::fprintf(stderr, "\rrill-trace: [%s] %d/%d tiles; per rank", line.c_str(), queue.done(),
+                 queue.total());
     for (size_t r = 0; r < peers_.size() && r < 16; ++r)
-      line += " " + std::to_string(peers_[r].tiles) + (peers_[r].alive ? "" : "(lost)");
-    if (peers_.size() > 16) line += " ...";
-    std::fprintf(stderr, "%s%s", line.c_str(), final ? "\n" : "");
+      std::fprintf(stderr, " %d%s", peers_[r].tiles, peers_[r].alive ? "" : "(lost)");
+    std::fprintf(stderr, "%s%s", peers_.size() > 16 ? " ..." : "", final ? "\n" : "");
     std::fflush(stderr);
   };
 
+  int saved = 0;  // tiles in the last checkpoint
+  double saved_at = t0;
   Background<RenderResult> mine;
   Tile my_tile;
   double my_start = 0;
@@ -484,27 +508,18 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
     if (!anyone) break;
     beat();
     draw_progress(false);
+    if (checkpoint && o_.checkpoint > 0 && queue.done() > saved &&
+        now_s() - saved_at >= o_.checkpoint && !queue.complete()) {
+      report(R, queue);
+      checkpoint(R);
+      saved = queue.done();
+      saved_at = now_s();
+    }
     nap();
   }
   draw_progress(true);
   R.wall_ms = (now_s() - t0) * 1e3;
-  R.tiles_done = queue.done();
-  for (int id = 0; id < queue.total(); ++id)
-    if (!queue.is_done(id)) R.missing.push_back(queue.tile(id));
-  double busiest = 0, sum = 0;
-  int counted = 0;
-  for (size_t r = 0; r < peers_.size(); ++r) {
-    const Peer& p = peers_[r];
-    R.ranks.push_back(RankReport{static_cast<int>(r), p.host, p.backend, p.tiles, p.busy_ms, p.lost,
-                                 p.responsive});
-    R.must_abort = R.must_abort || !p.responsive;
-    if (!p.alive) continue;
-    busiest = std::max(busiest, p.busy_ms);
-    sum += p.busy_ms;
-    ++counted;
-  }
-  R.imbalance = sum > 0 ? busiest / (sum / counted) - 1.0 : 0.0;
-  R.warnings = warnings_;
+  report(R, queue);
   if (R.interrupted) return R;  // mpirun is ending the job: no time for goodbyes
   if (mine.running()) R.must_abort = true;
   for (int r = 1; r < mpi_.size(); ++r)

@@ -8,9 +8,11 @@
 // render (RenderSettings::window), and main writes it as it writes any render.
 //
 // Faults. Open MPI 4.1's mpirun, by default, ends the whole job when a rank dies: rank 0
-// gets SIGTERM and about a second later SIGKILL. So rank 0 answers SIGTERM (and SIGINT) by
-// returning what it has at once (FarmResult::interrupted), for main to write as a partial
-// image with a note. Started with `mpirun --enable-recovery`, the job goes on without the
+// gets SIGTERM and SIGKILL within a second, at times within milliseconds. So rank 0 keeps the
+// image so far on disk while it renders (checkpoints, every FarmOptions::checkpoint seconds),
+// and answers SIGTERM (and SIGINT) by returning what it has at once
+// (FarmResult::interrupted), for main to write as a partial image with a note if it still
+// can. Started with `mpirun --enable-recovery`, the job goes on without the
 // dead rank: rank 0 hears from every rank at least every half second (heartbeats from each
 // rank's main thread, which never renders), declares a rank lost after rank_timeout of
 // silence, or when a tile takes longer than tile_timeout (a hung device), or when it reports
@@ -38,6 +40,7 @@ struct FarmOptions {
   double rank_timeout = 20;  // seconds of silence before a rank is lost
   double tile_timeout = 0;   // seconds a rank may take for a tile; 0: no limit
   double heartbeat = 0.5;    // seconds between heartbeats
+  double checkpoint = 2;     // rank 0 hands out the image so far this often (0: never)
   bool progress = false;     // rank 0 draws a progress bar on stderr
 };
 
@@ -77,16 +80,22 @@ class Farm {
 
   // Every rank: renders tiles with render_tile (on another thread) until the image is
   // complete. Rank 0 returns the image; a worker returns nothing once rank 0 says stop, and
-  // throws if rank 0 is lost.
+  // throws if rank 0 is lost. Rank 0 calls checkpoint with the image so far every
+  // options.checkpoint seconds while tiles come in, for main to keep on disk: mpirun may kill
+  // rank 0 at once when another rank dies, with no time to write anything then.
   std::optional<FarmResult> render(int width, int height, const FrameOutputs& outputs,
-                                   const std::function<RenderResult(const Tile&)>& render_tile);
+                                   const std::function<RenderResult(const Tile&)>& render_tile,
+                                   const std::function<void(const FarmResult&)>& checkpoint = {});
 
  private:
   struct Peer;
   void start_master(const std::function<uint64_t()>& load);
   void start_worker(const std::function<uint64_t()>& load);
   FarmResult render_master(int width, int height, const FrameOutputs& outputs,
-                           const std::function<RenderResult(const Tile&)>& render_tile);
+                           const std::function<RenderResult(const Tile&)>& render_tile,
+                           const std::function<void(const FarmResult&)>& checkpoint);
+  // Rank 0: the counts, missing tiles and per-rank report of R, as they are now.
+  void report(FarmResult& R, const TileQueue& queue) const;
   void render_worker(const std::function<RenderResult(const Tile&)>& render_tile);
   // Rank 0: the rank is lost; its tiles go back to the queue (if there is one).
   void lose(int rank, const std::string& why, bool responsive, TileQueue* queue);
