@@ -10,16 +10,70 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
+#include <deque>
 #include <exception>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <thread>
 
 #include "rill/rt/scene/Scene.h"
 
 namespace rt::distributed {
+
+// The one thread that loads the scene and renders every tile of this rank, one job at a time.
+// One thread for all: a GL context is current on one thread at a time (EGL refuses to make it
+// current on another while it is current on a thread that ended). Detached, not joined: a
+// rank that must end while its tile still renders (a hung device) ends the process instead of
+// waiting for it.
+class Lane {
+ public:
+  Lane() : s_(std::make_shared<State>()) {
+    std::thread([s = s_] { s->run(); }).detach();
+  }
+  ~Lane() {
+    {
+      std::lock_guard<std::mutex> lock(s_->mutex);
+      s_->quit = true;
+    }
+    s_->wake.notify_one();
+  }
+  Lane(const Lane&) = delete;
+  Lane& operator=(const Lane&) = delete;
+  // Runs job on the lane after the jobs before it (one at a time: the caller polls each).
+  void post(std::function<void()> job) {
+    {
+      std::lock_guard<std::mutex> lock(s_->mutex);
+      s_->jobs.push_back(std::move(job));
+    }
+    s_->wake.notify_one();
+  }
+
+ private:
+  struct State {
+    std::mutex mutex;
+    std::condition_variable wake;
+    std::deque<std::function<void()>> jobs;
+    bool quit = false;
+    void run() {
+      for (;;) {
+        std::function<void()> job;
+        {
+          std::unique_lock<std::mutex> lock(mutex);
+          wake.wait(lock, [&] { return quit || !jobs.empty(); });
+          if (jobs.empty()) return;
+          job = std::move(jobs.front());
+          jobs.pop_front();
+        }
+        job();
+      }
+    }
+  };
+  std::shared_ptr<State> s_;
+};
 
 namespace {
 
@@ -69,21 +123,20 @@ class SignalGuard {
   }, int_{};
 };
 
-// A function running on a thread of its own. Detached, not joined: a rank that must end while
-// its tile still renders (a hung device) ends the process instead of waiting for it.
+// A function's result, computed on the farm's lane (below), polled by the main thread.
 template <class T>
 class Background {
  public:
-  void start(std::function<T()> f) {
+  void start(Lane& lane, std::function<T()> f) {
     s_ = std::make_shared<State>();
-    std::thread([s = s_, f = std::move(f)] {
+    lane.post([s = s_, f = std::move(f)] {
       try {
         s->value = f();
       } catch (...) {
         s->error = std::current_exception();
       }
       s->done = true;
-    }).detach();
+    });
   }
   bool idle() const { return s_ == nullptr; }
   bool ready() const { return s_ != nullptr && s_->done; }
@@ -168,7 +221,8 @@ struct Farm::Peer {
   double busy_ms = 0;
 };
 
-Farm::Farm(MpiSession& mpi, const FarmOptions& options) : mpi_(mpi), o_(options) {}
+Farm::Farm(MpiSession& mpi, const FarmOptions& options)
+    : mpi_(mpi), o_(options), lane_(std::make_unique<Lane>()) {}
 Farm::~Farm() = default;
 
 std::string partial_name(const std::string& path) {
@@ -240,7 +294,7 @@ void Farm::start(const std::function<uint64_t()>& load, const std::string& backe
 
 void Farm::start_worker(const std::function<uint64_t()>& load) {
   Background<uint64_t> job;
-  job.start(load);
+  job.start(*lane_, load);
   heard0_ = now_s();
   for (;;) {
     int source = 0, tag = 0;
@@ -274,7 +328,7 @@ void Farm::start_master(const std::function<uint64_t()>& load) {
   peers_[0].backend = backend_;
   peers_[0].hello = true;
   Background<uint64_t> job;
-  job.start(load);
+  job.start(*lane_, load);
   std::optional<uint64_t> mine;
   for (;;) {
     if (!mine && job.ready()) {
@@ -365,7 +419,7 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
       current = todo.front();
       todo.pop_front();
       started = now_s();
-      job.start([&render_tile, t = current] { return render_tile(t); });
+      job.start(*lane_, [&render_tile, t = current] { return render_tile(t); });
     }
     check_silence(nullptr);
     beat();
@@ -473,7 +527,7 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
       if (std::optional<Tile> t = queue.next(0)) {
         my_tile = *t;
         my_start = now_s();
-        mine.start([&render_tile, t = *t] { return render_tile(t); });
+        mine.start(*lane_, [&render_tile, t = *t] { return render_tile(t); });
       }
     }
     // The workers'.

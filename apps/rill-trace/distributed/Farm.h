@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,8 @@
 #include "rill/rt/Tracer.h"
 
 namespace rt::distributed {
+
+class Lane;  // Farm.cpp: the thread that loads and renders
 
 struct FarmOptions {
   int tile = 64;             // tile size in pixels (square; smaller at the edges)
@@ -112,6 +115,7 @@ class Farm {
   double last_beat_ = 0;
   bool loaded_ = false;
   std::vector<std::string> warnings_;
+  std::unique_ptr<Lane> lane_;
 };
 
 // A partial output's name: x.png -> x.partial.png (a partial image never takes the name of a
