@@ -10,6 +10,9 @@
 //                           [--triangle moller|watertight] [--offset epsilon|scaled]
 //                           [--traversal incremental|recompute]
 //                           [--stats] [--wait-threshold F] [--masking on|off]   (multipass)
+//                           [--device SPEC] [--tile N] [--rank-timeout S] [--tile-timeout S]
+//                           [--checkpoint S] [--progress] [--distribute]
+//                           (under mpirun: docs/distributed.md)
 //   rill-trace accuracy [--backends LIST] [--scenes LIST] [--size WxH] [--repeats N]
 //                       [--one-at-a-time] [--out-dir DIR]
 //   rill-trace demo [--scene SCENE] [--size WxH] [--out-dir DIR]
@@ -26,17 +29,26 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <memory>
 #include <new>
 #include <optional>
 #include <sstream>
 
 #include "AccuracyBench.h"
 #include "FrameSequence.h"
+#include "distributed/Launch.h"
+#include "distributed/SceneHash.h"
+#if RILL_HAVE_MPI
+#include "distributed/Farm.h"
+#include "distributed/MpiSession.h"
+#endif
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/Image.h"
@@ -99,6 +111,14 @@ struct RenderOptions {
   // Frame-rate mode: after the first render (which compiles), render this many more frames
   // of the same scene back to back and report their times.
   int bench_frames = 0;
+  // Distributed rendering (docs/distributed.md): tile size, how long a silent rank or a slow
+  // tile is waited for, the device, whether distribution is required.
+  int tile = 64;
+  double rank_timeout = 20, tile_timeout = 0, checkpoint = 2;
+  std::string device;
+  bool distribute = false;
+  bool progress = false;
+  bool backend_given = false;  // --backend on the command line (else $RILL_TRACE_BACKEND)
   // Dynamic scenes (docs/dynamic-scenes.md): the frames to render ("N" or "A:B"), how the
   // BVH follows the moving objects, and a preview video of the frames.
   std::string frames;
@@ -141,6 +161,169 @@ nlohmann::json split_json(const rt::FrameTimes& t) {
           {"accumulate", t.accumulate},
           {"reduce", t.reduce},
           {"read_back", t.read_back}};
+}
+
+// What rill-trace is doing, for the message when memory runs out ("out of memory while
+// building the grid 512x512x512").
+std::string g_doing = "starting";
+
+// Everything a render needs before its first frame: the scene with the command line's changes,
+// its grid, the tracer and the settings. Each rank of a distributed render makes its own.
+// Built in place and never moved (the tracer was made from the scene and grid beside it).
+struct Prepared {
+  rt::Scene scene;
+  rt::Grid grid;
+  rt::TracerOptions knobs;
+  std::unique_ptr<rt::Tracer> tracer;
+  rt::RenderSettings rs;
+  rill::Accuracy acc = rill::Accuracy::Strict;
+  std::string out;  // the PNG: --out, or a default name when no output is named
+  double load_ms = 0, setup_ms = 0;
+};
+
+// Warnings go to stderr when `say` (rank 0 of a distributed render; every single process).
+std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
+  auto p = std::make_unique<Prepared>();
+  g_doing = "loading " + rt::clipped(o.scene);
+  if (o.strategy != "megakernel" && o.strategy != "multipass")
+    throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
+  p->acc = rill::parse_accuracy(o.accuracy);
+  const auto t_load = Clock::now();
+  rt::InputOptions input;
+  input.strict = o.strict_input;
+  input.allow_empty = o.allow_empty;
+  p->scene = rt::load_scene(o.scene, input);
+  rt::Scene& scene = p->scene;
+  if (!o.size.empty()) parse_size(o.size, scene.width, scene.height);
+  if (o.max_depth >= 0) scene.options.max_depth = o.max_depth;
+  if (o.spp > 0) scene.options.spp = o.spp;
+  if (!o.grid.empty()) scene.options.grid = parse_grid(o.grid);
+  if (!o.subgrids.empty()) scene.options.subgrid_min = rt::parse_subgrid_min(o.subgrids);
+  if (!o.grid_density.empty()) scene.options.grid_density = rt::parse_grid_density(o.grid_density);
+  if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
+  if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
+  scene.validate();
+  // An animated scene's camera as it is at the start (Pose.h): frame 0, for every path that
+  // renders one frame; --frames moves it per frame.
+  if (scene.animation.animated()) scene.camera = rt::camera_at(scene, scene.animation.time.start);
+  p->load_ms = ms_since(t_load);
+  for (const std::string& w : scene.warnings)
+    if (say) std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
+
+  g_doing = "building the grid of " + std::to_string(scene.triangle_count()) + " triangles";
+  p->grid = rt::build_grid_for(scene, o.backend);  // settings left open: for the backend
+  for (const std::string& w : p->grid.warnings) {
+    if (say) std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
+    scene.warnings.push_back(w);  // for --stats-json
+  }
+
+  const auto t_setup = Clock::now();
+  p->knobs.triangle = rt::parse_triangle_test(o.triangle);
+  p->knobs.offset = rt::parse_self_intersection(o.offset);
+  p->knobs.traversal = rt::parse_traversal(o.traversal);
+  g_doing = "uploading the scene and grid (" + std::to_string(p->grid.voxel_count()) + " voxels)";
+  p->tracer = std::make_unique<rt::Tracer>(scene, p->grid, p->knobs);
+  p->setup_ms = ms_since(t_setup);
+
+  rt::RenderSettings& rs = p->rs;
+  rs.backend = o.backend;
+  rs.accuracy = p->acc;
+  rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
+  rs.width = scene.width;
+  rs.height = scene.height;
+  if (o.masking != "on" && o.masking != "off")
+    throw rt::SceneError("--masking expects on or off (got '" + o.masking + "')");
+  rs.wait_threshold = o.wait_threshold;
+  rs.masking = o.masking == "on";
+  // Only what is written comes back from the device (the PNG: 8-bit, encoded there).
+  p->out = o.out;
+  if (p->out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
+    p->out = (scene.name.empty() ? std::string("render") : scene.name) + ".png";
+  rs.outputs.rgb8 = !p->out.empty();
+  rs.outputs.color = !o.pfm.empty();
+  rs.outputs.depth = !o.depth.empty();
+  rs.outputs.prim = !o.prim.empty();
+  rs.outputs.normal = !o.normal.empty();
+  return p;
+}
+
+// Writes the outputs asked for from a render, each under name(its path) (a partial render
+// writes beside the names asked for); returns what it wrote.
+std::vector<std::string> write_outputs(
+    const RenderOptions& o, const Prepared& p, const rt::RenderResult& r,
+    const std::function<std::string(const std::string&)>& name = [](const std::string& s) {
+      return s;
+    }) {
+  g_doing = "writing the outputs";
+  std::vector<std::string> written;
+  auto pfm = [&](const std::string& path, const auto& data) {
+    if (path.empty()) return;
+    rt::write_pfm(name(path), r.width, r.height, data);
+    written.push_back(name(path));
+  };
+  if (!p.out.empty()) {
+    rt::write_png_rgb8(name(p.out), r.width, r.height, r.rgb8);
+    written.push_back(name(p.out));
+  }
+  pfm(o.pfm, r.color);
+  pfm(o.depth, r.depth);
+  if (!o.prim.empty()) pfm(o.prim, to_float(r.prim));
+  pfm(o.normal, r.normal);
+  return written;
+}
+
+// The --stats-json fields a distributed render shares with a single-process one.
+nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, const rt::RenderResult& r) {
+  const rt::Scene& scene = p.scene;
+  const rt::Grid& grid = p.grid;
+  nlohmann::json j;
+  j["scene"] = o.scene;
+  j["triangles"] = scene.triangle_count();
+  j["width"] = r.width;
+  j["height"] = r.height;
+  j["backend"] = o.backend;
+  j["accuracy"] = o.accuracy;
+  j["strategy"] = o.strategy;
+  j["knobs"] = p.knobs.str();
+  j["spp"] = scene.options.spp;
+  j["max_depth"] = scene.options.max_depth;
+  j["features"] = p.tracer->features().str();
+  j["grid"] = {{"resolution", {grid.res.x, grid.res.y, grid.res.z}},
+               {"density", scene.options.grid_density},
+               {"subgrids", grid.subgrids},
+               {"references", grid.elements.size()},
+               {"triangles", grid.usable},
+               {"degenerate", grid.degenerate},
+               {"non_finite", grid.non_finite}};
+  j["warnings"] = scene.warnings;
+  j["rays"] = r.rays;
+  return j;
+}
+
+void write_json(const std::string& path, const nlohmann::json& j) {
+  std::ofstream f(path);
+  f << j.dump(2) << "\n";
+  if (!f) throw rt::SceneError("cannot write " + path);
+}
+
+// The notes after the outputs (unless --quiet): what was written, and scene trouble.
+void print_notes(const RenderOptions& o, const Prepared& p,
+                 const std::vector<std::string>& written) {
+  if (o.quiet) return;
+  for (const auto& w : written) std::printf("wrote %s\n", w.c_str());
+  glm::vec3 lo, hi;
+  if (rt::scene_bounds(p.scene, lo, hi)) {
+    // In double: the float length of a 1e20-unit box overflows.
+    const double size = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
+    if (size < 1e-10f || size > 1e10f)
+      std::printf(
+          "note: the scene is %g units across; the intersection test's cubic terms underflow "
+          "(GLSL flushes them) or overflow outside about 1e-10..1e10\n",
+          static_cast<double>(size));
+  }
+  if (p.grid.degenerate + p.grid.non_finite > 0)
+    std::printf("note: %zu degenerate and %zu non-finite triangles are never hit\n",
+                p.grid.degenerate, p.grid.non_finite);
 }
 
 // One frame of a sequence (--frames): where it is in time, what moving its objects cost
@@ -206,43 +389,40 @@ rt::BvhUpdate parse_bvh_update_option(const std::string& s) {
   }
 }
 
-// What rill-trace is doing, for the message when memory runs out ("out of memory while
-// building the grid 512x512x512").
-std::string g_doing = "starting";
+#if RILL_HAVE_MPI
+int render_distributed(const RenderOptions& o);
+#endif
 
-int render(const RenderOptions& o) {
+int render(RenderOptions o) {
   // --threads: the CPU backends' worker threads (oneTBB), for the whole render.
   std::optional<tbb::global_control> threads;
   if (o.threads > 0)
     threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(o.threads));
-  g_doing = "loading " + rt::clipped(o.scene);
-  if (o.strategy != "megakernel" && o.strategy != "multipass")
-    throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
-  const rill::Accuracy acc = rill::parse_accuracy(o.accuracy);
-  const auto t_load = Clock::now();
-  rt::InputOptions input;
-  input.strict = o.strict_input;
-  input.allow_empty = o.allow_empty;
-  rt::Scene scene = rt::load_scene(o.scene, input);
-  if (!o.size.empty()) parse_size(o.size, scene.width, scene.height);
-  if (o.max_depth >= 0) scene.options.max_depth = o.max_depth;
-  if (o.spp > 0) scene.options.spp = o.spp;
-  if (!o.grid.empty()) scene.options.grid = parse_grid(o.grid);
-  if (!o.subgrids.empty()) scene.options.subgrid_min = rt::parse_subgrid_min(o.subgrids);
-  if (!o.grid_density.empty()) scene.options.grid_density = rt::parse_grid_density(o.grid_density);
-  if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
-  if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
-  scene.validate();
-  const double load_ms = ms_since(t_load);
-  for (const std::string& w : scene.warnings)
-    std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
-
-  g_doing = "building the grid of " + std::to_string(scene.triangle_count()) + " triangles";
-  rt::Grid grid = rt::build_grid_for(scene, o.backend);  // settings left open: for the backend
-  for (const std::string& w : grid.warnings) {
-    std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
-    scene.warnings.push_back(w);  // for --stats-json
+  o.backend = rt::distributed::rank_backend(o.backend, o.backend_given);
+  // Started by mpirun as one of several processes: one image over all of them.
+  const int launched = rt::distributed::launcher_world_size();
+  if (launched > 1) {
+#if RILL_HAVE_MPI
+    return render_distributed(o);
+#else
+    throw rt::SceneError("started by an MPI launcher as one of " + std::to_string(launched) +
+                         " processes, but this rill-trace was built without MPI (RILL_MPI=OFF "
+                         "or no libopenmpi-dev at build time): each would render the whole "
+                         "image; rebuild with MPI, or run it without mpirun");
+#endif
   }
+  if (o.distribute)
+    throw rt::SceneError(
+        "--distribute: not started by an MPI launcher as one of several processes; run "
+        "'mpirun -np N rill-trace render ...' with N >= 2 (docs/distributed.md)");
+  rt::distributed::use_device(o.backend, rt::distributed::rank_device(o.device, 0));
+  std::unique_ptr<Prepared> prepared = prepare(o);
+  Prepared& p = *prepared;
+  const rt::Scene& scene = p.scene;
+  const rt::Grid& grid = p.grid;
+  rt::Tracer& tracer = *p.tracer;
+  const rt::RenderSettings& rs = p.rs;
+  const double load_ms = p.load_ms;
 
   // --frames: which frames, and one output name per frame (FrameSequence.h).
   const bool animated = scene.animation.animated();
@@ -250,11 +430,10 @@ int render(const RenderOptions& o) {
       o.frames.empty() ? trace_cli::FrameSpan{}
                        : trace_cli::parse_frames(o.frames, scene.animation.time, animated);
   const rt::BvhUpdate bvh_update = parse_bvh_update_option(o.bvh);
-  std::string out = o.out;
-  if (out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
-    out = (scene.name.empty() ? std::string("render") : scene.name) +
-          (span.count() > 1 ? "-%04d.png" : ".png");
-  const std::pair<std::string, const std::string*> outputs[] = {{"--out", &out},
+  if (o.out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty() &&
+      span.count() > 1)
+    p.out = (scene.name.empty() ? std::string("render") : scene.name) + "-%04d.png";
+  const std::pair<std::string, const std::string*> outputs[] = {{"--out", &p.out},
                                                                 {"--pfm", &o.pfm},
                                                                 {"--depth", &o.depth},
                                                                 {"--prim", &o.prim},
@@ -267,40 +446,17 @@ int render(const RenderOptions& o) {
                            " frames: " + option + " needs a frame number, such as frame-%04d" +
                            std::filesystem::path(*path).extension().string());
   }
-  auto frame_file = [&](const std::string& path, int frame) {
-    return o.frames.empty() ? path : trace_cli::frame_path(path, frame);
+  auto frame_file = [&](int frame) {
+    return [&o, frame](const std::string& path) {
+      return o.frames.empty() ? path : trace_cli::frame_path(path, frame);
+    };
   };
   if (!o.video.empty()) {
-    if (out.empty() || o.frames.empty())
+    if (p.out.empty() || o.frames.empty())
       throw rt::SceneError("--video makes a video of the frames' PNGs: give --frames and --out");
     if (std::string why = trace_cli::video_tool_missing(); !why.empty()) throw rt::SceneError(why);
   }
 
-  const auto t_setup = Clock::now();
-  rt::TracerOptions knobs;
-  knobs.triangle = rt::parse_triangle_test(o.triangle);
-  knobs.offset = rt::parse_self_intersection(o.offset);
-  knobs.traversal = rt::parse_traversal(o.traversal);
-  g_doing = "uploading the scene and grid (" + std::to_string(grid.voxel_count()) + " voxels)";
-  rt::Tracer tracer(scene, grid, knobs);
-  const double setup_ms = ms_since(t_setup);
-
-  rt::RenderSettings rs;
-  rs.backend = o.backend;
-  rs.accuracy = acc;
-  rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
-  rs.width = scene.width;
-  rs.height = scene.height;
-  if (o.masking != "on" && o.masking != "off")
-    throw rt::SceneError("--masking expects on or off (got '" + o.masking + "')");
-  rs.wait_threshold = o.wait_threshold;
-  rs.masking = o.masking == "on";
-  // Only what is written comes back from the device (the PNG: 8-bit, encoded there).
-  rs.outputs.rgb8 = !out.empty();
-  rs.outputs.color = !o.pfm.empty();
-  rs.outputs.depth = !o.depth.empty();
-  rs.outputs.prim = !o.prim.empty();
-  rs.outputs.normal = !o.normal.empty();
   const auto t_render = Clock::now();
   g_doing = "rendering " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " on " +
             o.backend;
@@ -312,7 +468,7 @@ int render(const RenderOptions& o) {
   const rt::Camera first_camera = rt::camera_at(scene, first_time);
   rt::RenderResult r = tracer.render(rs, first_camera);
   const double render_ms = ms_since(t_render);
-  const double compile_ms = setup_ms + (render_ms - r.trace_ms);
+  const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
   // Of that, the compile() calls (about 0 from a kernel cache); the rest is set-up: uploading
   // the scene and grid, and the warm-up launch (Megakernel::render).
   const double kernels_ms = std::min(r.stages.compile_ms, compile_ms);
@@ -343,24 +499,7 @@ int render(const RenderOptions& o) {
                     &rt::FrameTimes::reduce, &rt::FrameTimes::read_back})
     median_split.*step = median_of(step);
 
-  g_doing = "writing the outputs";
-  std::vector<std::string> written;
-  auto write_outputs = [&](const rt::RenderResult& res, int k) {
-    auto put = [&](const std::string& pattern, auto write) {
-      if (pattern.empty()) return;
-      const std::string path = frame_file(pattern, k);
-      write(path);
-      if (written.size() < 8) written.push_back(path);
-    };
-    put(out, [&](const std::string& p) { rt::write_png_rgb8(p, res.width, res.height, res.rgb8); });
-    put(o.pfm, [&](const std::string& p) { rt::write_pfm(p, res.width, res.height, res.color); });
-    put(o.depth, [&](const std::string& p) { rt::write_pfm(p, res.width, res.height, res.depth); });
-    put(o.prim,
-        [&](const std::string& p) { rt::write_pfm(p, res.width, res.height, to_float(res.prim)); });
-    put(o.normal,
-        [&](const std::string& p) { rt::write_pfm(p, res.width, res.height, res.normal); });
-  };
-  write_outputs(r, span.first);
+  std::vector<std::string> written = write_outputs(o, p, r, frame_file(span.first));
   frame_stats[0].frame = span.first;
   frame_stats[0].time = first_time;
   frame_stats[0].trace_ms = r.trace_ms;
@@ -382,57 +521,38 @@ int render(const RenderOptions& o) {
     fs.compile_ms = frame.compile_ms;
     fs.compiles = rill::kernel_cache_stats().misses - misses;
     g_doing = "writing frame " + std::to_string(k);
-    write_outputs(frame, k);
+    for (const std::string& w : write_outputs(o, p, frame, frame_file(k)))
+      if (written.size() < 8) written.push_back(w);
     frame_stats.push_back(fs);
     progress.update(k - span.first + 1, fs.trace_ms);
   }
   progress.finish();
   if (!o.video.empty()) {
     g_doing = "writing the video";
-    trace_cli::write_video(out, span.first, scene.animation.time.fps, o.video);
+    trace_cli::write_video(p.out, span.first, scene.animation.time.fps, o.video);
     written.push_back(o.video);
   }
   if (!o.source.empty()) {
     std::ofstream f(o.source);
-    f << tracer.source(o.backend, acc);
+    f << tracer.source(o.backend, p.acc);
     if (!f) throw rt::SceneError("cannot write " + o.source);
   }
 
   const double rays_per_s =
       r.trace_ms > 0 ? static_cast<double>(r.rays) / (r.trace_ms * 1e-3) : 0.0;
   if (!o.stats_json.empty()) {
-    nlohmann::json j;
-    j["scene"] = o.scene;
-    j["triangles"] = scene.triangle_count();
-    j["width"] = r.width;
-    j["height"] = r.height;
-    j["backend"] = o.backend;
-    j["accuracy"] = o.accuracy;
-    j["strategy"] = o.strategy;
-    j["knobs"] = knobs.str();
-    j["spp"] = scene.options.spp;
-    j["max_depth"] = scene.options.max_depth;
-    j["features"] = tracer.features().str();
-    j["grid"] = {{"resolution", {grid.res.x, grid.res.y, grid.res.z}},
-                 {"density", scene.options.grid_density},
-                 {"subgrids", grid.subgrids},
-                 {"references", grid.elements.size()},
-                 {"triangles", grid.usable},
-                 {"degenerate", grid.degenerate},
-                 {"non_finite", grid.non_finite}};
-    j["warnings"] = scene.warnings;
-    j["rays"] = r.rays;
+    nlohmann::json j = stats_json(o, p, r);
     j["launches"] = r.launches;
     if (o.strategy == "multipass") {
       j["wait_threshold"] = rs.wait_threshold;
       j["masking"] = rs.masking;
       nlohmann::json passes = nlohmann::json::array();
-      for (const rt::PassStats& p : r.passes)
-        passes.push_back({{"name", p.name},
-                          {"calls", p.calls},
-                          {"processed", p.processed},
-                          {"written", p.written},
-                          {"ms", p.ms}});
+      for (const rt::PassStats& ps : r.passes)
+        passes.push_back({{"name", ps.name},
+                          {"calls", ps.calls},
+                          {"processed", ps.processed},
+                          {"written", ps.written},
+                          {"ms", ps.ms}});
       j["passes"] = passes;
     }
     j["rays_per_second"] = rays_per_s;
@@ -463,26 +583,10 @@ int render(const RenderOptions& o) {
     // The first frame's trace time, step by step (Tracer.h, FrameTimes).
     j["trace_split_ms"] = split_json(r.times);
     if (animated || span.count() > 1) j["frames"] = frames_json(frame_stats, tracer.features());
-    std::ofstream f(o.stats_json);
-    f << j.dump(2) << "\n";
-    if (!f) throw rt::SceneError("cannot write " + o.stats_json);
+    write_json(o.stats_json, j);
   }
-  if (!o.quiet) {
-    for (const auto& w : written) std::printf("wrote %s\n", w.c_str());
-    glm::vec3 lo, hi;
-    if (rt::scene_bounds(scene, lo, hi)) {
-      // In double: the float length of a 1e20-unit box overflows.
-      const double size = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
-      if (size < 1e-10f || size > 1e10f)
-        std::printf(
-            "note: the scene is %g units across; the intersection test's cubic terms underflow "
-            "(GLSL flushes them) or overflow outside about 1e-10..1e10\n",
-            static_cast<double>(size));
-    }
-    if (grid.degenerate + grid.non_finite > 0)
-      std::printf("note: %zu degenerate and %zu non-finite triangles are never hit\n",
-                  grid.degenerate, grid.non_finite);
-  }
+  print_notes(o, p, written);
+  if (frame_stats.size() > 1 || animated) print_frames_summary(frame_stats);
   if (!frame_ms.empty())
     std::printf(
         "%zu frames of %dx%d after the first: median %.2f ms (%.1f fps), min %.2f ms, max "
@@ -495,7 +599,6 @@ int render(const RenderOptions& o) {
         "read-back %.3f ms\n",
         median_split.setup, median_split.launch, median_split.accumulate, median_split.reduce,
         median_split.read_back);
-  if (frame_stats.size() > 1 || animated) print_frames_summary(frame_stats);
   if (o.stats)
     std::printf(
         "compile stages, summed over %d kernel(s) (%s): capture %.1f ms, optimize %.1f ms, "
@@ -507,10 +610,10 @@ int render(const RenderOptions& o) {
   if (o.stats && o.strategy == "multipass") {
     std::printf("%-14s %8s %14s %14s %10s   (masking %s, wait threshold %g)\n", "pass", "calls",
                 "processed", "written", "ms", rs.masking ? "on" : "off", rs.wait_threshold);
-    for (const rt::PassStats& p : r.passes)
-      std::printf("%-14s %8lld %14lld %14lld %10.2f\n", p.name.c_str(),
-                  static_cast<long long>(p.calls), static_cast<long long>(p.processed),
-                  static_cast<long long>(p.written), p.ms);
+    for (const rt::PassStats& ps : r.passes)
+      std::printf("%-14s %8lld %14lld %14lld %10.2f\n", ps.name.c_str(),
+                  static_cast<long long>(ps.calls), static_cast<long long>(ps.processed),
+                  static_cast<long long>(ps.written), ps.ms);
   }
   std::printf(
       "rill-trace: %s, %zu triangles, %dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
@@ -522,6 +625,211 @@ int render(const RenderOptions& o) {
       o.strategy == "multipass" ? (" (" + std::to_string(r.launches) + " launches)").c_str() : "");
   return 0;
 }
+
+#if RILL_HAVE_MPI
+// What besides the scene decides the pixels, for the scene hash (SceneHash.h): size, samples
+// and depth are in the scene by now.
+std::string pixel_settings(const RenderOptions& o, const Prepared& p) {
+  return "accuracy " + o.accuracy + "; knobs " + p.knobs.str();
+}
+
+// The outputs asked for, in the order write_outputs writes them.
+std::vector<std::string> output_paths(const RenderOptions& o, const Prepared& p) {
+  std::vector<std::string> paths;
+  for (const std::string* path : {&p.out, &o.pfm, &o.depth, &o.prim, &o.normal})
+    if (!path->empty()) paths.push_back(*path);
+  return paths;
+}
+
+// The note beside a partial image: NAME.partial.txt after the first output.
+std::string partial_note_path(const RenderOptions& o, const Prepared& p) {
+  const std::string first = rt::distributed::partial_name(output_paths(o, p).front());
+  const size_t dot = first.find_last_of('.');
+  return (dot == std::string::npos ? first : first.substr(0, dot)) + ".txt";
+}
+
+// Writes the image so far as partial outputs (NAME.partial.EXT), and the note: what is in it
+// and what is not, and why. Returns what it wrote.
+std::vector<std::string> write_partial(const RenderOptions& o, const Prepared& p,
+                                       const rt::distributed::FarmResult& R,
+                                       const std::string& why) {
+  std::vector<std::string> written = write_outputs(o, p, R.image, rt::distributed::partial_name);
+  const std::string note = partial_note_path(o, p);
+  std::ostringstream f;
+  f << "rill-trace: a partial render of " << o.scene << ", " << R.image.width << "x"
+    << R.image.height << " in " << R.tiles << " tiles of " << o.tile << " pixels\n"
+    << "why: " << why << "\n"
+    << "tiles in the image: " << R.tiles_done << " of " << R.tiles
+    << "; the others are black, depth +inf, prim -1\n";
+  for (const rt::distributed::RankReport& r : R.ranks)
+    f << "rank " << r.rank << " on " << r.host << " (" << r.backend << "): " << r.tiles << " tiles"
+      << (r.lost.empty() ? "" : ", lost: " + r.lost) << "\n";
+  f << "missing tiles (x y width height):\n";
+  for (const rt::distributed::Tile& t : R.missing)
+    f << t.x << " " << t.y << " " << t.width << " " << t.height << "\n";
+  rt::write_output_file(note, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out << f.str();
+    if (!out) throw rt::SceneError("cannot write " + note);
+  });
+  written.push_back(note);
+  return written;
+}
+
+int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distributed::FarmResult& R,
+                       rt::distributed::MpiSession& mpi, Clock::time_point t_start);
+
+// One image over every rank of the MPI job (distributed/Farm.h, docs/distributed.md).
+int render_distributed(const RenderOptions& o) {
+  namespace dist = rt::distributed;
+  if (o.bench_frames > 0)
+    throw rt::SceneError("--bench-frames times one process; it does not run under mpirun");
+  if (!o.frames.empty() || !o.video.empty())
+    throw rt::SceneError(
+        "--frames and --video do not run under mpirun yet: a distributed render is one frame "
+        "(an animated scene's first); render sequences in one process");
+  dist::MpiSession mpi;
+  const bool root = mpi.rank() == 0;
+  const std::string who = "rank " + std::to_string(mpi.rank()) + " on " + mpi.host();
+  const auto t_start = Clock::now();
+  std::unique_ptr<Prepared> prepared;
+  std::optional<dist::FarmResult> result;
+  try {
+    dist::use_device(o.backend, dist::rank_device(o.device, mpi.local_rank()));
+    dist::FarmOptions fo;
+    fo.tile = o.tile;
+    fo.rank_timeout = o.rank_timeout;
+    fo.tile_timeout = o.tile_timeout;
+    fo.progress = root && o.progress;
+    fo.checkpoint = o.checkpoint;
+    dist::Farm farm(mpi, fo);
+    farm.start(
+        [&] {
+          prepared = prepare(o, root);
+          return dist::scene_hash(prepared->scene, pixel_settings(o, *prepared));
+        },
+        o.backend);
+    // A worker that failed to load has no settings: it renders nothing, and waits for rank 0
+    // to end the job.
+    const rt::RenderSettings rs = prepared ? prepared->rs : rt::RenderSettings{};
+    auto render_tile = [&](const dist::Tile& t) {
+      rt::RenderSettings s = rs;
+      s.window = {t.x, t.y, t.width, t.height};
+      return prepared->tracer->render(s, prepared->scene.camera);
+    };
+    // Rank 0 keeps the image so far on disk: mpirun may kill it without warning.
+    auto checkpoint = [&](const dist::FarmResult& so_far) {
+      write_partial(o, *prepared, so_far,
+                    "a checkpoint: the render was still running when this was written (it is "
+                    "removed when the render completes)");
+    };
+    result = farm.render(rs.width, rs.height, rs.outputs, render_tile, checkpoint);
+  } catch (const std::exception& e) {
+    // Rank 0: a rank failed to load or has another scene (the message names it), or rank 0
+    // itself failed. A worker: rank 0 is lost. Either way the job ends here, all of it: the
+    // other ranks may be waiting in MPI, or be hung.
+    std::string msg = e.what();
+    for (char& c : msg)
+      if (c == '\n') c = ' ';
+    std::fprintf(stderr, "rill-trace: %s%s\n", root ? "" : (who + ": ").c_str(), msg.c_str());
+    std::fflush(stderr);
+    if (root) mpi.abort(1);
+    std::_Exit(1);
+  }
+  if (!root) return 0;
+
+  const dist::FarmResult& R = *result;
+  try {
+    return finish_distributed(o, *prepared, R, mpi, t_start);
+  } catch (const std::exception& e) {
+    if (!R.must_abort) throw;  // main reports it; MPI_Finalize finds every rank
+    std::fprintf(stderr, "rill-trace: %s\n", e.what());
+    std::fflush(stderr);
+    mpi.abort(1);
+  }
+}
+
+// Rank 0, the image back: writes it (or what there is of it) and reports.
+int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distributed::FarmResult& R,
+                       rt::distributed::MpiSession& mpi, Clock::time_point t_start) {
+  namespace dist = rt::distributed;
+  if (!R.complete()) {
+    // mpirun may send SIGTERM more than once while it ends the job: the partial outputs are
+    // written through them (only SIGKILL stops that; the last checkpoint is on disk already).
+    if (R.interrupted) {
+      std::signal(SIGTERM, SIG_IGN);
+      std::signal(SIGINT, SIG_IGN);
+    }
+    // First the message: when mpirun ends the job, SIGKILL follows SIGTERM within a second,
+    // at times within milliseconds.
+    const std::string why =
+        R.interrupted ? "stopped by a signal: mpirun ends the job when a rank dies, and names the "
+                        "rank and its host (mpirun --enable-recovery goes on without it)"
+                      : "every rank was lost";
+    std::fprintf(stderr,
+                 "rill-trace: the render is incomplete (%s); writing the %d of %d tiles done as "
+                 "partial outputs (NAME.partial.EXT) with a note\n",
+                 why.c_str(), R.tiles_done, R.tiles);
+    std::fflush(stderr);
+    print_notes(o, p, write_partial(o, p, R, why));
+    std::fflush(stdout);
+    if (R.interrupted) std::_Exit(1);  // mpirun is ending the job
+    mpi.abort(1);
+  }
+  const std::vector<std::string> written = write_outputs(o, p, R.image);
+  // The checkpoints are out of date now.
+  std::error_code ignored;
+  for (const std::string& path : output_paths(o, p))
+    std::filesystem::remove(dist::partial_name(path), ignored);
+  std::filesystem::remove(partial_note_path(o, p), ignored);
+  if (!o.source.empty()) {
+    std::ofstream f(o.source);
+    f << p.tracer->source(o.backend, p.acc);
+    if (!f) throw rt::SceneError("cannot write " + o.source);
+  }
+  if (!o.stats_json.empty()) {
+    nlohmann::json j = stats_json(o, p, R.image);
+    nlohmann::json ranks = nlohmann::json::array();
+    for (const dist::RankReport& r : R.ranks)
+      ranks.push_back({{"rank", r.rank},
+                       {"host", r.host},
+                       {"backend", r.backend},
+                       {"tiles", r.tiles},
+                       {"busy_ms", r.busy_ms},
+                       {"lost", r.lost}});
+    j["distributed"] = {{"ranks", R.ranks.size()},  {"tile", o.tile},
+                        {"tiles", R.tiles},         {"tiles_done", R.tiles_done},
+                        {"complete", R.complete()}, {"imbalance", R.imbalance},
+                        {"per_rank", ranks},        {"warnings", R.warnings}};
+    j["time_ms"] = {{"load", p.load_ms},
+                    {"grid_build", p.grid.build_ms},
+                    {"render", R.wall_ms},
+                    {"total", ms_since(t_start)}};
+    write_json(o.stats_json, j);
+  }
+  print_notes(o, p, written);
+  if (!o.quiet)
+    for (const dist::RankReport& r : R.ranks)
+      std::printf("  rank %d on %s (%s): %d tiles, busy %.1f ms%s\n", r.rank, r.host.c_str(),
+                  r.backend.c_str(), r.tiles, r.busy_ms, r.lost.empty() ? "" : ", lost");
+  std::printf(
+      "rill-trace: %s, %zu triangles, %dx%d, %s %s, %zu ranks, %d tiles of %d: %lld rays; load "
+      "%.1f ms, grid build %.1f ms, render %.1f ms, imbalance %.1f%%\n",
+      p.scene.name.c_str(), p.scene.triangle_count(), R.image.width, R.image.height,
+      o.backend.c_str(), o.accuracy.c_str(), R.ranks.size(), R.tiles, o.tile,
+      static_cast<long long>(R.image.rays), p.load_ms, p.grid.build_ms, R.wall_ms,
+      R.imbalance * 100.0);
+  std::fflush(stdout);
+  if (R.must_abort) {
+    std::fprintf(stderr,
+                 "rill-trace: the image is complete without the lost rank(s); ending the job "
+                 "with MPI_Abort, as MPI_Finalize would wait for them\n");
+    std::fflush(stderr);
+    mpi.abort(3);
+  }
+  return 0;
+}
+#endif
 
 int demo(const std::string& scene_spec, const std::string& size, const std::string& out_dir) {
   rt::Scene scene = rt::load_scene(scene_spec);
@@ -663,6 +971,33 @@ int main(int argc, char** argv) {
                 "frame-rate mode: render N more frames back to back after the first and report "
                 "their times and frames per second")
       ->check(number_in(0, 100000, true));
+  r->add_option("--tile", ro.tile,
+                "distributed (mpirun): tile size in pixels, handed out one at a time; images "
+                "do not depend on it")
+      ->default_str("64")
+      ->check(number_in(1, 16384, true));
+  r->add_option("--rank-timeout", ro.rank_timeout,
+                "distributed: seconds a rank may be silent before it is lost")
+      ->default_str("20")
+      ->check(number_in(1, 86400, false));
+  r->add_option("--tile-timeout", ro.tile_timeout,
+                "distributed: seconds a rank may take for a tile before it is lost (0: no limit)")
+      ->default_str("0")
+      ->check(number_in(0, 86400, false));
+  r->add_option("--checkpoint", ro.checkpoint,
+                "distributed: rank 0 writes the image so far as NAME.partial.EXT this often, in "
+                "seconds, while it renders (0: never); removed when the render completes")
+      ->default_str("2")
+      ->check(number_in(0, 86400, false));
+  r->add_option("--device", ro.device,
+                "the device of opencl, glsl or glsl-compute (RILL_OPENCL_DEVICE or "
+                "RILL_EGL_DEVICE); {local_rank} is the rank's index on its host");
+  r->add_flag("--progress", ro.progress,
+              "distributed: rank 0 draws a progress bar on stderr, the tiles done per rank "
+              "(mpirun passes stderr through a pipe, so rill-trace cannot tell a terminal)");
+  r->add_flag("--distribute", ro.distribute,
+              "require a distributed render: an error unless started by mpirun with 2 or more "
+              "processes");
   r->add_option("--frames", ro.frames,
                 "dynamic scenes: frame N, or frames A:B (both included); outputs need a frame "
                 "number, e.g. --out frame-%04d.png");
@@ -722,6 +1057,7 @@ int main(int argc, char** argv) {
   }
   int rc = 0;
   try {
+    ro.backend_given = r->count("--backend") > 0;
     if (*r) rc = render(ro);
     if (*d) rc = demo(demo_scene, demo_size, demo_out);
     if (*in) rc = info();

@@ -150,7 +150,8 @@ std::shared_ptr<Chain> build_chain(const StreamRef& s, ReduceOp op, const std::s
   options.accuracy = Accuracy::Strict;
   auto chain = std::make_shared<Chain>();
   Stream<V> src(s);
-  bool two_d = st.dims == 2 && st.height > 1;
+  // A 2D stream is gathered as s(x, y) even when it is one row high (a one-row tile).
+  bool two_d = st.dims == 2;
   bool first_level = true;
   int64_t len = two_d ? st.width : st.count();
   int64_t count = two_d ? blocks(st.width) * st.height : blocks(len);

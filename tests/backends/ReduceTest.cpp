@@ -60,11 +60,15 @@ TEST_P(ReduceTest, FloatSumMinMaxInTheDocumentedOrder) {
 }
 
 TEST_P(ReduceTest, TwoDimensionalStreamsFoldRowByRow) {
-  const int w = 130, h = 7;
-  std::vector<float> v = values(3, w * h);
-  Stream<Float> s(w, h, "image");
-  s.upload(v);
-  EXPECT_EQ(bits_of(sum(s, backend_name())), bits_of(host_tree(v, w, std::plus<float>())));
+  // One row high too: a 2D stream all the same (a one-row tile of an image).
+  for (const int h : {7, 1}) {
+    const int w = 130;
+    std::vector<float> v = values(3, w * h);
+    Stream<Float> s(w, h, "image");
+    s.upload(v);
+    EXPECT_EQ(bits_of(sum(s, backend_name())), bits_of(host_tree(v, w, std::plus<float>())))
+        << w << "x" << h;
+  }
 }
 
 TEST_P(ReduceTest, VectorsReduceComponentwise) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "RunCommand.h"
 #include "TestUtil.h"
 
 namespace rt {
@@ -16,26 +17,8 @@ namespace {
 
 #ifdef RILL_TRACE_EXE
 
-struct Run {
-  int status = -1;  // exit status, or -1 if killed by a signal
-  std::string err;
-};
-
-// Runs a shell command line in dir, its stdout dropped and its stderr kept.
-Run run_command(const std::string& command, const testing::TempDir& dir) {
-  const std::string err = dir.path("stderr.txt");
-  // timeout: a hang fails the test instead of the whole suite.
-  std::string cmd =
-      "cd '" + dir.dir() + "' && timeout 60 " + command + " > /dev/null 2> '" + err + "'";
-  int rc = std::system(cmd.c_str());
-  Run r;
-  if (WIFEXITED(rc)) r.status = WEXITSTATUS(rc);
-  std::ifstream f(err);
-  std::stringstream s;
-  s << f.rdbuf();
-  r.err = s.str();
-  return r;
-}
+using testing::Run;
+using testing::run_command;
 
 Run run(const std::string& args, const testing::TempDir& dir) {
   return run_command("'" RILL_TRACE_EXE "' " + args, dir);
@@ -90,6 +73,13 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --strategy multipass --wait-threshold 0 --size 4x4",
                        "--wait-threshold");
   expect_clean_failure("render builtin:thesis-a --size 4x4 --out /no/such/dir/x.png", "x.png");
+  // Distributed rendering's options (docs/distributed.md), checked without mpirun too.
+  expect_clean_failure("render builtin:thesis-a --tile 0", "0 is out of range (1 to 16384)");
+  expect_clean_failure("render builtin:thesis-a --tile big", "'big' is not an integer");
+  expect_clean_failure("render builtin:thesis-a --rank-timeout 0", "out of range");
+  expect_clean_failure("render builtin:thesis-a --tile-timeout -1", "out of range");
+  expect_clean_failure("render builtin:thesis-a --size 4x4 --distribute", "--distribute");
+  expect_clean_failure("render builtin:thesis-a --size 4x4 --device 1", "--device");
 }
 
 // What rill-trace prints (stdout and stderr) with these arguments, and its exit status.

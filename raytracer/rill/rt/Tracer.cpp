@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <string>
 
 #include "rill/rt/accel/Bvh.h"
 #include "rill/rt/kernel/DeviceScene.h"
@@ -172,12 +173,20 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   if (width == 0 || height == 0) throw std::runtime_error("render: image size not set");
   const int depth = rs.max_depth >= 0 ? rs.max_depth : I.options.max_depth;
   const int spp = rs.spp > 0 ? rs.spp : I.options.spp;
-  I.device.camera.set(camera, width, height);
+  RenderSettings::Window win = rs.window;
+  if (win.empty()) win = {0, 0, width, height};
+  if (win.x < 0 || win.y < 0 || win.width > width - win.x || win.height > height - win.y)
+    throw std::runtime_error("render: window " + std::to_string(win.width) + "x" +
+                             std::to_string(win.height) + " at (" + std::to_string(win.x) + ", " +
+                             std::to_string(win.y) + ") is not inside the " +
+                             std::to_string(width) + "x" + std::to_string(height) + " image");
+  // The camera spans the whole image; the launches cover the window.
+  I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y));
   if (rs.strategy == Strategy::Multipass) {
     if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);
-    return I.multipass->render(rs, I.film, width, height, depth, spp, r);
+    return I.multipass->render(rs, I.film, win.width, win.height, depth, spp, r);
   }
-  I.megakernel.render(rs, I.film, width, height, depth, spp, r);
+  I.megakernel.render(rs, I.film, win.width, win.height, depth, spp, r);
 }
 
 std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Camera& camera,

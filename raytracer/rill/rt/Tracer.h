@@ -78,6 +78,14 @@ struct RenderSettings {
   double wait_threshold = 0.2;
   bool masking = true;
   FrameOutputs outputs;  // what comes back to the host
+  // A window of the image, in its pixels (row 0 at the top): only these are rendered, through
+  // the whole image's camera, bitwise the same as those pixels of the whole render, and the
+  // RenderResult is the window's size. Empty (width or height 0): the whole image. The
+  // distributed renderer's tiles (apps/rill-trace/distributed/).
+  struct Window {
+    int x = 0, y = 0, width = 0, height = 0;
+    bool empty() const { return width <= 0 || height <= 0; }
+  } window;
 };
 
 // A render's time, step by step, in milliseconds (wall clock on the host; they add up to

@@ -14,9 +14,15 @@ struct CameraRays {
       right{glm::vec3(0.0f), "right"}, up{glm::vec3(0.0f), "true_up"};
   rill::Uniform<Float> tan_half{0.0f, "tan_half"}, aspect{1.0f, "aspect"};
   rill::Uniform<Float2> size{glm::vec2(1.0f), "size"}, offset{glm::vec2(0.5f), "sample_offset"};
+  // Where the launch's pixel (0, 0) lies in the image: a render of a window of the image
+  // (RenderSettings::window) launches over the window alone. Added to the launch coordinate
+  // as integers before anything else, so a pixel's ray has the same bits in every window.
+  rill::Uniform<Int2> origin{glm::ivec2(0), "pixel_origin"};
 
-  void set(const Camera& camera, int width, int height);
-  // The unit direction through pixel pix at the sample offset.
+  // The camera for an image of width x height pixels, launched from pixel origin on.
+  void set(const Camera& camera, int width, int height, glm::ivec2 origin = glm::ivec2(0));
+  // The unit direction through the launch's pixel pix (the image's pixel pix + origin) at the
+  // sample offset.
   Float3 direction(const Int2& pix) const;
 };
 

@@ -1,0 +1,585 @@
+// The tile farm (Farm.h): rank 0's loop, which hands out tiles, renders some itself and
+// watches the other ranks, and the workers' loop. In both the main thread only talks (MPI,
+// heartbeats, deadlines) and polls; loading and rendering run on a thread beside it, so a
+// rank busy with a long tile still answers within half a second.
+#include "distributed/Farm.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <csignal>
+#include <cstdio>
+#include <deque>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "rill/rt/scene/Scene.h"
+
+namespace rt::distributed {
+
+// The one thread that loads the scene and renders every tile of this rank, one job at a time.
+// One thread for all: a GL context is current on one thread at a time (EGL refuses to make it
+// current on another while it is current on a thread that ended). Detached, not joined: a
+// rank that must end while its tile still renders (a hung device) ends the process instead of
+// waiting for it.
+class Lane {
+ public:
+  Lane() : s_(std::make_shared<State>()) {
+    std::thread([s = s_] { s->run(); }).detach();
+  }
+  ~Lane() {
+    {
+      std::lock_guard<std::mutex> lock(s_->mutex);
+      s_->quit = true;
+    }
+    s_->wake.notify_one();
+  }
+  Lane(const Lane&) = delete;
+  Lane& operator=(const Lane&) = delete;
+  // Runs job on the lane after the jobs before it (one at a time: the caller polls each).
+  void post(std::function<void()> job) {
+    {
+      std::lock_guard<std::mutex> lock(s_->mutex);
+      s_->jobs.push_back(std::move(job));
+    }
+    s_->wake.notify_one();
+  }
+
+ private:
+  struct State {
+    std::mutex mutex;
+    std::condition_variable wake;
+    std::deque<std::function<void()>> jobs;
+    bool quit = false;
+    void run() {
+      for (;;) {
+        std::function<void()> job;
+        {
+          std::unique_lock<std::mutex> lock(mutex);
+          wake.wait(lock, [&] { return quit || !jobs.empty(); });
+          if (jobs.empty()) return;
+          job = std::move(jobs.front());
+          jobs.pop_front();
+        }
+        job();
+      }
+    }
+  };
+  std::shared_ptr<State> s_;
+};
+
+namespace {
+
+// Tiles a worker holds at once: the one it renders and the next, so it never waits for one.
+constexpr int kAhead = 2;
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+void nap() {
+  std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+std::string seconds_text(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g s", s);
+  return buf;
+}
+
+volatile std::sig_atomic_t g_signal = 0;
+void on_signal(int sig) {
+  g_signal = sig;
+}
+
+// Rank 0 answers SIGTERM and SIGINT by returning what it has (Farm.h); the handlers rill-trace
+// had before come back afterwards.
+class SignalGuard {
+ public:
+  SignalGuard() {
+    g_signal = 0;
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGTERM, &sa, &term_);
+    sigaction(SIGINT, &sa, &int_);
+  }
+  ~SignalGuard() {
+    sigaction(SIGTERM, &term_, nullptr);
+    sigaction(SIGINT, &int_, nullptr);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  struct sigaction term_ {
+  }, int_{};
+};
+
+// A function's result, computed on the farm's lane (below), polled by the main thread.
+template <class T>
+class Background {
+ public:
+  void start(Lane& lane, std::function<T()> f) {
+    s_ = std::make_shared<State>();
+    lane.post([s = s_, f = std::move(f)] {
+      try {
+        s->value = f();
+      } catch (...) {
+        s->error = std::current_exception();
+      }
+      s->done = true;
+    });
+  }
+  bool idle() const { return s_ == nullptr; }
+  bool ready() const { return s_ != nullptr && s_->done; }
+  bool running() const { return s_ != nullptr && !s_->done; }
+  // The result (or the exception) of a ready function; idle afterwards.
+  T take() {
+    std::shared_ptr<State> s = std::move(s_);
+    if (s->error) std::rethrow_exception(s->error);
+    return std::move(s->value);
+  }
+
+ private:
+  struct State {
+    std::atomic<bool> done{false};
+    T value{};
+    std::exception_ptr error;
+  };
+  std::shared_ptr<State> s_;
+};
+
+// An image of the outputs asked for, every pixel as a miss with nothing behind it.
+RenderResult blank_image(int width, int height, const FrameOutputs& o) {
+  RenderResult r;
+  r.width = width;
+  r.height = height;
+  const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
+  if (o.color) r.color.assign(n, glm::vec3(0.0f));
+  if (o.rgb8) r.rgb8.assign(3 * n, 0);
+  if (o.depth) r.depth.assign(n, std::numeric_limits<float>::infinity());
+  if (o.prim) r.prim.assign(n, -1);
+  if (o.normal) r.normal.assign(n, glm::vec3(0.0f));
+  return r;
+}
+
+// Why a tile's pixels do not fit the tile (empty if they do).
+std::string misfit(const RenderResult& p, const Tile& t, const FrameOutputs& o) {
+  const size_t n = static_cast<size_t>(t.width) * static_cast<size_t>(t.height);
+  auto sized = [&](bool wanted, size_t got, size_t per_pixel) {
+    return got == (wanted ? n * per_pixel : 0);
+  };
+  if (p.width != t.width || p.height != t.height)
+    return "a " + std::to_string(p.width) + "x" + std::to_string(p.height) + " tile for a " +
+           std::to_string(t.width) + "x" + std::to_string(t.height) + " one";
+  if (!sized(o.color, p.color.size(), 1) || !sized(o.rgb8, p.rgb8.size(), 3) ||
+      !sized(o.depth, p.depth.size(), 1) || !sized(o.prim, p.prim.size(), 1) ||
+      !sized(o.normal, p.normal.size(), 1))
+    return "other outputs than were asked for";
+  return {};
+}
+
+// Copies a tile's rows into the image.
+void place(RenderResult& image, const Tile& t, const RenderResult& p) {
+  auto rows = [&](auto& dst, const auto& src, int per_pixel) {
+    if (src.empty()) return;
+    for (int y = 0; y < t.height; ++y) {
+      const size_t from = static_cast<size_t>(y) * t.width * per_pixel;
+      const size_t to = (static_cast<size_t>(t.y + y) * image.width + t.x) * per_pixel;
+      std::copy(src.begin() + from, src.begin() + from + t.width * per_pixel, dst.begin() + to);
+    }
+  };
+  rows(image.color, p.color, 1);
+  rows(image.rgb8, p.rgb8, 3);
+  rows(image.depth, p.depth, 1);
+  rows(image.prim, p.prim, 1);
+  rows(image.normal, p.normal, 1);
+  image.rays += p.rays;
+}
+
+}  // namespace
+
+struct Farm::Peer {
+  std::string host, backend;
+  bool hello = false;
+  uint64_t hash = 0;
+  bool alive = true;       // false: lost
+  bool responsive = true;  // false: lost without a word
+  std::string lost;
+  double heard = 0;        // when it was last heard from
+  double progress_at = 0;  // when it last returned a tile, or got one with none in hand
+  int in_flight = 0;
+  int tiles = 0;
+  double busy_ms = 0;
+};
+
+Farm::Farm(MpiSession& mpi, const FarmOptions& options)
+    : mpi_(mpi), o_(options), lane_(std::make_unique<Lane>()) {}
+Farm::~Farm() = default;
+
+std::string partial_name(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) ||
+      dot == (slash == std::string::npos ? 0 : slash + 1))
+    return path + ".partial";
+  return path.substr(0, dot) + ".partial" + path.substr(dot);
+}
+
+void Farm::beat() {
+  const double t = now_s();
+  if (t - last_beat_ < o_.heartbeat) return;
+  last_beat_ = t;
+  if (mpi_.rank() != 0) return mpi_.post(0, kHeartbeat);
+  // Lost ranks that said why (a failed render) wait for the stop: they hear from rank 0 too.
+  for (int r = 1; r < mpi_.size(); ++r)
+    if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kHeartbeat);
+}
+
+void Farm::lose(int rank, const std::string& why, bool responsive, TileQueue* queue) {
+  Peer& p = peers_[static_cast<size_t>(rank)];
+  if (!p.alive) return;
+  p.alive = false;
+  p.responsive = responsive;
+  p.lost = why;
+  for (char& c : p.lost)
+    if (c == '\n') c = ' ';  // a backend's message may list devices line by line
+  p.in_flight = 0;
+  if (!responsive) mpi_.forget(rank);
+  const int back = queue != nullptr ? queue->requeue(rank) : 0;
+  const std::string w = "rank " + std::to_string(rank) + " on " +
+                        (p.host.empty() ? std::string("an unknown host") : p.host) + " is lost (" +
+                        p.lost + "); " +
+                        (back > 0 ? std::to_string(back) + " of its tiles go to the other ranks"
+                                  : std::string("the other ranks go on"));
+  std::fprintf(stderr, "%srill-trace: warning: %s\n", o_.progress ? "\n" : "", w.c_str());
+  warnings_.push_back(w);
+}
+
+void Farm::check_silence(TileQueue* queue) {
+  const double t = now_s();
+  if (mpi_.rank() != 0) {
+    if (t - heard0_ > o_.rank_timeout)
+      throw std::runtime_error("rank 0 sent nothing for " + seconds_text(o_.rank_timeout) +
+                               " (crashed, killed or hung): this rank ends");
+    return;
+  }
+  for (int r = 1; r < mpi_.size(); ++r) {
+    Peer& p = peers_[static_cast<size_t>(r)];
+    if (!p.alive) continue;
+    if (t - p.heard > o_.rank_timeout)
+      lose(r, "sent nothing for " + seconds_text(o_.rank_timeout) + ": crashed, killed or hung",
+           false, queue);
+    else if (o_.tile_timeout > 0 && p.in_flight > 0 && t - p.progress_at > o_.tile_timeout)
+      lose(r, "no tile back within --tile-timeout " + seconds_text(o_.tile_timeout), false, queue);
+  }
+}
+
+void Farm::start(const std::function<uint64_t()>& load, const std::string& backend) {
+  backend_ = backend;
+  last_beat_ = 0;
+  if (mpi_.rank() == 0)
+    start_master(load);
+  else
+    start_worker(load);
+}
+
+void Farm::start_worker(const std::function<uint64_t()>& load) {
+  Background<uint64_t> job;
+  job.start(*lane_, load);
+  heard0_ = now_s();
+  for (;;) {
+    int source = 0, tag = 0;
+    Bytes bytes;
+    while (mpi_.receive(source, tag, bytes, o_.rank_timeout)) heard0_ = now_s();
+    if (job.ready()) {
+      Hello h;
+      h.host = mpi_.host();
+      h.backend = backend_;
+      try {
+        h.scene_hash = job.take();
+        h.ok = true;
+        loaded_ = true;
+      } catch (const std::exception& e) {
+        h.message = e.what();
+      }
+      mpi_.post(0, kHello, pack(h));
+      return;  // rank 0 answers with tiles, or ends the job
+    }
+    check_silence(nullptr);
+    beat();
+    nap();
+  }
+}
+
+void Farm::start_master(const std::function<uint64_t()>& load) {
+  peers_.assign(static_cast<size_t>(mpi_.size()), Peer{});
+  const double t0 = now_s();
+  for (Peer& p : peers_) p.heard = t0;
+  peers_[0].host = mpi_.host();
+  peers_[0].backend = backend_;
+  peers_[0].hello = true;
+  Background<uint64_t> job;
+  job.start(*lane_, load);
+  std::optional<uint64_t> mine;
+  for (;;) {
+    if (!mine && job.ready()) {
+      mine = job.take();  // rank 0's own failure: its message as it is
+      loaded_ = true;
+    }
+    int source = 0, tag = 0;
+    Bytes bytes;
+    while (mpi_.receive(source, tag, bytes, o_.rank_timeout)) {
+      Peer& p = peers_[static_cast<size_t>(source)];
+      p.heard = now_s();
+      if (tag != kHello) continue;
+      Hello h;
+      unpack(bytes, h);
+      p.host = h.host;
+      p.backend = h.backend;
+      p.hello = true;
+      p.hash = h.scene_hash;
+      if (!h.ok)
+        throw SceneError("rank " + std::to_string(source) + " on " + h.host + ": " + h.message);
+    }
+    check_silence(nullptr);
+    if (mine) {
+      bool all = true;
+      for (int r = 1; r < mpi_.size(); ++r) {
+        const Peer& p = peers_[static_cast<size_t>(r)];
+        if (p.alive && p.hello && p.hash != *mine) {
+          char why[160];
+          std::snprintf(why, sizeof why, " (scene hash %016llx, rank 0 has %016llx)",
+                        static_cast<unsigned long long>(p.hash),
+                        static_cast<unsigned long long>(*mine));
+          throw SceneError("rank " + std::to_string(r) + " on " + p.host +
+                           " loaded another scene than rank 0" + why +
+                           ": every rank needs the same scene files and the same options");
+        }
+        all = all && (p.hello || !p.alive);
+      }
+      if (all) return;
+    }
+    beat();
+    nap();
+  }
+}
+
+std::optional<FarmResult> Farm::render(int width, int height, const FrameOutputs& outputs,
+                                       const std::function<RenderResult(const Tile&)>& render_tile,
+                                       const std::function<void(const FarmResult&)>& checkpoint) {
+  if (mpi_.rank() == 0) return render_master(width, height, outputs, render_tile, checkpoint);
+  render_worker(render_tile);
+  return std::nullopt;
+}
+
+void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_tile) {
+  std::deque<Tile> todo;
+  Background<RenderResult> job;
+  Tile current;
+  double started = 0;
+  bool stopped = false, failed = !loaded_;
+  while (!stopped || !job.idle()) {
+    int source = 0, tag = 0;
+    Bytes bytes;
+    while (mpi_.receive(source, tag, bytes, o_.rank_timeout)) {
+      heard0_ = now_s();
+      if (tag == kStop) stopped = true;
+      if (tag != kAssign) continue;
+      Tile t;
+      unpack(bytes, t);
+      todo.push_back(t);
+    }
+    if (job.ready()) {
+      try {
+        TileDone d;
+        d.pixels = job.take();
+        d.id = current.id;
+        d.busy_ms = (now_s() - started) * 1e3;
+        mpi_.post(0, kTileDone, pack(d));
+      } catch (const std::exception& e) {
+        // The tiles go to the other ranks; this one stays to hear rank 0's stop.
+        mpi_.post(0, kFailed, pack(Text{std::string("rendering failed: ") + e.what()}));
+        failed = true;
+      }
+    }
+    if (failed && !todo.empty() && loaded_ == false) {
+      mpi_.post(0, kFailed, pack(Text{"got tiles without a scene"}));
+      todo.clear();
+    }
+    if (job.idle() && !failed && !todo.empty()) {
+      current = todo.front();
+      todo.pop_front();
+      started = now_s();
+      job.start(*lane_, [&render_tile, t = current] { return render_tile(t); });
+    }
+    check_silence(nullptr);
+    beat();
+    nap();
+  }
+  if (!mpi_.flush(o_.rank_timeout))
+    throw std::runtime_error("rank 0 did not take this rank's last messages within " +
+                             seconds_text(o_.rank_timeout));
+}
+
+void Farm::report(FarmResult& R, const TileQueue& queue) const {
+  R.tiles_done = queue.done();
+  R.missing.clear();
+  for (int id = 0; id < queue.total(); ++id)
+    if (!queue.is_done(id)) R.missing.push_back(queue.tile(id));
+  double busiest = 0, sum = 0;
+  int counted = 0;
+  R.ranks.clear();
+  for (size_t r = 0; r < peers_.size(); ++r) {
+    const Peer& p = peers_[r];
+    R.ranks.push_back(RankReport{static_cast<int>(r), p.host, p.backend, p.tiles, p.busy_ms, p.lost,
+                                 p.responsive});
+    R.must_abort = R.must_abort || !p.responsive;
+    if (!p.alive) continue;
+    busiest = std::max(busiest, p.busy_ms);
+    sum += p.busy_ms;
+    ++counted;
+  }
+  R.imbalance = sum > 0 ? busiest / (sum / counted) - 1.0 : 0.0;
+  R.warnings = warnings_;
+}
+
+FarmResult Farm::render_master(int width, int height, const FrameOutputs& outputs,
+                               const std::function<RenderResult(const Tile&)>& render_tile,
+                               const std::function<void(const FarmResult&)>& checkpoint) {
+  const double t0 = now_s();
+  FarmResult R;
+  R.image = blank_image(width, height, outputs);
+  TileQueue queue(make_tiles(width, height, o_.tile));
+  R.tiles = queue.total();
+  SignalGuard signals;
+
+  // The tile back from a rank: into the image, once.
+  auto accept = [&](int rank, int id, const RenderResult& pixels, double busy_ms) {
+    if (id < 0 || id >= queue.total())
+      return lose(rank, "sent tile " + std::to_string(id) + ", which does not exist", true, &queue);
+    const Tile& t = queue.tile(id);
+    if (const std::string why = misfit(pixels, t, outputs); !why.empty())
+      return lose(rank, "sent " + why, true, &queue);
+    if (!queue.finish(rank, id)) return;
+    place(R.image, t, pixels);
+    Peer& p = peers_[static_cast<size_t>(rank)];
+    ++p.tiles;
+    p.busy_ms += busy_ms;
+  };
+  // Tiles for a worker, up to kAhead in hand.
+  auto feed = [&](int rank) {
+    Peer& p = peers_[static_cast<size_t>(rank)];
+    while (p.alive && p.in_flight < kAhead) {
+      std::optional<Tile> t = queue.next(rank);
+      if (!t) return;
+      if (p.in_flight++ == 0) p.progress_at = now_s();
+      mpi_.post(rank, kAssign, pack(*t));
+    }
+  };
+  auto draw_progress = [&, last = 0.0](bool final) mutable {
+    if (!o_.progress || (!final && now_s() - last < 0.1)) return;
+    last = now_s();
+    const int bar = 30, filled = bar * queue.done() / std::max(1, queue.total());
+    std::string line(static_cast<size_t>(filled), '#');
+    line.append(static_cast<size_t>(bar - filled), '.');
+    std::fprintf(stderr, "\rrill-trace: [%s] %d/%d tiles; per rank", line.c_str(), queue.done(),
+                 queue.total());
+    for (size_t r = 0; r < peers_.size() && r < 16; ++r)
+      std::fprintf(stderr, " %d%s", peers_[r].tiles, peers_[r].alive ? "" : "(lost)");
+    std::fprintf(stderr, "%s%s", peers_.size() > 16 ? " ..." : "", final ? "\n" : "");
+    std::fflush(stderr);
+  };
+
+  int saved = 0;  // tiles in the last checkpoint
+  double saved_at = t0;
+  Background<RenderResult> mine;
+  Tile my_tile;
+  double my_start = 0;
+  for (int r = 1; r < mpi_.size(); ++r) feed(r);
+  while (!queue.complete()) {
+    if (g_signal != 0) {
+      R.interrupted = true;
+      break;
+    }
+    // Rank 0's own tiles.
+    if (mine.ready()) {
+      const double ms = (now_s() - my_start) * 1e3;
+      try {
+        accept(0, my_tile.id, mine.take(), ms);
+      } catch (const std::exception& e) {
+        lose(0, std::string("rendering failed: ") + e.what(), true, &queue);
+      }
+    }
+    if (mine.running() && o_.tile_timeout > 0 && now_s() - my_start > o_.tile_timeout) {
+      lose(0, "no tile back within --tile-timeout " + seconds_text(o_.tile_timeout), false, &queue);
+      R.must_abort = true;  // its thread cannot be stopped
+    }
+    if (mine.idle() && peers_[0].alive) {
+      if (std::optional<Tile> t = queue.next(0)) {
+        my_tile = *t;
+        my_start = now_s();
+        mine.start(*lane_, [&render_tile, t = *t] { return render_tile(t); });
+      }
+    }
+    // The workers'.
+    int source = 0, tag = 0;
+    Bytes bytes;
+    for (;;) {
+      try {
+        if (!mpi_.receive(source, tag, bytes, o_.rank_timeout)) break;
+      } catch (const std::exception& e) {
+        lose(source, e.what(), false, &queue);
+        continue;
+      }
+      Peer& p = peers_[static_cast<size_t>(source)];
+      if (!p.alive) continue;  // a lost rank's late word: its tiles went to the others
+      p.heard = now_s();
+      if (tag == kTileDone) {
+        TileDone d;
+        unpack(bytes, d);
+        p.in_flight = std::max(0, p.in_flight - 1);
+        p.progress_at = now_s();
+        accept(source, d.id, d.pixels, d.busy_ms);
+      } else if (tag == kFailed) {
+        Text t;
+        unpack(bytes, t);
+        lose(source, t.message, true, &queue);
+      }
+    }
+    check_silence(&queue);
+    for (int r = 1; r < mpi_.size(); ++r) feed(r);
+    bool anyone = false;
+    for (const Peer& p : peers_) anyone = anyone || p.alive;
+    if (!anyone) break;
+    beat();
+    draw_progress(false);
+    if (checkpoint && o_.checkpoint > 0 && queue.done() > saved &&
+        now_s() - saved_at >= o_.checkpoint && !queue.complete()) {
+      report(R, queue);
+      checkpoint(R);
+      saved = queue.done();
+      saved_at = now_s();
+    }
+    nap();
+  }
+  draw_progress(true);
+  R.wall_ms = (now_s() - t0) * 1e3;
+  report(R, queue);
+  if (R.interrupted) return R;  // mpirun is ending the job: no time for goodbyes
+  if (mine.running()) R.must_abort = true;
+  for (int r = 1; r < mpi_.size(); ++r)
+    if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kStop);
+  mpi_.flush(std::min(o_.rank_timeout, 5.0));
+  return R;
+}
+
+}  // namespace rt::distributed

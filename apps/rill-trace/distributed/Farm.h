@@ -1,0 +1,125 @@
+// The tile farm: one image rendered by every rank of an MPI job (docs/distributed.md).
+//
+// The scene is replicated: every rank loads it and builds its grid itself, then rank 0
+// checks that all of them hold the same scene (SceneHash.h) before a tile is handed out.
+// Rank 0 keeps the tile queue (TileQueue.h) and renders tiles too, on a thread of its own;
+// the other ranks ask for tiles, render them on their own backend and device, and send the
+// pixels back. Rank 0 assembles the image, which under strict is bitwise the single-process
+// render (RenderSettings::window), and main writes it as it writes any render.
+//
+// Faults. Open MPI 4.1's mpirun, by default, ends the whole job when a rank dies: rank 0
+// gets SIGTERM and SIGKILL within a second, at times within milliseconds. So rank 0 keeps the
+// image so far on disk while it renders (checkpoints, every FarmOptions::checkpoint seconds),
+// and answers SIGTERM (and SIGINT) by returning what it has at once
+// (FarmResult::interrupted), for main to write as a partial image with a note if it still
+// can. Started with `mpirun --enable-recovery`, the job goes on without the
+// dead rank: rank 0 hears from every rank at least every half second (heartbeats from each
+// rank's main thread, which never renders), declares a rank lost after rank_timeout of
+// silence, or when a tile takes longer than tile_timeout (a hung device), or when it reports
+// a failure, and hands its tiles to the others; the image completes with a warning. A lost
+// rank may still be alive (hung), and MPI_Finalize would wait for it forever, so the job
+// then ends with MPI_Abort once the outputs are written (FarmResult::must_abort). Workers
+// time out on rank 0 the same way and end.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "distributed/Messages.h"
+#include "distributed/MpiSession.h"
+#include "distributed/TileQueue.h"
+#include "rill/rt/Tracer.h"
+
+namespace rt::distributed {
+
+class Lane;  // Farm.cpp: the thread that loads and renders
+
+struct FarmOptions {
+  int tile = 64;             // tile size in pixels (square; smaller at the edges)
+  double rank_timeout = 20;  // seconds of silence before a rank is lost
+  double tile_timeout = 0;   // seconds a rank may take for a tile; 0: no limit
+  double heartbeat = 0.5;    // seconds between heartbeats
+  double checkpoint = 2;     // rank 0 hands out the image so far this often (0: never)
+  bool progress = false;     // rank 0 draws a progress bar on stderr
+};
+
+// One rank's part, as rank 0 saw it.
+struct RankReport {
+  int rank = 0;
+  std::string host, backend;
+  int tiles = 0;           // tiles it rendered that are in the image
+  double busy_ms = 0;      // time rendering them, measured on the rank
+  std::string lost;        // why it was lost; empty if it was not
+  bool responsive = true;  // false: lost without a word (died or hung)
+};
+
+struct FarmResult {
+  RenderResult image;  // the whole image; tiles missing: black, depth +inf, prim -1
+  int tiles = 0, tiles_done = 0;
+  std::vector<RankReport> ranks;
+  std::vector<Tile> missing;  // tiles not in the image
+  std::vector<std::string> warnings;
+  bool interrupted = false;  // SIGTERM or SIGINT (mpirun ending the job): a partial image
+  bool must_abort = false;   // a lost rank may be alive: end with MpiSession::abort
+  double wall_ms = 0;        // from the first tile handed out to the last one back
+  double imbalance = 0;      // busiest rank's busy time over the mean, less 1 (ranks not lost)
+  bool complete() const { return tiles_done == tiles; }
+};
+
+class Farm {
+ public:
+  Farm(MpiSession& mpi, const FarmOptions& options);
+  ~Farm();
+
+  // Every rank: load() loads the scene and builds what renders it (on another thread, while
+  // this one keeps in touch with the other ranks) and returns the scene hash. On rank 0,
+  // throws the first rank's failure or a scene mismatch, naming the rank and its host (main
+  // then ends the job); a worker waits for rank 0's verdict.
+  void start(const std::function<uint64_t()>& load, const std::string& backend);
+
+  // Every rank: renders tiles with render_tile (on another thread) until the image is
+  // complete. Rank 0 returns the image; a worker returns nothing once rank 0 says stop, and
+  // throws if rank 0 is lost. Rank 0 calls checkpoint with the image so far every
+  // options.checkpoint seconds while tiles come in, for main to keep on disk: mpirun may kill
+  // rank 0 at once when another rank dies, with no time to write anything then.
+  std::optional<FarmResult> render(int width, int height, const FrameOutputs& outputs,
+                                   const std::function<RenderResult(const Tile&)>& render_tile,
+                                   const std::function<void(const FarmResult&)>& checkpoint = {});
+
+ private:
+  struct Peer;
+  void start_master(const std::function<uint64_t()>& load);
+  void start_worker(const std::function<uint64_t()>& load);
+  FarmResult render_master(int width, int height, const FrameOutputs& outputs,
+                           const std::function<RenderResult(const Tile&)>& render_tile,
+                           const std::function<void(const FarmResult&)>& checkpoint);
+  // Rank 0: the counts, missing tiles and per-rank report of R, as they are now.
+  void report(FarmResult& R, const TileQueue& queue) const;
+  void render_worker(const std::function<RenderResult(const Tile&)>& render_tile);
+  // Rank 0: the rank is lost; its tiles go back to the queue (if there is one).
+  void lose(int rank, const std::string& why, bool responsive, TileQueue* queue);
+  // Rank 0: ranks silent for too long are lost. Workers: throws if rank 0 is.
+  void check_silence(TileQueue* queue);
+  // Sends a heartbeat to the ranks this one hears from, when one is due.
+  void beat();
+
+  MpiSession& mpi_;
+  FarmOptions o_;
+  std::string backend_;
+  std::vector<Peer> peers_;  // rank 0: every rank, itself included
+  double heard0_ = 0;        // workers: when rank 0 was last heard
+  double last_beat_ = 0;
+  bool loaded_ = false;
+  std::vector<std::string> warnings_;
+  std::unique_ptr<Lane> lane_;
+};
+
+// A partial output's name: x.png -> x.partial.png (a partial image never takes the name of a
+// whole one).
+std::string partial_name(const std::string& path);
+
+}  // namespace rt::distributed

@@ -1,0 +1,62 @@
+// What rank 0 and the workers say to each other: one struct per message, each sent as bytes
+// under its own MPI tag.
+//
+// The protocol, start to end (Farm.cpp):
+//   worker -> 0   Hello       after loading: the scene hash, or why loading failed
+//   0 -> worker   Abort       a rank failed to load or has another scene: everyone stops
+//   0 -> worker   Assign      a tile to render (two ahead, so a worker never waits for one)
+//   worker -> 0   TileDone    a tile's pixels, as the outputs asked for
+//   worker -> 0   Failed      rendering threw: its tiles go to the other ranks
+//   0 -> worker   Stop        the image is complete
+//   both ways     Heartbeat   "still here", every half second while loading or rendering
+// Bytes rather than MPI datatypes: the messages hold strings and optional arrays, and every
+// rank runs the same rill-trace on the same kind of host. A frame number can be added to
+// Assign and TileDone for animations.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "distributed/TileQueue.h"
+#include "rill/rt/Tracer.h"
+
+namespace rt::distributed {
+
+enum Tag : int { kHello = 1, kAbort, kAssign, kTileDone, kFailed, kStop, kHeartbeat };
+const char* tag_name(int tag);
+
+using Bytes = std::vector<char>;
+
+struct Hello {
+  bool ok = false;
+  uint64_t scene_hash = 0;
+  std::string host, backend;
+  std::string message;  // why loading failed (ok false)
+};
+
+struct TileDone {
+  int id = 0;
+  double busy_ms = 0;   // rendering it, on the worker
+  RenderResult pixels;  // the tile's size; rays, and the outputs asked for
+};
+
+// Abort, Failed: a message for the user.
+struct Text {
+  std::string message;
+};
+
+Bytes pack(const Hello& m);
+Bytes pack(const Tile& m);
+Bytes pack(const TileDone& m);
+Bytes pack(const Text& m);
+// Each throws std::runtime_error on bytes that are not a whole message of its kind.
+void unpack(const Bytes& b, Hello& m);
+void unpack(const Bytes& b, Tile& m);
+void unpack(const Bytes& b, TileDone& m);
+void unpack(const Bytes& b, Text& m);
+
+}  // namespace rt::distributed

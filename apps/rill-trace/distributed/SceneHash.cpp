@@ -1,0 +1,71 @@
+// The scene hash (SceneHash.h).
+#include "distributed/SceneHash.h"
+
+#include <cstring>
+#include <type_traits>
+#include <vector>
+
+namespace rt::distributed {
+
+namespace {
+
+class Fnv1a {
+ public:
+  void bytes(const void* p, size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) h_ = (h_ ^ b[i]) * 0x100000001b3ull;
+  }
+  template <class T>
+  requires std::is_arithmetic_v<T> || std::is_enum_v<T>
+  void add(T v) { bytes(&v, sizeof v); }
+  void add(const glm::vec2& v) { bytes(&v, sizeof v); }
+  void add(const glm::vec3& v) { bytes(&v, sizeof v); }
+  void add(const std::string& s) {
+    add(s.size());
+    bytes(s.data(), s.size());
+  }
+  // Vectors of plain values (floats, ints, glm vectors): their length, then their bytes.
+  template <class T>
+  requires std::is_trivially_copyable_v<T>
+  void add(const std::vector<T>& v) {
+    add(v.size());
+    bytes(v.data(), v.size() * sizeof(T));
+  }
+  uint64_t value() const { return h_; }
+
+ private:
+  uint64_t h_ = 0xcbf29ce484222325ull;
+};
+
+}  // namespace
+
+uint64_t scene_hash(const Scene& s, const std::string& settings) {
+  Fnv1a h;
+  h.add(settings);
+  h.add(s.camera.eye), h.add(s.camera.look_at), h.add(s.camera.up), h.add(s.camera.fov_y);
+  h.add(s.has_camera), h.add(s.width), h.add(s.height);
+  h.add(s.positions), h.add(s.normals), h.add(s.colors), h.add(s.texcoords), h.add(s.material);
+  h.add(s.textures.size());
+  for (const Texture& t : s.textures) {
+    h.add(t.name), h.add(t.type), h.add(t.width), h.add(t.height), h.add(t.texels);
+    h.add(t.wrap), h.add(t.bilinear), h.add(t.color1), h.add(t.color2), h.add(t.scale);
+  }
+  h.add(s.materials.size());
+  for (const Material& m : s.materials) {
+    h.add(m.name), h.add(m.shader), h.add(m.params.size());
+    for (const auto& [name, p] : m.params) {
+      h.add(name), h.add(p.kind), h.add(p.number), h.add(p.color), h.add(p.texture);
+    }
+    h.add(m.diffuse), h.add(m.specular), h.add(m.shininess), h.add(m.reflect);
+    h.add(m.transmit), h.add(m.ior);
+  }
+  h.add(s.lights.size());
+  for (const Light& l : s.lights) h.add(l.position), h.add(l.color);
+  h.add(s.background);
+  const SceneOptions& o = s.options;
+  h.add(o.shadows), h.add(o.ambient), h.add(o.max_depth), h.add(o.grid), h.add(o.subgrid_min);
+  h.add(o.grid_density), h.add(o.spp), h.add(o.smooth_normals);
+  return h.value();
+}
+
+}  // namespace rt::distributed

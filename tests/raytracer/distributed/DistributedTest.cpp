@@ -1,0 +1,254 @@
+// rill-trace under `mpirun --oversubscribe` on this host (docs/distributed.md): the image and
+// AOVs bitwise those of a single-process render for 2 and 3 ranks and tile sizes that do and
+// do not divide the image; a worker killed mid-render ends the job with a clear error and a
+// partial image, or (mpirun --enable-recovery) the image completes without it; a rank with
+// another scene, or one that fails to load, stops the job at the start with its message.
+// Every command runs under a timeout: a hang fails the test.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "RunCommand.h"
+#include "TestUtil.h"
+
+namespace rt::testing {
+namespace {
+
+using Result = rt::testing::Run;  // not testing::Test::Run, in fixtures
+
+const std::string kExe = std::string("'") + RILL_TRACE_EXE + "'";
+
+#if RILL_HAVE_MPI
+#define RT_REQUIRE_MPI() (void)0
+const std::string kMpirun = std::string("'") + RILL_MPIEXEC + "' --oversubscribe";
+#else
+#define RT_REQUIRE_MPI() GTEST_SKIP() << "rill-trace was built without MPI (RILL_MPI off)"
+const std::string kMpirun;
+#endif
+
+bool has(const std::string& text, const std::string& needle) {
+  return text.find(needle) != std::string::npos;
+}
+
+// The options naming every output, each file name starting with `name`.
+std::string outputs(const std::string& name) {
+  return " --out " + name + ".png --pfm " + name + ".pfm --depth " + name + "-depth.pfm --prim " +
+         name + "-prim.pfm --normal " + name + "-normal.pfm";
+}
+const char* const kSuffixes[] = {".png", ".pfm", "-depth.pfm", "-prim.pfm", "-normal.pfm"};
+
+void expect_same_files(const TempDir& dir, const std::string& want, const std::string& got,
+                       const char* const* suffixes, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    const std::string a = read_text(dir.path(want + suffixes[i]));
+    const std::string b = read_text(dir.path(got + suffixes[i]));
+    EXPECT_FALSE(a.empty()) << want << suffixes[i];
+    EXPECT_TRUE(a == b) << got << suffixes[i] << " differs from " << want << suffixes[i];
+  }
+}
+
+class Distributed : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    // mpirun refuses root without these; CI runs as root. Set here only, not in the docs.
+    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+    // Shared-memory messages without Linux's cross-memory attach, which containers without
+    // ptrace rights may refuse (large messages, the tiles, would fail there).
+    setenv("OMPI_MCA_btl_vader_single_copy_mechanism", "none", 1);
+  }
+};
+
+TEST_F(Distributed, IdenticalToSingleProcessWhateverRanksAndTiles) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string scene =
+      " render builtin:glass --size 48x36 --spp 2 --max-depth 3 --threads 1 --quiet";
+  Result ref = run_command(kExe + scene + outputs("ref"), dir);
+  ASSERT_EQ(ref.status, 0) << ref.err;
+  // 12 divides 48x36; 7 divides neither side.
+  for (auto [ranks, tile] : {std::pair{2, 12}, {3, 12}, {2, 7}, {3, 7}}) {
+    const std::string name = "np" + std::to_string(ranks) + "-tile" + std::to_string(tile);
+    SCOPED_TRACE(name);
+    Result r =
+        run_command(kMpirun + " -np " + std::to_string(ranks) + " " + kExe + scene + outputs(name) +
+                        " --tile " + std::to_string(tile) + " --stats-json " + name + ".json",
+                    dir, 120);
+    ASSERT_EQ(r.status, 0) << r.err;
+    expect_same_files(dir, "ref", name, kSuffixes, std::size(kSuffixes));
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir.path(name + ".json")));
+    const nlohmann::json& d = j.at("distributed");
+    const int tiles = ((48 + tile - 1) / tile) * ((36 + tile - 1) / tile);
+    EXPECT_EQ(d.at("ranks"), ranks);
+    EXPECT_EQ(d.at("tiles"), tiles);
+    EXPECT_EQ(d.at("tiles_done"), tiles);
+    EXPECT_TRUE(d.at("complete").get<bool>());
+    int sum = 0;
+    for (const nlohmann::json& rank : d.at("per_rank")) {
+      sum += rank.at("tiles").get<int>();
+      EXPECT_FALSE(rank.at("host").get<std::string>().empty());
+      EXPECT_EQ(rank.at("lost"), "");
+      EXPECT_GE(rank.at("busy_ms").get<double>(), 0.0);
+    }
+    EXPECT_EQ(sum, tiles);
+    EXPECT_GE(d.at("imbalance").get<double>(), 0.0);
+  }
+  // The multipass strategy, tiles of 5 on a 40x30 image.
+  const std::string cornell = " render builtin:cornell --strategy multipass --size 40x30 --quiet";
+  ASSERT_EQ(run_command(kExe + cornell + outputs("c-ref"), dir).status, 0);
+  Result r =
+      run_command(kMpirun + " -np 3 " + kExe + cornell + outputs("c") + " --tile 5", dir, 120);
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_same_files(dir, "c-ref", "c", kSuffixes, std::size(kSuffixes));
+}
+
+// A render long enough to kill a worker in the middle of it: the single-process reference
+// (ref.png, ref.pfm), and how long it took.
+class KilledWorker : public Distributed {
+ protected:
+  static constexpr const char* kScene =
+      " render builtin:glass --size 160x120 --spp 32 --threads 1 --tile 16 --rank-timeout 2"
+      " --out g.png --pfm g.pfm --stats-json g.json --checkpoint 0.2";
+
+  void SetUp() override {
+    RT_REQUIRE_MPI();
+    const auto t0 = std::chrono::steady_clock::now();
+    Result ref = run_command(kExe +
+                                 " render builtin:glass --size 160x120 --spp 32 --threads 1 "
+                                 "--out ref.png --pfm ref.pfm --quiet",
+                             dir_);
+    ASSERT_EQ(ref.status, 0) << ref.err;
+    reference_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // Rank 2 is killed (kill -9, from outside the program) a quarter of the way into the
+    // single-process time: three ranks share the cores, so the render is under way (a few
+    // checkpoints written) and far from done.
+    const double kill_after = std::max(0.8, reference_s_ / 4);
+    dir_.file("killed.sh", "(sleep " + std::to_string(kill_after) + "; kill -9 $$) &\nexec " +
+                               kExe + " \"$@\"\n");
+  }
+  Result run_with_killed_rank(const std::string& mpirun_options) {
+    return run_command(kMpirun + mpirun_options + " -np 2 " + kExe + kScene + " : -np 1 sh " +
+                           dir_.path("killed.sh") + kScene,
+                       dir_, 120);
+  }
+
+  TempDir dir_;
+  double reference_s_ = 0;
+};
+
+// Plain mpirun ends the job when a rank dies: a clear error naming the rank and host, and
+// the tiles done so far as a partial image with a note (the last checkpoint, or what rank 0
+// wrote on SIGTERM if mpirun left it the time).
+TEST_F(KilledWorker, EndsWithAClearErrorAndAPartialImage) {
+  Result r = run_with_killed_rank("");
+  ASSERT_NE(r.status, 124) << "hung: " << r.err;
+  ASSERT_NE(r.status, 0) << "the render ended before the worker was killed (it took "
+                         << reference_s_ << " s alone); stdout: " << r.out;
+  EXPECT_TRUE(has(r.err, "noticed that process rank 2")) << r.err;  // mpirun or mpiexec
+  EXPECT_TRUE(has(r.err, "on node ")) << r.err;
+  EXPECT_TRUE(has(r.err, "signal 9")) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("g.png")));
+  ASSERT_TRUE(std::filesystem::exists(dir_.path("g.partial.png"))) << r.err;
+  EXPECT_GT(std::filesystem::file_size(dir_.path("g.partial.png")), 0u);
+  EXPECT_GT(std::filesystem::file_size(dir_.path("g.partial.pfm")), 0u);
+  const std::string note = read_text(dir_.path("g.partial.txt"));
+  int done = -1, total = -1;
+  const size_t at = note.find("tiles in the image: ");
+  ASSERT_NE(at, std::string::npos) << note;
+  ASSERT_EQ(std::sscanf(note.c_str() + at, "tiles in the image: %d of %d;", &done, &total), 2);
+  EXPECT_EQ(total, 80);
+  EXPECT_GT(done, 0) << note;
+  EXPECT_LT(done, 80) << note;
+  EXPECT_TRUE(has(note, "missing tiles (x y width height):\n")) << note;
+}
+
+// With mpirun --enable-recovery the job goes on: rank 0 finds the rank silent, gives its
+// tiles to the others, and the image is the single-process one.
+TEST_F(KilledWorker, WithRecoveryTheImageCompletes) {
+  Result r = run_with_killed_rank(" --enable-recovery");
+  ASSERT_NE(r.status, 124) << "hung: " << r.err;
+  EXPECT_TRUE(has(r.err, "rill-trace: warning: rank 2 on ")) << r.err;
+  EXPECT_TRUE(has(r.err, "is lost (sent nothing for 2 s")) << r.err;
+  expect_same_files(dir_, "ref", "g", kSuffixes, 2);
+  const nlohmann::json j = nlohmann::json::parse(read_text(dir_.path("g.json")));
+  const nlohmann::json& d = j.at("distributed");
+  EXPECT_TRUE(d.at("complete").get<bool>());
+  EXPECT_NE(d.at("per_rank").at(2).at("lost"), "");
+  EXPECT_EQ(d.at("per_rank").at(0).at("lost"), "");
+  // The checkpoints are gone with the whole image written.
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("g.partial.png")));
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("g.partial.txt")));
+}
+
+// Rank 2 loads another scene, other settings, or nothing: the job stops before any tile,
+// with rank 2's message.
+TEST_F(Distributed, AnotherSceneOrAFailedLoadStopsTheStart) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string a = " render builtin:thesis-a --size 30x20 --out m.png";
+  struct Case {
+    std::string rank2, message;
+  } cases[] = {
+      {" render builtin:thesis-b --size 30x20 --out m.png", "loaded another scene than rank 0"},
+      {a + " --spp 2", "loaded another scene than rank 0"},
+      {" render builtin:nope --size 30x20 --out m.png", "unknown built-in scene 'nope'"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.rank2);
+    Result r = run_command(kMpirun + " -np 2 " + kExe + a + " : -np 1 " + kExe + c.rank2, dir, 120);
+    ASSERT_NE(r.status, 124) << "hung: " << r.err;
+    EXPECT_NE(r.status, 0) << r.err;
+    EXPECT_TRUE(has(r.err, "rill-trace: rank 2 on ")) << r.err;
+    EXPECT_TRUE(has(r.err, c.message)) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path("m.png")));
+  }
+}
+
+// Ranks on different backends give the same bytes under strict; a rank whose backend fails
+// at its first tile (an OpenCL device that is not there) is lost with its message, and the
+// others complete the image without it.
+TEST_F(Distributed, MixedBackendsAndARankWhoseRenderFails) {
+  RT_REQUIRE_MPI();
+  RT_REQUIRE_BACKEND("opencl");
+  TempDir dir;
+  const std::string scene =
+      " render builtin:thesis-a --size 60x40 --quiet --tile 8 --rank-timeout 5";
+  ASSERT_EQ(run_command(kExe + scene + outputs("ref"), dir).status, 0);
+  Result mixed = run_command(kMpirun + " -np 2 " + kExe + scene + outputs("mixed") + " : -np 1 " +
+                                 kExe + scene + outputs("mixed") + " --backend opencl",
+                             dir, 120);
+  ASSERT_EQ(mixed.status, 0) << mixed.err;
+  expect_same_files(dir, "ref", "mixed", kSuffixes, std::size(kSuffixes));
+  Result failed =
+      run_command(kMpirun + " -np 2 " + kExe + scene + outputs("failed") + " : -np 1 " + kExe +
+                      scene + outputs("failed") + " --backend opencl --device 7:7",
+                  dir, 120);
+  ASSERT_EQ(failed.status, 0) << failed.err;
+  EXPECT_TRUE(has(failed.err, "rill-trace: warning: rank 2 on ")) << failed.err;
+  EXPECT_TRUE(has(failed.err, "is lost (rendering failed: ")) << failed.err;
+  EXPECT_TRUE(has(failed.err, "7:7")) << failed.err;
+  expect_same_files(dir, "ref", "failed", kSuffixes, std::size(kSuffixes));
+}
+
+// Without MPI in the build, a process started by a launcher as one of several refuses to
+// render the whole image beside the others.
+TEST(DistributedWithoutMpi, ALaunchedProcessIsAClearError) {
+#if RILL_HAVE_MPI
+  GTEST_SKIP() << "rill-trace was built with MPI; this checks a build without it";
+#else
+  TempDir dir;
+  Result r = run_command(
+      "env OMPI_COMM_WORLD_SIZE=3 " + kExe + " render builtin:thesis-a --size 8x8", dir);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(has(r.err, "built without MPI")) << r.err;
+#endif
+}
+
+}  // namespace
+}  // namespace rt::testing

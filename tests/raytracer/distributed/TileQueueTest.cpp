@@ -1,0 +1,74 @@
+// The distributed renderer's tile queue (apps/rill-trace/distributed/TileQueue.h), without
+// MPI: the tiles cover the image once, a lost rank's tiles come back, a tile counts once.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <vector>
+
+#include "distributed/TileQueue.h"
+
+namespace rt::distributed {
+namespace {
+
+TEST(TileQueue, TilesCoverTheImageOnce) {
+  for (auto [w, h, size] : {std::tuple{48, 36, 12}, {37, 23, 7}, {5, 3, 64}, {1, 1, 1}}) {
+    std::vector<int> covered(static_cast<size_t>(w * h), 0);
+    const std::vector<Tile> tiles = make_tiles(w, h, size);
+    for (size_t i = 0; i < tiles.size(); ++i) {
+      const Tile& t = tiles[i];
+      EXPECT_EQ(t.id, static_cast<int>(i));
+      EXPECT_GE(t.width, 1);
+      EXPECT_LE(t.width, size);
+      EXPECT_LE(t.height, size);
+      for (int y = t.y; y < t.y + t.height; ++y)
+        for (int x = t.x; x < t.x + t.width; ++x) ++covered[static_cast<size_t>(y * w + x)];
+    }
+    for (int c : covered) ASSERT_EQ(c, 1) << w << "x" << h << " in tiles of " << size;
+    EXPECT_EQ(tiles.size(), static_cast<size_t>(((w + size - 1) / size) * ((h + size - 1) / size)));
+  }
+  EXPECT_THROW(make_tiles(4, 4, 0), std::invalid_argument);
+  EXPECT_THROW(make_tiles(0, 4, 2), std::invalid_argument);
+}
+
+TEST(TileQueue, HandsOutEachTileAndTakesBackALostRanks) {
+  TileQueue q(make_tiles(8, 8, 4));  // 4 tiles
+  ASSERT_EQ(q.total(), 4);
+  const Tile a = *q.next(1), b = *q.next(2), c = *q.next(1);
+  EXPECT_EQ(a.id, 0);
+  EXPECT_EQ(b.id, 1);
+  EXPECT_EQ(c.id, 2);
+  EXPECT_EQ(q.in_flight(1), (std::vector<int>{0, 2}));
+  EXPECT_TRUE(q.finish(1, a.id));
+  // Rank 1 is lost with tile 2 in hand: it goes back to the front, before tile 3.
+  EXPECT_EQ(q.requeue(1), 1);
+  EXPECT_TRUE(q.in_flight(1).empty());
+  EXPECT_EQ(q.next(2)->id, 2);
+  EXPECT_EQ(q.next(3)->id, 3);
+  EXPECT_FALSE(q.next(3).has_value());
+  EXPECT_TRUE(q.finish(2, 1));
+  EXPECT_TRUE(q.finish(2, 2));
+  // Tile 2 from rank 1 after all (it was slow, not dead): counted once.
+  EXPECT_FALSE(q.finish(1, 2));
+  EXPECT_EQ(q.done(), 3);
+  EXPECT_FALSE(q.complete());
+  EXPECT_TRUE(q.finish(3, 3));
+  EXPECT_TRUE(q.complete());
+  EXPECT_THROW(q.finish(3, 4), std::out_of_range);
+}
+
+TEST(TileQueue, ATileDoneElsewhereIsNotHandedOutAgain) {
+  TileQueue q(make_tiles(4, 4, 2));  // 4 tiles
+  const Tile t = *q.next(1);
+  EXPECT_TRUE(q.finish(1, t.id));
+  EXPECT_EQ(q.requeue(1), 0);  // nothing in flight there
+  // A tile handed out to 2, requeued when 2 is lost, then returned by 2 all the same.
+  const Tile u = *q.next(2);
+  EXPECT_EQ(q.requeue(2), 1);
+  EXPECT_TRUE(q.finish(2, u.id));
+  std::set<int> handed;
+  while (std::optional<Tile> n = q.next(3)) handed.insert(n->id);
+  EXPECT_EQ(handed, (std::set<int>{2, 3}));
+}
+
+}  // namespace
+}  // namespace rt::distributed
