@@ -12,6 +12,7 @@
 namespace rt {
 namespace {
 using testing::error_of;
+using testing::wave_obj;
 
 PoseTrack two_keys(Interpolation how) {
   PoseTrack t;
@@ -190,6 +191,63 @@ TEST(Animation, SceneValidationCatchesBadObjectsBuiltInCode) {
   EXPECT_EQ(error_of([&] { s.validate(); }),
             "animated object 'far': key 0 needs a finite translation, a non-zero scale and a "
             "unit rotation");
+}
+
+const char* kWaveScene = R"({
+  "animation": {"end": 1, "fps": 4},
+  "meshes": [{"name": "wave", "file": "wave-%02d.obj", "sequence": {"last": 2, "fps": 2},
+              "transform": {"translate": [0, 0, -1]}}],
+  "instances": [{"mesh": "wave", "transform": {"translate": [0, 2, 0]}}],
+  "lights": [{"position": [0, 5, 5]}],
+  "camera": {"eye": [1, 1, 5], "look_at": [1, 1, 0]}
+})";
+
+TEST(Animation, ObjSequencesDeformAndKeepTheirTopology) {
+  testing::TempDir dir;
+  for (int k = 0; k < 3; ++k)
+    dir.file("wave-0" + std::to_string(k) + ".obj", wave_obj(0.5f * static_cast<float>(k)));
+  const std::string path = dir.file("wave.json", kWaveScene);
+  const Scene s = load_json(path);
+  ASSERT_EQ(s.animation.objects.size(), 2u);  // the mesh and its copy, which deforms too
+  for (const AnimatedObject& o : s.animation.objects) {
+    EXPECT_EQ(o.count, 4u);
+    EXPECT_EQ(o.shapes.size(), 3u);
+  }
+  // At 2 files per second: t = 0.5 shows file 1, whose middle vertex is at z = 0.5 - 1.
+  // t = 0.25 still shows file 0; after the last file it holds.
+  auto middle_z = [](const Scene& b, size_t first) {
+    float z = -10.0f;
+    for (size_t i = 3 * first; i < 3 * (first + 4); ++i) z = std::max(z, b.positions[i].z);
+    return z;
+  };
+  EXPECT_EQ(middle_z(bake(s, 0.0), 0), -1.0f);
+  EXPECT_EQ(middle_z(bake(s, 0.25), 0), -1.0f);
+  EXPECT_EQ(middle_z(bake(s, 0.5), 0), -0.5f);
+  EXPECT_EQ(middle_z(bake(s, 1.0), 0), 0.0f);
+  EXPECT_EQ(middle_z(bake(s, 9.0), 4), 0.0f);        // the copy, held at the last file
+  EXPECT_EQ(bake(s, 0.5).positions[3 * 4].y, 2.0f);  // the copy's first corner, 2 up
+
+  // Another topology, another triangle count, no frame number, a missing file.
+  dir.file("wave-02.obj", wave_obj(1.0f, true));
+  EXPECT_EQ(error_of([&] { load_json(path); }),
+            path +
+                ": meshes[0].sequence: wave-02.obj: triangle 2 uses other vertices than in "
+                "the first file (the files of a sequence keep their topology)");
+  dir.file("wave-02.obj", wave_obj(1.0f) + "f 1 2 4\n");
+  EXPECT_EQ(error_of([&] { load_json(path); }),
+            path +
+                ": meshes[0].sequence: wave-02.obj has 5 triangles where wave-00.obj has 4 "
+                "(the files of a sequence keep their topology)");
+  const std::string no_number =
+      dir.file("n.json", R"({"meshes": [{"file": "wave.obj", "sequence": {"last": 2}}]})");
+  EXPECT_EQ(error_of([&] { load_json(no_number); }),
+            no_number +
+                ": meshes[0].file 'wave.obj' needs one frame number, %d or %03d, for "
+                "its \"sequence\"");
+  const std::string missing =
+      dir.file("m.json", R"({"meshes": [{"file": "wave-%02d.obj", "sequence": {"last": 5}}]})");
+  dir.file("wave-02.obj", wave_obj(1.0f));
+  EXPECT_NE(error_of([&] { load_json(missing); }).find("wave-03.obj"), std::string::npos);
 }
 
 TEST(Animation, BuiltinBounceScene) {

@@ -113,6 +113,32 @@ TEST_P(DynamicRender, SubgridsAndScenesWithoutStaticTriangles) {
                    "every triangle moving");
 }
 
+// A deforming mesh (an OBJ sequence, scene/AnimationJson.h) and a copy of it that also
+// moves: each frame equals its baked scene, the shapes switching between frames.
+TEST_P(DynamicRender, DeformingMeshesEqualTheirBakedFrames) {
+  RT_REQUIRE_BACKEND(GetParam());
+  testing::TempDir dir;
+  for (int k = 0; k < 3; ++k)
+    dir.file("wave-" + std::to_string(k) + ".obj", testing::wave_obj(0.6f * static_cast<float>(k)));
+  const Scene s = load_json(dir.file("wave.json", R"({
+    "builtin": "thesis-a", "animation": {"end": 1.5, "fps": 4},
+    "meshes": [{"name": "wave", "file": "wave-%d.obj", "sequence": {"last": 2, "fps": 2},
+                "transform": {"translate": [-1, 0.2, 1.2]}}],
+    "instances": [{"mesh": "wave", "transform": {"translate": [0, 1.5, 0]},
+                   "animate": {"keys": [{"time": 0}, {"time": 1.5, "rotate": {"axis": [0, 1, 0], "degrees": 60}}]}}]
+  })"));
+  const Grid g = build_grid(s, 0, kNoSubgrids);
+  for (Strategy strategy : {Strategy::Megakernel, Strategy::Multipass}) {
+    const RenderSettings rs = settings(GetParam(), strategy);
+    Tracer t(s, g);
+    for (double time : {0.0, 0.5, 0.75, 1.5}) {
+      t.set_time(time, BvhUpdate::Refit);
+      expect_identical(baked(s, time, rs), t.render(rs, camera_at(s, time)),
+                       "wave at t = " + std::to_string(time));
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, DynamicRender, ::testing::ValuesIn(testing::backend_names()),
                          [](const auto& info) { return rill::testing::param_name(info.param); });
 

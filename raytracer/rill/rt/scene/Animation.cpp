@@ -95,6 +95,15 @@ CameraPose CameraTrack::at(double time) const {
   return c;
 }
 
+size_t AnimatedObject::shape_at(double time, double start, double fps) const {
+  if (shapes.empty()) return 0;
+  const double rate = shape_fps > 0 ? shape_fps : fps;
+  // The tolerance keeps frame k's own time (start + k / fps, rounded) on shape k.
+  const double k = std::floor((time - start) * rate + 1e-6);
+  if (!(k > 0)) return 0;
+  return std::min(static_cast<size_t>(std::min(k, 1e9)), shapes.size() - 1);
+}
+
 size_t Animation::moving_triangles() const {
   size_t n = 0;
   for (const AnimatedObject& o : objects) n += o.count;

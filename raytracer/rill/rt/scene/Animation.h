@@ -74,11 +74,19 @@ struct CameraTrack {
   CameraPose at(double time) const;
 };
 
-// Triangles [first, first + count) of the scene, moved by `track`.
+// Triangles [first, first + count) of the scene, moved by `track`. A deforming mesh (an OBJ
+// sequence) also has its corners' positions and normals for each file of the sequence
+// (3 * count each; normals empty when the mesh has none): at a time t the file
+// floor((t - start) * shape_fps) (clamped to the sequence) replaces the rest pose, and the
+// track moves that.
 struct AnimatedObject {
   std::string name;  // for messages and stats: the mesh's or instance's name, or its place
   size_t first = 0, count = 0;
   PoseTrack track;
+  std::vector<std::vector<glm::vec3>> shapes, shape_normals;
+  double shape_fps = 0;  // 0: the time range's fps
+  // The shape shown at `time` for a time range starting at `start` at `fps` frames per second.
+  size_t shape_at(double time, double start, double fps) const;
 };
 
 struct Animation {

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 
@@ -171,7 +173,11 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
       s.add_triangle(p[0], p[1], p[2], s.material[k], s.normals.empty() ? nullptr : n,
                      s.colors.empty() ? nullptr : col, s.texcoords.empty() ? nullptr : uv);
     }
-    if (inst.contains("animate")) {
+    // A deforming mesh's copies deform too: its shapes, moved by the instance's transform.
+    const AnimatedObject* deforming = nullptr;
+    for (const AnimatedObject& a : s.animation.objects)
+      if (a.first == r.first && a.count == r.count && !a.shapes.empty()) deforming = &a;
+    if (inst.contains("animate") || deforming != nullptr) {
       AnimatedObject o;
       o.name = where;
       if (inst.contains("name")) {
@@ -180,7 +186,22 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
       }
       o.first = first;
       o.count = r.count;
-      o.track = pose_track(c, inst["animate"], where + ".animate");
+      if (inst.contains("animate"))
+        o.track = pose_track(c, inst["animate"], where + ".animate");
+      else
+        o.track.keys.push_back(PoseKey{});
+      if (deforming != nullptr) {
+        o.shape_fps = deforming->shape_fps;
+        for (size_t k = 0; k < deforming->shapes.size(); ++k) {
+          std::vector<glm::vec3> p(deforming->shapes[k].size()), n(p.size());
+          for (size_t v = 0; v < p.size(); ++v) {
+            p[v] = t.apply_point(deforming->shapes[k][v]);
+            n[v] = t.apply_normal(deforming->shape_normals[k][v]);
+          }
+          o.shapes.push_back(std::move(p));
+          o.shape_normals.push_back(std::move(n));
+        }
+      }
       s.animation.objects.push_back(std::move(o));
     }
   }
@@ -191,6 +212,9 @@ TimeRange keys_time_range(const Animation& a) {
   for (const AnimatedObject& o : a.objects) {
     lo = std::min(lo, o.track.keys.front().time);
     hi = std::max(hi, o.track.keys.back().time);
+    if (!o.shapes.empty())  // from 0, at its own rate or 24 fps
+      hi = std::max(
+          hi, static_cast<double>(o.shapes.size() - 1) / (o.shape_fps > 0 ? o.shape_fps : 24.0));
   }
   if (!a.camera.keys.empty()) {
     lo = std::min(lo, a.camera.keys.front().time);
@@ -200,6 +224,111 @@ TimeRange keys_time_range(const Animation& a) {
   r.start = std::isfinite(lo) ? lo : 0.0;
   r.end = hi > r.start ? hi : r.start + 1.0;  // a single key: one second of it
   return r;
+}
+
+namespace {
+
+struct Sequence {
+  std::string pattern;  // the file path with its frame number
+  int first = 0, last = 0;
+  double fps = 0;
+};
+
+// The path of file `k` of the pattern: its one %d (%0Nd) replaced by k.
+std::string nth_file(const std::string& pattern, int k) {
+  const size_t at = pattern.find('%');
+  size_t end = at + 1;
+  while (end < pattern.size() && pattern[end] >= '0' && pattern[end] <= '9') ++end;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, pattern.substr(at, end + 1 - at).c_str(), k);
+  return pattern.substr(0, at) + buf + pattern.substr(end + 1);
+}
+
+Sequence read_sequence(const Ctx& c, const json& mesh, const std::string& where) {
+  Sequence q;
+  const json& j = mesh["sequence"];
+  const std::string w = where + ".sequence";
+  check_keys(c, j, w, {"first", "last", "fps"});
+  if (!mesh.contains("file") || !mesh["file"].is_string())
+    fail(c, w + " needs \"file\": an OBJ path with the frame number, such as wave-%03d.obj");
+  q.pattern = mesh["file"].get<std::string>();
+  const size_t at = q.pattern.find('%');
+  size_t end = at == std::string::npos ? at : at + 1;
+  while (end != std::string::npos && end < q.pattern.size() && q.pattern[end] >= '0' &&
+         q.pattern[end] <= '9')
+    ++end;
+  if (at == std::string::npos || end >= q.pattern.size() || q.pattern[end] != 'd' || end - at > 3 ||
+      q.pattern.find('%', end) != std::string::npos)
+    fail(c, where + ".file '" + q.pattern +
+                "' needs one frame number, %d or %03d, for its \"sequence\"");
+  if (!j.contains("last")) fail(c, w + " needs \"last\": the number of its last file");
+  q.first = j.contains("first") ? integer(c, j["first"], w + ".first", 0, 99999999) : 0;
+  q.last = integer(c, j["last"], w + ".last", 0, 99999999);
+  if (q.last < q.first) fail(c, w + ": last is before first");
+  if (q.last - q.first >= 100000) fail(c, w + ": more than 100000 files");
+  if (j.contains("fps")) {
+    q.fps = num_double(c, j["fps"], w + ".fps");
+    if (!(q.fps > 0 && q.fps <= 1000)) fail(c, w + ".fps must be in (0, 1000]");
+  }
+  return q;
+}
+
+// A loaded OBJ file's corners as the scene keeps them, and their normals (the geometric normal
+// cross(b - a, c - a) for a file without any, as Scene::add_triangle gives one).
+void shape_of(const Scene& f, std::vector<glm::vec3>& pos, std::vector<glm::vec3>& nrm) {
+  pos = f.positions;
+  if (!f.normals.empty()) {
+    nrm = f.normals;
+    return;
+  }
+  nrm.resize(pos.size());
+  for (size_t i = 0; i < pos.size(); i += 3) {
+    const glm::vec3 g = glm::cross(pos[i + 1] - pos[i], pos[i + 2] - pos[i]);
+    nrm[i] = nrm[i + 1] = nrm[i + 2] = g;
+  }
+}
+
+}  // namespace
+
+std::string sequence_file(const Ctx& c, const json& mesh, const std::string& where) {
+  const Sequence q = read_sequence(c, mesh, where);
+  return nth_file(q.pattern, q.first);
+}
+
+void load_sequence(const Ctx& c, const json& mesh, const std::string& where, AnimatedObject& o) {
+  const Sequence q = read_sequence(c, mesh, where);
+  ObjLoadOptions opt;
+  if (mesh.contains("transform"))
+    opt.transform = transform(c, mesh["transform"], where + ".transform");
+  opt.input = c.input;
+  std::vector<int32_t> first_corners, corners;
+  o.shape_fps = q.fps;
+  for (int k = q.first; k <= q.last; ++k) {
+    std::filesystem::path p(nth_file(q.pattern, k));
+    if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
+    corners.clear();
+    opt.corners = k == q.first ? &first_corners : &corners;
+    const Scene f = load_obj(p.string(), opt);
+    if (f.triangle_count() != o.count)
+      fail(c, where + ".sequence: " + p.filename().string() + " has " +
+                  std::to_string(f.triangle_count()) + " triangles where " +
+                  std::filesystem::path(nth_file(q.pattern, q.first)).filename().string() +
+                  " has " + std::to_string(o.count) +
+                  " (the files of a sequence keep their topology)");
+    if (k > q.first && corners != first_corners) {
+      size_t t = 0;
+      while (t * 3 < corners.size() && corners[3 * t] == first_corners[3 * t] &&
+             corners[3 * t + 1] == first_corners[3 * t + 1] &&
+             corners[3 * t + 2] == first_corners[3 * t + 2])
+        ++t;
+      fail(c, where + ".sequence: " + p.filename().string() + ": triangle " + std::to_string(t) +
+                  " uses other vertices than in the first file (the files of a sequence keep "
+                  "their topology)");
+    }
+    o.shapes.emplace_back();
+    o.shape_normals.emplace_back();
+    shape_of(f, o.shapes.back(), o.shape_normals.back());
+  }
 }
 
 }  // namespace rt::json_fields

@@ -437,10 +437,10 @@ Scene scene_bounce() {
   s.name = "bounce";
   const int floor = s.add_material(mat("floor", {0.7f, 0.7f, 0.68f}, glm::vec3(0.0f), 1.0f, 0.2f));
   const int wall = s.add_material(mat("wall", {0.55f, 0.6f, 0.7f}));
-  add_quad(s, {-14.0f, 0.0f, -6.0f}, {-14.0f, 0.0f, 9.0f}, {14.0f, 0.0f, 9.0f}, {14.0f, 0.0f, -6.0f},
-           floor);
-  add_quad(s, {-14.0f, 0.0f, -3.0f}, {14.0f, 0.0f, -3.0f}, {14.0f, 8.0f, -3.0f}, {-14.0f, 8.0f, -3.0f},
-           wall);
+  add_quad(s, {-14.0f, 0.0f, -6.0f}, {-14.0f, 0.0f, 9.0f}, {14.0f, 0.0f, 9.0f},
+           {14.0f, 0.0f, -6.0f}, floor);
+  add_quad(s, {-14.0f, 0.0f, -3.0f}, {14.0f, 0.0f, -3.0f}, {14.0f, 8.0f, -3.0f},
+           {-14.0f, 8.0f, -3.0f}, wall);
   const int ball_mats[3] = {
       s.add_material(mat("ball-red", {0.9f, 0.2f, 0.15f}, glm::vec3(0.5f), 60.0f)),
       s.add_material(mat("ball-mirror", {0.2f, 0.2f, 0.2f}, glm::vec3(0.8f), 200.0f, 0.7f)),
@@ -473,7 +473,8 @@ Scene scene_bounce() {
         // Copies: add_triangle grows the vectors these would point into.
         const glm::vec3 p[3] = {s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2]};
         const glm::vec3 n[3] = {s.normals[3 * t], s.normals[3 * t + 1], s.normals[3 * t + 2]};
-        const glm::vec2 uv[3] = {s.texcoords[3 * t], s.texcoords[3 * t + 1], s.texcoords[3 * t + 2]};
+        const glm::vec2 uv[3] = {s.texcoords[3 * t], s.texcoords[3 * t + 1],
+                                 s.texcoords[3 * t + 2]};
         s.add_triangle(p[0], p[1], p[2], ball_mats[i % 3], n, nullptr, uv);
       }
     }
@@ -493,8 +494,8 @@ Scene scene_bounce() {
     object("spinner " + std::to_string(i), first, s.triangle_count(), [=](double t) {
       const double a = 2.0 * kPi * (t / kSeconds + i / 3.0);  // one orbit in the clip
       Pose p;  // around the tall green box (at x 0.4, z -0.6)
-      p.translate =
-          glm::dvec3(0.4 + 1.1 * std::cos(a), 1.6 + 0.6 * std::sin(2.0 * a), -0.6 + 1.1 * std::sin(a));
+      p.translate = glm::dvec3(0.4 + 1.1 * std::cos(a), 1.6 + 0.6 * std::sin(2.0 * a),
+                               -0.6 + 1.1 * std::sin(a));
       p.rotation = glm::angleAxis(2.0 * kPi * t * 0.5, glm::normalize(glm::dvec3(1.0, 2.0, 0.5)));
       return p;
     });

@@ -17,15 +17,25 @@ Camera camera_at(const Scene& s, double time) {
 }
 
 void pose_objects(const Scene& rest, double time, Scene& posed) {
+  const TimeRange& range = rest.animation.time;
   for (const AnimatedObject& o : rest.animation.objects) {
     const Pose pose = o.track.at(time);
     const bool normals = !rest.normals.empty();
+    // A deforming mesh's shape at this time, else the rest pose; corners from 3 * o.first.
+    const glm::vec3* from = &rest.positions[3 * o.first];
+    const glm::vec3* from_n = normals ? &rest.normals[3 * o.first] : nullptr;
+    if (!o.shapes.empty()) {
+      const size_t k = o.shape_at(time, range.start, range.fps);
+      from = o.shapes[k].data();
+      if (normals && !o.shape_normals.empty()) from_n = o.shape_normals[k].data();
+    }
     // Each corner on its own: the same bits whatever the split into tasks.
-    tbb::parallel_for(tbb::blocked_range<size_t>(3 * o.first, 3 * (o.first + o.count), 4096),
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, 3 * o.count, 4096),
                       [&](const tbb::blocked_range<size_t>& r) {
                         for (size_t i = r.begin(); i != r.end(); ++i) {
-                          posed.positions[i] = pose.apply_point(rest.positions[i]);
-                          if (normals) posed.normals[i] = pose.apply_normal(rest.normals[i]);
+                          posed.positions[3 * o.first + i] = pose.apply_point(from[i]);
+                          if (from_n != nullptr)
+                            posed.normals[3 * o.first + i] = pose.apply_normal(from_n[i]);
                         }
                       });
   }

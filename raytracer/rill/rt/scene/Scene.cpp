@@ -196,6 +196,15 @@ void validate_animation(const Animation& a, size_t triangles) {
                        std::to_string(o.first + o.count) + " are not in the scene (" +
                        std::to_string(triangles) + " triangles)");
     if (o.track.keys.empty()) throw SceneError(where + " has no keys");
+    if (!o.shape_normals.empty() && o.shape_normals.size() != o.shapes.size())
+      throw SceneError(where + ": " + std::to_string(o.shapes.size()) + " shapes but " +
+                       std::to_string(o.shape_normals.size()) + " sets of normals");
+    for (size_t k = 0; k < o.shapes.size(); ++k)
+      if (o.shapes[k].size() != 3 * o.count ||
+          (!o.shape_normals.empty() && o.shape_normals[k].size() != 3 * o.count))
+        throw SceneError(where + ": shape " + std::to_string(k) + " has " +
+                         std::to_string(o.shapes[k].size()) + " corners, not " +
+                         std::to_string(3 * o.count));
     for (size_t k = 0; k < o.track.keys.size(); ++k) {
       const PoseKey& key = o.track.keys[k];
       if (!std::isfinite(key.time) || (k > 0 && !(key.time > o.track.keys[k - 1].time)))

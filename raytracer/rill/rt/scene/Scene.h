@@ -170,6 +170,9 @@ struct ObjLoadOptions {
   Transform transform;
   const Material* override_material = nullptr;
   InputOptions input;
+  // When set, receives each triangle's three OBJ vertex numbers (0-based, in the order of
+  // its corners): an OBJ sequence compares them to check that its topology stays the same.
+  std::vector<int32_t>* corners = nullptr;
 };
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
 

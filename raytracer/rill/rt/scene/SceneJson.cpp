@@ -354,16 +354,27 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
           animate = m["animate"];
           m.erase("animate");
         }
+        // An OBJ sequence: the mesh is its first file, and every file is a shape of it.
+        json sequence_of;
+        if (m.is_object() && m.contains("sequence")) {
+          sequence_of = m;
+          m["file"] = sequence_file(c, m, where);
+          m.erase("sequence");
+        }
         const size_t first = s.triangle_count();
         mesh(c, s, m, i, materials);
         const MeshRange range{first, s.triangle_count() - first};
         if (!name.empty()) mesh_names[name] = range;
-        if (!animate.is_null()) {
+        if (!animate.is_null() || !sequence_of.is_null()) {
           AnimatedObject o;
           o.name = name.empty() ? where : name;
           o.first = range.first;
           o.count = range.count;
-          o.track = pose_track(c, animate, where + ".animate");
+          if (!animate.is_null())
+            o.track = pose_track(c, animate, where + ".animate");
+          else
+            o.track.keys.push_back(PoseKey{});  // deforms in place
+          if (!sequence_of.is_null()) load_sequence(c, sequence_of, where, o);
           s.animation.objects.push_back(std::move(o));
         }
       }
