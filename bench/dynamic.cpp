@@ -2,6 +2,7 @@
 //
 //   rill-bench-dynamic [--sections build,frames] [--repeats R] [--size WxH]
 //                      [--backends cpu,...] [--instances 0,1,10,100] [--frames F]
+//                      [--bvh rebuild|refit]
 //
 // Sections (medians of R repeats; the builders interleaved so that they share the machine's
 // moods):
@@ -14,6 +15,7 @@
 //           with 1, 10 and 100 animated instances of a 528-triangle ball: Tracer::set_time
 //           (pose, BVH rebuild, upload) plus Tracer::render, per backend, over F frames, the
 //           scenes taking turns frame by frame; "vs first" divides by the first count's.
+//           --bvh refit refits the first frame's tree instead.
 #include <rill/rill.h>
 #include <CLI/CLI.hpp>
 
@@ -217,9 +219,10 @@ rt::Scene room_with_balls(int n) {
 }
 
 void frames_section(const std::vector<std::string>& backends, const std::vector<int>& counts,
-                    int frames, int width, int height) {
-  std::printf("\n### Frame time with moving balls, %dx%d, strict, median of %d frames (ms)\n\n",
-              width, height, frames);
+                    int frames, int width, int height, rt::BvhUpdate how) {
+  std::printf(
+      "\n### Frame time with moving balls, %dx%d, strict, BVH %s, median of %d frames (ms)\n\n",
+      width, height, how == rt::BvhUpdate::Refit ? "refitted" : "rebuilt", frames);
   std::printf("| backend | balls | moving triangles | set_time | render | frame | vs first |\n");
   std::printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   struct Setup {
@@ -252,7 +255,7 @@ void frames_section(const std::vector<std::string>& backends, const std::vector<
         const rt::TimeRange& range = u->scene.animation.time;
         const double t = range.time_of(f % range.frame_count());
         const auto t0 = Clock::now();
-        u->tracer->set_time(t);
+        u->tracer->set_time(t, how);
         u->update.push_back(ms_since(t0));
         const auto t1 = Clock::now();
         u->tracer->render(rs, rt::camera_at(u->scene, t), r);
@@ -290,6 +293,8 @@ int main(int argc, char** argv) {
   app.add_option("--instances", instances, "frames: ball counts (comma-separated)");
   app.add_option("--frames", frames, "frames: frames per count")->check(CLI::Range(1, 10000));
   app.add_option("--size", size, "frames: image size WxH");
+  std::string bvh = "rebuild";
+  app.add_option("--bvh", bvh, "frames: rebuild or refit the BVH each frame");
   CLI11_PARSE(app, argc, argv);
   int w = 0, h = 0;
   if (std::sscanf(size.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1) {
@@ -306,7 +311,7 @@ int main(int argc, char** argv) {
         counts.push_back(std::stoi(c));
       frames_section(rill::bench::usable_backends(
                          backends == "all" ? all_backends() : rill::bench::split_list(backends)),
-                     counts, frames, w, h);
+                     counts, frames, w, h, rt::parse_bvh_update(bvh));
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rill-bench-dynamic: %s\n", e.what());
