@@ -223,13 +223,15 @@ void frames_section(const std::vector<std::string>& backends, const std::vector<
   std::printf(
       "\n### Frame time with moving balls, %dx%d, strict, BVH %s, median of %d frames (ms)\n\n",
       width, height, how == rt::BvhUpdate::Refit ? "refitted" : "rebuilt", frames);
-  std::printf("| backend | balls | moving triangles | set_time | render | frame | vs first |\n");
+  std::printf(
+      "| backend | balls | moving triangles | set_time (pose, BVH, upload) | render | frame | vs "
+      "first |\n");
   std::printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   struct Setup {
     rt::Scene scene;
     rt::Grid grid;
     std::unique_ptr<rt::Tracer> tracer;
-    std::vector<double> update, render, frame;
+    std::vector<double> update, render, frame, pose, bvh, upload;
   };
   for (const std::string& be : backends) {
     rt::RenderSettings rs;
@@ -255,8 +257,11 @@ void frames_section(const std::vector<std::string>& backends, const std::vector<
         const rt::TimeRange& range = u->scene.animation.time;
         const double t = range.time_of(f % range.frame_count());
         const auto t0 = Clock::now();
-        u->tracer->set_time(t, how);
+        const rt::FrameUpdate fu = u->tracer->set_time(t, how);
         u->update.push_back(ms_since(t0));
+        u->pose.push_back(fu.pose_ms);
+        u->bvh.push_back(fu.bvh_ms);
+        u->upload.push_back(fu.upload_ms);
         const auto t1 = Clock::now();
         u->tracer->render(rs, rt::camera_at(u->scene, t), r);
         u->render.push_back(ms_since(t1));
@@ -265,9 +270,10 @@ void frames_section(const std::vector<std::string>& backends, const std::vector<
     const double first = median(setups.front()->frame);
     for (size_t i = 0; i < setups.size(); ++i) {
       const Setup& u = *setups[i];
-      std::printf("| %s | %d | %zu | %.2f | %.2f | %.2f | %.2f |\n", be.c_str(), counts[i],
-                  u.scene.animation.moving_triangles(), median(u.update), median(u.render),
-                  median(u.frame), first > 0 ? median(u.frame) / first : 0.0);
+      std::printf("| %s | %d | %zu | %.2f (%.2f, %.2f, %.2f) | %.2f | %.2f | %.2f |\n", be.c_str(),
+                  counts[i], u.scene.animation.moving_triangles(), median(u.update), median(u.pose),
+                  median(u.bvh), median(u.upload), median(u.render), median(u.frame),
+                  first > 0 ? median(u.frame) / first : 0.0);
     }
     std::fflush(stdout);
   }
