@@ -35,10 +35,11 @@ size_t conversion(const std::string& pattern, const std::string& option, size_t&
     }
     size_t j = i + 1;
     while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9') ++j;
-    if (j >= pattern.size() || pattern[j] != 'd' || j - i - 1 > 2)
+    if (j >= pattern.size() || pattern[j] != 'd' || j - i - 1 > 2 ||
+        (j > i + 1 && std::atoi(pattern.c_str() + i + 1) > 20))
       throw rt::SceneError(option + " '" + rt::clipped(pattern) +
                            "': the only conversion allowed is the frame number, as %d or "
-                           "%04d (write a percent sign as %%)");
+                           "%04d (a width of at most 20; write a percent sign as %%)");
     if (at != std::string::npos)
       throw rt::SceneError(option + " '" + rt::clipped(pattern) +
                            "' has two frame numbers; give one, such as frame-%04d.png");

@@ -466,6 +466,8 @@ int render(RenderOptions o) {
   std::vector<FrameStats> frame_stats(1);
   if (animated) frame_stats[0].update = tracer.set_time(first_time, bvh_update);
   const rt::Camera first_camera = rt::camera_at(scene, first_time);
+  // Keys that are each fine can still interpolate to a degenerate view (eye on look_at).
+  if (animated) rt::check_camera(first_camera, "the camera at frame " + std::to_string(span.first));
   rt::RenderResult r = tracer.render(rs, first_camera);
   const double render_ms = ms_since(t_render);
   const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
@@ -516,7 +518,9 @@ int render(RenderOptions o) {
     g_doing = "rendering frame " + std::to_string(k);
     const int64_t misses = rill::kernel_cache_stats().misses;
     if (animated) fs.update = tracer.set_time(fs.time, bvh_update);
-    tracer.render(rs, rt::camera_at(scene, fs.time), frame);
+    const rt::Camera camera = rt::camera_at(scene, fs.time);
+    rt::check_camera(camera, "the camera at frame " + std::to_string(k));
+    tracer.render(rs, camera, frame);
     fs.trace_ms = frame.trace_ms;
     fs.compile_ms = frame.compile_ms;
     fs.compiles = rill::kernel_cache_stats().misses - misses;

@@ -242,8 +242,12 @@ TEST(Animation, ObjSequencesDeformAndKeepTheirTopology) {
       dir.file("n.json", R"({"meshes": [{"file": "wave.obj", "sequence": {"last": 2}}]})");
   EXPECT_EQ(error_of([&] { load_json(no_number); }),
             no_number +
-                ": meshes[0].file 'wave.obj' needs one frame number, %d or %03d, for "
-                "its \"sequence\"");
+                ": meshes[0].file 'wave.obj' needs one frame number, %d or %03d (a width of at "
+                "most 20), for its \"sequence\"");
+  const std::string too_wide =
+      dir.file("w.json", R"({"meshes": [{"file": "wave-%40d.obj", "sequence": {"last": 2}}]})");
+  EXPECT_NE(error_of([&] { load_json(too_wide); }).find("a width of at most 20"),
+            std::string::npos);
   const std::string missing =
       dir.file("m.json", R"({"meshes": [{"file": "wave-%02d.obj", "sequence": {"last": 5}}]})");
   dir.file("wave-02.obj", wave_obj(1.0f));

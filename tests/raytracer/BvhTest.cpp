@@ -110,7 +110,10 @@ TEST(Bvh, LargeBuildsDoNotDependOnTheThreadCount) {
   ASSERT_EQ(one.nodes.size(), all.nodes.size());
   for (size_t i = 0; i < one.nodes.size(); ++i) {
     EXPECT_EQ(one.nodes[i].skip, all.nodes[i].skip);
+    EXPECT_EQ(one.nodes[i].first, all.nodes[i].first);
+    EXPECT_EQ(one.nodes[i].count, all.nodes[i].count);
     EXPECT_EQ(one.nodes[i].lo, all.nodes[i].lo);
+    EXPECT_EQ(one.nodes[i].hi, all.nodes[i].hi);
   }
 }
 

@@ -381,6 +381,7 @@ TEST(Cli, FramesWriteNumberedImagesOfADynamicScene) {
       {"--frames soon", "--frames expects N or A:B"},
       {"--frames 0:1 --out f-%s.png", "the only conversion allowed is the frame number"},
       {"--frames 0:1 --out f-%d-%d.png", "has two frame numbers"},
+      {"--frames 0:1 --out f-%40d.png", "a width of at most 20"},
       {"--bvh maybe", "--bvh: unknown BVH update 'maybe' (rebuild, refit)"},
       {"--video v.mp4", "--video makes a video of the frames' PNGs: give --frames and --out"},
   };

@@ -5,6 +5,8 @@
 // no BVH code.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "RenderCompare.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
@@ -137,6 +139,108 @@ TEST_P(DynamicRender, DeformingMeshesEqualTheirBakedFrames) {
                        "wave at t = " + std::to_string(time));
     }
   }
+}
+
+// Rays from far away aimed at the edges of small flat faces: their boxes are flat, and the
+// slab test's rounding grows with the distance from the eye while the boxes' padding does
+// not. Every face the triangle test accepts must be found through the BVH as through the
+// grid of the baked scene.
+TEST_P(DynamicRender, FarRaysAtTheEdgesOfFlatFaces) {
+  RT_REQUIRE_BACKEND(GetParam());
+  // Eyes 1000 units from a board at the origin; then eyes 3 units from a board 10^4 units
+  // out (where the padding, not the widening, must cover the rounding of o - lo).
+  for (const float offset : {0.0f, 1.0e4f}) {
+    const float distance = offset == 0.0f ? 1000.0f : 3.0f;
+    SCOPED_TRACE("board at " + std::to_string(offset) + ", eyes " + std::to_string(distance) +
+                 " away");
+    Scene s;
+    s.add_material(Material{});
+    // 8 x 8 quads of 0.1 units in the z = 0 plane, and slivers above them.
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 8; ++j) {
+        const float x = offset + 0.1f * static_cast<float>(i),
+                    y = offset + 0.1f * static_cast<float>(j);
+        add_quad(s, {x, y, 0.0f}, {x + 0.1f, y, 0.0f}, {x + 0.1f, y + 0.1f, 0.0f},
+                 {x, y + 0.1f, 0.0f}, 0);
+        s.add_triangle({x, y, 0.3f}, {x + 0.1f, y + 0.0001f, 0.3f}, {x, y + 0.0002f, 0.3f}, 0);
+      }
+    AnimatedObject o;
+    o.name = "board";
+    o.count = s.triangle_count();
+    PoseKey a, b;
+    b.time = 1.0;
+    b.pose.translate = glm::dvec3(0.05, 0.0, 0.0);
+    o.track.keys = {a, b};
+    s.animation.objects = {o};
+    s.animation.time = TimeRange{0.0, 1.0, 10.0};
+    s.camera = Camera{{offset + 0.4f, offset + 0.4f, distance},
+                      {offset + 0.4f, offset + 0.4f, 0.0f},
+                      {0.0f, 1.0f, 0.0f},
+                      30.0f};
+    s.has_camera = true;
+    const double time = 0.5;
+    const Scene b_scene = bake(s, time);
+    // Rays towards points on the triangles' edges, each moved by up to 1e-6 of the scale.
+    std::mt19937 rng(7);
+    const float scale = std::max(1.0f, offset);
+    std::uniform_real_distribution<float> u01(0.0f, 1.0f), jitter(-1e-6f * scale, 1e-6f * scale),
+        eye(-0.3f * distance, 0.3f * distance);
+    std::vector<glm::vec3> origins, dirs;
+    for (int r = 0; r < 20000; ++r) {
+      const size_t tri = static_cast<size_t>(r) % b_scene.triangle_count();
+      const glm::vec3* p = &b_scene.positions[3 * tri];
+      const int k = r % 3;
+      const glm::vec3 on = p[k] + (p[(k + 1) % 3] - p[k]) * u01(rng) +
+                           glm::vec3(jitter(rng), jitter(rng), jitter(rng));
+      const glm::vec3 from(offset + eye(rng), offset + eye(rng), distance);
+      origins.push_back(from);
+      dirs.push_back(on - from);
+    }
+    Tracer moving(s, build_grid(s));
+    moving.set_time(time);
+    Tracer baked_tracer(b_scene, build_grid(b_scene));
+    std::vector<int32_t> want_prim, got_prim;
+    std::vector<float> want_t, got_t;
+    baked_tracer.intersect(GetParam(), origins, dirs, want_prim, want_t);
+    moving.intersect(GetParam(), origins, dirs, got_prim, got_t);
+    int differ = 0, hits = 0;
+    for (size_t r = 0; r < origins.size(); ++r) {
+      hits += want_prim[r] >= 0;
+      if (want_prim[r] != got_prim[r] || !testing::same(want_t[r], got_t[r])) {
+        if (++differ <= 3)
+          ADD_FAILURE() << "ray " << r << ": baked prim " << want_prim[r] << " t " << want_t[r]
+                        << ", moving prim " << got_prim[r] << " t " << got_t[r];
+      }
+    }
+    EXPECT_EQ(differ, 0);
+    EXPECT_GT(hits, 10000);  // most of them hit something
+  }
+}
+
+// A sequence whose first file is collapsed to a point: nothing of it can be hit at rest, and
+// it must still be traced once it unfolds.
+TEST_P(DynamicRender, ObjectsDegenerateAtRestAppearLater) {
+  RT_REQUIRE_BACKEND(GetParam());
+  testing::TempDir dir;
+  dir.file("fold-0.obj",
+           "v 1 1 0\nv 1 1 0\nv 1 1 0\nv 1 1 0\nv 1 1 0\nv 1 1 0\n"
+           "f 1 2 5 4\nf 2 3 6 5\n");
+  dir.file("fold-1.obj", testing::wave_obj(0.3f));
+  const Scene s = load_json(dir.file("fold.json", R"({
+    "animation": {"end": 1, "fps": 2},
+    "meshes": [{"file": "fold-%d.obj", "sequence": {"last": 1}}],
+    "lights": [{"position": [0, 3, 5]}],
+    "camera": {"eye": [1, 0.5, 4], "look_at": [1, 0.5, 0]}
+  })"));
+  Tracer t(s, build_grid(s));
+  EXPECT_TRUE(t.features().dynamic);
+  const RenderSettings rs = settings(GetParam(), Strategy::Megakernel);
+  t.set_time(0.5);
+  const RenderResult got = t.render(rs, camera_at(s, 0.5));
+  expect_identical(baked(s, 0.5, rs), got, "unfolded");
+  int hits = 0;
+  for (int32_t p : got.prim) hits += p >= 0;
+  EXPECT_GT(hits, 100);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, DynamicRender, ::testing::ValuesIn(testing::backend_names()),

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -108,6 +109,13 @@ struct Tracer::Impl {
 
 Tracer::Tracer(const Scene& scene, const Grid& grid, const TracerOptions& options) {
   scene.validate();
+  // A grid built from another scene (a baked copy, say) would hold the moving triangles at
+  // rest: ghosts that never move.
+  if (grid.moving != scene.animation.moving_triangles())
+    throw std::invalid_argument("Tracer: the grid leaves out " + std::to_string(grid.moving) +
+                                " moving triangles but the scene has " +
+                                std::to_string(scene.animation.moving_triangles()) +
+                                "; build the grid from this scene (build_grid_for)");
   d_ = std::make_unique<Impl>(scene, grid, options);
 }
 
@@ -133,6 +141,8 @@ std::string Tracer::source(const std::string& backend, Accuracy a) {
 FrameUpdate Tracer::set_time(double time, BvhUpdate how) {
   Impl& I = *d_;
   FrameUpdate u;
+  if (!std::isfinite(time))
+    throw std::invalid_argument("Tracer::set_time: the time must be finite");
   if (!I.rest) return u;
   auto t = std::chrono::steady_clock::now();
   pose_objects(*I.rest, time, *I.posed);

@@ -92,7 +92,12 @@ using Bins = std::array<Bin, kBvhBins>;
 
 // The bin of a centroid along an axis, for centroid bounds lo and the scale kBvhBins / extent.
 int bin_of(float c, float lo, float scale) {
-  return std::clamp(static_cast<int>((c - lo) * scale), 0, kBvhBins - 1);
+  // Clamped as a float first: a tiny extent makes scale infinite, and 0 * inf is NaN, which
+  // no int can hold.
+  const float f = (c - lo) * scale;
+  if (!(f > 0.0f)) return 0;
+  if (!(f < static_cast<float>(kBvhBins))) return kBvhBins - 1;
+  return static_cast<int>(f);
 }
 
 struct BuildNode {

@@ -12,6 +12,11 @@ namespace rt {
 
 using namespace rill;
 
+namespace {
+constexpr float kSlabGrow = 1.0f + 8.0f * 1.1920929e-7f;    // 1 + 8 FLT_EPSILON
+constexpr float kSlabShrink = 1.0f - 8.0f * 1.1920929e-7f;  // 1 - 8 FLT_EPSILON
+}  // namespace
+
 void Intersector::walk_bvh(const Float3& o, const RaySteps& r, const Bool& any_hit,
                            Hit& best) const {
   const Float3& d = r.d;
@@ -26,8 +31,12 @@ void Intersector::walk_bvh(const Float3& o, const RaySteps& r, const Bool& any_h
     Float3 tn = select(r.flat, Float3(-kBig), min(t0, t1));
     Float3 tf = select(r.flat, Float3(kBig), max(t0, t1));
     Bool outside = any(r.flat && ((o < lo) || (o > hi)));
-    Float t_in = max(max(tn.x(), tn.y()), max(tn.z(), 0.0f));
-    Float t_out = min(min(tf.x(), tf.y()), min(tf.z(), best.t));
+    // Widened by 8 float epsilons each way (Ize 2013 shows 2 gamma_3, about 3 epsilons, is
+    // enough for exact box coordinates): the slab distances round relative to the distance
+    // from the origin, which the boxes' padding does not grow with. A flat box seen from far
+    // away otherwise loses hits near its edges (DynamicRender.FarRaysAtTheEdgesOfFlatFaces).
+    Float t_in = max(max(tn.x(), tn.y()), max(tn.z(), 0.0f)) * kSlabShrink;
+    Float t_out = min(min(tf.x(), tf.y()), min(tf.z(), best.t)) * kSlabGrow;
     RILL_IF(!outside && t_in <= t_out) {
       RILL_FOR(Int k = 0, k < link.z(), k += 1) {
         test_primitive(o, d, bvh_.tris[link.y() + k], best);

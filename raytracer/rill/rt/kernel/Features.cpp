@@ -28,18 +28,24 @@ std::string Features::str() const {
   return s.empty() ? "none" : s;
 }
 
-Features scene_features(const Scene& s) {
-  Features f;
+std::vector<bool> used_materials(const Scene& s) {
   std::vector<bool> used(s.materials.size());
   for (size_t t = 0; t < s.triangle_count(); ++t)
-    if (triangle_usable(s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2])) {
-      f.geometry = true;
+    if (triangle_usable(s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2]))
       used[static_cast<size_t>(s.material[t])] = true;
-    }
+  // A moving triangle may be degenerate at rest (a sequence's first file collapsed to a
+  // point, say) and not later: every animated triangle counts, at rest or not.
   for (const AnimatedObject& o : s.animation.objects)
-    for (size_t t = o.first; t < o.first + o.count && !f.dynamic; ++t)
-      f.dynamic =
-          triangle_usable(s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2]);
+    for (size_t t = o.first; t < o.first + o.count; ++t)
+      used[static_cast<size_t>(s.material[t])] = true;
+  return used;
+}
+
+Features scene_features(const Scene& s) {
+  Features f;
+  const std::vector<bool> used = used_materials(s);
+  for (bool u : used) f.geometry = f.geometry || u;
+  for (const AnimatedObject& o : s.animation.objects) f.dynamic = f.dynamic || o.count > 0;
   f.lights = !s.lights.empty() && f.geometry;
   f.shadows = f.lights && s.options.shadows;
   for (size_t m = 0; m < s.materials.size(); ++m) {

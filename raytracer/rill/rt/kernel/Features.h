@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace rt {
 
@@ -30,5 +31,8 @@ constexpr int kRayStack = 3;
 
 // Throws SceneError for a material whose shader is not registered.
 Features scene_features(const Scene& s);
+// Per material: whether a triangle that can be hit uses it (a usable one, or any that moves:
+// it may be usable at another time). The kernels contain only these materials' shaders.
+std::vector<bool> used_materials(const Scene& s);
 
 }  // namespace rt

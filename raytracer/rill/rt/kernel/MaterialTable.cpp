@@ -12,12 +12,8 @@ using namespace rill;
 
 void MaterialTable::upload(const Scene& scene, const Features& F) {
   shaders_.clear();
-  std::vector<bool> used(scene.materials.size());
-  if (F.geometry)
-    for (size_t t = 0; t < scene.triangle_count(); ++t)
-      if (triangle_usable(scene.positions[3 * t], scene.positions[3 * t + 1],
-                          scene.positions[3 * t + 2]))
-        used[static_cast<size_t>(scene.material[t])] = true;
+  std::vector<bool> used =
+      F.geometry ? used_materials(scene) : std::vector<bool>(scene.materials.size(), false);
   // The used shaders, in the order their first material appears.
   std::vector<int> shader_index(scene.materials.size(), 0);
   for (size_t m = 0; m < scene.materials.size(); ++m) {

@@ -48,7 +48,8 @@ namespace {
 template <class Key>
 size_t segment(const std::vector<Key>& keys, double time, Interpolation how, double& u) {
   u = 0.0;
-  if (keys.size() < 2 || time <= keys.front().time) return 0;
+  // NaN compares false everywhere: it would pass both tests and run off the end.
+  if (keys.size() < 2 || !(time > keys.front().time)) return 0;
   if (time >= keys.back().time) return keys.size() - 1;
   auto after = std::upper_bound(keys.begin(), keys.end(), time,
                                 [](double t, const Key& k) { return t < k.time; });
@@ -100,7 +101,7 @@ size_t AnimatedObject::shape_at(double time, double start, double fps) const {
   const double rate = shape_fps > 0 ? shape_fps : fps;
   // The tolerance keeps frame k's own time (start + k / fps, rounded) on shape k.
   const double k = std::floor((time - start) * rate + 1e-6);
-  if (!(k > 0)) return 0;
+  if (!(k > 0)) return 0;  // NaN too
   return std::min(static_cast<size_t>(std::min(k, 1e9)), shapes.size() - 1);
 }
 

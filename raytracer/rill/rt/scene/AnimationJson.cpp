@@ -159,6 +159,10 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
     Transform t;
     if (inst.contains("transform")) t = transform(c, inst["transform"], where + ".transform");
     const MeshRange r = it->second;
+    // Before copying: a few lines of JSON could otherwise ask for more memory than there is.
+    if (s.triangle_count() + r.count > (size_t{1} << 26))
+      fail(c, where + ": the copy would make " + std::to_string(s.triangle_count() + r.count) +
+                  " triangles; at most 67108864 are supported");
     const size_t first = s.triangle_count();
     for (size_t k = r.first; k < r.first + r.count; ++k) {
       glm::vec3 p[3], n[3], col[3];
@@ -212,9 +216,6 @@ TimeRange keys_time_range(const Animation& a) {
   for (const AnimatedObject& o : a.objects) {
     lo = std::min(lo, o.track.keys.front().time);
     hi = std::max(hi, o.track.keys.back().time);
-    if (!o.shapes.empty())  // from 0, at its own rate or 24 fps
-      hi = std::max(
-          hi, static_cast<double>(o.shapes.size() - 1) / (o.shape_fps > 0 ? o.shape_fps : 24.0));
   }
   if (!a.camera.keys.empty()) {
     lo = std::min(lo, a.camera.keys.front().time);
@@ -222,6 +223,11 @@ TimeRange keys_time_range(const Animation& a) {
   }
   TimeRange r;
   r.start = std::isfinite(lo) ? lo : 0.0;
+  // A sequence counts its files from the range's start, at its own rate or 24 fps.
+  for (const AnimatedObject& o : a.objects)
+    if (!o.shapes.empty())
+      hi = std::max(hi, r.start + static_cast<double>(o.shapes.size() - 1) /
+                                      (o.shape_fps > 0 ? o.shape_fps : 24.0));
   r.end = hi > r.start ? hi : r.start + 1.0;  // a single key: one second of it
   return r;
 }
@@ -258,9 +264,11 @@ Sequence read_sequence(const Ctx& c, const json& mesh, const std::string& where)
          q.pattern[end] <= '9')
     ++end;
   if (at == std::string::npos || end >= q.pattern.size() || q.pattern[end] != 'd' || end - at > 3 ||
+      (end - at > 1 && std::atoi(q.pattern.c_str() + at + 1) > 20) ||
       q.pattern.find('%', end) != std::string::npos)
     fail(c, where + ".file '" + q.pattern +
-                "' needs one frame number, %d or %03d, for its \"sequence\"");
+                "' needs one frame number, %d or %03d (a width of at most 20), for its "
+                "\"sequence\"");
   if (!j.contains("last")) fail(c, w + " needs \"last\": the number of its last file");
   q.first = j.contains("first") ? integer(c, j["first"], w + ".first", 0, 99999999) : 0;
   q.last = integer(c, j["last"], w + ".last", 0, 99999999);

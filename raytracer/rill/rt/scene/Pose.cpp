@@ -23,6 +23,7 @@ void pose_objects(const Scene& rest, double time, Scene& posed) {
   const std::vector<AnimatedObject>& objects = rest.animation.objects;
   tbb::parallel_for(size_t{0}, objects.size(), [&](size_t which) {
     const AnimatedObject& o = objects[which];
+    if (o.count == 0) return;  // (its first corner may be one past the end)
     const Pose pose = o.track.at(time);
     const bool normals = !rest.normals.empty();
     // A deforming mesh's shape at this time, else the rest pose; corners from 3 * o.first.

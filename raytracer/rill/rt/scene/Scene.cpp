@@ -236,6 +236,21 @@ void validate_animation(const Animation& a, size_t triangles) {
 
 }  // namespace
 
+void check_camera(const Camera& camera, const std::string& where) {
+  if (!finite3(camera.eye) || !finite3(camera.look_at) || !finite3(camera.up) ||
+      !std::isfinite(camera.fov_y))
+    throw SceneError(where + ": values must be finite numbers");
+  if (!(camera.fov_y > 0.0f && camera.fov_y < 180.0f))
+    throw SceneError(where + ": fov_y must be between 0 and 180 degrees");
+  if (camera.eye == camera.look_at)
+    throw SceneError(where + ": eye and look_at are the same point");
+  glm::dvec3 f = glm::dvec3(camera.look_at) - glm::dvec3(camera.eye);
+  glm::dvec3 u = glm::dvec3(camera.up);
+  glm::dvec3 c = glm::cross(f, u);
+  if (glm::length(c) <= 1e-6 * glm::length(f) * glm::length(u))
+    throw SceneError(where + ": up " + vec_str(camera.up) + " is parallel to the view direction");
+}
+
 void Scene::validate() const {
   const size_t n = triangle_count();
   if (positions.size() != 3 * n) throw SceneError("internal: positions and materials disagree");
@@ -300,18 +315,10 @@ void Scene::validate() const {
   if (background.x < 0.0f || background.y < 0.0f || background.z < 0.0f)
     throw SceneError("background " + vec_str(background) +
                      " has a negative component; colours must be >= 0");
-  if (!finite3(camera.eye) || !finite3(camera.look_at) || !finite3(camera.up) ||
-      !std::isfinite(camera.fov_y))
-    throw SceneError("camera: values must be finite numbers");
-  if (!(camera.fov_y > 0.0f && camera.fov_y < 180.0f))
-    throw SceneError("camera: fov_y must be between 0 and 180 degrees");
-  if (camera.eye == camera.look_at) throw SceneError("camera: eye and look_at are the same point");
-  {
-    glm::dvec3 f = glm::dvec3(camera.look_at) - glm::dvec3(camera.eye);
-    glm::dvec3 u = glm::dvec3(camera.up);
-    glm::dvec3 c = glm::cross(f, u);
-    if (glm::length(c) <= 1e-6 * glm::length(f) * glm::length(u))
-      throw SceneError("camera: up " + vec_str(camera.up) + " is parallel to the view direction");
+  check_camera(camera, "camera");
+  for (size_t k = 0; k < animation.camera.keys.size(); ++k) {
+    const CameraPose& p = animation.camera.keys[k].camera;
+    check_camera(Camera{p.eye, p.look_at, p.up, p.fov_y}, "camera.keys[" + std::to_string(k) + "]");
   }
   if (width < 1 || height < 1 || width > 16384 || height > 16384 ||
       static_cast<int64_t>(width) * height > (int64_t{1} << 25))

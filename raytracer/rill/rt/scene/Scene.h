@@ -137,6 +137,11 @@ struct Scene {
   void validate() const;
 };
 
+// The camera checks of Scene::validate (finite, fov_y in (0, 180), eye not at look_at, up not
+// along the view), with messages starting "where: ". Dynamic scenes check every key, and
+// rill-trace each frame's interpolated camera.
+void check_camera(const Camera& camera, const std::string& where);
+
 // Bounding box of the finite triangles; returns false if there are none.
 bool scene_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi);
 
