@@ -12,9 +12,12 @@
 //
 // Layout (what BvhView uploads): nodes in depth-first order, so a node's first child is the
 // next node and `skip` is the node after its subtree. The kernel walks it without a stack
-// (a "threaded" BVH): into a box it hits, to `skip` past one it misses. Each box is padded
-// by a few parts in 10^5 of its size (and 4e-7 of its coordinates), so that a triangle the
-// triangle test accepts is never in a box the float slab test misses.
+// (a "threaded" BVH): into a box it hits, to `skip` past one it misses. So that a triangle
+// the triangle test accepts is never in a box the float slab test misses, each box is padded
+// by 1e-5 of its size and 4e-7 of its coordinates (rounding that grows with the coordinates),
+// and the walk widens each slab interval by 8 float epsilons (rounding that grows with the
+// distance from the ray's origin; kernel/BvhTraversal.cpp). Tests aim rays at the edges of
+// flat faces from far away and near faces far from the origin.
 #pragma once
 
 #include <glm/glm.hpp>
