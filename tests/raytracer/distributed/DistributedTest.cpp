@@ -26,7 +26,11 @@ const std::string kExe = std::string("'") + RILL_TRACE_EXE + "'";
 
 #if RILL_HAVE_MPI
 #define RT_REQUIRE_MPI() (void)0
-const std::string kMpirun = std::string("'") + RILL_MPIEXEC + "' --oversubscribe";
+// Under the sanitizer build (.ci/run) the ranks check no leaks: Open MPI 4.1 leaves memory
+// behind at MPI_Finalize by design, allocated in components it unloads there, so LeakSanitizer
+// cannot name a library to suppress. Address and undefined-behaviour checks stay on.
+const std::string kMpirun = std::string("env ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" '") +
+                            RILL_MPIEXEC + "' --oversubscribe";
 #else
 #define RT_REQUIRE_MPI() GTEST_SKIP() << "rill-trace was built without MPI (RILL_MPI off)"
 const std::string kMpirun;
