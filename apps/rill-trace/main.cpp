@@ -42,6 +42,7 @@
 #include <sstream>
 
 #include "AccuracyBench.h"
+#include "FrameSequence.h"
 #include "distributed/Launch.h"
 #include "distributed/SceneHash.h"
 #if RILL_HAVE_MPI
@@ -52,6 +53,7 @@
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/Image.h"
 #include "rill/rt/scene/OutputFile.h"
+#include "rill/rt/scene/Pose.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace {
@@ -117,6 +119,11 @@ struct RenderOptions {
   bool distribute = false;
   bool progress = false;
   bool backend_given = false;  // --backend on the command line (else $RILL_TRACE_BACKEND)
+  // Dynamic scenes (docs/dynamic-scenes.md): the frames to render ("N" or "A:B"), how the
+  // BVH follows the moving objects, and a preview video of the frames.
+  std::string frames;
+  std::string bvh = "rebuild";
+  std::string video;
 };
 
 void parse_size(const std::string& s, int& w, int& h) {
@@ -196,6 +203,9 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
   if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
   if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
   scene.validate();
+  // An animated scene's camera as it is at the start (Pose.h): frame 0, for every path that
+  // renders one frame; --frames moves it per frame.
+  if (scene.animation.animated()) scene.camera = rt::camera_at(scene, scene.animation.time.start);
   p->load_ms = ms_since(t_load);
   for (const std::string& w : scene.warnings)
     if (say) std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
@@ -316,6 +326,69 @@ void print_notes(const RenderOptions& o, const Prepared& p,
                 p.grid.degenerate, p.grid.non_finite);
 }
 
+// One frame of a sequence (--frames): where it is in time, what moving its objects cost
+// (Tracer::set_time) and its trace time.
+struct FrameStats {
+  int frame = 0;
+  double time = 0;
+  rt::FrameUpdate update;
+  double trace_ms = 0, compile_ms = 0;
+  int64_t compiles = 0;  // kernels compiled for it (misses of Rill's in-process kernel cache)
+};
+
+nlohmann::json frames_json(const std::vector<FrameStats>& frames, const rt::Features& f) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const FrameStats& s : frames) {
+    nlohmann::json j = {{"frame", s.frame},
+                        {"time", s.time},
+                        {"trace_ms", s.trace_ms},
+                        {"compile_ms", s.compile_ms},
+                        {"kernels_compiled", s.compiles}};
+    if (f.dynamic)
+      j["update"] = {{"pose_ms", s.update.pose_ms},         {"bvh_ms", s.update.bvh_ms},
+                     {"upload_ms", s.update.upload_ms},     {"rebuilt", s.update.rebuilt},
+                     {"moving_triangles", s.update.moving}, {"bvh_nodes", s.update.bvh_nodes},
+                     {"bvh_depth", s.update.bvh_depth}};
+    a.push_back(j);
+  }
+  return a;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// "48 frames (0..47): trace median 12.3 ms; BVH rebuilt, median 0.4 ms (600 moving
+// triangles); upload 0.2 ms; compiled once".
+void print_frames_summary(const std::vector<FrameStats>& frames) {
+  std::vector<double> trace, bvh, upload;
+  bool recompiled = false, rebuilt = false;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    trace.push_back(frames[i].trace_ms);
+    bvh.push_back(frames[i].update.bvh_ms);
+    upload.push_back(frames[i].update.upload_ms);
+    rebuilt = rebuilt || frames[i].update.rebuilt;
+    recompiled = recompiled || (i > 0 && frames[i].compiles > 0);
+  }
+  std::printf(
+      "%zu frame%s (%d..%d): trace median %.2f ms; BVH %s median %.3f ms (%zu moving "
+      "triangles), upload median %.3f ms; %s\n",
+      frames.size(), frames.size() == 1 ? "" : "s", frames.front().frame, frames.back().frame,
+      median(trace), rebuilt ? "rebuilt," : "refitted,", median(bvh), frames.back().update.moving,
+      median(upload),
+      recompiled ? "kernels recompiled after the first frame" : "kernels compiled once");
+}
+
+rt::BvhUpdate parse_bvh_update_option(const std::string& s) {
+  try {
+    return rt::parse_bvh_update(s);
+  } catch (const std::invalid_argument& e) {
+    throw rt::SceneError(std::string("--bvh: ") + e.what());
+  }
+}
+
 #if RILL_HAVE_MPI
 int render_distributed(const RenderOptions& o);
 #endif
@@ -350,10 +423,50 @@ int render(RenderOptions o) {
   rt::Tracer& tracer = *p.tracer;
   const rt::RenderSettings& rs = p.rs;
   const double load_ms = p.load_ms;
+
+  // --frames: which frames, and one output name per frame (FrameSequence.h).
+  const bool animated = scene.animation.animated();
+  const trace_cli::FrameSpan span =
+      o.frames.empty() ? trace_cli::FrameSpan{}
+                       : trace_cli::parse_frames(o.frames, scene.animation.time, animated);
+  const rt::BvhUpdate bvh_update = parse_bvh_update_option(o.bvh);
+  if (o.out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty() &&
+      span.count() > 1)
+    p.out = (scene.name.empty() ? std::string("render") : scene.name) + "-%04d.png";
+  const std::pair<std::string, const std::string*> outputs[] = {{"--out", &p.out},
+                                                                {"--pfm", &o.pfm},
+                                                                {"--depth", &o.depth},
+                                                                {"--prim", &o.prim},
+                                                                {"--normal", &o.normal}};
+  for (const auto& [option, path] : outputs) {
+    if (path->empty()) continue;
+    const bool numbered = !o.frames.empty() && trace_cli::has_frame_number(*path, option);
+    if (span.count() > 1 && !numbered)
+      throw rt::SceneError("--frames " + o.frames + " writes " + std::to_string(span.count()) +
+                           " frames: " + option + " needs a frame number, such as frame-%04d" +
+                           std::filesystem::path(*path).extension().string());
+  }
+  auto frame_file = [&](int frame) {
+    return [&o, frame](const std::string& path) {
+      return o.frames.empty() ? path : trace_cli::frame_path(path, frame);
+    };
+  };
+  if (!o.video.empty()) {
+    if (p.out.empty() || o.frames.empty())
+      throw rt::SceneError("--video makes a video of the frames' PNGs: give --frames and --out");
+    if (std::string why = trace_cli::video_tool_missing(); !why.empty()) throw rt::SceneError(why);
+  }
+
   const auto t_render = Clock::now();
   g_doing = "rendering " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " on " +
             o.backend;
-  rt::RenderResult r = tracer.render(rs, scene.camera);
+  // A dynamic scene's first frame: its objects and camera where they are then.
+  const double first_time = animated ? scene.animation.time.time_of(span.first) : 0.0;
+  const int64_t misses_before = rill::kernel_cache_stats().misses;
+  std::vector<FrameStats> frame_stats(1);
+  if (animated) frame_stats[0].update = tracer.set_time(first_time, bvh_update);
+  const rt::Camera first_camera = rt::camera_at(scene, first_time);
+  rt::RenderResult r = tracer.render(rs, first_camera);
   const double render_ms = ms_since(t_render);
   const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
   // Of that, the compile() calls (about 0 from a kernel cache); the rest is set-up: uploading
@@ -367,7 +480,7 @@ int render(RenderOptions o) {
   rt::RenderResult frame;  // one result for every frame: its image memory is reused
   for (int f = 0; f < o.bench_frames; ++f) {
     const auto t_frame = Clock::now();
-    tracer.render(rs, scene.camera, frame);
+    tracer.render(rs, first_camera, frame);
     frame_ms.push_back(ms_since(t_frame));
     frame_times.push_back(frame.times);
   }
@@ -386,7 +499,39 @@ int render(RenderOptions o) {
                     &rt::FrameTimes::reduce, &rt::FrameTimes::read_back})
     median_split.*step = median_of(step);
 
-  const std::vector<std::string> written = write_outputs(o, p, r);
+  std::vector<std::string> written = write_outputs(o, p, r, frame_file(span.first));
+  frame_stats[0].frame = span.first;
+  frame_stats[0].time = first_time;
+  frame_stats[0].trace_ms = r.trace_ms;
+  frame_stats[0].compile_ms = r.compile_ms;
+  frame_stats[0].compiles = rill::kernel_cache_stats().misses - misses_before;
+  // --frames: the other frames, back to back through the same tracer (compiled kernels, the
+  // grid and the static arrays stay; Tracer::set_time moves the objects and their BVH).
+  trace_cli::Progress progress(span.count(), o.quiet);
+  progress.update(1, r.trace_ms);
+  for (int k = span.first + 1; k <= span.last; ++k) {
+    FrameStats fs;
+    fs.frame = k;
+    fs.time = animated ? scene.animation.time.time_of(k) : 0.0;
+    g_doing = "rendering frame " + std::to_string(k);
+    const int64_t misses = rill::kernel_cache_stats().misses;
+    if (animated) fs.update = tracer.set_time(fs.time, bvh_update);
+    tracer.render(rs, rt::camera_at(scene, fs.time), frame);
+    fs.trace_ms = frame.trace_ms;
+    fs.compile_ms = frame.compile_ms;
+    fs.compiles = rill::kernel_cache_stats().misses - misses;
+    g_doing = "writing frame " + std::to_string(k);
+    for (const std::string& w : write_outputs(o, p, frame, frame_file(k)))
+      if (written.size() < 8) written.push_back(w);
+    frame_stats.push_back(fs);
+    progress.update(k - span.first + 1, fs.trace_ms);
+  }
+  progress.finish();
+  if (!o.video.empty()) {
+    g_doing = "writing the video";
+    trace_cli::write_video(p.out, span.first, scene.animation.time.fps, o.video);
+    written.push_back(o.video);
+  }
   if (!o.source.empty()) {
     std::ofstream f(o.source);
     f << tracer.source(o.backend, p.acc);
@@ -437,9 +582,11 @@ int render(RenderOptions o) {
         {"trace", r.trace_ms},   {"total", load_ms + grid.build_ms + compile_ms + r.trace_ms}};
     // The first frame's trace time, step by step (Tracer.h, FrameTimes).
     j["trace_split_ms"] = split_json(r.times);
+    if (animated || span.count() > 1) j["frames"] = frames_json(frame_stats, tracer.features());
     write_json(o.stats_json, j);
   }
   print_notes(o, p, written);
+  if (frame_stats.size() > 1 || animated) print_frames_summary(frame_stats);
   if (!frame_ms.empty())
     std::printf(
         "%zu frames of %dx%d after the first: median %.2f ms (%.1f fps), min %.2f ms, max "
@@ -537,6 +684,10 @@ int render_distributed(const RenderOptions& o) {
   namespace dist = rt::distributed;
   if (o.bench_frames > 0)
     throw rt::SceneError("--bench-frames times one process; it does not run under mpirun");
+  if (!o.frames.empty() || !o.video.empty())
+    throw rt::SceneError(
+        "--frames and --video do not run under mpirun yet: a distributed render is one frame "
+        "(an animated scene's first); render sequences in one process");
   dist::MpiSession mpi;
   const bool root = mpi.rank() == 0;
   const std::string who = "rank " + std::to_string(mpi.rank()) + " on " + mpi.host();
@@ -847,6 +998,14 @@ int main(int argc, char** argv) {
   r->add_flag("--distribute", ro.distribute,
               "require a distributed render: an error unless started by mpirun with 2 or more "
               "processes");
+  r->add_option("--frames", ro.frames,
+                "dynamic scenes: frame N, or frames A:B (both included); outputs need a frame "
+                "number, e.g. --out frame-%04d.png");
+  r->add_option("--bvh", ro.bvh,
+                "dynamic scenes: the moving objects' BVH each frame: rebuild or refit")
+      ->default_str("rebuild");
+  r->add_option("--video", ro.video,
+                "with --frames: a preview video of the PNGs (ffmpeg), .mp4 or .gif");
   r->add_option("--triangle", ro.triangle, "triangle test: moller or watertight")
       ->default_str("moller");
   r->add_option("--offset", ro.offset, "self-intersection: scaled (Wachter-Binder) or epsilon")

@@ -202,6 +202,10 @@ class CpuBackend : public Backend {
     const double codegen_ms = stage.lap();
     std::vector<std::string> flags = compiler_flags(o.accuracy);
     if (lockstep && vector_isa() == "AVX2") flags.push_back("-mavx2");
+    // Scalar code gains from SSE4.1's roundss: floor and ceil (every 3D-DDA start and jump)
+    // are then one exact instruction instead of a conversion sequence; 3-4% on a ray traced
+    // frame (docs/benchmarks/2026-11-25-gpu-frame.md).
+    if (!lockstep && has_sse41()) flags.push_back("-msse4.1");
     SharedObject so = compile_shared_object(name(), source, flags, "rill_run");
     auto k = std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep);
     k->set_build_times(codegen_ms, stage.lap());
@@ -215,6 +219,11 @@ class CpuBackend : public Backend {
   static std::string vector_isa() {
     static const bool avx2 = __builtin_cpu_supports("avx2");
     return avx2 ? "AVX2" : "SSE2";
+  }
+
+  static bool has_sse41() {
+    static const bool sse41 = __builtin_cpu_supports("sse4.1");
+    return sse41;
   }
 
   bool lockstep_;

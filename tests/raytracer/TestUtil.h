@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "rill/rt/scene/Scene.h"
 #include "ParamName.h"
+#include "rill/rt/scene/Scene.h"
 
 namespace rt::testing {
 
@@ -57,6 +57,15 @@ std::string error_of(F&& f) {
   }
   ADD_FAILURE() << "no SceneError";
   return {};
+}
+
+// A 2 x 1 grid of quads (4 triangles) whose middle vertices rise with `h`; `flip` writes the
+// second face's corners in another order (another topology).
+inline std::string wave_obj(float h, bool flip = false) {
+  std::string s = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 " + std::to_string(h) + "\nv 2 1 0\n";
+  s += "f 1 2 5 4\n";
+  s += flip ? "f 3 6 5 2\n" : "f 2 3 6 5\n";
+  return s;
 }
 
 // Skips the test when the backend cannot run here.

@@ -2,12 +2,15 @@
 #include "rill/rt/Tracer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
+#include "rill/rt/accel/Bvh.h"
 #include "rill/rt/kernel/DeviceScene.h"
 #include "rill/rt/megakernel/Megakernel.h"
 #include "rill/rt/multipass/Multipass.h"
+#include "rill/rt/scene/Pose.h"
 
 namespace rt {
 
@@ -55,15 +58,47 @@ Features tracer_features(const Scene& scene, const TracerOptions& options) {
   return f;
 }
 
+// A dynamic scene as it is at the start of its time range (the Tracer's first frame), or
+// none for a static scene.
+std::unique_ptr<Scene> posed_at_start(const Scene& scene, const Features& f) {
+  if (!f.dynamic) return nullptr;
+  auto posed = std::make_unique<Scene>(scene);
+  pose_objects(scene, scene.animation.time.start, *posed);
+  return posed;
+}
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
 }  // namespace
+
+BvhUpdate parse_bvh_update(const std::string& s) {
+  if (s == "rebuild") return BvhUpdate::Rebuild;
+  if (s == "refit") return BvhUpdate::Refit;
+  throw std::invalid_argument("unknown BVH update '" + s + "' (rebuild, refit)");
+}
 
 struct Tracer::Impl {
   Impl(const Scene& scene, const Grid& grid, const TracerOptions& options)
       : options(scene.options),
-        device(scene, grid, options, tracer_features(scene, options)),
-        megakernel(device) {}
+        features(tracer_features(scene, options)),
+        rest(features.dynamic ? std::make_unique<Scene>(scene) : nullptr),
+        posed(posed_at_start(scene, features)),
+        device(posed ? *posed : scene, grid, options, features),
+        megakernel(device) {
+    if (posed) {
+      bvh = build_bvh(*posed, moving_triangles(*posed));
+      device.bvh.upload(bvh);
+    }
+  }
 
   SceneOptions options;  // depth and samples per pixel by default
+  Features features;
+  // Dynamic scenes: the scene at rest (as given), as posed now, and the BVH of its moving
+  // triangles; null / empty for a static scene.
+  std::unique_ptr<Scene> rest, posed;
+  Bvh bvh;
   DeviceScene device;
   Megakernel megakernel;
   std::unique_ptr<Multipass> multipass;
@@ -93,6 +128,28 @@ std::vector<std::string> Tracer::shaders() const {
 
 std::string Tracer::source(const std::string& backend, Accuracy a) {
   return d_->megakernel.kernel(backend, a).source();
+}
+
+FrameUpdate Tracer::set_time(double time, BvhUpdate how) {
+  Impl& I = *d_;
+  FrameUpdate u;
+  if (!I.rest) return u;
+  auto t = std::chrono::steady_clock::now();
+  pose_objects(*I.rest, time, *I.posed);
+  u.pose_ms = ms_since(t);
+  t = std::chrono::steady_clock::now();
+  const std::vector<int32_t> ids = moving_triangles(*I.posed);
+  u.rebuilt = how == BvhUpdate::Rebuild || !refit_bvh(I.bvh, *I.posed, ids);
+  if (u.rebuilt) I.bvh = build_bvh(*I.posed, ids);
+  u.bvh_ms = ms_since(t);
+  t = std::chrono::steady_clock::now();
+  I.device.bvh.upload(I.bvh);
+  I.device.tris.upload_geometry(*I.posed, I.device.K, I.device.F);
+  u.upload_ms = ms_since(t);
+  u.moving = ids.size();
+  u.bvh_nodes = static_cast<int>(I.bvh.nodes.size());
+  u.bvh_depth = I.bvh.depth;
+  return u;
 }
 
 RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {

@@ -48,6 +48,24 @@ struct FrameOutputs {
   bool normal = true;  // RenderResult::normal
 };
 
+// How a dynamic scene's BVH follows its moving triangles from one frame to the next
+// (accel/Bvh.h): a new tree, or the same tree with its boxes recomputed (faster; the tree
+// suits the new poses less as they drift from the ones it was built for). Either way the image
+// is the same.
+enum class BvhUpdate { Rebuild, Refit };
+// "rebuild" or "refit"; throws std::invalid_argument naming the bad value.
+BvhUpdate parse_bvh_update(const std::string& s);
+
+// What Tracer::set_time did, in milliseconds.
+struct FrameUpdate {
+  double pose_ms = 0;    // the animated objects moved (host)
+  double bvh_ms = 0;     // the BVH built or refitted (host, oneTBB)
+  double upload_ms = 0;  // the moved triangles and the BVH uploaded
+  bool rebuilt = false;  // a new tree (a refit falls back to it when triangles come or go)
+  size_t moving = 0;     // moving triangles in the BVH
+  int bvh_nodes = 0, bvh_depth = 0;
+};
+
 struct RenderSettings {
   std::string backend = "cpu";
   Strategy strategy = Strategy::Megakernel;
@@ -131,6 +149,12 @@ class Tracer {
   const TracerOptions& options() const;
   // The shaders generated into the kernels: those of the materials the scene's triangles use.
   std::vector<std::string> shaders() const;
+  // Dynamic scenes (Scene::animation, docs/dynamic-scenes.md): moves the animated objects
+  // to `time` (seconds) and brings their BVH up to date; the static triangles' grid, the
+  // compiled kernels and the other arrays stay as they are. The camera is the caller's:
+  // camera_at(scene, time) (scene/Pose.h). A new tracer starts at the time range's start.
+  // Nothing to do for a static scene.
+  FrameUpdate set_time(double time, BvhUpdate how = BvhUpdate::Rebuild);
   // Compiles (cached per backend and accuracy) and renders through the camera.
   RenderResult render(const RenderSettings& settings, const Camera& camera);
   // The same into `result`, whose image memory is reused: frame after frame into one

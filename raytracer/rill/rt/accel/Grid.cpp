@@ -359,8 +359,17 @@ Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double dens
   Grid g;
   const size_t n = s.triangle_count();
   std::vector<uint8_t> usable(n);
+  // Triangles that move are not in the grid: the tracer finds them in its BVH (Bvh.h).
+  std::vector<uint8_t> moving(n);
+  for (const AnimatedObject& o : s.animation.objects)
+    std::fill(moving.begin() + static_cast<std::ptrdiff_t>(o.first),
+              moving.begin() + static_cast<std::ptrdiff_t>(o.first + o.count), 1);
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
   for (size_t t = 0; t < n; ++t) {
+    if (moving[t]) {
+      ++g.moving;
+      continue;
+    }
     const glm::vec3* p = &s.positions[3 * t];
     if (!finite3(p[0]) || !finite3(p[1]) || !finite3(p[2])) {
       ++g.non_finite;

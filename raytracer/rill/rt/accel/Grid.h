@@ -75,6 +75,7 @@ struct Grid {
   size_t usable = 0;      // triangles in the grid
   size_t degenerate = 0;  // zero area: left out
   size_t non_finite = 0;  // a NaN or infinite vertex: left out
+  size_t moving = 0;      // in animated objects (Scene::animation): left to the tracer's BVH
   double build_ms = 0;
   // What the user should know about the grid they asked for (a resolution that is mostly
   // empty space); rill-trace prints them and puts them in --stats-json.

@@ -13,6 +13,7 @@ void GridView::upload(const Grid& grid) {
   cell.set(grid.cell);
   res.set(grid.res);
   subgrids = grid.subgrids;
+  empty = grid.empty();
   // The traversal's step limit, a proof rather than a guess: every step moves the voxel by
   // one along one axis, never against the sign of d, and the loop ends when the voxel
   // leaves [0, res). So a ray (any ray, whatever rounding did to tMax) takes at most

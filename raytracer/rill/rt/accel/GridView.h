@@ -16,6 +16,7 @@ struct GridView {
   rill::Uniform<rill::Int3> res{glm::ivec3(1), "grid_res"};
   rill::Uniform<rill::Int> max_steps{3, "max_voxel_steps"};
   int64_t subgrids = 0;  // host: the second level's code is generated only where there is one
+  bool empty = true;     // host: no triangle in the grid (all of them move, or none)
 
   void upload(const Grid& grid);
   // The voxel's entry: the index range (start, count) of its triangles, (distance to the

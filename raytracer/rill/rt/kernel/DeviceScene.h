@@ -4,6 +4,7 @@
 // Shading). Both strategies (megakernel/, multipass/) build their programs from this.
 #pragma once
 
+#include "rill/rt/accel/BvhView.h"
 #include "rill/rt/accel/GridView.h"
 #include "rill/rt/kernel/CameraRays.h"
 #include "rill/rt/kernel/Intersector.h"
@@ -23,11 +24,12 @@ struct DeviceScene {
   const TracerOptions K;
   const Features F;
   GridView grid;
+  BvhView bvh;  // the moving triangles' (F.dynamic): the Tracer uploads it, each frame
   Triangles tris;
   MaterialTable materials;
   Lights lights;
   CameraRays camera;
-  Intersector intersector{grid, tris, K, F};
+  Intersector intersector{grid, bvh, tris, K, F};
   Shading shading{tris, materials, lights, K, F};
   int light_count = 0;  // host
 };

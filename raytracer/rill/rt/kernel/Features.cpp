@@ -10,7 +10,9 @@ namespace rt {
 std::string Features::str() const {
   std::string s;
   auto add = [&](bool on, const char* name) {
-    if (on) s += (s.empty() ? "" : " ") + std::string(name);
+    if (!on) return;
+    if (!s.empty()) s += ' ';
+    s += name;
   };
   add(geometry, "geometry");
   add(lights, "lights");
@@ -21,6 +23,7 @@ std::string Features::str() const {
   add(vertex_normals, "vertex-normals");
   add(vertex_colors, "vertex-colors");
   add(texcoords, "texcoords");
+  add(dynamic, "dynamic");
   if (stack > 0) s += " stack=" + std::to_string(stack);
   return s.empty() ? "none" : s;
 }
@@ -33,6 +36,10 @@ Features scene_features(const Scene& s) {
       f.geometry = true;
       used[static_cast<size_t>(s.material[t])] = true;
     }
+  for (const AnimatedObject& o : s.animation.objects)
+    for (size_t t = o.first; t < o.first + o.count && !f.dynamic; ++t)
+      f.dynamic =
+          triangle_usable(s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2]);
   f.lights = !s.lights.empty() && f.geometry;
   f.shadows = f.lights && s.options.shadows;
   for (size_t m = 0; m < s.materials.size(); ++m) {

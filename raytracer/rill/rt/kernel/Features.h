@@ -21,6 +21,7 @@ struct Features {
   bool vertex_normals = false;  // interpolated normals (mesh normals and smooth_normals)
   bool vertex_colors = false;   // per-vertex colours multiply the diffuse colour
   bool texcoords = false;       // per-vertex texture coordinates (a used texture needs them)
+  bool dynamic = false;         // animated objects: the BVH beside the grid (accel/Bvh.h)
   int stack = 0;                // ray stack entries (refraction: reflected branch)
   std::string str() const;      // "geometry lights shadows ..." for logs and stats
 };

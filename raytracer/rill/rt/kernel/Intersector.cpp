@@ -105,7 +105,11 @@ struct WatertightRay {
 }  // namespace
 
 void Intersector::test_triangle(const Float3& o, const Float3& d, const Int& ref, Hit& best) const {
-  Int tri = grid_.elements[ref];
+  test_primitive(o, d, grid_.elements[ref], best);
+}
+
+void Intersector::test_primitive(const Float3& o, const Float3& d, const Int& tri,
+                                 Hit& best) const {
   if (K_.triangle == TriangleTest::Watertight) {
     WatertightRay r(d);
     Float3 a = r.permute(tris_.v0[tri] - o, true), b = r.permute(tris_.v1[tri] - o, true),
@@ -148,6 +152,21 @@ void Intersector::test_triangle(const Float3& o, const Float3& d, const Int& ref
     best.uv = Float2(u, v);
   }
   RILL_ENDIF;
+}
+
+void Intersector::test_list(const Float3& o, const Float3& d, const Int2& range,
+                            const Bool& any_hit, Hit& best) const {
+  RILL_FOR(Int k = 0, k < range.y(), k += 1) {
+    test_triangle(o, d, range.x() + k, best);
+    // A shadow ray needs only whether something is in the way: the first hit settles it
+    // (leave_voxel would end the walk after this voxel anyway). Closest-hit rays pass a
+    // constant false, and the optimizer removes the test.
+    RILL_IF(any_hit && best.id >= 0) {
+      RILL_BREAK;
+    }
+    RILL_ENDIF;
+  }
+  RILL_ENDFOR;
 }
 
 RaySteps Intersector::ray_steps(const Float3& d) const {
@@ -197,11 +216,7 @@ void Intersector::walk_subgrid(const Float3& o, const RaySteps& r, const Float& 
   Int sub_steps = 0;
   Bool done = false;
   RILL_DO {
-    Int2 range = grid_.voxels[entry.x() + sv.x() + m * (sv.y() + m * sv.z())];
-    RILL_FOR(Int k = 0, k < range.y(), k += 1) {
-      test_triangle(o, d, range.x() + k, best);
-    }
-    RILL_ENDFOR;
+    test_list(o, d, grid_.voxels[entry.x() + sv.x() + m * (sv.y() + m * sv.z())], any_hit, best);
     Float s_leave = min(min(smx.x(), smx.y()), smx.z());
     done = best.id >= 0 && (best.t <= s_leave || any_hit);
     done = done || s_leave >= t_out;
@@ -272,6 +287,16 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit) const {
   const Float3& d = ray.d;
   const Bool no(false);
   const Bool& any = any_hit != nullptr ? *any_hit : no;
+  // The grid first: its hit, usually a near one in a static room, then bounds the BVH walk,
+  // which skips every box beyond it.
+  if (!grid_.empty) walk_grid(ray, any, best);
+  if (F_.dynamic) walk_bvh(o, ray_steps(d), any, best);
+  return best;
+}
+
+void Intersector::walk_grid(const Ray& ray, const Bool& any, Hit& best) const {
+  const Float3& o = ray.o;
+  const Float3& d = ray.d;
   Bool inside = false;
   Float t_enter = 0.0f, t_exit = 0.0f;
   ray_box(ray, inside, t_enter, t_exit);
@@ -280,10 +305,7 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit) const {
     const RaySteps rs = ray_steps(d);
     RILL_DO {
       Int2 range = grid_.voxel_range(st.vox);
-      RILL_FOR(Int k = 0, k < range.y(), k += 1) {
-        test_triangle(o, d, range.x() + k, best);
-      }
-      RILL_ENDFOR;
+      test_list(o, d, range, any, best);
       if (grid_.subgrids > 0) {  // the second level's code only where the grid has one
         RILL_IF(range.y() < 0) {
           walk_subgrid(o, rs, t_exit, any, range, st, best);
@@ -295,7 +317,6 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit) const {
     RILL_UNTIL(st.done);
   }
   RILL_ENDIF;
-  return best;
 }
 
 }  // namespace rt

@@ -12,6 +12,7 @@
 
 #include <rill/rill.h>
 
+#include "rill/rt/accel/BvhView.h"
 #include "rill/rt/accel/GridView.h"
 #include "rill/rt/kernel/Features.h"
 #include "rill/rt/kernel/Options.h"
@@ -43,13 +44,20 @@ struct DdaState {
 
 class Intersector {
  public:
-  Intersector(const GridView& grid, const Triangles& tris, const TracerOptions& K,
-              const Features& F)
-      : grid_(grid), tris_(tris), K_(K), F_(F) {}
+  Intersector(const GridView& grid, const BvhView& bvh, const Triangles& tris,
+              const TracerOptions& K, const Features& F)
+      : grid_(grid), bvh_(bvh), tris_(tris), K_(K), F_(F) {}
 
-  // The whole search. With *any_hit true, the first hit before ray.tmax ends it (shadow
-  // rays); any_hit null: closest hit only. No hit: id -1, t = ray.tmax.
+  // The whole search: the grid over the static triangles, then the BVH over the moving ones
+  // (F.dynamic), each keeping the closest hit by test_triangle's rule, so the result is the
+  // closest over all triangles whichever holds them (and whichever is searched first: the
+  // multipass strategy walks the BVH first). With *any_hit true, the first hit
+  // before ray.tmax ends it (shadow rays); any_hit null: closest hit only. No hit: id -1,
+  // t = ray.tmax.
   Hit intersect(const Ray& ray, const Bool* any_hit) const;
+
+  // The grid's part of intersect(): box, 3D-DDA, the voxels' lists; from the hit in best.
+  void walk_grid(const Ray& ray, const Bool& any_hit, Hit& best) const;
 
   // ---- the steps --------------------------------------------------------------------------
   // The ray against the grid's box: inside, and the parameter range [t_enter, t_exit]
@@ -62,6 +70,15 @@ class Intersector {
   // The knob's triangle test against the triangle of element-list entry ref; keeps the
   // closest hit in best (ties: the smaller id).
   void test_triangle(const Float3& o, const Float3& d, const Int& ref, Hit& best) const;
+  // The same against triangle (primitive id) tri.
+  void test_primitive(const Float3& o, const Float3& d, const Int& tri, Hit& best) const;
+  // The moving triangles' BVH (Bvh.h), walked without a stack; with any_hit true the first
+  // hit ends it. Generated only for scenes with animated objects (F.dynamic).
+  void walk_bvh(const Float3& o, const RaySteps& r, const Bool& any_hit, Hit& best) const;
+  // The triangles of one element-list range (base, count) in order; with any_hit true the
+  // first hit ends the list.
+  void test_list(const Float3& o, const Float3& d, const Int2& range, const Bool& any_hit,
+                 Hit& best) const;
   // The triangles of a voxel with a subgrid (entry (base, -m), Grid.h): a 3D-DDA over its
   // sub-voxels, within the voxel.
   void walk_subgrid(const Float3& o, const RaySteps& r, const Float& t_exit, const Bool& any_hit,
@@ -85,6 +102,7 @@ class Intersector {
   Float3 voxel_exits(const RaySteps& r, const Int3& vox, const Float3& tmx) const;
 
   const GridView& grid_;
+  const BvhView& bvh_;
   const Triangles& tris_;
   const TracerOptions& K_;
   const Features& F_;

@@ -27,6 +27,9 @@ struct Triangles {
   // Uploads what F and the knobs need. Missing vertex normals (colours) where F forces them
   // on are the geometric normal (white).
   void upload(const Scene& scene, const TracerOptions& K, const Features& F);
+  // Only what moves with the vertices (positions, edges, normals): each frame of a dynamic
+  // scene. Colours, texture coordinates and materials stay as upload() left them.
+  void upload_geometry(const Scene& scene, const TracerOptions& K, const Features& F);
 };
 
 }  // namespace rt

@@ -42,7 +42,16 @@ Program Multipass::capture_setup() const {
     Bool inside = false;
     Float t_enter = 0.0f, t_exit = 0.0f;
     X.ray_box(ray, inside, t_enter, t_exit);
-    hit = Hit{ray.tmax, Float2(0.0f), Int(-1)};
+    Hit best{ray.tmax, Float2(0.0f), Int(-1)};
+    if (S_.F.dynamic) {
+      // The moving triangles' BVH in one go; the grid's passes then go on from its hit, as
+      // the megakernel's intersect() does. A shadow ray it blocks is finished.
+      Bool any_hit = any_hit_ != 0;
+      X.walk_bvh(ray.o, X.ray_steps(ray.d), any_hit, best);
+      inside = inside && !(any_hit && best.id >= 0);
+    }
+    if (S_.grid.empty) inside = false;
+    hit = best;
     steps_out = 0;
     RILL_IF(inside) {
       DdaState st = X.dda_init(ray.o, ray.d, t_enter);

@@ -427,10 +427,95 @@ Scene scene_textured() {
   return s;
 }
 
+// "bounce": thesis scene A's three boxes on a floor before a wall, static, with six balls
+// bouncing in front of them (one sphere mesh placed six times) and three cubes spinning around
+// the tall box; 4 seconds at 24 frames per second, the camera swinging round. The motion is
+// sampled into keys 12 times a second (linear in between): a parabola per bounce, a fraction
+// of a turn per key.
+Scene scene_bounce() {
+  Scene s = scene_a();
+  s.name = "bounce";
+  const int floor = s.add_material(mat("floor", {0.7f, 0.7f, 0.68f}, glm::vec3(0.0f), 1.0f, 0.2f));
+  const int wall = s.add_material(mat("wall", {0.55f, 0.6f, 0.7f}));
+  add_quad(s, {-14.0f, 0.0f, -6.0f}, {-14.0f, 0.0f, 9.0f}, {14.0f, 0.0f, 9.0f},
+           {14.0f, 0.0f, -6.0f}, floor);
+  add_quad(s, {-14.0f, 0.0f, -3.0f}, {14.0f, 0.0f, -3.0f}, {14.0f, 8.0f, -3.0f},
+           {-14.0f, 8.0f, -3.0f}, wall);
+  const int ball_mats[3] = {
+      s.add_material(mat("ball-red", {0.9f, 0.2f, 0.15f}, glm::vec3(0.5f), 60.0f)),
+      s.add_material(mat("ball-mirror", {0.2f, 0.2f, 0.2f}, glm::vec3(0.8f), 200.0f, 0.7f)),
+      s.add_material(mat("ball-teal", {0.1f, 0.7f, 0.7f}, glm::vec3(0.5f), 60.0f))};
+  const int spin_mat = s.add_material(mat("spinner", {0.95f, 0.6f, 0.1f}, glm::vec3(0.4f), 40.0f));
+  constexpr double kSeconds = 4.0, kKeysPerSecond = 12.0;
+  const int keys = static_cast<int>(kSeconds * kKeysPerSecond) + 1;
+  auto object = [&](const std::string& name, size_t first, size_t end, auto pose_at) {
+    AnimatedObject o;
+    o.name = name;
+    o.first = first;
+    o.count = end - first;
+    for (int k = 0; k < keys; ++k) {
+      PoseKey key;
+      key.time = k / kKeysPerSecond;
+      key.pose = pose_at(key.time);
+      o.track.keys.push_back(key);
+    }
+    s.animation.objects.push_back(o);
+  };
+  const size_t ball = s.triangle_count();
+  add_sphere(s, glm::vec3(0.0f), 1.0f, 24, 12, ball_mats[0]);
+  const size_t ball_tris = s.triangle_count() - ball;
+  for (int i = 0; i < 6; ++i) {
+    const double radius = 0.25 + 0.05 * (i % 3);
+    size_t first = ball;
+    if (i > 0) {  // another placement of the same mesh, in its own material
+      first = s.triangle_count();
+      for (size_t t = ball; t < ball + ball_tris; ++t) {
+        // Copies: add_triangle grows the vectors these would point into.
+        const glm::vec3 p[3] = {s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2]};
+        const glm::vec3 n[3] = {s.normals[3 * t], s.normals[3 * t + 1], s.normals[3 * t + 2]};
+        const glm::vec2 uv[3] = {s.texcoords[3 * t], s.texcoords[3 * t + 1],
+                                 s.texcoords[3 * t + 2]};
+        s.add_triangle(p[0], p[1], p[2], ball_mats[i % 3], n, nullptr, uv);
+      }
+    }
+    const double x = -2.5 + 1.0 * i, z = 1.4 + 0.5 * std::sin(i * 1.7);
+    const double period = 0.8 + 0.12 * i, height = 1.2 + 0.4 * (i % 2);
+    object("ball " + std::to_string(i), first, first + ball_tris, [=](double t) {
+      const double u = std::fmod(t / period + i * 0.37, 1.0);  // 0..1 per bounce
+      Pose p;
+      p.translate = glm::dvec3(x, radius + height * 4.0 * u * (1.0 - u), z);
+      p.scale = glm::dvec3(radius);
+      return p;
+    });
+  }
+  for (int i = 0; i < 3; ++i) {
+    const size_t first = s.triangle_count();
+    add_box(s, glm::vec3(-0.2f), glm::vec3(0.2f), spin_mat);
+    object("spinner " + std::to_string(i), first, s.triangle_count(), [=](double t) {
+      const double a = 2.0 * kPi * (t / kSeconds + i / 3.0);  // one orbit in the clip
+      Pose p;  // around the tall green box (at x 0.4, z -0.6)
+      p.translate = glm::dvec3(0.4 + 1.1 * std::cos(a), 1.6 + 0.6 * std::sin(2.0 * a),
+                               -0.6 + 1.1 * std::sin(a));
+      p.rotation = glm::angleAxis(2.0 * kPi * t * 0.5, glm::normalize(glm::dvec3(1.0, 2.0, 0.5)));
+      return p;
+    });
+  }
+  s.animation.time = TimeRange{0.0, kSeconds, 24.0};
+  CameraKey from, to;
+  from.time = 0.0;
+  from.camera = CameraPose{s.camera.eye, s.camera.look_at, s.camera.up, s.camera.fov_y};
+  to = from;
+  to.time = kSeconds;
+  to.camera.eye = glm::vec3(-4.5f, 3.0f, 6.5f);
+  s.animation.camera.keys = {from, to};
+  s.animation.camera.interpolation = Interpolation::Smooth;
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-  return {"thesis-a", "thesis-b", "thesis-c", "cornell", "glass", "textured", "empty"};
+  return {"thesis-a", "thesis-b", "thesis-c", "cornell", "glass", "textured", "bounce", "empty"};
 }
 
 Scene builtin_scene(const std::string& name) {
@@ -440,6 +525,7 @@ Scene builtin_scene(const std::string& name) {
   if (name == "cornell") return scene_cornell();
   if (name == "glass") return scene_glass();
   if (name == "textured") return scene_textured();
+  if (name == "bounce") return scene_bounce();
   if (name == "empty") {
     Scene s;
     s.name = "empty";

@@ -322,6 +322,9 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
         }
         s.add_triangle(pos(0), pos(k), pos(k + 1), mat, all_normals ? n : nullptr,
                        has_colors ? c : nullptr, all_uv ? t : nullptr);
+        if (opt.corners != nullptr)
+          for (size_t c3 : {size_t{0}, k, k + 1})
+            opt.corners->push_back(mesh.indices[offset + c3].vertex_index);
       }
       offset += fv;
     }

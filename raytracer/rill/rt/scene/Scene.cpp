@@ -169,6 +169,10 @@ void Scene::append(const Scene& o) {
       if (v.kind == ParamValue::Kind::Texture) v.texture += tex_base;
     materials.push_back(std::move(m));
   }
+  for (AnimatedObject obj : o.animation.objects) {
+    obj.first += triangle_count();
+    animation.objects.push_back(std::move(obj));
+  }
   for (size_t t = 0; t < o.triangle_count(); ++t) {
     const glm::vec3* n = o.normals.empty() ? nullptr : &o.normals[3 * t];
     const glm::vec3* c = o.colors.empty() ? nullptr : &o.colors[3 * t];
@@ -177,6 +181,60 @@ void Scene::append(const Scene& o) {
                  base + o.material[t], n, c, uv);
   }
 }
+
+namespace {
+
+// The animated objects' ranges lie within the scene and do not overlap, and their tracks and
+// the camera's have keys at increasing, finite times (the JSON reader names the key first;
+// this catches scenes built in code).
+void validate_animation(const Animation& a, size_t triangles) {
+  std::vector<std::pair<size_t, size_t>> ranges;
+  for (const AnimatedObject& o : a.objects) {
+    const std::string where = "animated object '" + clipped(o.name) + "'";
+    if (o.first > triangles || o.count > triangles - o.first)
+      throw SceneError(where + ": triangles " + std::to_string(o.first) + ".." +
+                       std::to_string(o.first + o.count) + " are not in the scene (" +
+                       std::to_string(triangles) + " triangles)");
+    if (o.track.keys.empty()) throw SceneError(where + " has no keys");
+    if (!o.shape_normals.empty() && o.shape_normals.size() != o.shapes.size())
+      throw SceneError(where + ": " + std::to_string(o.shapes.size()) + " shapes but " +
+                       std::to_string(o.shape_normals.size()) + " sets of normals");
+    for (size_t k = 0; k < o.shapes.size(); ++k)
+      if (o.shapes[k].size() != 3 * o.count ||
+          (!o.shape_normals.empty() && o.shape_normals[k].size() != 3 * o.count))
+        throw SceneError(where + ": shape " + std::to_string(k) + " has " +
+                         std::to_string(o.shapes[k].size()) + " corners, not " +
+                         std::to_string(3 * o.count));
+    for (size_t k = 0; k < o.track.keys.size(); ++k) {
+      const PoseKey& key = o.track.keys[k];
+      if (!std::isfinite(key.time) || (k > 0 && !(key.time > o.track.keys[k - 1].time)))
+        throw SceneError(where + ": key " + std::to_string(k) +
+                         " must have a finite time after the previous key's");
+      const Pose& p = key.pose;
+      auto finite = [](const glm::dvec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+      };
+      if (!finite(p.translate) || !finite(p.scale) || p.scale.x == 0 || p.scale.y == 0 ||
+          p.scale.z == 0 || !std::isfinite(glm::length(p.rotation)) ||
+          std::fabs(glm::length(p.rotation) - 1) > 1e-6)
+        throw SceneError(where + ": key " + std::to_string(k) +
+                         " needs a finite translation, a non-zero scale and a unit rotation");
+    }
+    ranges.emplace_back(o.first, o.first + o.count);
+  }
+  std::sort(ranges.begin(), ranges.end());
+  for (size_t i = 1; i < ranges.size(); ++i)
+    if (ranges[i].first < ranges[i - 1].second)
+      throw SceneError("two animated objects share triangles " + std::to_string(ranges[i].first) +
+                       ".." + std::to_string(ranges[i - 1].second));
+  for (size_t k = 1; k < a.camera.keys.size(); ++k)
+    if (!(a.camera.keys[k].time > a.camera.keys[k - 1].time))
+      throw SceneError("camera key " + std::to_string(k) + " must come after the previous key");
+  if (a.animated() && !(a.time.end > a.time.start && a.time.fps > 0))
+    throw SceneError("an animated scene needs a time range with end after start and fps > 0");
+}
+
+}  // namespace
 
 void Scene::validate() const {
   const size_t n = triangle_count();
@@ -192,6 +250,7 @@ void Scene::validate() const {
       throw SceneError("triangle " + std::to_string(i / 3) +
                        ": texture coordinates must be finite numbers");
   for (const Texture& t : textures) validate_texture(t);
+  validate_animation(animation, n);
   if (n > (size_t{1} << 26))
     throw SceneError("scene has " + std::to_string(n) +
                      " triangles; at most 67108864 are supported");

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "rill/rt/scene/Animation.h"
 #include "rill/rt/scene/Texture.h"
 
 namespace rt {
@@ -114,6 +115,9 @@ struct Scene {
   std::vector<Light> lights;
   glm::vec3 background{0.1f, 0.1f, 0.15f};
   SceneOptions options;
+  // Dynamic scenes (scene/Animation.h): the time range, the objects that move (ranges of the
+  // triangles above, stored at rest) and the camera's keys. Empty for a static scene.
+  Animation animation;
 
   size_t triangle_count() const { return material.size(); }
   int add_material(const Material& m);  // returns its index
@@ -123,10 +127,12 @@ struct Scene {
                     const glm::vec3* n = nullptr, const glm::vec3* col = nullptr,
                     const glm::vec2* uv = nullptr);
   // Appends all of other's triangles, materials and textures (the appended materials'
-  // texture parameters are renumbered); lights and camera are not taken.
+  // texture parameters are renumbered) and its animated objects (their triangle ranges
+  // renumbered); lights, camera and time range are not taken.
   void append(const Scene& other);
   // Checks invariants (sizes, finite materials, texture coordinates, textures and lights,
-  // texture indices of material parameters, camera, image size); throws SceneError.
+  // texture indices of material parameters, camera, image size, animated objects' ranges and
+  // keys); throws SceneError.
   // Triangles with non-finite vertices are allowed: they are never hit.
   void validate() const;
 };
@@ -164,6 +170,9 @@ struct ObjLoadOptions {
   Transform transform;
   const Material* override_material = nullptr;
   InputOptions input;
+  // When set, receives each triangle's three OBJ vertex numbers (0-based, in the order of
+  // its corners): an OBJ sequence compares them to check that its topology stays the same.
+  std::vector<int32_t>* corners = nullptr;
 };
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
 
@@ -179,7 +188,8 @@ Scene load_scene(const std::string& spec, const InputOptions& input = {});
 // Built-in scenes: "thesis-a" (3 boxes, 36 triangles), "thesis-b" (cubes in a room, 2064),
 // "thesis-c" (high- and low-polygon objects with a tessellated Utah teapot, 61562),
 // "cornell" (Cornell box), "glass" (glass and mirrors), "textured" (procedural and bitmap
-// textures, a mirror shader), "empty".
+// textures, a mirror shader), "bounce" (scene B with balls bouncing and cubes spinning: a
+// dynamic scene of 4 seconds), "empty".
 std::vector<std::string> builtin_scene_names();
 Scene builtin_scene(const std::string& name);
 

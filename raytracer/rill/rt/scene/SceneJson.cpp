@@ -12,7 +12,9 @@
 
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/kernel/Shader.h"
+#include "rill/rt/scene/AnimationJson.h"
 #include "rill/rt/scene/InputFile.h"
+#include "rill/rt/scene/JsonFields.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/shaders/Builtin.h"
 
@@ -21,74 +23,7 @@ namespace rt {
 namespace {
 
 using nlohmann::json;
-
-struct Ctx {
-  std::string file;  // for messages
-  std::string base_dir;
-  InputOptions input;  // for the OBJ files it names
-};
-
-[[noreturn]] void fail(const Ctx& c, const std::string& msg) {
-  // The message may quote the user's keys and names: clipped, so one line stays one line.
-  throw SceneError(c.file + ": " + clipped(msg, 400));
-}
-
-void check_keys(const Ctx& c, const json& j, const std::string& where,
-                std::initializer_list<const char*> allowed) {
-  if (!j.is_object()) fail(c, where + " must be an object");
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    bool ok = false;
-    for (const char* a : allowed) ok = ok || it.key() == a;
-    if (!ok) fail(c, where + ": unknown key '" + clipped(it.key()) + "'");
-  }
-}
-
-float num(const Ctx& c, const json& j, const std::string& where) {
-  if (!j.is_number()) fail(c, where + " must be a number");
-  double v = j.get<double>();
-  if (!std::isfinite(v) || std::fabs(v) > 3.0e38) fail(c, where + " must be a finite number");
-  return static_cast<float>(v);
-}
-
-int integer(const Ctx& c, const json& j, const std::string& where, int lo, int hi) {
-  if (!j.is_number_integer() && !(j.is_number() && std::floor(j.get<double>()) == j.get<double>()))
-    fail(c, where + " must be an integer");
-  double v = j.get<double>();
-  if (!(v >= lo && v <= hi))
-    fail(c, where + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return static_cast<int>(v);
-}
-
-bool boolean(const Ctx& c, const json& j, const std::string& where) {
-  if (!j.is_boolean()) fail(c, where + " must be true or false");
-  return j.get<bool>();
-}
-
-glm::vec3 vec3(const Ctx& c, const json& j, const std::string& where) {
-  if (!j.is_array() || j.size() != 3) fail(c, where + " must be an array of 3 numbers");
-  return glm::vec3(num(c, j[0], where + "[0]"), num(c, j[1], where + "[1]"),
-                   num(c, j[2], where + "[2]"));
-}
-
-// A number gives a grey colour / uniform scale.
-glm::vec3 vec3_or_scalar(const Ctx& c, const json& j, const std::string& where) {
-  if (j.is_number()) return glm::vec3(num(c, j, where));
-  return vec3(c, j, where);
-}
-
-Transform transform(const Ctx& c, const json& j, const std::string& where) {
-  check_keys(c, j, where, {"translate", "scale", "rotate_x", "rotate_y", "rotate_z"});
-  Transform t;
-  if (j.contains("translate")) t.translate = vec3(c, j["translate"], where + ".translate");
-  if (j.contains("scale")) {
-    t.scale = vec3_or_scalar(c, j["scale"], where + ".scale");
-    if (t.scale.x == 0 || t.scale.y == 0 || t.scale.z == 0) fail(c, where + ".scale must not be 0");
-  }
-  if (j.contains("rotate_x")) t.rotate_deg.x = num(c, j["rotate_x"], where + ".rotate_x");
-  if (j.contains("rotate_y")) t.rotate_deg.y = num(c, j["rotate_y"], where + ".rotate_y");
-  if (j.contains("rotate_z")) t.rotate_deg.z = num(c, j["rotate_z"], where + ".rotate_z");
-  return t;
-}
+using namespace json_fields;
 
 // ---- textures and materials ----------------------------------------------------------------
 
@@ -382,8 +317,8 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
   }
   try {
     check_keys(c, j, "scene",
-               {"builtin", "camera", "image", "meshes", "textures", "materials", "lights",
-                "background", "options"});
+               {"builtin", "camera", "image", "meshes", "instances", "textures", "materials",
+                "lights", "background", "options", "animation"});
     Scene s;
     if (j.contains("builtin")) {
       if (!j["builtin"].is_string()) fail(c, "builtin must be a scene name");
@@ -399,10 +334,52 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
       for (auto it = j["materials"].begin(); it != j["materials"].end(); ++it)
         materials[it.key()] = material(c, it.key(), it.value(), texture_names);
     }
+    MeshNames mesh_names;
     if (j.contains("meshes")) {
       if (!j["meshes"].is_array()) fail(c, "meshes must be an array");
-      for (size_t i = 0; i < j["meshes"].size(); ++i) mesh(c, s, j["meshes"][i], i, materials);
+      for (size_t i = 0; i < j["meshes"].size(); ++i) {
+        // "name" and "animate" apply to any mesh; the rest is the shape's or file's.
+        json m = j["meshes"][i];
+        const std::string where = "meshes[" + std::to_string(i) + "]";
+        std::string name;
+        json animate;
+        if (m.is_object() && m.contains("name")) {
+          if (!m["name"].is_string() || m["name"].get<std::string>().empty())
+            fail(c, where + ".name must be a non-empty string");
+          name = m["name"].get<std::string>();
+          if (mesh_names.count(name)) fail(c, where + ".name '" + name + "' is used twice");
+          m.erase("name");
+        }
+        if (m.is_object() && m.contains("animate")) {
+          animate = m["animate"];
+          m.erase("animate");
+        }
+        // An OBJ sequence: the mesh is its first file, and every file is a shape of it.
+        json sequence_of;
+        if (m.is_object() && m.contains("sequence")) {
+          sequence_of = m;
+          m["file"] = sequence_file(c, m, where);
+          m.erase("sequence");
+        }
+        const size_t first = s.triangle_count();
+        mesh(c, s, m, i, materials);
+        const MeshRange range{first, s.triangle_count() - first};
+        if (!name.empty()) mesh_names[name] = range;
+        if (!animate.is_null() || !sequence_of.is_null()) {
+          AnimatedObject o;
+          o.name = name.empty() ? where : name;
+          o.first = range.first;
+          o.count = range.count;
+          if (!animate.is_null())
+            o.track = pose_track(c, animate, where + ".animate");
+          else
+            o.track.keys.push_back(PoseKey{});  // deforms in place
+          if (!sequence_of.is_null()) load_sequence(c, sequence_of, where, o);
+          s.animation.objects.push_back(std::move(o));
+        }
+      }
     }
+    if (j.contains("instances")) instances(c, s, j["instances"], mesh_names);
     if (j.contains("lights")) {
       if (!j["lights"].is_array()) fail(c, "lights must be an array");
       s.lights.clear();
@@ -459,7 +436,7 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     }
     if (j.contains("camera")) {
       const json& cam = j["camera"];
-      check_keys(c, cam, "camera", {"eye", "look_at", "up", "fov_y"});
+      check_keys(c, cam, "camera", {"eye", "look_at", "up", "fov_y", "keys", "interpolation"});
       Camera k = s.camera;
       if (cam.contains("eye")) k.eye = vec3(c, cam["eye"], "camera.eye");
       if (cam.contains("look_at")) k.look_at = vec3(c, cam["look_at"], "camera.look_at");
@@ -467,7 +444,13 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
       if (cam.contains("fov_y")) k.fov_y = num(c, cam["fov_y"], "camera.fov_y");
       s.camera = k;
       s.has_camera = true;
+      if (cam.contains("keys") || cam.contains("interpolation"))
+        s.animation.camera = camera_track(c, cam, k);
     }
+    if (j.contains("animation"))
+      s.animation.time = time_range(c, j["animation"]);
+    else if (s.animation.animated() && !(s.animation.time.end > s.animation.time.start))
+      s.animation.time = keys_time_range(s.animation);
     if (!s.has_camera) {
       s.camera = default_camera(s);
       s.has_camera = true;

@@ -1,0 +1,153 @@
+// Image sequences for rill-trace (FrameSequence.h).
+#include "FrameSequence.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "rill/rt/scene/Scene.h"
+
+namespace trace_cli {
+
+namespace {
+
+bool parse_int(const std::string& s, int& v) {
+  if (s.empty() || s.size() > 9) return false;
+  for (char c : s)
+    if (c < '0' || c > '9') return false;
+  v = std::atoi(s.c_str());
+  return true;
+}
+
+// The frame number's conversion in `pattern`: its position and length, or npos; throws for
+// a second one or any other conversion.
+size_t conversion(const std::string& pattern, const std::string& option, size_t& len) {
+  size_t at = std::string::npos;
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] != '%') continue;
+    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    size_t j = i + 1;
+    while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9') ++j;
+    if (j >= pattern.size() || pattern[j] != 'd' || j - i - 1 > 2)
+      throw rt::SceneError(option + " '" + rt::clipped(pattern) +
+                           "': the only conversion allowed is the frame number, as %d or "
+                           "%04d (write a percent sign as %%)");
+    if (at != std::string::npos)
+      throw rt::SceneError(option + " '" + rt::clipped(pattern) +
+                           "' has two frame numbers; give one, such as frame-%04d.png");
+    at = i;
+    len = j + 1 - i;
+    i = j;
+  }
+  return at;
+}
+
+}  // namespace
+
+FrameSpan parse_frames(const std::string& spec, const rt::TimeRange& range, bool animated) {
+  const int count = animated ? range.frame_count() : 1;
+  FrameSpan f;
+  const size_t colon = spec.find(':');
+  const bool ok = colon == std::string::npos ? parse_int(spec, f.first) && (f.last = f.first, true)
+                                             : parse_int(spec.substr(0, colon), f.first) &&
+                                                   parse_int(spec.substr(colon + 1), f.last);
+  if (!ok)
+    throw rt::SceneError("--frames expects N or A:B, frame numbers from 0 (got '" +
+                         rt::clipped(spec) + "')");
+  if (f.last < f.first)
+    throw rt::SceneError("--frames " + spec + ": the last frame is before the first");
+  if (f.last >= count)
+    throw rt::SceneError("--frames " + spec + ": the scene has " + std::to_string(count) +
+                         " frame" + (count == 1 ? "" : "s") + " (0.." + std::to_string(count - 1) +
+                         ")" + (animated ? "" : "; it has no animation (docs/dynamic-scenes.md)"));
+  return f;
+}
+
+bool has_frame_number(const std::string& pattern, const std::string& option) {
+  size_t len = 0;
+  return conversion(pattern, option, len) != std::string::npos;
+}
+
+std::string frame_path(const std::string& pattern, int frame) {
+  size_t len = 0;
+  const size_t at = conversion(pattern, "the output", len);
+  std::string out;
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    if (i == at) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, pattern.substr(at, len).c_str(), frame);
+      out += buf;
+      i += len - 1;
+    } else if (pattern[i] == '%' && i + 1 < pattern.size() && pattern[i + 1] == '%') {
+      out += '%';
+      ++i;
+    } else {
+      out += pattern[i];
+    }
+  }
+  return out;
+}
+
+Progress::Progress(int total, bool quiet) : total_(total), on_(!quiet && isatty(2) && total > 1) {}
+
+void Progress::update(int done, double last_ms) {
+  if (!on_) return;
+  constexpr int kWidth = 30;
+  const int filled = total_ > 0 ? done * kWidth / total_ : kWidth;
+  std::string bar(static_cast<size_t>(filled), '=');
+  if (filled < kWidth) bar += '>';
+  bar.resize(kWidth, ' ');
+  std::fprintf(stderr, "\rframe %d/%d [%s] %3d%%, %.1f ms", done, total_, bar.c_str(),
+               total_ > 0 ? 100 * done / total_ : 100, last_ms);
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (on_) std::fprintf(stderr, "\n");
+}
+
+std::string video_tool_missing() {
+  if (std::system("command -v ffmpeg >/dev/null 2>&1") == 0) return {};
+  return "--video needs ffmpeg, which is not on the PATH (apt-get install ffmpeg); the frames "
+         "themselves need no video";
+}
+
+void write_video(const std::string& pattern, int first, double fps, const std::string& video) {
+  const std::string why = video_tool_missing();
+  if (!why.empty()) throw rt::SceneError(why);
+  // ffmpeg reads the same printf pattern; a GIF gets a palette made for it (Floyd-Steinberg).
+  const bool gif = std::filesystem::path(video).extension() == ".gif";
+  std::vector<std::string> args = {
+      "ffmpeg",        "-loglevel",           "error", "-y",   "-framerate", std::to_string(fps),
+      "-start_number", std::to_string(first), "-i",    pattern};
+  if (gif) {
+    args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse"});
+  } else {
+    // yuv420p plays everywhere, and needs even sizes.
+    args.insert(args.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt", "yuv420p"});
+  }
+  args.push_back(video);
+  const pid_t pid = fork();
+  if (pid < 0) throw rt::SceneError("--video: cannot start ffmpeg");
+  if (pid == 0) {
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execvp("ffmpeg", argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw rt::SceneError("--video: ffmpeg failed writing " + video + " (its message is above)");
+}
+
+}  // namespace trace_cli

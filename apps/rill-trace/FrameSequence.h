@@ -1,0 +1,45 @@
+// rill-trace's image sequences (render --frames A:B, docs/cli.md): which frames, the output
+// name of each ("frame-%04d.png"), the progress line, and the preview video through ffmpeg.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rill/rt/scene/Animation.h"
+
+namespace trace_cli {
+
+// The frames of "--frames": "N" (one frame) or "A:B" (A to B, both included), checked
+// against the scene's frame count (frames 0..count-1); throws rt::SceneError naming the bad
+// value.
+struct FrameSpan {
+  int first = 0, last = 0;
+  int count() const { return last - first + 1; }
+};
+FrameSpan parse_frames(const std::string& spec, const rt::TimeRange& range, bool animated);
+
+// A path with one printf conversion for the frame number (%d, %04d, ...; %% for a percent
+// sign) and nothing else, or "" when `pattern` has none. Throws rt::SceneError naming
+// `option` for any other conversion.
+bool has_frame_number(const std::string& pattern, const std::string& option);
+std::string frame_path(const std::string& pattern, int frame);
+
+// "\rframe 12/48 [======>      ] 25%, 35.2 ms" on stderr, when stderr is a terminal.
+class Progress {
+ public:
+  Progress(int total, bool quiet);
+  void update(int done, double last_ms);
+  void finish();
+
+ private:
+  int total_;
+  bool on_;
+};
+
+// Runs ffmpeg on the frames written as `pattern` (frames first..), at `fps`, into `video`.
+// ffmpeg missing: an error saying how to get it (checked by video_tool_missing first, so
+// that nothing is rendered for nothing).
+std::string video_tool_missing();
+void write_video(const std::string& pattern, int first, double fps, const std::string& video);
+
+}  // namespace trace_cli

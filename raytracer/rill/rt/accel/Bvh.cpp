@@ -1,0 +1,421 @@
+// The BVH over moving triangles (Bvh.h): binned SAH build, refit, depth-first layout.
+#include "rill/rt/accel/Bvh.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <new>
+#include <type_traits>
+
+#include "rill/rt/accel/Grid.h"
+
+namespace rt {
+
+namespace {
+
+// Subtrees of at least this many triangles are built in parallel, and work is split into
+// chunks of this size.
+constexpr size_t kParallelMin = 4096;
+// Nodes of at least this many triangles are partitioned in parallel (below, in place).
+constexpr size_t kParallelPartitionMin = 32768;
+// Nodes within a subtree this large are refitted on the calling thread.
+constexpr int32_t kParallelRefitMin = 2048;
+
+struct Box {
+  glm::vec3 lo{std::numeric_limits<float>::infinity()};
+  glm::vec3 hi{-std::numeric_limits<float>::infinity()};
+  void grow(const glm::vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  void grow(const Box& b) {
+    lo = glm::min(lo, b.lo);
+    hi = glm::max(hi, b.hi);
+  }
+  float area() const {
+    if (!(hi.x >= lo.x)) return 0.0f;
+    const glm::vec3 e = hi - lo;
+    return e.x * e.y + e.y * e.z + e.z * e.x;
+  }
+};
+
+struct Prim {
+  Box box;
+  glm::vec3 centroid{0.0f};
+  int32_t id = 0;
+};
+
+Box triangle_box(const Scene& s, int32_t id) {
+  const glm::vec3* p = &s.positions[3 * static_cast<size_t>(id)];
+  Box b;
+  b.lo = glm::min(p[0], glm::min(p[1], p[2]));
+  b.hi = glm::max(p[0], glm::max(p[1], p[2]));
+  return b;
+}
+
+// The box grown by the padding of Bvh.h. In float: 4e-7 of the largest coordinate is over
+// 3 ulps of it, so the rounded box is still larger by more than 2 ulps on every side.
+void pad(const Box& b, glm::vec3& lo, glm::vec3& hi) {
+  const glm::vec3 e = b.hi - b.lo;
+  const glm::vec3 m = glm::max(glm::abs(b.lo), glm::abs(b.hi));
+  const float p = 1e-5f * std::max({e.x, e.y, e.z}) + 4e-7f * std::max({m.x, m.y, m.z}) + 1e-30f;
+  lo = b.lo - glm::vec3(p);
+  hi = b.hi + glm::vec3(p);
+}
+
+// A bin: the box and the centroid bounds of the triangles whose centroid falls in it, and
+// their count. The split's children take their bounds from the bins: no pass of their own.
+struct Bin {
+  Box box, centroids;
+  size_t count = 0;
+  void add(const Prim& p) {
+    box.grow(p.box);
+    centroids.grow(p.centroid);
+    ++count;
+  }
+  void add(const Bin& b) {
+    box.grow(b.box);
+    centroids.grow(b.centroids);
+    count += b.count;
+  }
+};
+using Bins = std::array<Bin, kBvhBins>;
+
+// The bin of a centroid along an axis, for centroid bounds lo and the scale kBvhBins / extent.
+int bin_of(float c, float lo, float scale) {
+  return std::clamp(static_cast<int>((c - lo) * scale), 0, kBvhBins - 1);
+}
+
+struct BuildNode {
+  Box box, centroids;
+  size_t begin = 0, end = 0;  // prims[begin, end)
+  int32_t left = -1;          // children at left and left + 1 (-1: a leaf)
+  int depth = 1;
+};
+
+// Memory for n objects of a type whose copies are plain bytes, left uninitialized: the
+// builder's node array and partition scratch are written before they are read, and
+// initializing them would cost as much as a small build.
+template <class T>
+class RawArray {
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+
+ public:
+  explicit RawArray(size_t n) : bytes_(new unsigned char[n * sizeof(T)]) {}
+  T* data() { return reinterpret_cast<T*>(bytes_.get()); }
+  const T* data() const { return reinterpret_cast<const T*>(bytes_.get()); }
+  T& operator[](size_t i) { return data()[i]; }
+  const T& operator[](size_t i) const { return data()[i]; }
+
+ private:
+  std::unique_ptr<unsigned char[]> bytes_;  // new[] aligns for any fundamental type
+};
+
+// Build nodes are claimed in pairs from one array, so subtrees built in parallel need no lock.
+struct Builder {
+  std::vector<Prim>& prims;
+  RawArray<BuildNode> nodes;
+  RawArray<Prim> scratch;  // for partitions in parallel
+  std::atomic<int32_t> used{1};
+
+  explicit Builder(std::vector<Prim>& p) : prims(p), nodes(2 * p.size() + 1), scratch(p.size()) {
+    new (&nodes[0]) BuildNode{};
+  }
+
+  // prims[begin, end) reordered with those for which `left` holds first; returns the split.
+  // Large ranges are counted and scattered in parallel chunks of a fixed size, keeping the
+  // order within each side, so the tree never depends on the thread count.
+  template <class Pred>
+  size_t partition(size_t begin, size_t end, Pred left) {
+    if (end - begin < kParallelPartitionMin) {
+      auto it = std::partition(prims.begin() + static_cast<std::ptrdiff_t>(begin),
+                               prims.begin() + static_cast<std::ptrdiff_t>(end), left);
+      return static_cast<size_t>(it - prims.begin());
+    }
+    const size_t chunks = (end - begin + kParallelMin - 1) / kParallelMin;
+    std::vector<size_t> lefts(chunks);
+    auto chunk = [&](size_t c, size_t& from, size_t& to) {
+      from = begin + c * kParallelMin;
+      to = std::min(end, from + kParallelMin);
+    };
+    tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+      size_t from, to, n = 0;
+      chunk(c, from, to);
+      for (size_t i = from; i < to; ++i) n += left(prims[i]) ? 1 : 0;
+      lefts[c] = n;
+    });
+    std::vector<size_t> at_left(chunks), at_right(chunks);
+    size_t total_left = 0;
+    for (size_t c = 0; c < chunks; ++c) {
+      at_left[c] = total_left;
+      total_left += lefts[c];
+    }
+    for (size_t c = 0, right = total_left; c < chunks; ++c) {
+      size_t from, to;
+      chunk(c, from, to);
+      at_right[c] = right;
+      right += (to - from) - lefts[c];
+    }
+    tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+      size_t from, to;
+      chunk(c, from, to);
+      // The scratch slots of this range only: subtrees partition in parallel too.
+      size_t l = begin + at_left[c], r = begin + at_right[c];
+      for (size_t i = from; i < to; ++i)
+        std::memcpy(&scratch[left(prims[i]) ? l++ : r++], &prims[i], sizeof(Prim));
+    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, end - begin, kParallelMin),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        std::memcpy(&prims[begin + r.begin()], &scratch[begin + r.begin()],
+                                    (r.end() - r.begin()) * sizeof(Prim));
+                      });
+    return begin + total_left;
+  }
+
+  // The node's triangles binned by their centroids along `axis`.
+  void bin(const BuildNode& n, int axis, float scale, Bins& bins) const {
+    const float lo = n.centroids.lo[axis];
+    auto add = [&](size_t from, size_t to, Bins& into) {
+      for (size_t i = from; i < to; ++i)
+        into[static_cast<size_t>(bin_of(prims[i].centroid[axis], lo, scale))].add(prims[i]);
+    };
+    if (n.end - n.begin < 4 * kParallelMin) {
+      add(n.begin, n.end, bins);
+      return;
+    }
+    bins = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(n.begin, n.end, kParallelMin), Bins{},
+        [&](const tbb::blocked_range<size_t>& r, Bins acc) {
+          add(r.begin(), r.end(), acc);
+          return acc;
+        },
+        [](Bins a, const Bins& b) {
+          for (size_t k = 0; k < static_cast<size_t>(kBvhBins); ++k) a[k].add(b[k]);
+          return a;
+        });
+  }
+
+  // Splits node `at` where the surface area heuristic says (binned along the longest axis
+  // of its centroids, as Wald 2007 does), or leaves it a leaf, then its children.
+  void build(int32_t at) {
+    BuildNode& n = nodes[static_cast<size_t>(at)];
+    const size_t count = n.end - n.begin;
+    if (count <= 1) return;
+    const glm::vec3 ext = n.centroids.hi - n.centroids.lo;
+    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+    size_t mid = n.begin;
+    Bin n_left, n_right;  // the children's bounds (empty: to be computed)
+    if (ext[axis] > 0) {
+      const float scale = kBvhBins / ext[axis];
+      Bins bins;
+      bin(n, axis, scale, bins);
+      // The cheapest split: one box test for the node, then the children's triangle tests
+      // weighted by their areas (relative to the node's). A leaf costs its triangle count.
+      std::array<Bin, kBvhBins> right;
+      Bin r;
+      for (int k = kBvhBins - 1; k > 0; --k) {
+        r.add(bins[static_cast<size_t>(k)]);
+        right[static_cast<size_t>(k)] = r;
+      }
+      float best = static_cast<float>(count);
+      int split = 0;
+      Bin best_left, best_right;
+      const float area = std::max(n.box.area(), 1e-30f);
+      Bin l;
+      for (int k = 1; k < kBvhBins; ++k) {
+        l.add(bins[static_cast<size_t>(k - 1)]);
+        const Bin& rb = right[static_cast<size_t>(k)];
+        if (l.count == 0 || rb.count == 0) continue;
+        const float cost = 0.125f + (l.box.area() * static_cast<float>(l.count) +
+                                     rb.box.area() * static_cast<float>(rb.count)) /
+                                        area;
+        if (cost < best) {
+          best = cost;
+          split = k;
+          best_left = l;
+          best_right = rb;
+        }
+      }
+      if (split > 0) {
+        const float lo = n.centroids.lo[axis];
+        mid = partition(n.begin, n.end,
+                        [&](const Prim& p) { return bin_of(p.centroid[axis], lo, scale) < split; });
+        n_left = best_left;
+        n_right = best_right;
+      }
+    }
+    if (mid == n.begin && count > static_cast<size_t>(kBvhLeafMax)) {
+      // A leaf would be too large and SAH finds no split (equal centroids, or a leaf looked
+      // cheaper): halve by count.
+      mid = n.begin + count / 2;
+      std::nth_element(prims.begin() + static_cast<std::ptrdiff_t>(n.begin),
+                       prims.begin() + static_cast<std::ptrdiff_t>(mid),
+                       prims.begin() + static_cast<std::ptrdiff_t>(n.end),
+                       [&](const Prim& a, const Prim& b) {
+                         return a.centroid[axis] < b.centroid[axis] ||
+                                (a.centroid[axis] == b.centroid[axis] && a.id < b.id);
+                       });
+    }
+    if (mid == n.begin || mid == n.end) return;  // a leaf (at most kBvhLeafMax)
+    const int32_t left = used.fetch_add(2);
+    n.left = left;
+    BuildNode& l = *new (&nodes[static_cast<size_t>(left)]) BuildNode{};
+    BuildNode& r = *new (&nodes[static_cast<size_t>(left + 1)]) BuildNode{};
+    l.begin = n.begin;
+    l.end = mid;
+    r.begin = mid;
+    r.end = n.end;
+    const bool parallel = count >= kParallelMin;
+    auto child = [&](BuildNode& c, int32_t index, const Bin& from) {
+      if (from.count == c.end - c.begin) {
+        c.box = from.box;
+        c.centroids = from.centroids;
+      } else {
+        bound(c, parallel);  // the median split's halves
+      }
+      build(index);
+    };
+    if (parallel)
+      tbb::parallel_invoke([&] { child(l, left, n_left); }, [&] { child(r, left + 1, n_right); });
+    else {
+      child(l, left, n_left);
+      child(r, left + 1, n_right);
+    }
+    n.depth = 1 + std::max(l.depth, r.depth);
+  }
+
+  // A node's box and centroid bounds, from its triangles.
+  void bound(BuildNode& c, bool parallel) const {
+    struct Bounds {
+      Box box, centroids;
+    };
+    auto add = [&](size_t from, size_t to, Bounds acc) {
+      for (size_t i = from; i < to; ++i) {
+        acc.box.grow(prims[i].box);
+        acc.centroids.grow(prims[i].centroid);
+      }
+      return acc;
+    };
+    Bounds b;
+    if (parallel && c.end - c.begin >= 4 * kParallelMin)
+      b = tbb::parallel_reduce(
+          tbb::blocked_range<size_t>(c.begin, c.end, kParallelMin), Bounds{},
+          [&](const tbb::blocked_range<size_t>& r, Bounds acc) {
+            return add(r.begin(), r.end(), acc);
+          },
+          [](Bounds x, const Bounds& y) {
+            x.box.grow(y.box);
+            x.centroids.grow(y.centroids);
+            return x;
+          });
+    else
+      b = add(c.begin, c.end, b);
+    c.box = b.box;
+    c.centroids = b.centroids;
+  }
+
+  // Depth-first order with skips (Bvh.h), from the build's pairs.
+  void flatten(int32_t at, Bvh& out) const {
+    const BuildNode& n = nodes[static_cast<size_t>(at)];
+    const size_t i = out.nodes.size();
+    out.nodes.emplace_back();
+    pad(n.box, out.nodes[i].lo, out.nodes[i].hi);
+    if (n.left < 0) {
+      out.nodes[i].first = static_cast<int32_t>(n.begin);
+      out.nodes[i].count = static_cast<int32_t>(n.end - n.begin);
+    } else {
+      flatten(n.left, out);
+      flatten(n.left + 1, out);
+    }
+    out.nodes[i].skip = static_cast<int32_t>(out.nodes.size());
+  }
+};
+
+// The unpadded box of node i's subtree, its nodes padded on the way (children first).
+Box refit(Bvh& b, const Scene& s, int32_t i) {
+  BvhNode& n = b.nodes[static_cast<size_t>(i)];
+  Box box;
+  if (n.count > 0) {
+    for (int32_t k = 0; k < n.count; ++k)
+      box.grow(triangle_box(s, b.tris[static_cast<size_t>(n.first + k)]));
+  } else {
+    const int32_t left = i + 1, right = b.nodes[static_cast<size_t>(left)].skip;
+    Box l, r;
+    if (n.skip - i >= kParallelRefitMin)
+      tbb::parallel_invoke([&] { l = refit(b, s, left); }, [&] { r = refit(b, s, right); });
+    else {
+      l = refit(b, s, left);
+      r = refit(b, s, right);
+    }
+    box = l;
+    box.grow(r);
+  }
+  pad(box, n.lo, n.hi);
+  return box;
+}
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+std::vector<int32_t> moving_triangles(const Scene& s) {
+  std::vector<int32_t> ids;
+  for (const AnimatedObject& o : s.animation.objects)
+    for (size_t t = o.first; t < o.first + o.count; ++t)
+      if (triangle_usable(s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2]))
+        ids.push_back(static_cast<int32_t>(t));
+  return ids;
+}
+
+Bvh build_bvh(const Scene& s, const std::vector<int32_t>& ids) {
+  const auto start = std::chrono::steady_clock::now();
+  Bvh out;
+  if (ids.empty()) return out;
+  std::vector<Prim> prims(ids.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, ids.size(), kParallelMin),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i != r.end(); ++i) {
+                        prims[i].id = ids[i];
+                        prims[i].box = triangle_box(s, ids[i]);
+                        prims[i].centroid = (prims[i].box.lo + prims[i].box.hi) * 0.5f;
+                      }
+                    });
+  Builder builder(prims);
+  BuildNode& root = builder.nodes[0];
+  root.begin = 0;
+  root.end = prims.size();
+  builder.bound(root, true);
+  builder.build(0);
+  out.nodes.reserve(static_cast<size_t>(builder.used.load()));
+  builder.flatten(0, out);
+  out.tris.resize(prims.size());
+  for (size_t i = 0; i < prims.size(); ++i) out.tris[i] = prims[i].id;
+  out.ids = ids;
+  out.depth = builder.nodes[0].depth;
+  out.build_ms = ms_since(start);
+  return out;
+}
+
+bool refit_bvh(Bvh& b, const Scene& s, const std::vector<int32_t>& ids) {
+  const auto start = std::chrono::steady_clock::now();
+  if (ids.size() != b.tris.size() || b.nodes.empty()) return false;
+  // The same triangles as the tree holds (a triangle that became degenerate, or came back,
+  // changes the set: then only a rebuild will do).
+  if (!std::equal(ids.begin(), ids.end(), b.ids.begin())) return false;
+  refit(b, s, 0);
+  b.build_ms = ms_since(start);
+  return true;
+}
+
+}  // namespace rt

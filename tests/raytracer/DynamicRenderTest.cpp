@@ -1,0 +1,161 @@
+// Dynamic scenes on every backend (Tracer::set_time, accel/Bvh.h): a frame of an animated
+// scene is bit for bit the static scene baked at that instant (scene/Pose.h) - image, depth,
+// primitive ids, normals and ray count - with both strategies, with BVH rebuilds and refits,
+// at keys, between them and past the time range. A scene without moving objects generates
+// no BVH code.
+#include <gtest/gtest.h>
+
+#include "RenderCompare.h"
+#include "TestUtil.h"
+#include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Pose.h"
+
+namespace rt {
+namespace {
+using testing::expect_identical;
+
+class DynamicRender : public ::testing::TestWithParam<std::string> {};
+
+// Moving objects in front of, behind and inside static ones: a mirror that slides (reflected
+// rays through both accelerators), a cube that spins through the static boxes (shadows
+// blocked by either), an instanced sphere that falls and shrinks, and a moving camera.
+const char* kScene = R"({
+  "builtin": "thesis-a",
+  "animation": {"start": 0, "end": 2, "fps": 12},
+  "materials": {
+    "mirror": {"diffuse": [0.1, 0.1, 0.1], "reflect": 0.6},
+    "gold": {"diffuse": [0.9, 0.7, 0.2], "specular": 0.5, "shininess": 30}
+  },
+  "meshes": [
+    {"shape": "quad", "vertices": [[-3, 0, -2], [3, 0, -2], [3, 3, -2], [-3, 3, -2]],
+     "material": "mirror",
+     "animate": {"keys": [{"time": 0, "translate": [-1, 0, 0]}, {"time": 2, "translate": [1, 0, -0.5]}]}},
+    {"name": "cube", "shape": "box", "min": [-0.4, 0, -0.4], "max": [0.4, 0.8, 0.4], "material": "gold",
+     "animate": {"interpolation": "smooth", "keys": [
+       {"time": 0, "translate": [-1.5, 0.5, 0.6]},
+       {"time": 1, "translate": [0.4, 0.2, -0.2], "rotate": {"axis": [1, 1, 0], "degrees": 120}},
+       {"time": 2, "translate": [1.8, 1.4, 0.8], "rotate": {"axis": [0, 1, 0], "degrees": 30}, "scale": [1, 2, 1]}]}},
+    {"name": "ball", "shape": "sphere", "center": [0, 0, 0], "radius": 0.35, "slices": 12, "stacks": 6,
+     "material": "gold"}
+  ],
+  "instances": [
+    {"mesh": "ball", "transform": {"translate": [0.5, 2.8, 1.2]},
+     "animate": {"keys": [{"time": 0}, {"time": 1.5, "translate": [0, -2.4, 0], "scale": 0.5}]}}
+  ],
+  "camera": {"eye": [1, 3.5, 7.5], "look_at": [0, 1, 0], "fov_y": 45,
+             "keys": [{"time": 0}, {"time": 2, "eye": [-2, 4, 6.5], "fov_y": 40}]}
+})";
+
+RenderSettings settings(const std::string& backend, Strategy strategy) {
+  RenderSettings rs;
+  rs.backend = backend;
+  rs.strategy = strategy;
+  rs.width = 40;
+  rs.height = 30;
+  rs.max_depth = 2;
+  return rs;
+}
+
+// The baked scene at `time` through the static grid alone.
+RenderResult baked(const Scene& s, double time, const RenderSettings& rs) {
+  const Scene b = bake(s, time);
+  const Grid g = build_grid(b, 0, kNoSubgrids);
+  Tracer t(b, g);
+  return t.render(rs, b.camera);
+}
+
+TEST_P(DynamicRender, FramesEqualTheSceneBakedAtThatTime) {
+  RT_REQUIRE_BACKEND(GetParam());
+  const Scene s = parse_json_scene(kScene, ".", "dynamic.json");
+  ASSERT_TRUE(s.animation.animated());
+  const Grid g = build_grid(s, 0, kNoSubgrids);
+  for (Strategy strategy : {Strategy::Megakernel, Strategy::Multipass}) {
+    const RenderSettings rs = settings(GetParam(), strategy);
+    Tracer rebuild(s, g), refit(s, g);
+    // Keys, between keys (smooth and linear), and after the range (the last pose holds).
+    for (double t : {0.0, 0.37, 1.0, 1.64, 2.0, 3.5}) {
+      const std::string what =
+          std::string(strategy == Strategy::Multipass ? "multipass" : "megakernel") +
+          " at t = " + std::to_string(t);
+      const RenderResult want = baked(s, t, rs);
+      rebuild.set_time(t, BvhUpdate::Rebuild);
+      expect_identical(want, rebuild.render(rs, camera_at(s, t)), what + ", rebuilt");
+      const FrameUpdate u = refit.set_time(t, BvhUpdate::Refit);
+      EXPECT_FALSE(u.rebuilt) << what;
+      expect_identical(want, refit.render(rs, camera_at(s, t)), what + ", refitted");
+    }
+  }
+}
+
+// With subgrids in the static grid, and a scene whose triangles all move (an empty grid).
+TEST_P(DynamicRender, SubgridsAndScenesWithoutStaticTriangles) {
+  RT_REQUIRE_BACKEND(GetParam());
+  const Scene s = parse_json_scene(kScene, ".", "dynamic.json");
+  const RenderSettings rs = settings(GetParam(), Strategy::Megakernel);
+  const Grid sub = build_grid(s, 6, 1);
+  ASSERT_GT(sub.subgrids, 0);
+  Tracer t(s, sub);
+  t.set_time(0.8);
+  expect_identical(baked(s, 0.8, rs), t.render(rs, camera_at(s, 0.8)), "with subgrids");
+
+  Scene only = s;
+  AnimatedObject all;
+  all.name = "everything";
+  all.count = only.triangle_count();
+  all.track = s.animation.objects[1].track;
+  only.animation.objects = {all};
+  const Grid empty = build_grid(only);
+  ASSERT_TRUE(empty.empty());
+  Tracer moving(only, empty);
+  moving.set_time(1.2);
+  expect_identical(baked(only, 1.2, rs), moving.render(rs, camera_at(only, 1.2)),
+                   "every triangle moving");
+}
+
+// A deforming mesh (an OBJ sequence, scene/AnimationJson.h) and a copy of it that also
+// moves: each frame equals its baked scene, the shapes switching between frames.
+TEST_P(DynamicRender, DeformingMeshesEqualTheirBakedFrames) {
+  RT_REQUIRE_BACKEND(GetParam());
+  testing::TempDir dir;
+  for (int k = 0; k < 3; ++k)
+    dir.file("wave-" + std::to_string(k) + ".obj", testing::wave_obj(0.6f * static_cast<float>(k)));
+  const Scene s = load_json(dir.file("wave.json", R"({
+    "builtin": "thesis-a", "animation": {"end": 1.5, "fps": 4},
+    "meshes": [{"name": "wave", "file": "wave-%d.obj", "sequence": {"last": 2, "fps": 2},
+                "transform": {"translate": [-1, 0.2, 1.2]}}],
+    "instances": [{"mesh": "wave", "transform": {"translate": [0, 1.5, 0]},
+                   "animate": {"keys": [{"time": 0}, {"time": 1.5, "rotate": {"axis": [0, 1, 0], "degrees": 60}}]}}]
+  })"));
+  const Grid g = build_grid(s, 0, kNoSubgrids);
+  for (Strategy strategy : {Strategy::Megakernel, Strategy::Multipass}) {
+    const RenderSettings rs = settings(GetParam(), strategy);
+    Tracer t(s, g);
+    for (double time : {0.0, 0.5, 0.75, 1.5}) {
+      t.set_time(time, BvhUpdate::Refit);
+      expect_identical(baked(s, time, rs), t.render(rs, camera_at(s, time)),
+                       "wave at t = " + std::to_string(time));
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, DynamicRender, ::testing::ValuesIn(testing::backend_names()),
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
+
+// Only what the scene calls for is generated: no BVH code without moving objects.
+TEST(DynamicFeatures, BvhCodeOnlyForScenesThatMove) {
+  const Scene s = parse_json_scene(kScene, ".", "dynamic.json");
+  Tracer moving(s, build_grid(s));
+  EXPECT_TRUE(moving.features().dynamic);
+  EXPECT_NE(moving.source("cpu").find("bvh_"), std::string::npos);
+  const Scene still = bake(s, 0.5);
+  Tracer fixed(still, build_grid(still));
+  EXPECT_FALSE(fixed.features().dynamic);
+  EXPECT_EQ(fixed.source("cpu").find("bvh_"), std::string::npos);
+  // A static scene's tracer ignores set_time.
+  const FrameUpdate u = fixed.set_time(1.0);
+  EXPECT_EQ(u.moving, 0u);
+}
+
+}  // namespace
+}  // namespace rt
