@@ -110,6 +110,12 @@ TEST_F(Distributed, IdenticalToSingleProcessWhateverRanksAndTiles) {
       run_command(kMpirun + " -np 3 " + kExe + cornell + outputs("c") + " --tile 5", dir, 120);
   ASSERT_EQ(r.status, 0) << r.err;
   expect_same_files(dir, "c-ref", "c", kSuffixes, std::size(kSuffixes));
+  // An animated scene: its first frame, as a single process renders it.
+  const std::string bounce = " render builtin:bounce --size 40x30 --quiet";
+  ASSERT_EQ(run_command(kExe + bounce + outputs("b-ref"), dir).status, 0);
+  r = run_command(kMpirun + " -np 3 " + kExe + bounce + outputs("b") + " --tile 9", dir, 120);
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_same_files(dir, "b-ref", "b", kSuffixes, std::size(kSuffixes));
 }
 
 // A render long enough to kill a worker in the middle of it: the single-process reference
