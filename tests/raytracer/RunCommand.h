@@ -26,10 +26,11 @@ inline std::string read_text(const std::string& path) {
 }
 
 // Runs a shell command line in dir, its stdout and stderr kept. timeout: a hang fails the
-// test (exit status 124) instead of the whole suite.
+// test (exit status 124, or 137 when the command ignores SIGTERM for 5 s) instead of the
+// whole suite.
 inline Run run_command(const std::string& command, const TempDir& dir, int timeout_s = 60) {
   const std::string err = dir.path("stderr.txt"), out = dir.path("stdout.txt");
-  std::string cmd = "cd '" + dir.dir() + "' && timeout " + std::to_string(timeout_s) + " " +
+  std::string cmd = "cd '" + dir.dir() + "' && timeout -k 5 " + std::to_string(timeout_s) + " " +
                     command + " > '" + out + "' 2> '" + err + "'";
   int rc = std::system(cmd.c_str());
   Run r;

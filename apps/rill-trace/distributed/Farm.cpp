@@ -267,8 +267,11 @@ void Farm::lose(int rank, const std::string& why, bool responsive, TileQueue* qu
 void Farm::check_silence(TileQueue* queue) {
   const double t = now_s();
   if (mpi_.rank() != 0) {
-    if (t - heard0_ > o_.rank_timeout)
-      throw std::runtime_error("rank 0 sent nothing for " + seconds_text(o_.rank_timeout) +
+    // Twice as long: rank 0, which holds the image, decides first. A worker that rank 0 gave
+    // up on (it hung, then went on) hears nothing more from it, and is ended by rank 0's
+    // MPI_Abort rather than by an exit of its own racing with that abort.
+    if (t - heard0_ > 2 * o_.rank_timeout)
+      throw std::runtime_error("rank 0 sent nothing for " + seconds_text(2 * o_.rank_timeout) +
                                " (crashed, killed or hung): this rank ends");
     return;
   }

@@ -20,6 +20,8 @@ class Fnv1a {
   void add(T v) { bytes(&v, sizeof v); }
   void add(const glm::vec2& v) { bytes(&v, sizeof v); }
   void add(const glm::vec3& v) { bytes(&v, sizeof v); }
+  void add(const glm::dvec3& v) { bytes(&v, sizeof v); }
+  void add(const glm::dquat& q) { bytes(&q, sizeof q); }
   void add(const std::string& s) {
     add(s.size());
     bytes(s.data(), s.size());
@@ -65,6 +67,26 @@ uint64_t scene_hash(const Scene& s, const std::string& settings) {
   const SceneOptions& o = s.options;
   h.add(o.shadows), h.add(o.ambient), h.add(o.max_depth), h.add(o.grid), h.add(o.subgrid_min);
   h.add(o.grid_density), h.add(o.spp), h.add(o.smooth_normals);
+  // Animation (docs/dynamic-scenes.md): a distributed render is the first frame, but which
+  // frame that is and where everything is then come from all of it.
+  const Animation& a = s.animation;
+  h.add(a.time.start), h.add(a.time.end), h.add(a.time.fps), h.add(a.objects.size());
+  for (const AnimatedObject& ob : a.objects) {
+    h.add(ob.name), h.add(ob.first), h.add(ob.count), h.add(ob.shape_fps);
+    h.add(ob.track.interpolation), h.add(ob.track.keys.size());
+    for (const PoseKey& k : ob.track.keys) {
+      h.add(k.time), h.add(k.pose.translate), h.add(k.pose.rotation), h.add(k.pose.scale);
+    }
+    h.add(ob.shapes.size());
+    for (const std::vector<glm::vec3>& shape : ob.shapes) h.add(shape);
+    h.add(ob.shape_normals.size());
+    for (const std::vector<glm::vec3>& normals : ob.shape_normals) h.add(normals);
+  }
+  h.add(a.camera.interpolation), h.add(a.camera.keys.size());
+  for (const CameraKey& k : a.camera.keys) {
+    h.add(k.time), h.add(k.camera.eye), h.add(k.camera.look_at), h.add(k.camera.up);
+    h.add(k.camera.fov_y);
+  }
   return h.value();
 }
 

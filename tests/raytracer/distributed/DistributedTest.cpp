@@ -26,7 +26,11 @@ const std::string kExe = std::string("'") + RILL_TRACE_EXE + "'";
 
 #if RILL_HAVE_MPI
 #define RT_REQUIRE_MPI() (void)0
-const std::string kMpirun = std::string("'") + RILL_MPIEXEC + "' --oversubscribe";
+// Under the sanitizer build (.ci/run) the ranks check no leaks: Open MPI 4.1 leaves memory
+// behind at MPI_Finalize by design, allocated in components it unloads there, so LeakSanitizer
+// cannot name a library to suppress. Address and undefined-behaviour checks stay on.
+const std::string kMpirun = std::string("env ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" '") +
+                            RILL_MPIEXEC + "' --oversubscribe";
 #else
 #define RT_REQUIRE_MPI() GTEST_SKIP() << "rill-trace was built without MPI (RILL_MPI off)"
 const std::string kMpirun;
@@ -106,6 +110,12 @@ TEST_F(Distributed, IdenticalToSingleProcessWhateverRanksAndTiles) {
       run_command(kMpirun + " -np 3 " + kExe + cornell + outputs("c") + " --tile 5", dir, 120);
   ASSERT_EQ(r.status, 0) << r.err;
   expect_same_files(dir, "c-ref", "c", kSuffixes, std::size(kSuffixes));
+  // An animated scene: its first frame, as a single process renders it.
+  const std::string bounce = " render builtin:bounce --size 40x30 --quiet";
+  ASSERT_EQ(run_command(kExe + bounce + outputs("b-ref"), dir).status, 0);
+  r = run_command(kMpirun + " -np 3 " + kExe + bounce + outputs("b") + " --tile 9", dir, 120);
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_same_files(dir, "b-ref", "b", kSuffixes, std::size(kSuffixes));
 }
 
 // A render long enough to kill a worker in the middle of it: the single-process reference
@@ -128,14 +138,18 @@ class KilledWorker : public Distributed {
     // Rank 2 is killed (kill -9, from outside the program) a quarter of the way into the
     // single-process time: three ranks share the cores, so the render is under way (a few
     // checkpoints written) and far from done.
+    // The same with SIGSTOP: a rank that hangs.
     const double kill_after = std::max(0.8, reference_s_ / 4);
-    dir_.file("killed.sh", "(sleep " + std::to_string(kill_after) + "; kill -9 $$) &\nexec " +
-                               kExe + " \"$@\"\n");
+    for (const char* signal : {"KILL", "STOP"})
+      dir_.file(std::string(signal) + ".sh", "echo $$ > rank2.pid\n(sleep " +
+                                                 std::to_string(kill_after) + "; kill -" + signal +
+                                                 " $$) &\nexec " + kExe + " \"$@\"\n");
   }
-  Result run_with_killed_rank(const std::string& mpirun_options) {
+  Result run_with_killed_rank(const std::string& mpirun_options, const char* signal = "KILL",
+                              int timeout_s = 120) {
     return run_command(kMpirun + mpirun_options + " -np 2 " + kExe + kScene + " : -np 1 sh " +
-                           dir_.path("killed.sh") + kScene,
-                       dir_, 120);
+                           dir_.path(std::string(signal) + ".sh") + kScene,
+                       dir_, timeout_s);
   }
 
   TempDir dir_;
@@ -184,6 +198,23 @@ TEST_F(KilledWorker, WithRecoveryTheImageCompletes) {
   // The checkpoints are gone with the whole image written.
   EXPECT_FALSE(std::filesystem::exists(dir_.path("g.partial.png")));
   EXPECT_FALSE(std::filesystem::exists(dir_.path("g.partial.txt")));
+}
+
+// A rank that hangs (stopped) is not dead to mpirun, so the job goes on without any option:
+// rank 0 finds it silent, the others render its tiles, rank 0 writes the image and ends the
+// job with MPI_Abort (MPI_Finalize would wait for the stopped rank). What mpirun does then is
+// Open MPI's: 4.1.4 at times crashes (PMIx_server_finalize) or hangs while it ends a job with
+// a stopped process, so its exit status is not checked, and a hang of mpirun alone ends with
+// the timeout here.
+TEST_F(KilledWorker, AHungWorkerIsLostAndTheImageCompletes) {
+  Result r = run_with_killed_rank("", "STOP", 40);
+  // The stopped rank, if mpirun left it behind.
+  const std::string pid = read_text(dir_.path("rank2.pid"));
+  if (!pid.empty()) std::system(("kill -9 " + pid + " 2> /dev/null").c_str());
+  EXPECT_TRUE(has(r.err, "rill-trace: warning: rank 2 on ")) << r.err;
+  EXPECT_TRUE(has(r.err, "is lost (sent nothing for 2 s")) << r.err;
+  EXPECT_TRUE(has(r.err, "ending the job with MPI_Abort")) << r.err;
+  expect_same_files(dir_, "ref", "g", kSuffixes, 2);
 }
 
 // Rank 2 loads another scene, other settings, or nothing: the job stops before any tile,
