@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 #include <tbb/blocked_range.h>
+#include <tbb/task_arena.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_reduce.h>
@@ -111,13 +112,16 @@ class CpuKernel : public CompiledKernel {
              shapes.data(), a.count,    a.width,         a.height};
     const Selection selected_at{mask, a.mask_values};
 
-    // Ranges of a few thousand elements amortize the call and let TBB balance uneven work
-    // (a Mandelbrot row inside the set costs far more than one outside). Under a mask, each
+    // Ranges of about a thousand elements amortize the call and let TBB balance uneven work
+    // (a Mandelbrot row inside the set costs far more than one outside). A small launch (a
+    // 128 x 128 tile of a distributed render) gets smaller ranges, at least 16 per thread:
+    // with 1024 a tile is 16 ranges, and 8 threads wait on its slowest few. Under a mask, each
     // range runs the kernel over its runs of selected elements (see Selection).
     struct Counts {
       int64_t written = 0, selected = 0;
     };
-    const int64_t grain = 1024;
+    const int64_t threads = std::max(1, tbb::this_task_arena::max_concurrency());
+    const int64_t grain = std::clamp<int64_t>(a.count / (16 * threads), 64, 1024);
     // Ranges count units of `unit` elements: single elements, or, for the lockstep kernel on
     // an unmasked 2D stream, whole row pairs, which it runs in tiles of two rows
     // (rill_next_group).
