@@ -385,12 +385,16 @@ std::optional<FarmResult> Farm::render(int width, int height, const FrameOutputs
 }
 
 void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_tile) {
-  std::deque<Tile> todo;
-  Background<RenderResult> job;
-  Tile current;
-  double started = 0;
+  // Every tile in hand is posted to the lane at once: the lane renders them back to back, so
+  // it never waits for this loop's next poll between tiles (at tiles of 64 that wait was a
+  // fifth of the time). Results come back in order; each job times its own render.
+  struct Job {
+    Tile tile;
+    Background<std::pair<RenderResult, double>> result;
+  };
+  std::deque<Job> jobs;
   bool stopped = false, failed = !loaded_;
-  while (!stopped || !job.idle()) {
+  while (!stopped || !jobs.empty()) {
     int source = 0, tag = 0;
     Bytes bytes;
     while (mpi_.receive(source, tag, bytes, o_.rank_timeout)) {
@@ -399,30 +403,33 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
       if (tag != kAssign) continue;
       Tile t;
       unpack(bytes, t);
-      todo.push_back(t);
+      if (failed) {
+        if (!loaded_) mpi_.post(0, kFailed, pack(Text{"got tiles without a scene"}));
+        continue;
+      }
+      jobs.push_back(Job{t, {}});
+      jobs.back().result.start(*lane_, [&render_tile, t] {
+        const double start = now_s();
+        RenderResult r = render_tile(t);
+        return std::make_pair(std::move(r), (now_s() - start) * 1e3);
+      });
     }
-    if (job.ready()) {
+    while (!jobs.empty() && jobs.front().result.ready()) {
+      Job job = std::move(jobs.front());
+      jobs.pop_front();
+      if (failed) continue;  // after a failure the rest only drain
       try {
+        auto [pixels, ms] = job.result.take();
         TileDone d;
-        d.pixels = job.take();
-        d.id = current.id;
-        d.busy_ms = (now_s() - started) * 1e3;
+        d.pixels = std::move(pixels);
+        d.id = job.tile.id;
+        d.busy_ms = ms;
         mpi_.post(0, kTileDone, pack(d));
       } catch (const std::exception& e) {
         // The tiles go to the other ranks; this one stays to hear rank 0's stop.
         mpi_.post(0, kFailed, pack(Text{std::string("rendering failed: ") + e.what()}));
         failed = true;
       }
-    }
-    if (failed && !todo.empty() && loaded_ == false) {
-      mpi_.post(0, kFailed, pack(Text{"got tiles without a scene"}));
-      todo.clear();
-    }
-    if (job.idle() && !failed && !todo.empty()) {
-      current = todo.front();
-      todo.pop_front();
-      started = now_s();
-      job.start(*lane_, [&render_tile, t = current] { return render_tile(t); });
     }
     check_silence(nullptr);
     beat();
@@ -504,34 +511,48 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
 
   int saved = 0;  // tiles in the last checkpoint
   double saved_at = t0;
-  Background<RenderResult> mine;
-  Tile my_tile;
-  double my_start = 0;
+  // Rank 0's own tiles, up to kAhead posted to its lane at once (as a worker's, below): the
+  // lane renders them back to back, never waiting for this loop's next poll. Each job times
+  // its own render; the front one's deadline runs from when it became the front.
+  struct OwnJob {
+    Tile tile;
+    Background<std::pair<RenderResult, double>> result;
+  };
+  std::deque<OwnJob> own;
+  double own_front_since = t0;
   for (int r = 1; r < mpi_.size(); ++r) feed(r);
   while (!queue.complete()) {
     if (g_signal != 0) {
       R.interrupted = true;
       break;
     }
-    // Rank 0's own tiles.
-    if (mine.ready()) {
-      const double ms = (now_s() - my_start) * 1e3;
+    while (!own.empty() && own.front().result.ready()) {
+      OwnJob job = std::move(own.front());
+      own.pop_front();
+      own_front_since = now_s();
+      if (!peers_[0].alive) continue;  // lost: its tiles went to the others
       try {
-        accept(0, my_tile.id, mine.take(), ms);
+        auto [pixels, ms] = job.result.take();
+        accept(0, job.tile.id, pixels, ms);
       } catch (const std::exception& e) {
         lose(0, std::string("rendering failed: ") + e.what(), true, &queue);
       }
     }
-    if (mine.running() && o_.tile_timeout > 0 && now_s() - my_start > o_.tile_timeout) {
+    if (!own.empty() && peers_[0].alive && o_.tile_timeout > 0 &&
+        now_s() - own_front_since > o_.tile_timeout) {
       lose(0, "no tile back within --tile-timeout " + seconds_text(o_.tile_timeout), false, &queue);
       R.must_abort = true;  // its thread cannot be stopped
     }
-    if (mine.idle() && peers_[0].alive) {
-      if (std::optional<Tile> t = queue.next(0)) {
-        my_tile = *t;
-        my_start = now_s();
-        mine.start(*lane_, [&render_tile, t = *t] { return render_tile(t); });
-      }
+    while (peers_[0].alive && own.size() < static_cast<size_t>(kAhead)) {
+      std::optional<Tile> t = queue.next(0);
+      if (!t) break;
+      if (own.empty()) own_front_since = now_s();
+      own.push_back(OwnJob{*t, {}});
+      own.back().result.start(*lane_, [&render_tile, t = *t] {
+        const double start = now_s();
+        RenderResult r = render_tile(t);
+        return std::make_pair(std::move(r), (now_s() - start) * 1e3);
+      });
     }
     // The workers'.
     int source = 0, tag = 0;
@@ -577,8 +598,8 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
   draw_progress(true);
   R.wall_ms = (now_s() - t0) * 1e3;
   report(R, queue);
-  if (R.interrupted) return R;  // mpirun is ending the job: no time for goodbyes
-  if (mine.running()) R.must_abort = true;
+  if (R.interrupted) return R;            // mpirun is ending the job: no time for goodbyes
+  if (!own.empty()) R.must_abort = true;  // rank 0's lane still has tiles of a lost rank 0
   for (int r = 1; r < mpi_.size(); ++r)
     if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kStop);
   mpi_.flush(std::min(o_.rank_timeout, 5.0));

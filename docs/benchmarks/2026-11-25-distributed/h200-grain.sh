@@ -1,4 +1,5 @@
-# Issue 23, the third H200 run: after the CPU backend's smaller ranges for small launches,
+# Issue 23, the third and fourth H200 runs: after the CPU backend's smaller ranges for small launches
+# (third), and after workers post every tile in hand to their render thread at once (fourth):
 # thesis C at 1080p, tiles of 128, 2-16 ranks with ranks x threads = 16, twice each, beside
 # the single process. Set-up as in h200.sh.
 for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
