@@ -801,10 +801,13 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distribute
                        {"tiles", r.tiles},
                        {"busy_ms", r.busy_ms},
                        {"lost", r.lost}});
-    j["distributed"] = {{"ranks", R.ranks.size()},  {"tile", o.tile},
-                        {"tiles", R.tiles},         {"tiles_done", R.tiles_done},
-                        {"complete", R.complete()}, {"imbalance", R.imbalance},
-                        {"per_rank", ranks},        {"warnings", R.warnings}};
+    nlohmann::json tile_ms = nlohmann::json::array();  // [id, rank, ms] in the order they came
+    for (const dist::FarmResult::TileTime& t : R.tile_times)
+      tile_ms.push_back(nlohmann::json::array({t.id, t.rank, t.ms}));
+    j["distributed"] = {
+        {"ranks", R.ranks.size()},    {"tile", o.tile},           {"tiles", R.tiles},
+        {"tiles_done", R.tiles_done}, {"complete", R.complete()}, {"imbalance", R.imbalance},
+        {"per_rank", ranks},          {"per_tile", tile_ms},      {"warnings", R.warnings}};
     j["time_ms"] = {{"load", p.load_ms},
                     {"grid_build", p.grid.build_ms},
                     {"render", R.wall_ms},

@@ -481,6 +481,7 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
       return lose(rank, "sent " + why, true, &queue);
     if (!queue.finish(rank, id)) return;
     place(R.image, t, pixels);
+    R.tile_times.push_back(FarmResult::TileTime{id, rank, busy_ms});
     Peer& p = peers_[static_cast<size_t>(rank)];
     ++p.tiles;
     p.busy_ms += busy_ms;

@@ -67,6 +67,13 @@ struct FarmResult {
   bool must_abort = false;   // a lost rank may be alive: end with MpiSession::abort
   double wall_ms = 0;        // from the first tile handed out to the last one back
   double imbalance = 0;      // busiest rank's busy time over the mean, less 1 (ranks not lost)
+  // Each tile in the image: its id, the rank that rendered it and that rank's time for it (the
+  // tile-cost distribution, for models of larger farms).
+  struct TileTime {
+    int id = 0, rank = 0;
+    double ms = 0;
+  };
+  std::vector<TileTime> tile_times;
   bool complete() const { return tiles_done == tiles; }
 };
 

@@ -6,6 +6,8 @@
 // Every command runs under a timeout: a hang fails the test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -102,6 +104,16 @@ TEST_F(Distributed, IdenticalToSingleProcessWhateverRanksAndTiles) {
     }
     EXPECT_EQ(sum, tiles);
     EXPECT_GE(d.at("imbalance").get<double>(), 0.0);
+    // Every tile once, with the rank that rendered it and a time.
+    std::vector<int> seen(static_cast<size_t>(tiles), 0);
+    for (const nlohmann::json& t : d.at("per_tile")) {
+      const int id = t.at(0).get<int>(), rank = t.at(1).get<int>();
+      ASSERT_TRUE(id >= 0 && id < tiles) << t;
+      EXPECT_TRUE(rank >= 0 && rank < ranks) << t;
+      EXPECT_GE(t.at(2).get<double>(), 0.0);
+      ++seen[static_cast<size_t>(id)];
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), tiles);
   }
   // The multipass strategy, tiles of 5 on a 40x30 image.
   const std::string cornell = " render builtin:cornell --strategy multipass --size 40x30 --quiet";
