@@ -105,6 +105,7 @@ struct BuildNode {
   size_t begin = 0, end = 0;  // prims[begin, end)
   int32_t left = -1;          // children at left and left + 1 (-1: a leaf)
   int depth = 1;
+  int32_t subtree = 1;  // nodes in its subtree, itself included (where flatten puts them)
 };
 
 // Memory for n objects of a type whose copies are plain bytes, left uninitialized: the
@@ -296,6 +297,7 @@ struct Builder {
       child(r, left + 1, n_right);
     }
     n.depth = 1 + std::max(l.depth, r.depth);
+    n.subtree = 1 + l.subtree + r.subtree;
   }
 
   // A node's box and centroid bounds, from its triangles.
@@ -328,20 +330,28 @@ struct Builder {
     c.centroids = b.centroids;
   }
 
-  // Depth-first order with skips (Bvh.h), from the build's pairs.
-  void flatten(int32_t at, Bvh& out) const {
+  // Depth-first order with skips (Bvh.h), from the build's pairs, into out.nodes (sized to the
+  // root's subtree): build node `at` goes to slot i, its left subtree right after it and its
+  // right subtree after that, so large subtrees are written in parallel.
+  void flatten(int32_t at, int32_t i, Bvh& out) const {
     const BuildNode& n = nodes[static_cast<size_t>(at)];
-    const size_t i = out.nodes.size();
-    out.nodes.emplace_back();
-    pad(n.box, out.nodes[i].lo, out.nodes[i].hi);
+    BvhNode& o = out.nodes[static_cast<size_t>(i)];
+    pad(n.box, o.lo, o.hi);
+    o.skip = i + n.subtree;
     if (n.left < 0) {
-      out.nodes[i].first = static_cast<int32_t>(n.begin);
-      out.nodes[i].count = static_cast<int32_t>(n.end - n.begin);
-    } else {
-      flatten(n.left, out);
-      flatten(n.left + 1, out);
+      o.first = static_cast<int32_t>(n.begin);
+      o.count = static_cast<int32_t>(n.end - n.begin);
+      return;
     }
-    out.nodes[i].skip = static_cast<int32_t>(out.nodes.size());
+    o.first = o.count = 0;
+    const int32_t right_at = i + 1 + nodes[static_cast<size_t>(n.left)].subtree;
+    if (n.subtree >= static_cast<int32_t>(kParallelMin))
+      tbb::parallel_invoke([&] { flatten(n.left, i + 1, out); },
+                           [&] { flatten(n.left + 1, right_at, out); });
+    else {
+      flatten(n.left, i + 1, out);
+      flatten(n.left + 1, right_at, out);
+    }
   }
 };
 
@@ -402,8 +412,8 @@ Bvh build_bvh(const Scene& s, const std::vector<int32_t>& ids) {
   root.end = prims.size();
   builder.bound(root, true);
   builder.build(0);
-  out.nodes.reserve(static_cast<size_t>(builder.used.load()));
-  builder.flatten(0, out);
+  out.nodes.resize(static_cast<size_t>(builder.nodes[0].subtree));
+  builder.flatten(0, 0, out);
   out.tris.resize(prims.size());
   for (size_t i = 0; i < prims.size(); ++i) out.tris[i] = prims[i].id;
   out.ids = ids;
