@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "rill/rt/scene/FramePattern.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace trace_cli {
@@ -21,33 +22,6 @@ bool parse_int(const std::string& s, int& v) {
     if (c < '0' || c > '9') return false;
   v = std::atoi(s.c_str());
   return true;
-}
-
-// The frame number's conversion in `pattern`: its position and length, or npos; throws for
-// a second one or any other conversion.
-size_t conversion(const std::string& pattern, const std::string& option, size_t& len) {
-  size_t at = std::string::npos;
-  for (size_t i = 0; i < pattern.size(); ++i) {
-    if (pattern[i] != '%') continue;
-    if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
-      ++i;
-      continue;
-    }
-    size_t j = i + 1;
-    while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9') ++j;
-    if (j >= pattern.size() || pattern[j] != 'd' || j - i - 1 > 2 ||
-        (j > i + 1 && std::atoi(pattern.c_str() + i + 1) > 20))
-      throw rt::SceneError(option + " '" + rt::clipped(pattern) +
-                           "': the only conversion allowed is the frame number, as %d or "
-                           "%04d (a width of at most 20; write a percent sign as %%)");
-    if (at != std::string::npos)
-      throw rt::SceneError(option + " '" + rt::clipped(pattern) +
-                           "' has two frame numbers; give one, such as frame-%04d.png");
-    at = i;
-    len = j + 1 - i;
-    i = j;
-  }
-  return at;
 }
 
 }  // namespace
@@ -69,31 +43,6 @@ FrameSpan parse_frames(const std::string& spec, const rt::TimeRange& range, bool
                          " frame" + (count == 1 ? "" : "s") + " (0.." + std::to_string(count - 1) +
                          ")" + (animated ? "" : "; it has no animation (docs/dynamic-scenes.md)"));
   return f;
-}
-
-bool has_frame_number(const std::string& pattern, const std::string& option) {
-  size_t len = 0;
-  return conversion(pattern, option, len) != std::string::npos;
-}
-
-std::string frame_path(const std::string& pattern, int frame) {
-  size_t len = 0;
-  const size_t at = conversion(pattern, "the output", len);
-  std::string out;
-  for (size_t i = 0; i < pattern.size(); ++i) {
-    if (i == at) {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, pattern.substr(at, len).c_str(), frame);
-      out += buf;
-      i += len - 1;
-    } else if (pattern[i] == '%' && i + 1 < pattern.size() && pattern[i + 1] == '%') {
-      out += '%';
-      ++i;
-    } else {
-      out += pattern[i];
-    }
-  }
-  return out;
 }
 
 Progress::Progress(int total, bool quiet) : total_(total), on_(!quiet && isatty(2) && total > 1) {}

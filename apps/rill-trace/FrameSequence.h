@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rill/rt/scene/Animation.h"
+#include "rill/rt/scene/FramePattern.h"
 
 namespace trace_cli {
 
@@ -18,11 +19,10 @@ struct FrameSpan {
 };
 FrameSpan parse_frames(const std::string& spec, const rt::TimeRange& range, bool animated);
 
-// A path with one printf conversion for the frame number (%d, %04d, ...; %% for a percent
-// sign) and nothing else, or "" when `pattern` has none. Throws rt::SceneError naming
-// `option` for any other conversion.
-bool has_frame_number(const std::string& pattern, const std::string& option);
-std::string frame_path(const std::string& pattern, int frame);
+// Output names with a frame number: rt::has_frame_number and rt::frame_path
+// (scene/FramePattern.h).
+using rt::frame_path;
+using rt::has_frame_number;
 
 // "\rframe 12/48 [======>      ] 25%, 35.2 ms" on stderr, when stderr is a terminal.
 class Progress {

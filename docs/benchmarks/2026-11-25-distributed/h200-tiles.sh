@@ -1,12 +1,6 @@
 # Issue 23, the second H200 run: tile sizes 64, 96 and 128 at 4 and 8 ranks (ranks x threads
-# = 16), beside the single process, each twice. Set-up as in h200.sh.
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-mkdir -p /tmp/mpi; for f in .mpi/*.deb; do dpkg -x $f /tmp/mpi; done
-export RILL_CACHE_DIR=/tmp/rill-cache OPAL_PREFIX=/tmp/mpi/usr PATH=/tmp/mpi/usr/bin:$PATH
-export LD_LIBRARY_PATH=$PWD/.devcarry/lib:/tmp/mpi/usr/lib/x86_64-linux-gnu:/tmp/mpi/usr/lib/x86_64-linux-gnu/openmpi/lib
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-B=$PWD/.devcarry/bin
-S="builtin:thesis-c --size 1920x1080"
+# = 16), beside the single process, each twice. Set-up in setup.sh.
+source docs/benchmarks/2026-11-25-distributed/setup.sh
 $B/rill-trace render $S --threads 16 --out /tmp/single.png --bench-frames 5 | grep "frames of"
 for rep in 1 2; do
   for n in 4 8; do

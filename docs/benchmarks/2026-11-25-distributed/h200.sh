@@ -3,16 +3,7 @@
 # libraries. thesis C at 1080p on the 16 cores: one process, then 2, 4, 8 and 16 ranks with
 # ranks x threads = 16, twice each (the second with warm kernel caches), and one OpenCL rank
 # beside three CPU ranks. Every image is compared with the single-process one.
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-mkdir -p /tmp/mpi; for f in .mpi/*.deb; do dpkg -x $f /tmp/mpi; done
-mkdir -p /tmp/icd; echo libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd; export OCL_ICD_VENDORS=/tmp/icd
-export RILL_OPENCL_DEVICE=nvidia RILL_CACHE_DIR=/tmp/rill-cache
-export OPAL_PREFIX=/tmp/mpi/usr PATH=/tmp/mpi/usr/bin:$PATH
-export LD_LIBRARY_PATH=$PWD/.devcarry/lib:/tmp/mpi/usr/lib/x86_64-linux-gnu:/tmp/mpi/usr/lib/x86_64-linux-gnu/openmpi/lib
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-B=$PWD/.devcarry/bin
-mpirun --version | head -1
-S="builtin:thesis-c --size 1920x1080"
+source docs/benchmarks/2026-11-25-distributed/setup.sh
 $B/rill-trace render $S --threads 16 --out /tmp/single.png --bench-frames 5 | tail -3 | tee $OUT/single.txt
 for n in 2 4 8 16; do
   for rep in 1 2; do

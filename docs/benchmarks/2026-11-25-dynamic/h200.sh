@@ -2,12 +2,7 @@
 # BVH rebuild and refit against Embree on its 16 cores, frame time with moving balls per
 # backend at 1080p, and builtin:bounce's 97 frames per backend. Binaries and libraries are
 # carried in .devcarry/ (bin/, lib/), the GL packages in .gl/.
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-mkdir -p /tmp/icd; echo libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd; export OCL_ICD_VENDORS=/tmp/icd
-export LD_LIBRARY_PATH=$PWD/.devcarry/lib
-export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-export RILL_GL=egl RILL_OPENCL_DEVICE=nvidia RILL_CACHE_DIR=/tmp/rill-cache
-B=.devcarry/bin
+source docs/benchmarks/2026-11-25-dynamic/setup.sh
 $B/rill-trace info 2>&1 | head -12 | tee $OUT/info.txt
 $B/rill_raytracer_tests --gtest_filter='*DynamicRender*:DynamicFeatures*' > $OUT/tests.txt 2>&1; tail -4 $OUT/tests.txt
 $B/rill-bench-dynamic --sections build --repeats 15 > $OUT/build.txt 2>&1; cat $OUT/build.txt

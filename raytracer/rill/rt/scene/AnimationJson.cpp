@@ -1,6 +1,8 @@
 // Reading animation from a JSON scene (AnimationJson.h).
 #include "rill/rt/scene/AnimationJson.h"
 
+#include "rill/rt/scene/FramePattern.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -240,16 +242,6 @@ struct Sequence {
   double fps = 0;
 };
 
-// The path of file `k` of the pattern: its one %d (%0Nd) replaced by k.
-std::string nth_file(const std::string& pattern, int k) {
-  const size_t at = pattern.find('%');
-  size_t end = at + 1;
-  while (end < pattern.size() && pattern[end] >= '0' && pattern[end] <= '9') ++end;
-  char buf[32];
-  std::snprintf(buf, sizeof buf, pattern.substr(at, end + 1 - at).c_str(), k);
-  return pattern.substr(0, at) + buf + pattern.substr(end + 1);
-}
-
 Sequence read_sequence(const Ctx& c, const json& mesh, const std::string& where) {
   Sequence q;
   const json& j = mesh["sequence"];
@@ -258,14 +250,13 @@ Sequence read_sequence(const Ctx& c, const json& mesh, const std::string& where)
   if (!mesh.contains("file") || !mesh["file"].is_string())
     fail(c, w + " needs \"file\": an OBJ path with the frame number, such as wave-%03d.obj");
   q.pattern = mesh["file"].get<std::string>();
-  const size_t at = q.pattern.find('%');
-  size_t end = at == std::string::npos ? at : at + 1;
-  while (end != std::string::npos && end < q.pattern.size() && q.pattern[end] >= '0' &&
-         q.pattern[end] <= '9')
-    ++end;
-  if (at == std::string::npos || end >= q.pattern.size() || q.pattern[end] != 'd' || end - at > 3 ||
-      (end - at > 1 && std::atoi(q.pattern.c_str() + at + 1) > 20) ||
-      q.pattern.find('%', end) != std::string::npos)
+  bool numbered = false;
+  try {
+    numbered = has_frame_number(q.pattern, where + ".file");
+  } catch (const SceneError& e) {
+    fail(c, e.what());
+  }
+  if (!numbered)
     fail(c, where + ".file '" + q.pattern +
                 "' needs one frame number, %d or %03d (a width of at most 20), for its "
                 "\"sequence\"");
@@ -300,7 +291,7 @@ void shape_of(const Scene& f, std::vector<glm::vec3>& pos, std::vector<glm::vec3
 
 std::string sequence_file(const Ctx& c, const json& mesh, const std::string& where) {
   const Sequence q = read_sequence(c, mesh, where);
-  return nth_file(q.pattern, q.first);
+  return frame_path(q.pattern, q.first);
 }
 
 void load_sequence(const Ctx& c, const json& mesh, const std::string& where, AnimatedObject& o) {
@@ -312,7 +303,7 @@ void load_sequence(const Ctx& c, const json& mesh, const std::string& where, Ani
   std::vector<int32_t> first_corners, corners;
   o.shape_fps = q.fps;
   for (int k = q.first; k <= q.last; ++k) {
-    std::filesystem::path p(nth_file(q.pattern, k));
+    std::filesystem::path p(frame_path(q.pattern, k));
     if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
     corners.clear();
     opt.corners = k == q.first ? &first_corners : &corners;
@@ -320,7 +311,7 @@ void load_sequence(const Ctx& c, const json& mesh, const std::string& where, Ani
     if (f.triangle_count() != o.count)
       fail(c, where + ".sequence: " + p.filename().string() + " has " +
                   std::to_string(f.triangle_count()) + " triangles where " +
-                  std::filesystem::path(nth_file(q.pattern, q.first)).filename().string() +
+                  std::filesystem::path(frame_path(q.pattern, q.first)).filename().string() +
                   " has " + std::to_string(o.count) +
                   " (the files of a sequence keep their topology)");
     if (k > q.first && corners != first_corners) {
