@@ -247,13 +247,14 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
   return p;
 }
 
+// An output's name for one frame, or for a partial render ("x.png" -> "x.partial.png").
+using NameOf = std::function<std::string(const std::string&)>;
+
 // Writes the outputs asked for from a render, each under name(its path) (a partial render
 // writes beside the names asked for); returns what it wrote.
 std::vector<std::string> write_outputs(
     const RenderOptions& o, const Prepared& p, const rt::RenderResult& r,
-    const std::function<std::string(const std::string&)>& name = [](const std::string& s) {
-      return s;
-    }) {
+    const NameOf& name = [](const std::string& s) { return s; }) {
   g_doing = "writing the outputs";
   std::vector<std::string> written;
   auto pfm = [&](const std::string& path, const auto& data) {
@@ -389,6 +390,55 @@ rt::BvhUpdate parse_bvh_update_option(const std::string& s) {
   }
 }
 
+// What --frames asks of a render (FrameSequence.h): which frames, how the BVH follows the
+// moving objects, and each frame's output names. Checks that every output has a frame number
+// when there are several frames, and --video; sets a numbered default --out for a sequence.
+struct FramePlan {
+  trace_cli::FrameSpan span;  // frame 0 alone without --frames
+  bool animated = false;
+  bool sequence = false;  // --frames given: the names carry frame numbers
+  rt::BvhUpdate bvh_update = rt::BvhUpdate::Rebuild;
+  // The output name of path for a frame.
+  NameOf file(int frame) const {
+    return [sequence = sequence, frame](const std::string& path) {
+      return sequence ? trace_cli::frame_path(path, frame) : path;
+    };
+  }
+};
+
+FramePlan plan_frames(const RenderOptions& o, Prepared& p) {
+  const rt::Scene& scene = p.scene;
+  FramePlan plan;
+  plan.animated = scene.animation.animated();
+  plan.sequence = !o.frames.empty();
+  plan.span = plan.sequence ? trace_cli::parse_frames(o.frames, scene.animation.time, plan.animated)
+                            : trace_cli::FrameSpan{};
+  plan.bvh_update = parse_bvh_update_option(o.bvh);
+  const trace_cli::FrameSpan& span = plan.span;
+  if (o.out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty() &&
+      span.count() > 1)
+    p.out = (scene.name.empty() ? std::string("render") : scene.name) + "-%04d.png";
+  const std::pair<std::string, const std::string*> outputs[] = {{"--out", &p.out},
+                                                                {"--pfm", &o.pfm},
+                                                                {"--depth", &o.depth},
+                                                                {"--prim", &o.prim},
+                                                                {"--normal", &o.normal}};
+  for (const auto& [option, path] : outputs) {
+    if (path->empty()) continue;
+    const bool numbered = plan.sequence && trace_cli::has_frame_number(*path, option);
+    if (span.count() > 1 && !numbered)
+      throw rt::SceneError("--frames " + o.frames + " writes " + std::to_string(span.count()) +
+                           " frames: " + option + " needs a frame number, such as frame-%04d" +
+                           std::filesystem::path(*path).extension().string());
+  }
+  if (!o.video.empty()) {
+    if (p.out.empty() || !plan.sequence)
+      throw rt::SceneError("--video makes a video of the frames' PNGs: give --frames and --out");
+    if (std::string why = trace_cli::video_tool_missing(); !why.empty()) throw rt::SceneError(why);
+  }
+  return plan;
+}
+
 #if RILL_HAVE_MPI
 int render_distributed(const RenderOptions& o);
 #endif
@@ -424,38 +474,11 @@ int render(RenderOptions o) {
   const rt::RenderSettings& rs = p.rs;
   const double load_ms = p.load_ms;
 
-  // --frames: which frames, and one output name per frame (FrameSequence.h).
-  const bool animated = scene.animation.animated();
-  const trace_cli::FrameSpan span =
-      o.frames.empty() ? trace_cli::FrameSpan{}
-                       : trace_cli::parse_frames(o.frames, scene.animation.time, animated);
-  const rt::BvhUpdate bvh_update = parse_bvh_update_option(o.bvh);
-  if (o.out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty() &&
-      span.count() > 1)
-    p.out = (scene.name.empty() ? std::string("render") : scene.name) + "-%04d.png";
-  const std::pair<std::string, const std::string*> outputs[] = {{"--out", &p.out},
-                                                                {"--pfm", &o.pfm},
-                                                                {"--depth", &o.depth},
-                                                                {"--prim", &o.prim},
-                                                                {"--normal", &o.normal}};
-  for (const auto& [option, path] : outputs) {
-    if (path->empty()) continue;
-    const bool numbered = !o.frames.empty() && trace_cli::has_frame_number(*path, option);
-    if (span.count() > 1 && !numbered)
-      throw rt::SceneError("--frames " + o.frames + " writes " + std::to_string(span.count()) +
-                           " frames: " + option + " needs a frame number, such as frame-%04d" +
-                           std::filesystem::path(*path).extension().string());
-  }
-  auto frame_file = [&](int frame) {
-    return [&o, frame](const std::string& path) {
-      return o.frames.empty() ? path : trace_cli::frame_path(path, frame);
-    };
-  };
-  if (!o.video.empty()) {
-    if (p.out.empty() || o.frames.empty())
-      throw rt::SceneError("--video makes a video of the frames' PNGs: give --frames and --out");
-    if (std::string why = trace_cli::video_tool_missing(); !why.empty()) throw rt::SceneError(why);
-  }
+  const FramePlan plan = plan_frames(o, p);
+  const trace_cli::FrameSpan& span = plan.span;
+  const bool animated = plan.animated;
+  const rt::BvhUpdate bvh_update = plan.bvh_update;
+  auto frame_file = [&plan](int frame) { return plan.file(frame); };
 
   const auto t_render = Clock::now();
   g_doing = "rendering " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " on " +
@@ -645,31 +668,38 @@ std::vector<std::string> output_paths(const RenderOptions& o, const Prepared& p)
   return paths;
 }
 
-// The note beside a partial image: NAME.partial.txt after the first output.
-std::string partial_note_path(const RenderOptions& o, const Prepared& p) {
-  const std::string first = rt::distributed::partial_name(output_paths(o, p).front());
+// The note beside a frame's partial outputs: NAME.partial.txt after its first output.
+std::string partial_note_path(const RenderOptions& o, const Prepared& p, const NameOf& file) {
+  const std::string first = rt::distributed::partial_name(file(output_paths(o, p).front()));
   const size_t dot = first.find_last_of('.');
   return (dot == std::string::npos ? first : first.substr(0, dot)) + ".txt";
 }
 
-// Writes the image so far as partial outputs (NAME.partial.EXT), and the note: what is in it
-// and what is not, and why. Returns what it wrote.
+// Writes a frame's tiles so far as partial outputs (NAME.partial.EXT, each NAME the frame's
+// output name by `file`), and the note: what is in it and what is not, and why. Returns what
+// it wrote.
 std::vector<std::string> write_partial(const RenderOptions& o, const Prepared& p,
                                        const rt::distributed::FarmResult& R,
+                                       const rt::distributed::FramePart& part, const NameOf& file,
                                        const std::string& why) {
-  std::vector<std::string> written = write_outputs(o, p, R.image, rt::distributed::partial_name);
-  const std::string note = partial_note_path(o, p);
+  std::vector<std::string> written = write_outputs(o, p, part.image, [&](const std::string& path) {
+    return rt::distributed::partial_name(file(path));
+  });
+  const std::string note = partial_note_path(o, p, file);
   std::ostringstream f;
-  f << "rill-trace: a partial render of " << o.scene << ", " << R.image.width << "x"
-    << R.image.height << " in " << R.tiles << " tiles of " << o.tile << " pixels\n"
+  f << "rill-trace: a partial render of " << o.scene;
+  if (R.frames > 1 || !o.frames.empty()) f << ", frame " << part.frame;
+  f << ", " << part.image.width << "x" << part.image.height << " in " << part.tiles << " tiles of "
+    << o.tile << " pixels\n"
     << "why: " << why << "\n"
-    << "tiles in the image: " << R.tiles_done << " of " << R.tiles
+    << "tiles in the image: " << part.tiles_done << " of " << part.tiles
     << "; the others are black, depth +inf, prim -1\n";
   for (const rt::distributed::RankReport& r : R.ranks)
     f << "rank " << r.rank << " on " << r.host << " (" << r.backend << "): " << r.tiles << " tiles"
-      << (r.lost.empty() ? "" : ", lost: " + r.lost) << "\n";
+      << (R.frames > 1 ? " of the sequence" : "") << (r.lost.empty() ? "" : ", lost: " + r.lost)
+      << "\n";
   f << "missing tiles (x y width height):\n";
-  for (const rt::distributed::Tile& t : R.missing)
+  for (const rt::distributed::Tile& t : part.missing)
     f << t.x << " " << t.y << " " << t.width << " " << t.height << "\n";
   rt::write_output_file(note, [&](const std::string& tmp) {
     std::ofstream out(tmp);
@@ -680,23 +710,36 @@ std::vector<std::string> write_partial(const RenderOptions& o, const Prepared& p
   return written;
 }
 
-int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distributed::FarmResult& R,
+// Rank 0's record of a distributed render, frame by frame as they complete.
+struct DistributedFrames {
+  std::vector<std::string> written;
+  struct Done {
+    int frame = 0;
+    double time = 0, done_ms = 0;  // its time in the animation; complete this long after start
+    int64_t rays = 0;
+  };
+  std::vector<Done> done;
+  int64_t rays = 0;
+  int width = 0, height = 0;
+};
+
+int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& plan,
+                       const rt::distributed::FarmResult& R, const DistributedFrames& frames,
                        rt::distributed::MpiSession& mpi, Clock::time_point t_start);
 
-// One image over every rank of the MPI job (distributed/Farm.h, docs/distributed.md).
+// One image, or the frames of --frames, over every rank of the MPI job (distributed/Farm.h,
+// docs/distributed.md).
 int render_distributed(const RenderOptions& o) {
   namespace dist = rt::distributed;
   if (o.bench_frames > 0)
     throw rt::SceneError("--bench-frames times one process; it does not run under mpirun");
-  if (!o.frames.empty() || !o.video.empty())
-    throw rt::SceneError(
-        "--frames and --video do not run under mpirun yet: a distributed render is one frame "
-        "(an animated scene's first); render sequences in one process");
   dist::MpiSession mpi;
   const bool root = mpi.rank() == 0;
   const std::string who = "rank " + std::to_string(mpi.rank()) + " on " + mpi.host();
   const auto t_start = Clock::now();
   std::unique_ptr<Prepared> prepared;
+  FramePlan plan;
+  DistributedFrames frames;
   std::optional<dist::FarmResult> result;
   try {
     dist::use_device(o.backend, dist::rank_device(o.device, mpi.local_rank()));
@@ -710,24 +753,67 @@ int render_distributed(const RenderOptions& o) {
     farm.start(
         [&] {
           prepared = prepare(o, root);
-          return dist::scene_hash(prepared->scene, pixel_settings(o, *prepared));
+          plan = plan_frames(o, *prepared);
+          // Every camera of the sequence, before any tile: a bad one stops the start.
+          const rt::Scene& scene = prepared->scene;
+          for (int k = plan.span.first; plan.animated && k <= plan.span.last; ++k)
+            rt::check_camera(rt::camera_at(scene, scene.animation.time.time_of(k)),
+                             "the camera at frame " + std::to_string(k));
+          return dist::scene_hash(scene, pixel_settings(o, *prepared));
         },
         o.backend);
     // A worker that failed to load has no settings: it renders nothing, and waits for rank 0
     // to end the job.
     const rt::RenderSettings rs = prepared ? prepared->rs : rt::RenderSettings{};
+    // The frame the scene is posed at: a tile of another frame moves it there first (on the
+    // farm's render thread, the only one that calls this).
+    int posed = -1;
+    rt::Camera camera = prepared ? prepared->scene.camera : rt::Camera{};
     auto render_tile = [&](const dist::Tile& t) {
+      const rt::Scene& scene = prepared->scene;
+      if (plan.animated && t.frame != posed) {
+        const double time = scene.animation.time.time_of(t.frame);
+        prepared->tracer->set_time(time, plan.bvh_update);
+        camera = rt::camera_at(scene, time);
+        posed = t.frame;
+      }
       rt::RenderSettings s = rs;
       s.window = {t.x, t.y, t.width, t.height};
-      return prepared->tracer->render(s, prepared->scene.camera);
+      return prepared->tracer->render(s, camera);
     };
-    // Rank 0 keeps the image so far on disk: mpirun may kill it without warning.
+    // Rank 0: each frame written as it completes; the frames begun kept on disk as partial
+    // outputs while they render, as mpirun may kill rank 0 without warning.
+    trace_cli::Progress progress(plan.span.count(), o.quiet || o.progress || !plan.sequence);
+    auto on_frame = [&](int frame, const rt::RenderResult& image) {
+      g_doing = "writing frame " + std::to_string(frame);
+      for (const std::string& w : write_outputs(o, *prepared, image, plan.file(frame)))
+        if (frames.written.size() < 8) frames.written.push_back(w);
+      std::error_code ignored;  // its checkpoints are out of date now
+      for (const std::string& path : output_paths(o, *prepared))
+        std::filesystem::remove(dist::partial_name(plan.file(frame)(path)), ignored);
+      std::filesystem::remove(partial_note_path(o, *prepared, plan.file(frame)), ignored);
+      const rt::Scene& scene = prepared->scene;
+      frames.done.push_back({frame, plan.animated ? scene.animation.time.time_of(frame) : 0.0,
+                             ms_since(t_start), image.rays});
+      frames.rays += image.rays;
+      frames.width = image.width;
+      frames.height = image.height;
+      progress.update(static_cast<int>(frames.done.size()), 0);
+    };
     auto checkpoint = [&](const dist::FarmResult& so_far) {
-      write_partial(o, *prepared, so_far,
-                    "a checkpoint: the render was still running when this was written (it is "
-                    "removed when the render completes)");
+      for (const dist::FramePart& part : so_far.unfinished)
+        write_partial(o, *prepared, so_far, part, plan.file(part.frame),
+                      "a checkpoint: the render was still running when this was written (it is "
+                      "removed when the frame completes)");
     };
-    result = farm.render(rs.width, rs.height, rs.outputs, render_tile, checkpoint);
+    dist::FarmJob job;
+    job.width = rs.width;
+    job.height = rs.height;
+    job.first_frame = plan.span.first;
+    job.frames = plan.span.count();
+    job.outputs = rs.outputs;
+    result = farm.render(job, render_tile, on_frame, checkpoint);
+    progress.finish();
   } catch (const std::exception& e) {
     // Rank 0: a rank failed to load or has another scene (the message names it), or rank 0
     // itself failed. A worker: rank 0 is lost. Either way the job ends here, all of it: the
@@ -744,7 +830,7 @@ int render_distributed(const RenderOptions& o) {
 
   const dist::FarmResult& R = *result;
   try {
-    return finish_distributed(o, *prepared, R, mpi, t_start);
+    return finish_distributed(o, *prepared, plan, R, frames, mpi, t_start);
   } catch (const std::exception& e) {
     if (!R.must_abort) throw;  // main reports it; MPI_Finalize finds every rank
     std::fprintf(stderr, "rill-trace: %s\n", e.what());
@@ -753,8 +839,10 @@ int render_distributed(const RenderOptions& o) {
   }
 }
 
-// Rank 0, the image back: writes it (or what there is of it) and reports.
-int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distributed::FarmResult& R,
+// Rank 0, every frame back (or the farm ended without some): writes what there is of the
+// frames not complete, the video and the stats, and reports.
+int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& plan,
+                       const rt::distributed::FarmResult& R, const DistributedFrames& frames,
                        rt::distributed::MpiSession& mpi, Clock::time_point t_start) {
   namespace dist = rt::distributed;
   if (!R.complete()) {
@@ -770,29 +858,43 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distribute
         R.interrupted ? "stopped by a signal: mpirun ends the job when a rank dies, and names the "
                         "rank and its host (mpirun --enable-recovery goes on without it)"
                       : "every rank was lost";
+    std::string frames_note;
+    if (R.frames > 1)
+      frames_note = "; " + std::to_string(R.frames_done) + " of " + std::to_string(R.frames) +
+                    " frames are complete and written, " + std::to_string(R.unfinished.size()) +
+                    " begun";
     std::fprintf(stderr,
                  "rill-trace: the render is incomplete (%s); writing the %d of %d tiles done as "
-                 "partial outputs (NAME.partial.EXT) with a note\n",
-                 why.c_str(), R.tiles_done, R.tiles);
+                 "partial outputs (NAME.partial.EXT) with a note%s\n",
+                 why.c_str(), R.tiles_done, R.tiles, frames_note.c_str());
     std::fflush(stderr);
-    print_notes(o, p, write_partial(o, p, R, why));
+    std::vector<std::string> written = frames.written;
+    for (const dist::FramePart& part : R.unfinished)
+      for (const std::string& w : write_partial(o, p, R, part, plan.file(part.frame), why))
+        written.push_back(w);
+    print_notes(o, p, written);
     std::fflush(stdout);
     if (R.interrupted) std::_Exit(1);  // mpirun is ending the job
     mpi.abort(1);
   }
-  const std::vector<std::string> written = write_outputs(o, p, R.image);
-  // The checkpoints are out of date now.
-  std::error_code ignored;
-  for (const std::string& path : output_paths(o, p))
-    std::filesystem::remove(dist::partial_name(path), ignored);
-  std::filesystem::remove(partial_note_path(o, p), ignored);
+  std::vector<std::string> written = frames.written;
+  if (!o.video.empty()) {
+    g_doing = "writing the video";
+    trace_cli::write_video(p.out, plan.span.first, p.scene.animation.time.fps, o.video);
+    written.push_back(o.video);
+  }
   if (!o.source.empty()) {
     std::ofstream f(o.source);
     f << p.tracer->source(o.backend, p.acc);
     if (!f) throw rt::SceneError("cannot write " + o.source);
   }
+  const double wall_ms = R.wall_ms;
   if (!o.stats_json.empty()) {
-    nlohmann::json j = stats_json(o, p, R.image);
+    rt::RenderResult whole;  // the fields stats_json reads: size and rays, over every frame
+    whole.width = frames.width;
+    whole.height = frames.height;
+    whole.rays = frames.rays;
+    nlohmann::json j = stats_json(o, p, whole);
     nlohmann::json ranks = nlohmann::json::array();
     for (const dist::RankReport& r : R.ranks)
       ranks.push_back({{"rank", r.rank},
@@ -810,8 +912,16 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distribute
         {"per_rank", ranks},          {"per_tile", tile_ms},      {"warnings", R.warnings}};
     j["time_ms"] = {{"load", p.load_ms},
                     {"grid_build", p.grid.build_ms},
-                    {"render", R.wall_ms},
+                    {"render", wall_ms},
                     {"total", ms_since(t_start)}};
+    if (plan.animated || plan.span.count() > 1) {
+      // Frames in the order they completed; tile ids run frame after frame.
+      nlohmann::json list = nlohmann::json::array();
+      for (const DistributedFrames::Done& d : frames.done)
+        list.push_back(
+            {{"frame", d.frame}, {"time", d.time}, {"done_ms", d.done_ms}, {"rays", d.rays}});
+      j["frames"] = list;
+    }
     write_json(o.stats_json, j);
   }
   print_notes(o, p, written);
@@ -819,12 +929,14 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const rt::distribute
     for (const dist::RankReport& r : R.ranks)
       std::printf("  rank %d on %s (%s): %d tiles, busy %.1f ms%s\n", r.rank, r.host.c_str(),
                   r.backend.c_str(), r.tiles, r.busy_ms, r.lost.empty() ? "" : ", lost");
+  const std::string what =
+      plan.span.count() > 1 ? std::to_string(plan.span.count()) + " frames of " : std::string();
   std::printf(
-      "rill-trace: %s, %zu triangles, %dx%d, %s %s, %zu ranks, %d tiles of %d: %lld rays; load "
+      "rill-trace: %s, %zu triangles, %s%dx%d, %s %s, %zu ranks, %d tiles of %d: %lld rays; load "
       "%.1f ms, grid build %.1f ms, render %.1f ms, imbalance %.1f%%\n",
-      p.scene.name.c_str(), p.scene.triangle_count(), R.image.width, R.image.height,
+      p.scene.name.c_str(), p.scene.triangle_count(), what.c_str(), frames.width, frames.height,
       o.backend.c_str(), o.accuracy.c_str(), R.ranks.size(), R.tiles, o.tile,
-      static_cast<long long>(R.image.rays), p.load_ms, p.grid.build_ms, R.wall_ms,
+      static_cast<long long>(frames.rays), p.load_ms, p.grid.build_ms, wall_ms,
       R.imbalance * 100.0);
   std::fflush(stdout);
   if (R.must_abort) {

@@ -16,6 +16,7 @@
 #include <deque>
 #include <exception>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -376,10 +377,11 @@ void Farm::start_master(const std::function<uint64_t()>& load) {
   }
 }
 
-std::optional<FarmResult> Farm::render(int width, int height, const FrameOutputs& outputs,
+std::optional<FarmResult> Farm::render(const FarmJob& job,
                                        const std::function<RenderResult(const Tile&)>& render_tile,
+                                       const FrameDone& on_frame,
                                        const std::function<void(const FarmResult&)>& checkpoint) {
-  if (mpi_.rank() == 0) return render_master(width, height, outputs, render_tile, checkpoint);
+  if (mpi_.rank() == 0) return render_master(job, render_tile, on_frame, checkpoint);
   render_worker(render_tile);
   return std::nullopt;
 }
@@ -440,11 +442,30 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
                              seconds_text(o_.rank_timeout));
 }
 
-void Farm::report(FarmResult& R, const TileQueue& queue) const {
+// Rank 0's frames in progress: each one's image from its first tile back to its last, when
+// it goes to the caller and leaves.
+struct Farm::Frames {
+  int first = 0, per_frame = 0;      // the job's first frame; tiles in a frame
+  std::map<int, RenderResult> open;  // frames begun and not complete
+  std::vector<int> done;             // tiles back, per frame (from first)
+  int complete = 0;
+};
+
+void Farm::report(FarmResult& R, const TileQueue& queue, const Frames& frames) const {
   R.tiles_done = queue.done();
-  R.missing.clear();
-  for (int id = 0; id < queue.total(); ++id)
-    if (!queue.is_done(id)) R.missing.push_back(queue.tile(id));
+  R.frames_done = frames.complete;
+  R.unfinished.clear();
+  for (const auto& [frame, image] : frames.open) {
+    FramePart part;
+    part.frame = frame;
+    part.image = image;
+    part.tiles = frames.per_frame;
+    part.tiles_done = frames.done[static_cast<size_t>(frame - frames.first)];
+    const int base = (frame - frames.first) * frames.per_frame;
+    for (int id = base; id < base + frames.per_frame; ++id)
+      if (!queue.is_done(id)) part.missing.push_back(queue.tile(id));
+    R.unfinished.push_back(std::move(part));
+  }
   double busiest = 0, sum = 0;
   int counted = 0;
   R.ranks.clear();
@@ -462,29 +483,43 @@ void Farm::report(FarmResult& R, const TileQueue& queue) const {
   R.warnings = warnings_;
 }
 
-FarmResult Farm::render_master(int width, int height, const FrameOutputs& outputs,
+FarmResult Farm::render_master(const FarmJob& job,
                                const std::function<RenderResult(const Tile&)>& render_tile,
+                               const FrameDone& on_frame,
                                const std::function<void(const FarmResult&)>& checkpoint) {
   const double t0 = now_s();
   FarmResult R;
-  R.image = blank_image(width, height, outputs);
-  TileQueue queue(make_tiles(width, height, o_.tile));
+  TileQueue queue(make_tiles(job.width, job.height, o_.tile, job.first_frame, job.frames));
+  Frames frames;
+  frames.first = job.first_frame;
+  frames.per_frame = queue.total() / job.frames;
+  frames.done.assign(static_cast<size_t>(job.frames), 0);
   R.tiles = queue.total();
+  R.frames = job.frames;
   SignalGuard signals;
 
-  // The tile back from a rank: into the image, once.
+  // The tile back from a rank: into its frame's image, once; a frame complete goes to the
+  // caller at once, and its image is freed.
   auto accept = [&](int rank, int id, const RenderResult& pixels, double busy_ms) {
     if (id < 0 || id >= queue.total())
       return lose(rank, "sent tile " + std::to_string(id) + ", which does not exist", true, &queue);
     const Tile& t = queue.tile(id);
-    if (const std::string why = misfit(pixels, t, outputs); !why.empty())
+    if (const std::string why = misfit(pixels, t, job.outputs); !why.empty())
       return lose(rank, "sent " + why, true, &queue);
     if (!queue.finish(rank, id)) return;
-    place(R.image, t, pixels);
+    auto [it, begun] = frames.open.try_emplace(t.frame);
+    if (begun) it->second = blank_image(job.width, job.height, job.outputs);
+    place(it->second, t, pixels);
     R.tile_times.push_back(FarmResult::TileTime{id, rank, busy_ms});
     Peer& p = peers_[static_cast<size_t>(rank)];
     ++p.tiles;
     p.busy_ms += busy_ms;
+    if (++frames.done[static_cast<size_t>(t.frame - frames.first)] == frames.per_frame) {
+      ++frames.complete;
+      RenderResult image = std::move(it->second);
+      frames.open.erase(it);
+      if (on_frame) on_frame(t.frame, image);
+    }
   };
   // Tiles for a worker, up to kAhead in hand.
   auto feed = [&](int rank) {
@@ -502,8 +537,10 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
     const int bar = 30, filled = bar * queue.done() / std::max(1, queue.total());
     std::string line(static_cast<size_t>(filled), '#');
     line.append(static_cast<size_t>(bar - filled), '.');
-    std::fprintf(stderr, "\rrill-trace: [%s] %d/%d tiles; per rank", line.c_str(), queue.done(),
+    std::fprintf(stderr, "\rrill-trace: [%s] %d/%d tiles", line.c_str(), queue.done(),
                  queue.total());
+    if (job.frames > 1) std::fprintf(stderr, ", %d/%d frames", frames.complete, job.frames);
+    std::fprintf(stderr, "; per rank");
     for (size_t r = 0; r < peers_.size() && r < 16; ++r)
       std::fprintf(stderr, " %d%s", peers_[r].tiles, peers_[r].alive ? "" : "(lost)");
     std::fprintf(stderr, "%s%s", peers_.size() > 16 ? " ..." : "", final ? "\n" : "");
@@ -589,7 +626,7 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
     draw_progress(false);
     if (checkpoint && o_.checkpoint > 0 && queue.done() > saved &&
         now_s() - saved_at >= o_.checkpoint && !queue.complete()) {
-      report(R, queue);
+      report(R, queue, frames);
       checkpoint(R);
       saved = queue.done();
       saved_at = now_s();
@@ -598,7 +635,7 @@ FarmResult Farm::render_master(int width, int height, const FrameOutputs& output
   }
   draw_progress(true);
   R.wall_ms = (now_s() - t0) * 1e3;
-  report(R, queue);
+  report(R, queue, frames);
   if (R.interrupted) return R;            // mpirun is ending the job: no time for goodbyes
   if (!own.empty()) R.must_abort = true;  // rank 0's lane still has tiles of a lost rank 0
   for (int r = 1; r < mpi_.size(); ++r)

@@ -1,11 +1,15 @@
-// The tile farm: one image rendered by every rank of an MPI job (docs/distributed.md).
+// The tile farm: one image, or a sequence of them, rendered by every rank of an MPI job
+// (docs/distributed.md).
 //
 // The scene is replicated: every rank loads it and builds its grid itself, then rank 0
 // checks that all of them hold the same scene (SceneHash.h) before a tile is handed out.
 // Rank 0 keeps the tile queue (TileQueue.h) and renders tiles too, on a thread of its own;
 // the other ranks ask for tiles, render them on their own backend and device, and send the
-// pixels back. Rank 0 assembles the image, which under strict is bitwise the single-process
-// render (RenderSettings::window), and main writes it as it writes any render.
+// pixels back. Rank 0 assembles each frame, which under strict is bitwise the single-process
+// render (RenderSettings::window), and main writes it as it writes any render. A sequence's
+// tiles are queued frame after frame (TileQueue.h); a rank moves its scene to a tile's frame
+// when it gets one of another frame (main's render_tile), and each frame is written as soon as
+// its last tile is back.
 //
 // Faults. Open MPI 4.1's mpirun, by default, ends the whole job when a rank dies: rank 0
 // gets SIGTERM and SIGKILL within a second, at times within milliseconds. So rank 0 keeps the
@@ -57,17 +61,34 @@ struct RankReport {
   bool responsive = true;  // false: lost without a word (died or hung)
 };
 
-struct FarmResult {
-  RenderResult image;  // the whole image; tiles missing: black, depth +inf, prim -1
+// What rank 0 renders: frames first_frame .. first_frame + frames - 1 (one, for a still), each
+// width x height with the outputs asked for.
+struct FarmJob {
+  int width = 0, height = 0;
+  int first_frame = 0, frames = 1;
+  FrameOutputs outputs;
+};
+
+// A frame that was begun and is not complete: the tiles so far, for checkpoints and partial
+// outputs.
+struct FramePart {
+  int frame = 0;
+  RenderResult image;  // tiles missing: black, depth +inf, prim -1
   int tiles = 0, tiles_done = 0;
-  std::vector<RankReport> ranks;
   std::vector<Tile> missing;  // tiles not in the image
+};
+
+struct FarmResult {
+  int tiles = 0, tiles_done = 0;      // over every frame
+  int frames = 1, frames_done = 0;    // frames complete (each handed to the caller as it was)
+  std::vector<FramePart> unfinished;  // frames begun and not complete, in frame order
+  std::vector<RankReport> ranks;
   std::vector<std::string> warnings;
-  bool interrupted = false;  // SIGTERM or SIGINT (mpirun ending the job): a partial image
+  bool interrupted = false;  // SIGTERM or SIGINT (mpirun ending the job): a partial render
   bool must_abort = false;   // a lost rank may be alive: end with MpiSession::abort
   double wall_ms = 0;        // from the first tile handed out to the last one back
   double imbalance = 0;      // busiest rank's busy time over the mean, less 1 (ranks not lost)
-  // Each tile in the image: its id, the rank that rendered it and that rank's time for it (the
+  // Each tile done: its id, the rank that rendered it and that rank's time for it (the
   // tile-cost distribution, for models of larger farms).
   struct TileTime {
     int id = 0, rank = 0;
@@ -88,24 +109,30 @@ class Farm {
   // then ends the job); a worker waits for rank 0's verdict.
   void start(const std::function<uint64_t()>& load, const std::string& backend);
 
-  // Every rank: renders tiles with render_tile (on another thread) until the image is
-  // complete. Rank 0 returns the image; a worker returns nothing once rank 0 says stop, and
-  // throws if rank 0 is lost. Rank 0 calls checkpoint with the image so far every
-  // options.checkpoint seconds while tiles come in, for main to keep on disk: mpirun may kill
-  // rank 0 at once when another rank dies, with no time to write anything then.
-  std::optional<FarmResult> render(int width, int height, const FrameOutputs& outputs,
+  // Every rank: renders tiles with render_tile (on another thread) until every frame of the
+  // job is complete. Rank 0 hands each frame to on_frame as soon as it is complete (on this
+  // thread; frames may complete out of order) and returns the report; a worker returns nothing
+  // once rank 0 says stop, and throws if rank 0 is lost. Only rank 0 reads the job. Rank 0
+  // calls checkpoint with the frames begun so far every options.checkpoint seconds while
+  // tiles come in, for main to keep on disk: mpirun may kill rank 0 at once when another rank
+  // dies, with no time to write anything then.
+  using FrameDone = std::function<void(int frame, const RenderResult& image)>;
+  std::optional<FarmResult> render(const FarmJob& job,
                                    const std::function<RenderResult(const Tile&)>& render_tile,
+                                   const FrameDone& on_frame,
                                    const std::function<void(const FarmResult&)>& checkpoint = {});
 
  private:
   struct Peer;
   void start_master(const std::function<uint64_t()>& load);
   void start_worker(const std::function<uint64_t()>& load);
-  FarmResult render_master(int width, int height, const FrameOutputs& outputs,
+  struct Frames;  // rank 0: the frames begun and not complete
+  FarmResult render_master(const FarmJob& job,
                            const std::function<RenderResult(const Tile&)>& render_tile,
+                           const FrameDone& on_frame,
                            const std::function<void(const FarmResult&)>& checkpoint);
-  // Rank 0: the counts, missing tiles and per-rank report of R, as they are now.
-  void report(FarmResult& R, const TileQueue& queue) const;
+  // Rank 0: the counts, unfinished frames and per-rank report of R, as they are now.
+  void report(FarmResult& R, const TileQueue& queue, const Frames& open) const;
   void render_worker(const std::function<RenderResult(const Tile&)>& render_tile);
   // Rank 0: the rank is lost; its tiles go back to the queue (if there is one).
   void lose(int rank, const std::string& why, bool responsive, TileQueue* queue);

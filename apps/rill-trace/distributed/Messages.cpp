@@ -104,10 +104,10 @@ void unpack(const Bytes& b, Hello& m) {
 }
 
 Bytes pack(const Tile& m) {
-  return Writer().put(m.id).put(m.x).put(m.y).put(m.width).put(m.height).take();
+  return Writer().put(m.id).put(m.frame).put(m.x).put(m.y).put(m.width).put(m.height).take();
 }
 void unpack(const Bytes& b, Tile& m) {
-  Reader(b).get(m.id).get(m.x).get(m.y).get(m.width).get(m.height).end();
+  Reader(b).get(m.id).get(m.frame).get(m.x).get(m.y).get(m.width).get(m.height).end();
 }
 
 Bytes pack(const TileDone& m) {

@@ -10,8 +10,8 @@
 //   0 -> worker   Stop        the image is complete
 //   both ways     Heartbeat   "still here", every half second while loading or rendering
 // Bytes rather than MPI datatypes: the messages hold strings and optional arrays, and every
-// rank runs the same rill-trace on the same kind of host. A frame number can be added to
-// Assign and TileDone for animations.
+// rank runs the same rill-trace on the same kind of host. An Assign names the tile's frame
+// (--frames); a TileDone needs only the tile's id, which is unique over every frame.
 #pragma once
 
 #include <cstdint>

@@ -5,9 +5,9 @@
 // a texture missing there, another command line. Its tiles would then not belong in the
 // image, and nothing else would notice. The hash covers what decides the pixels: geometry,
 // materials and textures, lights, camera, animation and scene options, and the render
-// settings main passes as text (size, samples, depth, accuracy, knobs). It leaves out what may differ per
-// rank without changing a pixel under strict: the backend, the device, the thread count, the
-// scene's name and its load warnings.
+// settings main passes as text (size, samples, depth, accuracy, knobs). It leaves out what may
+// differ per rank without changing a pixel under strict: the backend, the device, the thread count,
+// the scene's name and its load warnings.
 #pragma once
 
 #include <cstdint>

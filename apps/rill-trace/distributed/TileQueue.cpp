@@ -6,14 +6,16 @@
 
 namespace rt::distributed {
 
-std::vector<Tile> make_tiles(int width, int height, int size) {
+std::vector<Tile> make_tiles(int width, int height, int size, int first_frame, int frames) {
   if (width < 1 || height < 1 || size < 1)
     throw std::invalid_argument("make_tiles: the image and the tiles need at least one pixel");
+  if (frames < 1) throw std::invalid_argument("make_tiles: no frames");
   std::vector<Tile> tiles;
-  for (int y = 0; y < height; y += size)
-    for (int x = 0; x < width; x += size)
-      tiles.push_back(Tile{static_cast<int>(tiles.size()), x, y, std::min(size, width - x),
-                           std::min(size, height - y)});
+  for (int f = first_frame; f < first_frame + frames; ++f)
+    for (int y = 0; y < height; y += size)
+      for (int x = 0; x < width; x += size)
+        tiles.push_back(Tile{static_cast<int>(tiles.size()), f, x, y, std::min(size, width - x),
+                             std::min(size, height - y)});
   return tiles;
 }
 

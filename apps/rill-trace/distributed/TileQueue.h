@@ -4,8 +4,9 @@
 // many and a slow one few, and the ranks finish together within about one tile's time. A
 // rank that is lost gives its unfinished tiles back to the front of the queue; a tile that
 // comes back twice (a slow rank declared lost, then answering) counts once. The queue knows
-// nothing of MPI, so it is tested on its own; a later queue of animation frames can hand out
-// (frame, tile) pairs the same way.
+// nothing of MPI, so it is tested on its own. An image sequence (--frames) is one queue of
+// every frame's tiles, frame after frame: the ranks work on one or two frames at a time, and
+// each frame is complete (and written) long before the last.
 #pragma once
 
 #include <deque>
@@ -15,13 +16,15 @@
 namespace rt::distributed {
 
 struct Tile {
-  int id = 0;  // its index in row-major order
+  int id = 0;     // its index in the queue: frame by frame, row-major within a frame
+  int frame = 0;  // the animation frame it belongs to
   int x = 0, y = 0, width = 0, height = 0;
 };
 
-// The tiles of a width x height image, `size` pixels square (those on the right and bottom
-// edges smaller), row by row from the top left.
-std::vector<Tile> make_tiles(int width, int height, int size);
+// The tiles of `frames` width x height images (frames first_frame, first_frame + 1, ...),
+// `size` pixels square (those on the right and bottom edges smaller), row by row from the top
+// left, frame after frame.
+std::vector<Tile> make_tiles(int width, int height, int size, int first_frame = 0, int frames = 1);
 
 class TileQueue {
  public:

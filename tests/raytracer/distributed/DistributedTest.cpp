@@ -3,7 +3,8 @@
 // do not divide the image; a worker killed mid-render ends the job with a clear error and a
 // partial image, or (mpirun --enable-recovery) the image completes without it; a rank with
 // another scene, or one that fails to load, stops the job at the start with its message.
-// Every command runs under a timeout: a hang fails the test.
+// An image sequence's frames are the single process's files too. Every command runs under a
+// timeout: a hang fails the test.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 
 #include "RunCommand.h"
 #include "TestUtil.h"
@@ -128,6 +130,55 @@ TEST_F(Distributed, IdenticalToSingleProcessWhateverRanksAndTiles) {
   r = run_command(kMpirun + " -np 3 " + kExe + bounce + outputs("b") + " --tile 9", dir, 120);
   ASSERT_EQ(r.status, 0) << r.err;
   expect_same_files(dir, "b-ref", "b", kSuffixes, std::size(kSuffixes));
+}
+
+// An image sequence (--frames) over the ranks: every frame's files are the single process's,
+// named as it names them, rebuilding or refitting the BVH, however the frames' tiles fall on
+// the ranks; the stats list each frame once.
+TEST_F(Distributed, FramesAreTheSingleProcesssFiles) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string bounce = " render builtin:bounce --size 40x30 --frames 6:9 --quiet";
+  auto named = [](const std::string& name) {
+    return " --out " + name + "-%04d.png --depth " + name + "-depth-%02d.pfm --prim " + name +
+           "-prim-%02d.pfm";
+  };
+  Result ref = run_command(kExe + bounce + named("ref"), dir);
+  ASSERT_EQ(ref.status, 0) << ref.err;
+  for (auto [ranks, tile, bvh] : {std::tuple{3, 9, "rebuild"}, {2, 40, "refit"}}) {
+    const std::string name = "np" + std::to_string(ranks) + "-" + bvh;
+    SCOPED_TRACE(name);
+    Result r = run_command(kMpirun + " -np " + std::to_string(ranks) + " " + kExe + bounce +
+                               named(name) + " --tile " + std::to_string(tile) + " --bvh " + bvh +
+                               " --stats-json " + name + ".json",
+                           dir, 120);
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (int f = 6; f <= 9; ++f) {
+      char png[16], pfm[16];
+      std::snprintf(png, sizeof png, "-%04d.png", f);
+      std::snprintf(pfm, sizeof pfm, "-%02d.pfm", f);
+      const std::string suffixes[] = {png, std::string("-depth") + pfm, std::string("-prim") + pfm};
+      for (const std::string& suffix : suffixes) {
+        const std::string a = read_text(dir.path("ref" + suffix));
+        EXPECT_FALSE(a.empty()) << "ref" << suffix;
+        EXPECT_TRUE(a == read_text(dir.path(name + suffix))) << name << suffix << " differs";
+      }
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.path(name + "-0010.png")));
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir.path(name + ".json")));
+    const int per_frame = ((40 + tile - 1) / tile) * ((30 + tile - 1) / tile);
+    EXPECT_EQ(j.at("distributed").at("tiles"), 4 * per_frame);
+    EXPECT_TRUE(j.at("distributed").at("complete").get<bool>());
+    std::vector<int> frames;
+    for (const nlohmann::json& f : j.at("frames")) frames.push_back(f.at("frame").get<int>());
+    std::sort(frames.begin(), frames.end());
+    EXPECT_EQ(frames, (std::vector<int>{6, 7, 8, 9}));
+  }
+  // A sequence without frame numbers in its names is refused at the start, by every rank.
+  Result bad = run_command(kMpirun + " -np 2 " + kExe + bounce + " --out same.png", dir, 120);
+  ASSERT_NE(bad.status, 124) << "hung: " << bad.err;
+  EXPECT_NE(bad.status, 0);
+  EXPECT_TRUE(has(bad.err, "--out needs a frame number")) << bad.err;
 }
 
 // A render long enough to kill a worker in the middle of it: the single-process reference

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <tuple>
 #include <vector>
 
 #include "distributed/TileQueue.h"
@@ -28,6 +29,24 @@ TEST(TileQueue, TilesCoverTheImageOnce) {
   }
   EXPECT_THROW(make_tiles(4, 4, 0), std::invalid_argument);
   EXPECT_THROW(make_tiles(0, 4, 2), std::invalid_argument);
+}
+
+// A sequence's tiles: every frame's in order, ids running on from frame to frame, each frame
+// covered as a still is.
+TEST(TileQueue, FramesFollowEachOther) {
+  const std::vector<Tile> still = make_tiles(37, 23, 7);
+  const std::vector<Tile> tiles = make_tiles(37, 23, 7, 5, 3);
+  ASSERT_EQ(tiles.size(), 3 * still.size());
+  for (size_t i = 0; i < tiles.size(); ++i) {
+    const Tile& t = tiles[i];
+    const Tile& s = still[i % still.size()];
+    EXPECT_EQ(t.id, static_cast<int>(i));
+    EXPECT_EQ(t.frame, 5 + static_cast<int>(i / still.size()));
+    EXPECT_EQ(std::tie(t.x, t.y, t.width, t.height), std::tie(s.x, s.y, s.width, s.height));
+  }
+  EXPECT_THROW(make_tiles(4, 4, 2, 0, 0), std::invalid_argument);
+  TileQueue q(tiles);
+  EXPECT_EQ(q.next(1)->frame, 5);
 }
 
 TEST(TileQueue, HandsOutEachTileAndTakesBackALostRanks) {
