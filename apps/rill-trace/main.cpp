@@ -10,8 +10,8 @@
 //                           [--triangle moller|watertight] [--offset epsilon|scaled]
 //                           [--traversal incremental|recompute]
 //                           [--stats] [--wait-threshold F] [--masking on|off]   (multipass)
-//                           [--device SPEC] [--tile N] [--rank-timeout S] [--tile-timeout S]
-//                           [--checkpoint S] [--progress] [--distribute]
+//                           [--device SPEC] [--tile N] [--tail-tile N] [--rank-timeout S]
+//                           [--tile-timeout S] [--checkpoint S] [--progress] [--distribute]
 //                           (under mpirun: docs/distributed.md)
 //   rill-trace accuracy [--backends LIST] [--scenes LIST] [--size WxH] [--repeats N]
 //                       [--one-at-a-time] [--out-dir DIR]
@@ -111,9 +111,10 @@ struct RenderOptions {
   // Frame-rate mode: after the first render (which compiles), render this many more frames
   // of the same scene back to back and report their times.
   int bench_frames = 0;
-  // Distributed rendering (docs/distributed.md): tile size, how long a silent rank or a slow
-  // tile is waited for, the device, whether distribution is required.
-  int tile = 64;
+  // Distributed rendering (docs/distributed.md): tile size and the size of the last tiles
+  // (-1: half the tile size; 0: not cut), how long a silent rank or a slow tile is waited
+  // for, the device, whether distribution is required.
+  int tile = 64, tail_tile = -1;
   double rank_timeout = 20, tile_timeout = 0, checkpoint = 2;
   std::string device;
   bool distribute = false;
@@ -727,6 +728,11 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
                        const rt::distributed::FarmResult& R, const DistributedFrames& frames,
                        rt::distributed::MpiSession& mpi, Clock::time_point t_start);
 
+// --tail-tile: as given, or half of --tile (tiles under 16 pixels are not cut).
+int tail_tile_of(const RenderOptions& o) {
+  return o.tail_tile >= 0 ? o.tail_tile : (o.tile >= 16 ? o.tile / 2 : 0);
+}
+
 // One image, or the frames of --frames, over every rank of the MPI job (distributed/Farm.h,
 // docs/distributed.md).
 int render_distributed(const RenderOptions& o) {
@@ -745,6 +751,7 @@ int render_distributed(const RenderOptions& o) {
     dist::use_device(o.backend, dist::rank_device(o.device, mpi.local_rank()));
     dist::FarmOptions fo;
     fo.tile = o.tile;
+    fo.tail_tile = tail_tile_of(o);
     fo.rank_timeout = o.rank_timeout;
     fo.tile_timeout = o.tile_timeout;
     fo.progress = root && o.progress;
@@ -903,13 +910,23 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
                        {"tiles", r.tiles},
                        {"busy_ms", r.busy_ms},
                        {"lost", r.lost}});
-    nlohmann::json tile_ms = nlohmann::json::array();  // [id, rank, ms] in the order they came
+    // [id, rank, ms, x, y, width, height, frame] in the order they came back
+    nlohmann::json tile_ms = nlohmann::json::array();
     for (const dist::FarmResult::TileTime& t : R.tile_times)
-      tile_ms.push_back(nlohmann::json::array({t.id, t.rank, t.ms}));
+      tile_ms.push_back(nlohmann::json::array({t.tile.id, t.rank, t.ms, t.tile.x, t.tile.y,
+                                               t.tile.width, t.tile.height, t.tile.frame}));
     j["distributed"] = {
-        {"ranks", R.ranks.size()},    {"tile", o.tile},           {"tiles", R.tiles},
-        {"tiles_done", R.tiles_done}, {"complete", R.complete()}, {"imbalance", R.imbalance},
-        {"per_rank", ranks},          {"per_tile", tile_ms},      {"warnings", R.warnings}};
+        {"ranks", R.ranks.size()},
+        {"tile", o.tile},
+        {"tiles", R.tiles},
+        {"tiles_done", R.tiles_done},
+        {"complete", R.complete()},
+        {"imbalance", R.imbalance},
+        {"per_rank", ranks},
+        {"per_tile", tile_ms},
+        {"warnings", R.warnings},
+        {"tail_tile", tail_tile_of(o)},
+        {"gather", {{"tiles", R.gathered}, {"bytes", R.gathered_bytes}, {"ms", R.gather_ms}}}};
     j["time_ms"] = {{"load", p.load_ms},
                     {"grid_build", p.grid.build_ms},
                     {"render", wall_ms},
@@ -1095,6 +1112,11 @@ int main(int argc, char** argv) {
                 "do not depend on it")
       ->default_str("64")
       ->check(number_in(1, 16384, true));
+  r->add_option("--tail-tile", ro.tail_tile,
+                "distributed: the last tiles handed out (twice as many as there are ranks) are "
+                "cut into tiles of N pixels, so that the ranks finish together (0: not cut)")
+      ->default_str("half of --tile")
+      ->check(number_in(0, 16384, true));
   r->add_option("--rank-timeout", ro.rank_timeout,
                 "distributed: seconds a rank may be silent before it is lost")
       ->default_str("20")

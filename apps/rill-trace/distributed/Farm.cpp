@@ -52,12 +52,22 @@ class Lane {
     }
     s_->wake.notify_one();
   }
+  // Waits until a job has finished since the last call, or for one poll interval (1 ms),
+  // whichever is first: the caller's loop sends a finished tile at once instead of at its next
+  // poll, without a thread of its own waiting on MPI.
+  void wait_for_a_job() {
+    std::unique_lock<std::mutex> lock(s_->mutex);
+    s_->finished_cv.wait_for(lock, std::chrono::milliseconds(1),
+                             [&] { return s_->finished != seen_; });
+    seen_ = s_->finished;
+  }
 
  private:
   struct State {
     std::mutex mutex;
-    std::condition_variable wake;
+    std::condition_variable wake, finished_cv;
     std::deque<std::function<void()>> jobs;
+    uint64_t finished = 0;  // jobs done
     bool quit = false;
     void run() {
       for (;;) {
@@ -70,10 +80,16 @@ class Lane {
           jobs.pop_front();
         }
         job();
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          ++finished;
+        }
+        finished_cv.notify_all();
       }
     }
   };
   std::shared_ptr<State> s_;
+  uint64_t seen_ = 0;  // `finished` at the last wait_for_a_job
 };
 
 namespace {
@@ -435,7 +451,7 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
     }
     check_silence(nullptr);
     beat();
-    nap();
+    lane_->wait_for_a_job();
   }
   if (!mpi_.flush(o_.rank_timeout))
     throw std::runtime_error("rank 0 did not take this rank's last messages within " +
@@ -445,9 +461,10 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
 // Rank 0's frames in progress: each one's image from its first tile back to its last, when
 // it goes to the caller and leaves.
 struct Farm::Frames {
-  int first = 0, per_frame = 0;      // the job's first frame; tiles in a frame
+  int first = 0;                     // the job's first frame
+  std::vector<int> begin, tiles;     // per frame (from first): its first tile's id, its tiles
+  std::vector<int> done;             // tiles back, per frame
   std::map<int, RenderResult> open;  // frames begun and not complete
-  std::vector<int> done;             // tiles back, per frame (from first)
   int complete = 0;
 };
 
@@ -459,10 +476,10 @@ void Farm::report(FarmResult& R, const TileQueue& queue, const Frames& frames) c
     FramePart part;
     part.frame = frame;
     part.image = image;
-    part.tiles = frames.per_frame;
-    part.tiles_done = frames.done[static_cast<size_t>(frame - frames.first)];
-    const int base = (frame - frames.first) * frames.per_frame;
-    for (int id = base; id < base + frames.per_frame; ++id)
+    const size_t f = static_cast<size_t>(frame - frames.first);
+    part.tiles = frames.tiles[f];
+    part.tiles_done = frames.done[f];
+    for (int id = frames.begin[f]; id < frames.begin[f] + frames.tiles[f]; ++id)
       if (!queue.is_done(id)) part.missing.push_back(queue.tile(id));
     R.unfinished.push_back(std::move(part));
   }
@@ -489,11 +506,22 @@ FarmResult Farm::render_master(const FarmJob& job,
                                const std::function<void(const FarmResult&)>& checkpoint) {
   const double t0 = now_s();
   FarmResult R;
-  TileQueue queue(make_tiles(job.width, job.height, o_.tile, job.first_frame, job.frames));
+  std::vector<Tile> tiles = make_tiles(job.width, job.height, o_.tile, job.first_frame, job.frames);
+  // The tail of the job in small tiles: as many large tiles as the ranks hold at once (at most
+  // half the job), so that they finish within a small tile's time of each other.
+  if (o_.tail_tile > 0 && o_.tail_tile < o_.tile)
+    split_tail(tiles, std::min(kAhead * mpi_.size(), static_cast<int>(tiles.size()) / 2),
+               o_.tail_tile);
   Frames frames;
   frames.first = job.first_frame;
-  frames.per_frame = queue.total() / job.frames;
+  frames.begin.assign(static_cast<size_t>(job.frames), 0);
+  frames.tiles.assign(static_cast<size_t>(job.frames), 0);
   frames.done.assign(static_cast<size_t>(job.frames), 0);
+  for (const Tile& t : tiles) {
+    const size_t f = static_cast<size_t>(t.frame - frames.first);
+    if (frames.tiles[f]++ == 0) frames.begin[f] = t.id;
+  }
+  TileQueue queue(std::move(tiles));
   R.tiles = queue.total();
   R.frames = job.frames;
   SignalGuard signals;
@@ -510,11 +538,12 @@ FarmResult Farm::render_master(const FarmJob& job,
     auto [it, begun] = frames.open.try_emplace(t.frame);
     if (begun) it->second = blank_image(job.width, job.height, job.outputs);
     place(it->second, t, pixels);
-    R.tile_times.push_back(FarmResult::TileTime{id, rank, busy_ms});
+    R.tile_times.push_back(FarmResult::TileTime{t, rank, busy_ms});
     Peer& p = peers_[static_cast<size_t>(rank)];
     ++p.tiles;
     p.busy_ms += busy_ms;
-    if (++frames.done[static_cast<size_t>(t.frame - frames.first)] == frames.per_frame) {
+    const size_t f = static_cast<size_t>(t.frame - frames.first);
+    if (++frames.done[f] == frames.tiles[f]) {
       ++frames.complete;
       RenderResult image = std::move(it->second);
       frames.open.erase(it);
@@ -596,6 +625,7 @@ FarmResult Farm::render_master(const FarmJob& job,
     int source = 0, tag = 0;
     Bytes bytes;
     for (;;) {
+      const double received_at = now_s();
       try {
         if (!mpi_.receive(source, tag, bytes, o_.rank_timeout)) break;
       } catch (const std::exception& e) {
@@ -611,6 +641,10 @@ FarmResult Farm::render_master(const FarmJob& job,
         p.in_flight = std::max(0, p.in_flight - 1);
         p.progress_at = now_s();
         accept(source, d.id, d.pixels, d.busy_ms);
+        feed(source);
+        ++R.gathered;
+        R.gathered_bytes += static_cast<double>(bytes.size());
+        R.gather_ms += (now_s() - received_at) * 1e3;
       } else if (tag == kFailed) {
         Text t;
         unpack(bytes, t);
@@ -631,7 +665,7 @@ FarmResult Farm::render_master(const FarmJob& job,
       saved = queue.done();
       saved_at = now_s();
     }
-    nap();
+    lane_->wait_for_a_job();
   }
   draw_progress(true);
   R.wall_ms = (now_s() - t0) * 1e3;

@@ -44,6 +44,7 @@ class Lane;  // Farm.cpp: the thread that loads and renders
 
 struct FarmOptions {
   int tile = 64;             // tile size in pixels (square; smaller at the edges)
+  int tail_tile = 0;         // the job's last tiles are cut to this size; 0: not cut
   double rank_timeout = 20;  // seconds of silence before a rank is lost
   double tile_timeout = 0;   // seconds a rank may take for a tile; 0: no limit
   double heartbeat = 0.5;    // seconds between heartbeats
@@ -91,10 +92,16 @@ struct FarmResult {
   // Each tile done: its id, the rank that rendered it and that rank's time for it (the
   // tile-cost distribution, for models of larger farms).
   struct TileTime {
-    int id = 0, rank = 0;
+    Tile tile;
+    int rank = 0;
     double ms = 0;
   };
   std::vector<TileTime> tile_times;
+  // Rank 0's main thread on the workers' tiles: how many came back, their bytes, and the time
+  // from receiving each to having placed it and handed out the next (the queue's service time,
+  // for models of larger farms).
+  int gathered = 0;
+  double gathered_bytes = 0, gather_ms = 0;
   bool complete() const { return tiles_done == tiles; }
 };
 

@@ -19,6 +19,22 @@ std::vector<Tile> make_tiles(int width, int height, int size, int first_frame, i
   return tiles;
 }
 
+void split_tail(std::vector<Tile>& tiles, int count, int size) {
+  if (size < 1 || count < 1) return;
+  const size_t from = tiles.size() - std::min(tiles.size(), static_cast<size_t>(count));
+  std::vector<Tile> tail;
+  for (size_t i = from; i < tiles.size(); ++i) {
+    const Tile& t = tiles[i];
+    for (int y = 0; y < t.height; y += size)
+      for (int x = 0; x < t.width; x += size)
+        tail.push_back(Tile{0, t.frame, t.x + x, t.y + y, std::min(size, t.width - x),
+                            std::min(size, t.height - y)});
+  }
+  tiles.resize(from);
+  tiles.insert(tiles.end(), tail.begin(), tail.end());
+  for (size_t i = 0; i < tiles.size(); ++i) tiles[i].id = static_cast<int>(i);
+}
+
 TileQueue::TileQueue(std::vector<Tile> tiles)
     : tiles_(std::move(tiles)), owner_(tiles_.size(), -1), done_(tiles_.size(), false) {
   for (size_t i = 0; i < tiles_.size(); ++i) {

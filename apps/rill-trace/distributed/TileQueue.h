@@ -26,6 +26,12 @@ struct Tile {
 // left, frame after frame.
 std::vector<Tile> make_tiles(int width, int height, int size, int first_frame = 0, int frames = 1);
 
+// Cuts the last `count` tiles into tiles of `size` pixels (those at a tile's right and bottom
+// edges smaller), in place and in order, and numbers every tile again: the tail of the queue
+// in small tiles, so that the ranks finish within a small tile's time of each other while the
+// rest of the job goes in few, large launches. size < 1: nothing changes.
+void split_tail(std::vector<Tile>& tiles, int count, int size);
+
 class TileQueue {
  public:
   explicit TileQueue(std::vector<Tile> tiles);

@@ -20,6 +20,7 @@
 
 #include "RunCommand.h"
 #include "TestUtil.h"
+#include "distributed/TileQueue.h"
 
 namespace rt::testing {
 namespace {
@@ -61,6 +62,17 @@ void expect_same_files(const TempDir& dir, const std::string& want, const std::s
   }
 }
 
+// The tiles of a job: `tile` pixels square, the last (twice as many as ranks) cut to `tail`
+// (TileQueue.h, tested on its own).
+int tile_count(int width, int height, int tile, int tail, int ranks, int frames) {
+  std::vector<rt::distributed::Tile> tiles =
+      rt::distributed::make_tiles(width, height, tile, 0, frames);
+  if (tail > 0 && tail < tile)
+    rt::distributed::split_tail(tiles, std::min(2 * ranks, static_cast<int>(tiles.size()) / 2),
+                                tail);
+  return static_cast<int>(tiles.size());
+}
+
 class Distributed : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -80,19 +92,21 @@ TEST_F(Distributed, IdenticalToSingleProcessWhateverRanksAndTiles) {
       " render builtin:glass --size 48x36 --spp 2 --max-depth 3 --threads 1 --quiet";
   Result ref = run_command(kExe + scene + outputs("ref"), dir);
   ASSERT_EQ(ref.status, 0) << ref.err;
-  // 12 divides 48x36; 7 divides neither side.
-  for (auto [ranks, tile] : {std::pair{2, 12}, {3, 12}, {2, 7}, {3, 7}}) {
-    const std::string name = "np" + std::to_string(ranks) + "-tile" + std::to_string(tile);
+  // 12 divides 48x36; 7 divides neither side. The last tiles cut into tiles of 5 (which
+  // divides neither 12 nor 7), or not cut.
+  for (auto [ranks, tile, tail] : {std::tuple{2, 12, 0}, {3, 12, 5}, {2, 7, 5}, {3, 7, 0}}) {
+    const std::string name = "np" + std::to_string(ranks) + "-tile" + std::to_string(tile) +
+                             "-tail" + std::to_string(tail);
     SCOPED_TRACE(name);
-    Result r =
-        run_command(kMpirun + " -np " + std::to_string(ranks) + " " + kExe + scene + outputs(name) +
-                        " --tile " + std::to_string(tile) + " --stats-json " + name + ".json",
-                    dir, 120);
+    Result r = run_command(kMpirun + " -np " + std::to_string(ranks) + " " + kExe + scene +
+                               outputs(name) + " --tile " + std::to_string(tile) + " --tail-tile " +
+                               std::to_string(tail) + " --stats-json " + name + ".json",
+                           dir, 120);
     ASSERT_EQ(r.status, 0) << r.err;
     expect_same_files(dir, "ref", name, kSuffixes, std::size(kSuffixes));
     const nlohmann::json j = nlohmann::json::parse(read_text(dir.path(name + ".json")));
     const nlohmann::json& d = j.at("distributed");
-    const int tiles = ((48 + tile - 1) / tile) * ((36 + tile - 1) / tile);
+    const int tiles = tile_count(48, 36, tile, tail, ranks, 1);
     EXPECT_EQ(d.at("ranks"), ranks);
     EXPECT_EQ(d.at("tiles"), tiles);
     EXPECT_EQ(d.at("tiles_done"), tiles);
@@ -106,16 +120,26 @@ TEST_F(Distributed, IdenticalToSingleProcessWhateverRanksAndTiles) {
     }
     EXPECT_EQ(sum, tiles);
     EXPECT_GE(d.at("imbalance").get<double>(), 0.0);
-    // Every tile once, with the rank that rendered it and a time.
+    // Every tile once, with the rank that rendered it, a time and where it is; the tiles
+    // cover the image once.
     std::vector<int> seen(static_cast<size_t>(tiles), 0);
+    std::vector<int> covered(48 * 36, 0);
     for (const nlohmann::json& t : d.at("per_tile")) {
       const int id = t.at(0).get<int>(), rank = t.at(1).get<int>();
       ASSERT_TRUE(id >= 0 && id < tiles) << t;
       EXPECT_TRUE(rank >= 0 && rank < ranks) << t;
       EXPECT_GE(t.at(2).get<double>(), 0.0);
       ++seen[static_cast<size_t>(id)];
+      const int x = t.at(3), y = t.at(4), w = t.at(5), h = t.at(6);
+      ASSERT_TRUE(x >= 0 && y >= 0 && w >= 1 && h >= 1 && x + w <= 48 && y + h <= 36) << t;
+      for (int py = y; py < y + h; ++py)
+        for (int px = x; px < x + w; ++px) ++covered[static_cast<size_t>(py * 48 + px)];
     }
     EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), tiles);
+    EXPECT_EQ(std::count(covered.begin(), covered.end(), 1), 48 * 36);
+    // Rank 0's part in it: every worker tile came through its queue.
+    EXPECT_EQ(d.at("gather").at("tiles").get<int>() + d.at("per_rank").at(0).at("tiles").get<int>(),
+              tiles);
   }
   // The multipass strategy, tiles of 5 on a 40x30 image.
   const std::string cornell = " render builtin:cornell --strategy multipass --size 40x30 --quiet";
@@ -166,8 +190,8 @@ TEST_F(Distributed, FramesAreTheSingleProcesssFiles) {
     }
     EXPECT_FALSE(std::filesystem::exists(dir.path(name + "-0010.png")));
     const nlohmann::json j = nlohmann::json::parse(read_text(dir.path(name + ".json")));
-    const int per_frame = ((40 + tile - 1) / tile) * ((30 + tile - 1) / tile);
-    EXPECT_EQ(j.at("distributed").at("tiles"), 4 * per_frame);
+    EXPECT_EQ(j.at("distributed").at("tiles"),
+              tile_count(40, 30, tile, tile >= 16 ? tile / 2 : 0, ranks, 4));
     EXPECT_TRUE(j.at("distributed").at("complete").get<bool>());
     std::vector<int> frames;
     for (const nlohmann::json& f : j.at("frames")) frames.push_back(f.at("frame").get<int>());
@@ -239,9 +263,9 @@ TEST_F(KilledWorker, EndsWithAClearErrorAndAPartialImage) {
   const size_t at = note.find("tiles in the image: ");
   ASSERT_NE(at, std::string::npos) << note;
   ASSERT_EQ(std::sscanf(note.c_str() + at, "tiles in the image: %d of %d;", &done, &total), 2);
-  EXPECT_EQ(total, 80);
+  EXPECT_EQ(total, tile_count(160, 120, 16, 8, 3, 1));  // 80 of 16, the last 6 cut: 86
   EXPECT_GT(done, 0) << note;
-  EXPECT_LT(done, 80) << note;
+  EXPECT_LT(done, total) << note;
   EXPECT_TRUE(has(note, "missing tiles (x y width height):\n")) << note;
 }
 

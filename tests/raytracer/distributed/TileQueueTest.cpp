@@ -49,6 +49,31 @@ TEST(TileQueue, FramesFollowEachOther) {
   EXPECT_EQ(q.next(1)->frame, 5);
 }
 
+// The queue's tail in small tiles: the tiles before it as they were, the last ones cut, the
+// image still covered once, ids in order.
+TEST(TileQueue, SplitTailCutsTheLastTiles) {
+  std::vector<Tile> tiles = make_tiles(40, 30, 16, 0, 2);  // 3x2 tiles a frame, 12 in all
+  const std::vector<Tile> whole = tiles;
+  split_tail(tiles, 3, 8);
+  // Tiles 9, 10, 11 of frame 1: 16x16 -> 4 tiles, 8x14 (x 32) -> 2, 16x14 -> 4.
+  ASSERT_EQ(tiles.size(), 9u + 4u + 2u + 4u);
+  for (size_t i = 0; i < tiles.size(); ++i) EXPECT_EQ(tiles[i].id, static_cast<int>(i));
+  for (size_t i = 0; i < 9; ++i)
+    EXPECT_EQ(std::tie(tiles[i].frame, tiles[i].x, tiles[i].y, tiles[i].width, tiles[i].height),
+              std::tie(whole[i].frame, whole[i].x, whole[i].y, whole[i].width, whole[i].height));
+  std::vector<int> covered(40 * 30, 0);
+  for (const Tile& t : tiles) {
+    if (t.frame != 1) continue;
+    EXPECT_LE(t.width, t.id >= 9 ? 8 : 16);
+    for (int y = t.y; y < t.y + t.height; ++y)
+      for (int x = t.x; x < t.x + t.width; ++x) ++covered[static_cast<size_t>(y * 40 + x)];
+  }
+  for (int c : covered) ASSERT_EQ(c, 1);
+  std::vector<Tile> same = whole;
+  split_tail(same, 3, 0);
+  EXPECT_EQ(same.size(), whole.size());
+}
+
 TEST(TileQueue, HandsOutEachTileAndTakesBackALostRanks) {
   TileQueue q(make_tiles(8, 8, 4));  // 4 tiles
   ASSERT_EQ(q.total(), 4);
