@@ -11,9 +11,9 @@
 #include <memory>
 #include <sstream>
 
+#include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/Scene.h"
-#include "rill/rt/Tracer.h"
 
 namespace rt {
 

@@ -5,9 +5,15 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
+#include <exception>
 #include <filesystem>
+#include <mutex>
+#include <thread>
+#include <utility>
 
 #include "rill/rt/scene/FramePattern.h"
 #include "rill/rt/scene/Scene.h"
@@ -98,6 +104,64 @@ void write_video(const std::string& pattern, int first, double fps, const std::s
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw rt::SceneError("--video: ffmpeg failed writing " + video + " (its message is above)");
+}
+
+struct FrameWriter::State {
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::deque<std::function<void()>> writes;
+  bool closing = false;
+  std::exception_ptr error;
+  std::thread thread;
+  void run() {
+    for (;;) {
+      std::function<void()> write;
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        wake.wait(lock, [&] { return closing || !writes.empty(); });
+        if (writes.empty()) return;
+        write = std::move(writes.front());
+        writes.pop_front();
+        if (error) continue;  // after a failure the rest are dropped
+      }
+      try {
+        write();
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        error = std::current_exception();
+      }
+    }
+  }
+};
+
+FrameWriter::FrameWriter() : s_(std::make_unique<State>()) {
+  s_->thread = std::thread([s = s_.get()] { s->run(); });
+}
+
+FrameWriter::~FrameWriter() {
+  try {
+    finish();
+  } catch (...) {  // an error nobody asked for any more
+  }
+}
+
+void FrameWriter::post(std::function<void()> write) {
+  {
+    std::lock_guard<std::mutex> lock(s_->mutex);
+    s_->writes.push_back(std::move(write));
+  }
+  s_->wake.notify_one();
+}
+
+void FrameWriter::finish() {
+  if (!s_->thread.joinable()) return;
+  {
+    std::lock_guard<std::mutex> lock(s_->mutex);
+    s_->closing = true;
+  }
+  s_->wake.notify_one();
+  s_->thread.join();
+  if (s_->error) std::rethrow_exception(std::exchange(s_->error, nullptr));
 }
 
 }  // namespace trace_cli

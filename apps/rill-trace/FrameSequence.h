@@ -2,6 +2,8 @@
 // name of each ("frame-%04d.png"), the progress line, and the preview video through ffmpeg.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,6 +36,24 @@ class Progress {
  private:
   int total_;
   bool on_;
+};
+
+// Writes frames on a thread of its own, in the order they were posted, so that the thread that
+// posts them goes on (rank 0 of a distributed sequence keeps feeding the ranks while a PNG is
+// encoded). The first write that throws ends the writing; finish() waits for the rest and
+// throws that error.
+class FrameWriter {
+ public:
+  FrameWriter();
+  ~FrameWriter();  // waits for the writes posted
+  FrameWriter(const FrameWriter&) = delete;
+  FrameWriter& operator=(const FrameWriter&) = delete;
+  void post(std::function<void()> write);
+  void finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
 };
 
 // Runs ffmpeg on the frames written as `pattern` (frames first..), at `fps`, into `video`.

@@ -791,21 +791,25 @@ int render_distributed(const RenderOptions& o) {
     // Rank 0: each frame written as it completes; the frames begun kept on disk as partial
     // outputs while they render, as mpirun may kill rank 0 without warning.
     trace_cli::Progress progress(plan.span.count(), o.quiet || o.progress || !plan.sequence);
-    auto on_frame = [&](int frame, const rt::RenderResult& image) {
-      g_doing = "writing frame " + std::to_string(frame);
-      for (const std::string& w : write_outputs(o, *prepared, image, plan.file(frame)))
-        if (frames.written.size() < 8) frames.written.push_back(w);
-      std::error_code ignored;  // its checkpoints are out of date now
-      for (const std::string& path : output_paths(o, *prepared))
-        std::filesystem::remove(dist::partial_name(plan.file(frame)(path)), ignored);
-      std::filesystem::remove(partial_note_path(o, *prepared, plan.file(frame)), ignored);
+    trace_cli::FrameWriter writer;
+    auto on_frame = [&](int frame, rt::RenderResult&& image) {
       const rt::Scene& scene = prepared->scene;
       frames.done.push_back({frame, plan.animated ? scene.animation.time.time_of(frame) : 0.0,
                              ms_since(t_start), image.rays});
       frames.rays += image.rays;
       frames.width = image.width;
       frames.height = image.height;
+      for (const std::string& path : output_paths(o, *prepared))
+        if (frames.written.size() < 8) frames.written.push_back(plan.file(frame)(path));
       progress.update(static_cast<int>(frames.done.size()), 0);
+      // Written beside the farm's loop, which goes on handing out tiles meanwhile.
+      writer.post([&, frame, image = std::move(image)] {
+        write_outputs(o, *prepared, image, plan.file(frame));
+        std::error_code ignored;  // its checkpoints are out of date now
+        for (const std::string& path : output_paths(o, *prepared))
+          std::filesystem::remove(dist::partial_name(plan.file(frame)(path)), ignored);
+        std::filesystem::remove(partial_note_path(o, *prepared, plan.file(frame)), ignored);
+      });
     };
     auto checkpoint = [&](const dist::FarmResult& so_far) {
       for (const dist::FramePart& part : so_far.unfinished)
@@ -820,6 +824,7 @@ int render_distributed(const RenderOptions& o) {
     job.frames = plan.span.count();
     job.outputs = rs.outputs;
     result = farm.render(job, render_tile, on_frame, checkpoint);
+    writer.finish();
     progress.finish();
   } catch (const std::exception& e) {
     // Rank 0: a rank failed to load or has another scene (the message names it), or rank 0

@@ -52,13 +52,12 @@ class Lane {
     }
     s_->wake.notify_one();
   }
-  // Waits until a job has finished since the last call, or for one poll interval (1 ms),
-  // whichever is first: the caller's loop sends a finished tile at once instead of at its next
-  // poll, without a thread of its own waiting on MPI.
-  void wait_for_a_job() {
+  // Waits until a job has finished since the last call, or for `poll`, whichever is first:
+  // the caller's loop sends a finished tile at once instead of at its next poll, without a
+  // thread of its own waiting on MPI.
+  void wait_for_a_job(std::chrono::microseconds poll) {
     std::unique_lock<std::mutex> lock(s_->mutex);
-    s_->finished_cv.wait_for(lock, std::chrono::milliseconds(1),
-                             [&] { return s_->finished != seen_; });
+    s_->finished_cv.wait_for(lock, poll, [&] { return s_->finished != seen_; });
     seen_ = s_->finished;
   }
 
@@ -96,6 +95,10 @@ namespace {
 
 // Tiles a worker holds at once: the one it renders and the next, so it never waits for one.
 constexpr int kAhead = 2;
+
+// How often the render loops poll MPI: every millisecond, and every 50 microseconds while a
+// message they sent is still on its way.
+constexpr std::chrono::microseconds kPoll(1000), kSendingPoll(50);
 
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -451,7 +454,8 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
     }
     check_silence(nullptr);
     beat();
-    lane_->wait_for_a_job();
+    // A tile on its way to rank 0 moves only while this thread calls MPI: poll often then.
+    lane_->wait_for_a_job(mpi_.sending() ? kSendingPoll : kPoll);
   }
   if (!mpi_.flush(o_.rank_timeout))
     throw std::runtime_error("rank 0 did not take this rank's last messages within " +
@@ -547,7 +551,7 @@ FarmResult Farm::render_master(const FarmJob& job,
       ++frames.complete;
       RenderResult image = std::move(it->second);
       frames.open.erase(it);
-      if (on_frame) on_frame(t.frame, image);
+      if (on_frame) on_frame(t.frame, std::move(image));
     }
   };
   // Tiles for a worker, up to kAhead in hand.
@@ -665,7 +669,7 @@ FarmResult Farm::render_master(const FarmJob& job,
       saved = queue.done();
       saved_at = now_s();
     }
-    lane_->wait_for_a_job();
+    lane_->wait_for_a_job(mpi_.sending() ? kSendingPoll : kPoll);
   }
   draw_progress(true);
   R.wall_ms = (now_s() - t0) * 1e3;

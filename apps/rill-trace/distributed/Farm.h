@@ -118,12 +118,13 @@ class Farm {
 
   // Every rank: renders tiles with render_tile (on another thread) until every frame of the
   // job is complete. Rank 0 hands each frame to on_frame as soon as it is complete (on this
-  // thread; frames may complete out of order) and returns the report; a worker returns nothing
+  // thread, which hands out no tiles meanwhile: on_frame should be quick; frames may complete
+  // out of order) and returns the report; a worker returns nothing
   // once rank 0 says stop, and throws if rank 0 is lost. Only rank 0 reads the job. Rank 0
   // calls checkpoint with the frames begun so far every options.checkpoint seconds while
   // tiles come in, for main to keep on disk: mpirun may kill rank 0 at once when another rank
   // dies, with no time to write anything then.
-  using FrameDone = std::function<void(int frame, const RenderResult& image)>;
+  using FrameDone = std::function<void(int frame, RenderResult&& image)>;
   std::optional<FarmResult> render(const FarmJob& job,
                                    const std::function<RenderResult(const Tile&)>& render_tile,
                                    const FrameDone& on_frame,

@@ -122,7 +122,7 @@ bool MpiSession::receive(int& source, int& tag, Bytes& bytes, double timeout_s) 
       throw std::runtime_error("a " + std::string(tag_name(tag)) + " message from rank " +
                                std::to_string(source) + " did not arrive whole within " +
                                std::to_string(static_cast<int>(timeout_s)) + " s");
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    std::this_thread::sleep_for(std::chrono::microseconds(50));
   }
 }
 

@@ -34,6 +34,13 @@ class MpiSession {
   void post(int dest, int tag, Bytes bytes = {});
   // Forgets the sends to a rank that is lost (they may never complete).
   void forget(int dest);
+  // Whether some send posted has not completed yet. A large message moves only while its
+  // sender calls MPI (shared memory without single-copy, TCP): a sender with one pending polls
+  // often.
+  bool sending() {
+    progress();
+    return !outbox_.empty();
+  }
   // Waits until every send posted completes; false if some have not after timeout_s.
   bool flush(double timeout_s);
   // A message from any rank, if one has arrived: true with its source, tag and bytes. Throws
