@@ -31,6 +31,13 @@ struct MpiSession::Pending {
   MPI_Request request = MPI_REQUEST_NULL;
 };
 
+struct MpiSession::Incoming {
+  int source = 0, tag = 0;
+  Bytes bytes;
+  MPI_Request request = MPI_REQUEST_NULL;
+  double since = 0;  // when it began to arrive
+};
+
 MpiSession::MpiSession() {
   int provided = 0;
   check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
@@ -52,6 +59,7 @@ MpiSession::MpiSession() {
 
 MpiSession::~MpiSession() {
   for (Pending* p : outbox_) delete p;
+  for (Incoming* in : inbox_) delete in;
   MPI_Finalize();
 }
 
@@ -90,6 +98,15 @@ void MpiSession::forget(int dest) {
     MPI_Request_free(&outbox_[i]->request);
     outbox_.erase(outbox_.begin() + static_cast<std::ptrdiff_t>(i));
   }
+  // Its messages still arriving, the same way.
+  for (size_t i = 0; i < inbox_.size();) {
+    if (inbox_[i]->source != dest) {
+      ++i;
+      continue;
+    }
+    MPI_Request_free(&inbox_[i]->request);
+    inbox_.erase(inbox_.begin() + static_cast<std::ptrdiff_t>(i));
+  }
 }
 
 bool MpiSession::flush(double timeout_s) {
@@ -101,29 +118,54 @@ bool MpiSession::flush(double timeout_s) {
 
 bool MpiSession::receive(int& source, int& tag, Bytes& bytes, double timeout_s) {
   progress();
-  int found = 0;
-  MPI_Message message;
-  MPI_Status status;
-  check(MPI_Improbe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &found, &message, &status),
-        "MPI_Improbe");
-  if (!found) return false;
-  int count = 0;
-  MPI_Get_count(&status, MPI_BYTE, &count);
-  source = status.MPI_SOURCE;
-  tag = status.MPI_TAG;
-  bytes.resize(static_cast<size_t>(count));
-  MPI_Request request;
-  check(MPI_Imrecv(bytes.data(), count, MPI_BYTE, &message, &request), "MPI_Imrecv");
-  const double until = seconds() + timeout_s;
-  for (int done = 0;;) {
-    check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
-    if (done) return true;
-    if (seconds() > until)
-      throw std::runtime_error("a " + std::string(tag_name(tag)) + " message from rank " +
-                               std::to_string(source) + " did not arrive whole within " +
-                               std::to_string(static_cast<int>(timeout_s)) + " s");
-    std::this_thread::sleep_for(std::chrono::microseconds(50));
+  // Every message that has begun to arrive gets its receive posted at once, so that several
+  // large ones move at the same time and none is waited for here.
+  for (;;) {
+    int found = 0;
+    MPI_Message message;
+    MPI_Status status;
+    check(MPI_Improbe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &found, &message, &status),
+          "MPI_Improbe");
+    if (!found) break;
+    int count = 0;
+    MPI_Get_count(&status, MPI_BYTE, &count);
+    auto* in = new Incoming{status.MPI_SOURCE, status.MPI_TAG, Bytes(static_cast<size_t>(count)),
+                            MPI_REQUEST_NULL, seconds()};
+    const int rc = MPI_Imrecv(in->bytes.data(), count, MPI_BYTE, &message, &in->request);
+    if (rc != MPI_SUCCESS) {
+      delete in;
+      check(rc, "MPI_Imrecv");
+    }
+    inbox_.push_back(in);
   }
+  // The first message that is whole, and has none from its rank before it still arriving
+  // (a rank's messages are handled in the order it sent them).
+  const double now = seconds();
+  for (size_t i = 0; i < inbox_.size(); ++i) {
+    Incoming* in = inbox_[i];
+    int done = 0;
+    check(MPI_Test(&in->request, &done, MPI_STATUS_IGNORE), "MPI_Test");
+    if (!done) {
+      if (now - in->since > timeout_s) {
+        source = in->source;
+        tag = in->tag;
+        throw std::runtime_error("a " + std::string(tag_name(in->tag)) + " message from rank " +
+                                 std::to_string(in->source) + " did not arrive whole within " +
+                                 std::to_string(static_cast<int>(timeout_s)) + " s");
+      }
+      continue;
+    }
+    bool first = true;
+    for (size_t k = 0; k < i; ++k) first = first && inbox_[k]->source != in->source;
+    if (!first) continue;
+    source = in->source;
+    tag = in->tag;
+    bytes = std::move(in->bytes);
+    delete in;
+    inbox_.erase(inbox_.begin() + static_cast<std::ptrdiff_t>(i));
+    return true;
+  }
+  return false;
 }
 
 void MpiSession::abort(int code) {

@@ -32,7 +32,8 @@ class MpiSession {
 
   // Sends without waiting; the bytes stay here until the send completes.
   void post(int dest, int tag, Bytes bytes = {});
-  // Forgets the sends to a rank that is lost (they may never complete).
+  // Forgets the sends to, and the messages arriving from, a rank that is lost (they may never
+  // complete).
   void forget(int dest);
   // Whether some send posted has not completed yet. A large message moves only while its
   // sender calls MPI (shared memory without single-copy, TCP): a sender with one pending polls
@@ -43,8 +44,10 @@ class MpiSession {
   }
   // Waits until every send posted completes; false if some have not after timeout_s.
   bool flush(double timeout_s);
-  // A message from any rank, if one has arrived: true with its source, tag and bytes. Throws
-  // if its bytes do not arrive within timeout_s (the sender died while sending).
+  // A message from any rank, if one has arrived whole: true with its source, tag and bytes.
+  // Never waits: messages still arriving stay for a later call. Throws, with source and tag
+  // set, if a message's bytes do not arrive within timeout_s of its start (the sender died
+  // while sending).
   bool receive(int& source, int& tag, Bytes& bytes, double timeout_s);
   // Ends every rank of the job (MPI_Abort): the way out when a rank is lost, as MPI_Finalize
   // would wait for it forever.
@@ -52,10 +55,12 @@ class MpiSession {
 
  private:
   struct Pending;
+  struct Incoming;
   void progress();
   int rank_ = 0, size_ = 1, local_rank_ = 0;
   std::string host_;
   std::vector<Pending*> outbox_;
+  std::vector<Incoming*> inbox_;  // messages arriving, in the order they began to
 };
 
 }  // namespace rt::distributed

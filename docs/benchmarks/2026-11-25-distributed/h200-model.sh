@@ -1,10 +1,10 @@
-# Issue 23, the fifth H200 run: the tail of small tiles (--tail-tile) and render loops that wake
+# Issue 23, the fifth and sixth H200 runs: the tail of small tiles (--tail-tile) and render loops that wake
 # when a tile is done, against the fourth run; and the data for the model of larger farms:
 # every run's --stats-json (per_tile, gather) goes to $OUT. Thesis C at 1080p on `cpu`,
 # ranks x threads = 16, three rounds beside the single process; then 24 frames of
 # builtin:bounce at 1080p, and a GPU rank beside CPU ranks. Set-up in setup.sh.
 source docs/benchmarks/2026-11-25-distributed/setup.sh
-OUT=${OUT:-/tmp/out}; mkdir -p $OUT
+RESULTS=${OUT:-/tmp/out}; OUT=/tmp/stats; mkdir -p $OUT $RESULTS
 run() {  # run NAME RANKS THREADS OPTIONS...
   local name=$1 n=$2 t=$3; shift 3
   mpirun --oversubscribe --bind-to none -np $n $B/rill-trace render $S --threads $t \
@@ -40,3 +40,4 @@ for tile in 128 256; do
     --tile $tile --out /tmp/mixed.png --stats-json $OUT/mixed-t$tile.json 2>&1 | tail -5
   cmp -s /tmp/single.png /tmp/mixed.png || echo "mixed: IMAGE DIFFERS"
 done
+tar -C $OUT -czf $RESULTS/stats.tar.gz .
