@@ -304,6 +304,56 @@ TEST_F(KilledWorker, AHungWorkerIsLostAndTheImageCompletes) {
   expect_same_files(dir_, "ref", "g", kSuffixes, 2);
 }
 
+// An image sequence with a worker killed part of the way: the frames complete before the
+// fault are written whole (the single process's bytes) with no partial left beside them; a
+// frame begun and not complete is kept as partial outputs with its own note; frames not begun
+// are not written.
+TEST_F(Distributed, AKilledWorkerInASequenceKeepsTheFramesDone) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string bounce =
+      " render builtin:bounce --size 160x120 --spp 32 --frames 0:5 --threads 1 --quiet";
+  const auto t0 = std::chrono::steady_clock::now();
+  Result ref = run_command(kExe + bounce + " --out ref-%02d.png", dir);
+  ASSERT_EQ(ref.status, 0) << ref.err;
+  const double reference_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  dir.file("kill.sh", "(sleep " + std::to_string(std::max(0.8, reference_s / 3)) +
+                          "; kill -KILL $$) &\nexec " + kExe + " \"$@\"\n");
+  const std::string options = bounce + " --out s-%02d.png --tile 12 --checkpoint 0.2";
+  Result r = run_command(
+      kMpirun + " -np 2 " + kExe + options + " : -np 1 sh " + dir.path("kill.sh") + options, dir,
+      120);
+  ASSERT_NE(r.status, 124) << "hung: " << r.err;
+  ASSERT_NE(r.status, 0) << "the sequence ended before the worker was killed (it took "
+                         << reference_s << " s alone)";
+  int whole = 0, partial = 0;
+  for (int f = 0; f <= 5; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof name, "s-%02d", f);
+    const bool done = std::filesystem::exists(dir.path(std::string(name) + ".png"));
+    const bool part = std::filesystem::exists(dir.path(std::string(name) + ".partial.png"));
+    SCOPED_TRACE(name);
+    EXPECT_FALSE(done && part);
+    if (done) {
+      ++whole;
+      std::snprintf(name, sizeof name, "ref-%02d.png", f);
+      const std::string want = read_text(dir.path(name));
+      std::snprintf(name, sizeof name, "s-%02d.png", f);
+      EXPECT_TRUE(want == read_text(dir.path(name))) << name << " differs from the reference";
+    }
+    if (part) {
+      ++partial;
+      std::snprintf(name, sizeof name, "s-%02d.partial.txt", f);
+      const std::string note = read_text(dir.path(name));
+      EXPECT_TRUE(has(note, ", frame " + std::to_string(f) + ", 160x120")) << note;
+      EXPECT_TRUE(has(note, "tiles in the image: ")) << note;
+    }
+  }
+  EXPECT_GT(whole + partial, 0) << r.err;
+  EXPECT_LT(whole, 6) << r.err;
+}
+
 // Rank 2 loads another scene, other settings, or nothing: the job stops before any tile,
 // with rank 2's message.
 TEST_F(Distributed, AnotherSceneOrAFailedLoadStopsTheStart) {
