@@ -347,10 +347,11 @@ nlohmann::json frames_json(const std::vector<FrameStats>& frames, const rt::Feat
                         {"compile_ms", s.compile_ms},
                         {"kernels_compiled", s.compiles}};
     if (f.dynamic)
-      j["update"] = {{"pose_ms", s.update.pose_ms},         {"bvh_ms", s.update.bvh_ms},
-                     {"upload_ms", s.update.upload_ms},     {"rebuilt", s.update.rebuilt},
-                     {"moving_triangles", s.update.moving}, {"bvh_nodes", s.update.bvh_nodes},
-                     {"bvh_depth", s.update.bvh_depth}};
+      j["update"] = {
+          {"pose_ms", s.update.pose_ms},         {"bvh_ms", s.update.bvh_ms},
+          {"upload_ms", s.update.upload_ms},     {"rebuilt", s.update.rebuilt},
+          {"moving_triangles", s.update.moving}, {"bvh_nodes", s.update.bvh_nodes},
+          {"bvh_depth", s.update.bvh_depth},     {"uploaded_triangles", s.update.uploaded}};
     a.push_back(j);
   }
   return a;

@@ -261,7 +261,11 @@ class ComputeBackend : public Backend, public SessionOwner {
     current();
     b = s.device_buffer<Buffer>(this);
     const int64_t bytes = std::max<int64_t>(16, static_cast<int64_t>(s.words()) * 4);
+    // A buffer that is stale in some words only gets just those (Storage::stale_words).
+    auto [first, end] = s.stale_words();
     if (!b || b->bytes != bytes) {
+      first = 0;
+      end = s.words();
       auto fresh = std::make_unique<Buffer>();
       fresh->session = session_;
       fresh->bytes = bytes;
@@ -273,9 +277,10 @@ class ComputeBackend : public Backend, public SessionOwner {
       s.set_device_buffer(this, std::move(fresh));
       current();  // releasing another backend's copy may have made its context current
     }
-    if (host != nullptr) {
+    if (host != nullptr && end > first) {
       gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, b->buf);
-      gl.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(s.words() * 4), host);
+      gl.glBufferSubData(GL_SHADER_STORAGE_BUFFER, static_cast<GLintptr>(first * 4),
+                         static_cast<GLsizeiptr>((end - first) * 4), host + first);
       check(gl, "uploading a buffer", kWho);
     }
     s.mark_device_current(this);

@@ -391,7 +391,11 @@ class OpenCLBackend : public Backend {
     if (buf && s.is_device_current(this)) return buf->mem;
     const uint32_t* host = s.host_data_for_read();
     size_t bytes = std::max<size_t>(4, s.words() * 4);
+    // A buffer that is stale in some words only gets just those (Storage::stale_words).
+    auto [first, end] = s.stale_words();
     if (!buf || buf->bytes != bytes) {
+      first = 0;
+      end = s.words();
       auto fresh = std::make_unique<ClBuffer>();
       cl_int e = CL_SUCCESS;
       check_allocation(d, bytes);
@@ -401,9 +405,9 @@ class OpenCLBackend : public Backend {
       buf = fresh.get();
       s.set_device_buffer(this, std::move(fresh));
     }
-    if (s.words() != 0)
-      check(clEnqueueWriteBuffer(d.queue, buf->mem, CL_TRUE, 0, s.words() * 4, host, 0, nullptr,
-                                 nullptr),
+    if (end > first)
+      check(clEnqueueWriteBuffer(d.queue, buf->mem, CL_TRUE, first * 4, (end - first) * 4,
+                                 host + first, 0, nullptr, nullptr),
             "clEnqueueWriteBuffer");
     s.mark_device_current(this);
     return buf->mem;

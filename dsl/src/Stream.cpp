@@ -2,6 +2,8 @@
 
 #include "rill/Backend.h"
 
+#include <algorithm>
+
 namespace rill::detail {
 
 void Storage::init(ir::Type t, int64_t n) {
@@ -10,6 +12,7 @@ void Storage::init(ir::Type t, int64_t n) {
   host_.assign(static_cast<size_t>(n) * t.width, 0u);
   host_valid_ = true;
   device_valid_ = false;
+  stale_all_ = true;
   ++version_;
 }
 
@@ -56,6 +59,24 @@ uint32_t* Storage::host_data_for_write() {
 uint32_t* Storage::host_data_for_overwrite() {
   host_valid_ = true;
   device_valid_ = false;
+  stale_all_ = true;
+  ++version_;
+  return host_.data();
+}
+
+uint32_t* Storage::host_data_for_write_range(size_t first, size_t n) {
+  sync_to_host();
+  const size_t end = first + n;
+  if (device_valid_) {  // current until now: stale in these words only
+    stale_all_ = false;
+    stale_first_ = first;
+    stale_end_ = end;
+  } else if (!stale_all_) {  // stale in a range already: in both
+    stale_first_ = std::min(stale_first_, first);
+    stale_end_ = std::max(stale_end_, end);
+  }
+  host_valid_ = true;
+  device_valid_ = false;
   ++version_;
   return host_.data();
 }
@@ -71,18 +92,23 @@ void Storage::set_device_buffer(Backend* b, std::unique_ptr<DeviceBuffer> buffer
   device_ = std::move(buffer);
   device_owner_ = b;
   device_valid_ = false;
+  stale_all_ = true;
 }
 
 void Storage::mark_device_current(const Backend* b) {
   require_device(b, "mark_device_current");
   if (!host_valid_) throw Error("internal: a device copy was filled from a stale host copy");
   device_valid_ = true;
+  stale_all_ = false;
+  stale_first_ = stale_end_ = 0;
 }
 
 void Storage::mark_device_written(const Backend* b) {
   require_device(b, "mark_device_written");
   host_valid_ = false;
   device_valid_ = true;
+  stale_all_ = false;
+  stale_first_ = stale_end_ = 0;
 }
 
 void Storage::release_device_copy() {
@@ -90,6 +116,7 @@ void Storage::release_device_copy() {
   device_.reset();
   device_owner_ = nullptr;
   device_valid_ = false;
+  stale_all_ = true;
 }
 
 }  // namespace rill::detail

@@ -406,6 +406,39 @@ TEST_P(LaunchTest, ArrayResizeWithoutRecompiling) {
   EXPECT_EQ(kernel_cache_stats().misses, misses);
 }
 
+// Part of an array replaced after a launch (an animation's moving triangles): the next launch
+// reads the new elements and the old ones around them, on every backend; a second part
+// replaced before any launch joins the first; out of range is an error.
+TEST_P(LaunchTest, ArrayPartialUploadKeepsTheRest) {
+  std::vector<float> values(1000);
+  for (size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>(i);
+  Array<Float> table(values, "table");
+  Program p = program("table_copy", [&] {
+    Input<Int> i("i");
+    Output<Float> y("y");
+    y = table[i];
+  });
+  std::vector<int32_t> is(values.size());
+  for (size_t i = 0; i < is.size(); ++i) is[i] = static_cast<int32_t>(i);
+  Kernel k = compile(p);
+  auto y = run_kernel<Float>(k, static_cast<int64_t>(is.size()), is);
+  ASSERT_TRUE(bits_equal(y, values));
+  // The device copy is current now; replace 100..149, then 900..909 as well.
+  std::vector<float> part(50, -1.0f), other(10, -2.0f);
+  table.upload(100, part);
+  std::copy(part.begin(), part.end(), values.begin() + 100);
+  y = run_kernel<Float>(k, static_cast<int64_t>(is.size()), is);
+  EXPECT_TRUE(bits_equal(y, values));
+  table.upload(900, other);
+  table.upload(5, std::vector<float>{-3.0f});
+  std::copy(other.begin(), other.end(), values.begin() + 900);
+  values[5] = -3.0f;
+  y = run_kernel<Float>(k, static_cast<int64_t>(is.size()), is);
+  EXPECT_TRUE(bits_equal(y, values));
+  EXPECT_THROW(table.upload(995, other), Error);
+  EXPECT_THROW(table.upload(-1, part), Error);
+}
+
 // ---- element index and coordinates ----------------------------------------------------------
 
 TEST_P(LaunchTest, ElementIndexAndCoord1D) {

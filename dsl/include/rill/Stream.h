@@ -21,6 +21,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rill/Value.h"
@@ -71,6 +72,16 @@ class Storage {
   // The host copy for replacing every word: nothing is read back, the device copy becomes
   // stale.
   uint32_t* host_data_for_overwrite();
+  // The host copy, current, for changing words [first, first + n) in place: a device copy
+  // that was current becomes stale in those words only (stale_words), so that a backend can
+  // upload just them (an animation's moving triangles among the static ones).
+  uint32_t* host_data_for_write_range(size_t first, size_t n);
+  // The words [first, end) in which the device copy differs from the host copy when it is
+  // stale: every word unless only host_data_for_write_range wrote since it was current.
+  std::pair<size_t, size_t> stale_words() const {
+    return stale_all_ ? std::pair<size_t, size_t>{0, words()}
+                      : std::pair<size_t, size_t>{stale_first_, stale_end_};
+  }
 
   // Backend b's buffer if b holds the device copy (current or stale), else null.
   template <class T>
@@ -110,6 +121,9 @@ class Storage {
   std::unique_ptr<DeviceBuffer> device_;
   bool device_valid_ = false;
   uint64_t version_ = 0;  // bumped on every host write, so backends can cache uploads
+  // The device copy's stale words, when only some are (stale_all_ false).
+  bool stale_all_ = true;
+  size_t stale_first_ = 0, stale_end_ = 0;
 };
 
 // Data a kernel can gather from at any index: an Array, or a Stream (a stream is an array
@@ -139,6 +153,19 @@ void copy_in(Storage& s, std::span<const HostOf<V>> data) {
                 std::to_string(s.count()));
   uint32_t* host = s.host_data_for_overwrite();
   if (s.words() != 0) std::memcpy(host, data.data(), s.words() * 4);
+}
+
+template <class V>
+void copy_in_range(Storage& s, int64_t first, std::span<const HostOf<V>> data) {
+  const int64_t n = static_cast<int64_t>(data.size());
+  if (first < 0 || n > s.count() - first)
+    throw Error("upload of elements " + std::to_string(first) + ".." +
+                std::to_string(first + n - 1) + " into a stream of " + std::to_string(s.count()));
+  if (n == 0) return;
+  const size_t w = static_cast<size_t>(s.type().width);
+  uint32_t* host =
+      s.host_data_for_write_range(static_cast<size_t>(first) * w, static_cast<size_t>(n) * w);
+  std::memcpy(host + static_cast<size_t>(first) * w, data.data(), static_cast<size_t>(n) * w * 4);
 }
 
 template <class V>
@@ -324,6 +351,11 @@ class Array {
 
   int64_t size() const { return s_->count(); }
   void upload(std::span<const host_type> data) { detail::copy_in<V>(*s_, data); }
+  // Replaces elements first .. first + data.size() - 1 and keeps the others: a backend then
+  // uploads only what changed (an animation's moving triangles).
+  void upload(int64_t first, std::span<const host_type> data) {
+    detail::copy_in_range<V>(*s_, first, data);
+  }
   void upload(const std::vector<host_type>& data) { upload(std::span<const host_type>(data)); }
   std::vector<host_type> download() const { return detail::copy_out<V>(*s_); }
   // Changes the shape (and size); the data must be uploaded again. Kernels need no recompile.

@@ -154,7 +154,14 @@ FrameUpdate Tracer::set_time(double time, BvhUpdate how) {
   u.bvh_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   I.device.bvh.upload(I.bvh);
-  I.device.tris.upload_geometry(*I.posed, I.device.K, I.device.F);
+  // Only the span of the moving triangles: the static ones stay as they are, on the host and
+  // on the device.
+  if (!ids.empty()) {
+    const auto [lo, hi] = std::minmax_element(ids.begin(), ids.end());
+    const auto first = static_cast<size_t>(*lo), end = static_cast<size_t>(*hi) + 1;
+    I.device.tris.update_geometry(*I.posed, I.device.K, I.device.F, first, end);
+    u.uploaded = end - first;
+  }
   u.upload_ms = ms_since(t);
   u.moving = ids.size();
   u.bvh_nodes = static_cast<int>(I.bvh.nodes.size());

@@ -61,6 +61,9 @@ struct FrameUpdate {
   double pose_ms = 0;    // the animated objects moved (host)
   double bvh_ms = 0;     // the BVH built or refitted (host, oneTBB)
   double upload_ms = 0;  // the moved triangles and the BVH uploaded
+  // Triangles uploaded: the span from the first moving triangle to the last (static ones
+  // inside it included); the rest of the scene's arrays stay on the device as they are.
+  size_t uploaded = 0;
   bool rebuilt = false;  // a new tree (a refit falls back to it when triangles come or go)
   size_t moving = 0;     // moving triangles in the BVH
   int bvh_nodes = 0, bvh_depth = 0;

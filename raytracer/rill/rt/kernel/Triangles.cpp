@@ -5,6 +5,8 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "rill/rt/kernel/DeviceArrays.h"
 
@@ -37,35 +39,96 @@ void Triangles::upload(const Scene& scene, const TracerOptions& K, const Feature
   upload_padded(material, std::vector<int32_t>(scene.material));
 }
 
-void Triangles::upload_geometry(const Scene& scene, const TracerOptions& K, const Features& F) {
-  const size_t n = scene.triangle_count();
-  std::vector<glm::vec3> vv0(n), ve1(n), ve2(n), vng(n);
+namespace {
+
+// What the kernels hold of triangles first .. end - 1 of the scene, in the order of the
+// triangles: the Moller-Trumbore form and the unit geometric normal, and (as asked) the
+// vertices and the vertex normals.
+struct Geometry {
+  std::vector<glm::vec3> v0, e1, e2, ng, v1, v2, n0, n1, n2;
+};
+
+Geometry geometry(const Scene& scene, const TracerOptions& K, const Features& F, size_t first,
+                  size_t end) {
+  const size_t n = end - first;
+  Geometry g;
+  g.v0.resize(n);
+  g.e1.resize(n);
+  g.e2.resize(n);
+  g.ng.resize(n);
+  const bool watertight = K.triangle == TriangleTest::Watertight;
+  if (watertight) g.v1.resize(n), g.v2.resize(n);
+  if (F.vertex_normals) g.n0.resize(n), g.n1.resize(n), g.n2.resize(n);
   // Per triangle on its own (so the same bits on any number of threads): dynamic scenes do
   // this every frame.
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, n, 8192), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t t = r.begin(); t != r.end(); ++t) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const size_t t = first + i;
           const glm::vec3* p = &scene.positions[3 * t];
-          vv0[t] = p[0];
-          ve1[t] = p[1] - p[0];
-          ve2[t] = p[2] - p[0];
-          glm::dvec3 c = glm::cross(glm::dvec3(ve1[t]), glm::dvec3(ve2[t]));
+          g.v0[i] = p[0];
+          g.e1[i] = p[1] - p[0];
+          g.e2[i] = p[2] - p[0];
+          glm::dvec3 c = glm::cross(glm::dvec3(g.e1[i]), glm::dvec3(g.e2[i]));
           double l = glm::length(c);
-          vng[t] = (std::isfinite(l) && l > 0) ? glm::vec3(c / l) : glm::vec3(0.0f, 1.0f, 0.0f);
+          g.ng[i] = (std::isfinite(l) && l > 0) ? glm::vec3(c / l) : glm::vec3(0.0f, 1.0f, 0.0f);
+          if (watertight) {
+            g.v1[i] = p[1];
+            g.v2[i] = p[2];
+          }
+          if (F.vertex_normals) {
+            const bool given = !scene.normals.empty();
+            g.n0[i] = given ? scene.normals[3 * t] : g.ng[i];
+            g.n1[i] = given ? scene.normals[3 * t + 1] : g.ng[i];
+            g.n2[i] = given ? scene.normals[3 * t + 2] : g.ng[i];
+          }
         }
       });
-  upload_padded(v0, vv0);
-  upload_padded(e1, ve1);
-  upload_padded(e2, ve2);
-  upload_padded(ng, vng);
+  return g;
+}
+
+}  // namespace
+
+void Triangles::upload_geometry(const Scene& scene, const TracerOptions& K, const Features& F) {
+  Geometry g = geometry(scene, K, F, 0, scene.triangle_count());
+  upload_padded(v0, std::move(g.v0));
+  upload_padded(e1, std::move(g.e1));
+  upload_padded(e2, std::move(g.e2));
+  upload_padded(ng, std::move(g.ng));
   if (K.triangle == TriangleTest::Watertight) {
-    upload_padded(v1, corner(scene.positions, n, 1, {}));
-    upload_padded(v2, corner(scene.positions, n, 2, {}));
+    upload_padded(v1, std::move(g.v1));
+    upload_padded(v2, std::move(g.v2));
   }
   if (F.vertex_normals) {
-    upload_padded(n0, corner(scene.normals, n, 0, vng));
-    upload_padded(n1, corner(scene.normals, n, 1, vng));
-    upload_padded(n2, corner(scene.normals, n, 2, vng));
+    upload_padded(n0, std::move(g.n0));
+    upload_padded(n1, std::move(g.n1));
+    upload_padded(n2, std::move(g.n2));
+  }
+}
+
+void Triangles::update_geometry(const Scene& scene, const TracerOptions& K, const Features& F,
+                                size_t first, size_t end) {
+  if (first == end) return;
+  if (end > scene.triangle_count() || first > end ||
+      static_cast<int64_t>(scene.triangle_count()) != v0.size())
+    throw std::logic_error("Triangles::update_geometry: triangles " + std::to_string(first) + ".." +
+                           std::to_string(end) + " of a scene of " +
+                           std::to_string(scene.triangle_count()) + " after an upload of " +
+                           std::to_string(v0.size()));
+  const Geometry g = geometry(scene, K, F, first, end);
+  const auto at = static_cast<int64_t>(first);
+  v0.upload(at, g.v0);
+  e1.upload(at, g.e1);
+  e2.upload(at, g.e2);
+  ng.upload(at, g.ng);
+  if (K.triangle == TriangleTest::Watertight) {
+    v1.upload(at, g.v1);
+    v2.upload(at, g.v2);
+  }
+  if (F.vertex_normals) {
+    n0.upload(at, g.n0);
+    n1.upload(at, g.n1);
+    n2.upload(at, g.n2);
   }
 }
 

@@ -30,6 +30,10 @@ struct Triangles {
   // Only what moves with the vertices (positions, edges, normals): each frame of a dynamic
   // scene. Colours, texture coordinates and materials stay as upload() left them.
   void upload_geometry(const Scene& scene, const TracerOptions& K, const Features& F);
+  // The same for triangles first .. end - 1 only, after upload(): the others keep their
+  // values on the host and the device (a backend uploads only the words that changed).
+  void update_geometry(const Scene& scene, const TracerOptions& K, const Features& F, size_t first,
+                       size_t end);
 };
 
 }  // namespace rt
