@@ -17,6 +17,7 @@
 //           scenes taking turns frame by frame; "vs first" divides by the first count's.
 //           --bvh refit refits the first frame's tree instead.
 #include <rill/rill.h>
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -24,6 +25,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -301,7 +303,14 @@ int main(int argc, char** argv) {
   app.add_option("--size", size, "frames: image size WxH");
   std::string bvh = "rebuild";
   app.add_option("--bvh", bvh, "frames: rebuild or refit the BVH each frame");
+  int threads = 0;
+  app.add_option("--threads", threads,
+                 "oneTBB threads for every builder, Embree's too (default: one per core)")
+      ->check(CLI::Range(1, 4096));
   CLI11_PARSE(app, argc, argv);
+  std::optional<tbb::global_control> limit;
+  if (threads > 0)
+    limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
   int w = 0, h = 0;
   if (std::sscanf(size.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1) {
     std::fprintf(stderr, "rill-bench-dynamic: --size expects WxH\n");
