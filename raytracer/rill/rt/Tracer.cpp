@@ -150,7 +150,7 @@ FrameUpdate Tracer::set_time(double time, BvhUpdate how) {
   t = std::chrono::steady_clock::now();
   const std::vector<int32_t> ids = moving_triangles(*I.posed);
   u.rebuilt = how == BvhUpdate::Rebuild || !refit_bvh(I.bvh, *I.posed, ids);
-  if (u.rebuilt) I.bvh = build_bvh(*I.posed, ids);
+  if (u.rebuilt) rebuild_bvh(I.bvh, *I.posed, ids);
   u.bvh_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   I.device.bvh.upload(I.bvh);

@@ -483,10 +483,12 @@ std::vector<int32_t> moving_triangles(const Scene& s) {
   return ids;
 }
 
-Bvh build_bvh(const Scene& s, const std::vector<int32_t>& ids) {
+void rebuild_bvh(Bvh& out, const Scene& s, const std::vector<int32_t>& ids) {
   const auto start = std::chrono::steady_clock::now();
-  Bvh out;
-  if (ids.empty()) return out;
+  if (ids.empty()) {
+    out = Bvh{};
+    return;
+  }
   const size_t n = ids.size();
   // The last build's memory when it is large enough and no other build holds it.
   std::unique_lock<std::mutex> lock(g_memory.mutex, std::try_to_lock);
@@ -512,13 +514,22 @@ Bvh build_bvh(const Scene& s, const std::vector<int32_t>& ids) {
   root.end = n;
   builder.bound(root, true);
   builder.build(0);
+  // Resized, not made anew: the last tree's memory holds this one (every slot is written).
   out.nodes.resize(static_cast<size_t>(builder.nodes[0].subtree));
   builder.flatten(0, 0, out);
   out.tris.resize(n);
-  for (size_t i = 0; i < n; ++i) out.tris[i] = prims[i].id;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kParallelMin),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i != r.end(); ++i) out.tris[i] = prims[i].id;
+                    });
   out.ids = ids;
   out.depth = builder.nodes[0].depth;
   out.build_ms = ms_since(start);
+}
+
+Bvh build_bvh(const Scene& s, const std::vector<int32_t>& ids) {
+  Bvh out;
+  rebuild_bvh(out, s, ids);
   return out;
 }
 

@@ -53,6 +53,9 @@ std::vector<int32_t> moving_triangles(const Scene& s);
 
 // A new tree over the triangles `ids` of `s` (positions as posed).
 Bvh build_bvh(const Scene& s, const std::vector<int32_t>& ids);
+// The same, into `b` in place of its tree: b's memory is reused (a dynamic scene rebuilds
+// every frame, and fresh arrays cost their page faults each time).
+void rebuild_bvh(Bvh& b, const Scene& s, const std::vector<int32_t>& ids);
 
 // The same tree with its boxes recomputed from `s`'s positions now. Returns false, leaving
 // the tree as it was, when the triangles that can be hit are not those the tree holds (one
