@@ -28,9 +28,12 @@ namespace rt {
 
 namespace {
 
-// Subtrees of at least this many triangles are built in parallel, and work is split into
-// chunks of this size.
+// Work over a node's triangles (binning, bounds, partitions) is split into chunks of this
+// size.
 constexpr size_t kParallelMin = 4096;
+// Subtrees of at least this many triangles are built as tasks of their own: small enough
+// that the last subtrees of a build do not leave threads idle.
+constexpr size_t kParallelSubtreeMin = 1024;
 // Nodes of at least this many triangles are partitioned in parallel (below, in place).
 constexpr size_t kParallelPartitionMin = 32768;
 // Nodes within a subtree this large are refitted on the calling thread.
@@ -355,7 +358,7 @@ struct Builder {
     l.end = mid;
     r.begin = mid;
     r.end = n.end;
-    const bool parallel = count >= kParallelMin;
+    const bool parallel = count >= kParallelSubtreeMin;
     auto child = [&](BuildNode& c, int32_t index, const Bin& from) {
       if (from.count == c.end - c.begin) {
         c.box = from.box();
