@@ -153,6 +153,15 @@ void FrameWriter::post(std::function<void()> write) {
   s_->wake.notify_one();
 }
 
+void FrameWriter::check() {
+  std::exception_ptr error;
+  {
+    std::lock_guard<std::mutex> lock(s_->mutex);
+    error = s_->error;
+  }
+  if (error) std::rethrow_exception(error);
+}
+
 void FrameWriter::finish() {
   if (!s_->thread.joinable()) return;
   {

@@ -49,6 +49,8 @@ class FrameWriter {
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
   void post(std::function<void()> write);
+  // Throws the first write's error, if one failed so far (without waiting).
+  void check();
   void finish();
 
  private:

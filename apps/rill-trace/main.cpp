@@ -166,7 +166,7 @@ nlohmann::json split_json(const rt::FrameTimes& t) {
 
 // What rill-trace is doing, for the message when memory runs out ("out of memory while
 // building the grid 512x512x512").
-std::string g_doing = "starting";
+thread_local std::string g_doing = "starting";  // per thread: frames are written on their own
 
 // Everything a render needs before its first frame: the scene with the command line's changes,
 // its grid, the tracer and the settings. Each rank of a distributed render makes its own.
@@ -394,7 +394,8 @@ rt::BvhUpdate parse_bvh_update_option(const std::string& s) {
 
 // What --frames asks of a render (FrameSequence.h): which frames, how the BVH follows the
 // moving objects, and each frame's output names. Checks that every output has a frame number
-// when there are several frames, and --video; sets a numbered default --out for a sequence.
+// when there are several frames, and --video (and, with check_tools, that ffmpeg is there);
+// sets a numbered default --out for a sequence.
 struct FramePlan {
   trace_cli::FrameSpan span;  // frame 0 alone without --frames
   bool animated = false;
@@ -408,7 +409,7 @@ struct FramePlan {
   }
 };
 
-FramePlan plan_frames(const RenderOptions& o, Prepared& p) {
+FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools = true) {
   const rt::Scene& scene = p.scene;
   FramePlan plan;
   plan.animated = scene.animation.animated();
@@ -436,7 +437,9 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p) {
   if (!o.video.empty()) {
     if (p.out.empty() || !plan.sequence)
       throw rt::SceneError("--video makes a video of the frames' PNGs: give --frames and --out");
-    if (std::string why = trace_cli::video_tool_missing(); !why.empty()) throw rt::SceneError(why);
+    if (std::string why = check_tools ? trace_cli::video_tool_missing() : std::string();
+        !why.empty())
+      throw rt::SceneError(why);
   }
   return plan;
 }
@@ -748,6 +751,12 @@ int render_distributed(const RenderOptions& o) {
   FramePlan plan;
   DistributedFrames frames;
   std::optional<dist::FarmResult> result;
+  // What the farm's render thread uses, here rather than in the try block: after a signal
+  // that thread may still be in a tile while rank 0 writes the partial outputs.
+  rt::RenderSettings rs;
+  int posed = -1;  // the frame the scene is posed at
+  rt::Camera camera;
+  std::function<rt::RenderResult(const dist::Tile&)> render_tile;
   try {
     dist::use_device(o.backend, dist::rank_device(o.device, mpi.local_rank()));
     dist::FarmOptions fo;
@@ -761,7 +770,7 @@ int render_distributed(const RenderOptions& o) {
     farm.start(
         [&] {
           prepared = prepare(o, root);
-          plan = plan_frames(o, *prepared);
+          plan = plan_frames(o, *prepared, root);  // ffmpeg for --video: rank 0's
           // Every camera of the sequence, before any tile: a bad one stops the start.
           const rt::Scene& scene = prepared->scene;
           for (int k = plan.span.first; plan.animated && k <= plan.span.last; ++k)
@@ -772,12 +781,13 @@ int render_distributed(const RenderOptions& o) {
         o.backend);
     // A worker that failed to load has no settings: it renders nothing, and waits for rank 0
     // to end the job.
-    const rt::RenderSettings rs = prepared ? prepared->rs : rt::RenderSettings{};
-    // The frame the scene is posed at: a tile of another frame moves it there first (on the
-    // farm's render thread, the only one that calls this).
-    int posed = -1;
-    rt::Camera camera = prepared ? prepared->scene.camera : rt::Camera{};
-    auto render_tile = [&](const dist::Tile& t) {
+    if (prepared) {
+      rs = prepared->rs;
+      camera = prepared->scene.camera;
+    }
+    // A tile of another frame than the one posed moves the scene there first (on the farm's
+    // render thread, the only one that calls this).
+    render_tile = [&](const dist::Tile& t) {
       const rt::Scene& scene = prepared->scene;
       if (plan.animated && t.frame != posed) {
         const double time = scene.animation.time.time_of(t.frame);
@@ -794,6 +804,7 @@ int render_distributed(const RenderOptions& o) {
     trace_cli::Progress progress(plan.span.count(), o.quiet || o.progress || !plan.sequence);
     trace_cli::FrameWriter writer;
     auto on_frame = [&](int frame, rt::RenderResult&& image) {
+      writer.check();  // a frame that could not be written ends the render now
       const rt::Scene& scene = prepared->scene;
       frames.done.push_back({frame, plan.animated ? scene.animation.time.time_of(frame) : 0.0,
                              ms_since(t_start), image.rays});
@@ -825,7 +836,19 @@ int render_distributed(const RenderOptions& o) {
     job.frames = plan.span.count();
     job.outputs = rs.outputs;
     result = farm.render(job, render_tile, on_frame, checkpoint);
-    writer.finish();
+    // mpirun may send SIGTERM again while the frames in hand are written: they and the partial
+    // outputs go through it (finish_distributed).
+    if (result && result->interrupted) {
+      std::signal(SIGTERM, SIG_IGN);
+      std::signal(SIGINT, SIG_IGN);
+    }
+    try {
+      writer.finish();
+    } catch (const std::exception& e) {
+      if (!result || result->complete()) throw;
+      // Incomplete anyway: the partial outputs are still worth writing.
+      std::fprintf(stderr, "rill-trace: %s\n", e.what());
+    }
     progress.finish();
   } catch (const std::exception& e) {
     // Rank 0: a rank failed to load or has another scene (the message names it), or rank 0

@@ -429,7 +429,7 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
         continue;
       }
       jobs.push_back(Job{t, {}});
-      jobs.back().result.start(*lane_, [&render_tile, t] {
+      jobs.back().result.start(*lane_, [render_tile, t] {
         const double start = now_s();
         RenderResult r = render_tile(t);
         return std::make_pair(std::move(r), (now_s() - start) * 1e3);
@@ -529,6 +529,7 @@ FarmResult Farm::render_master(const FarmJob& job,
   R.tiles = queue.total();
   R.frames = job.frames;
   SignalGuard signals;
+  std::exception_ptr output_error;  // on_frame failed
 
   // The tile back from a rank: into its frame's image, once; a frame complete goes to the
   // caller at once, and its image is freed.
@@ -551,7 +552,13 @@ FarmResult Farm::render_master(const FarmJob& job,
       ++frames.complete;
       RenderResult image = std::move(it->second);
       frames.open.erase(it);
-      if (on_frame) on_frame(t.frame, std::move(image));
+      // A failure to take the frame (an output that cannot be written) ends the render below,
+      // the normal way: every rank is told to stop.
+      if (on_frame && !output_error) try {
+          on_frame(t.frame, std::move(image));
+        } catch (...) {
+          output_error = std::current_exception();
+        }
     }
   };
   // Tiles for a worker, up to kAhead in hand.
@@ -592,7 +599,7 @@ FarmResult Farm::render_master(const FarmJob& job,
   std::deque<OwnJob> own;
   double own_front_since = t0;
   for (int r = 1; r < mpi_.size(); ++r) feed(r);
-  while (!queue.complete()) {
+  while (!queue.complete() && !output_error) {
     if (g_signal != 0) {
       R.interrupted = true;
       break;
@@ -619,7 +626,7 @@ FarmResult Farm::render_master(const FarmJob& job,
       if (!t) break;
       if (own.empty()) own_front_since = now_s();
       own.push_back(OwnJob{*t, {}});
-      own.back().result.start(*lane_, [&render_tile, t = *t] {
+      own.back().result.start(*lane_, [render_tile, t = *t] {
         const double start = now_s();
         RenderResult r = render_tile(t);
         return std::make_pair(std::move(r), (now_s() - start) * 1e3);
@@ -634,6 +641,7 @@ FarmResult Farm::render_master(const FarmJob& job,
         if (!mpi_.receive(source, tag, bytes, o_.rank_timeout)) break;
       } catch (const std::exception& e) {
         lose(source, e.what(), false, &queue);
+        mpi_.forget(source);  // lost before, and its late message broke off
         continue;
       }
       Peer& p = peers_[static_cast<size_t>(source)];
@@ -669,7 +677,9 @@ FarmResult Farm::render_master(const FarmJob& job,
       saved = queue.done();
       saved_at = now_s();
     }
-    lane_->wait_for_a_job(mpi_.sending() ? kSendingPoll : kPoll);
+    // Rank 0's own messages are small (they go out whole at once): no fast polling here, which
+    // a send to a rank that died would keep on for good.
+    lane_->wait_for_a_job(kPoll);
   }
   draw_progress(true);
   R.wall_ms = (now_s() - t0) * 1e3;
@@ -679,6 +689,7 @@ FarmResult Farm::render_master(const FarmJob& job,
   for (int r = 1; r < mpi_.size(); ++r)
     if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kStop);
   mpi_.flush(std::min(o_.rank_timeout, 5.0));
+  if (output_error) std::rethrow_exception(output_error);
   return R;
 }
 

@@ -18,7 +18,6 @@
 #include <cstring>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <new>
 #include <type_traits>
 
@@ -108,7 +107,7 @@ struct Lanes {
 #else
 struct Lanes {
   float v[4];
-  static Lanes load(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
+  static Lanes load(const float* p) { return {{p[0], p[1], p[2], 0.0f}}; }  // lane 3 unused
   static Lanes all(float f) { return {{f, f, f, f}}; }
   friend Lanes min(Lanes a, Lanes b) {
     for (int k = 0; k < 4; ++k) a.v[k] = b.v[k] < a.v[k] ? b.v[k] : a.v[k];
@@ -154,7 +153,8 @@ struct Bin {
   Box box() const { return Box{lo.xyz(), hi.xyz()}; }
   Box centroids() const { return Box{clo.xyz(), chi.xyz()}; }
 };
-static_assert(offsetof(Prim, box) == 0 && sizeof(Prim) == 32,
+static_assert(offsetof(Prim, box) == 0 && offsetof(Box, lo) == 0 && offsetof(Box, hi) == 12 &&
+                  offsetof(Prim, id) == 24 && sizeof(Prim) == 32,
               "Bin::add reads a Prim as two blocks of four floats");
 using Bins = std::array<Bin, kBvhBins>;
 
@@ -470,8 +470,11 @@ struct BuildMemory {
 };
 
 // The last build's memory, kept for the next (a build that finds it in use makes its own).
+// Claimed with a flag, not a mutex: a thread waiting inside one build may run a task of
+// another build (oneTBB), and a mutex may not be tried by the thread that holds it. It holds
+// the largest build's memory until the process ends.
 struct KeptMemory {
-  std::mutex mutex;
+  std::atomic<bool> busy{false};
   std::unique_ptr<BuildMemory> kept;
 } g_memory;
 
@@ -494,10 +497,16 @@ void rebuild_bvh(Bvh& out, const Scene& s, const std::vector<int32_t>& ids) {
   }
   const size_t n = ids.size();
   // The last build's memory when it is large enough and no other build holds it.
-  std::unique_lock<std::mutex> lock(g_memory.mutex, std::try_to_lock);
+  const bool claimed = !g_memory.busy.exchange(true, std::memory_order_acquire);
+  struct Release {
+    bool claimed;
+    ~Release() {
+      if (claimed) g_memory.busy.store(false, std::memory_order_release);
+    }
+  } release{claimed};
   std::unique_ptr<BuildMemory> own;
   BuildMemory* memory = nullptr;
-  if (lock.owns_lock()) {
+  if (claimed) {
     if (!g_memory.kept || g_memory.kept->capacity < n)
       g_memory.kept = std::make_unique<BuildMemory>(n);
     memory = g_memory.kept.get();
