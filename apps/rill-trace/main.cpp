@@ -114,7 +114,7 @@ struct RenderOptions {
   // Distributed rendering (docs/distributed.md): tile size and the size of the last tiles
   // (-1: half the tile size; 0: not cut), how long a silent rank or a slow tile is waited
   // for, the device, whether distribution is required.
-  int tile = 64, tail_tile = -1;
+  int tile = 128, tail_tile = -1;
   double rank_timeout = 20, tile_timeout = 0, checkpoint = 2;
   std::string device;
   bool distribute = false;
@@ -1139,7 +1139,7 @@ int main(int argc, char** argv) {
   r->add_option("--tile", ro.tile,
                 "distributed (mpirun): tile size in pixels, handed out one at a time; images "
                 "do not depend on it")
-      ->default_str("64")
+      ->default_str("128")
       ->check(number_in(1, 16384, true));
   r->add_option("--tail-tile", ro.tail_tile,
                 "distributed: the last tiles handed out (twice as many as there are ranks) are "

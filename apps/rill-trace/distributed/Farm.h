@@ -43,7 +43,7 @@ namespace rt::distributed {
 class Lane;  // Farm.cpp: the thread that loads and renders
 
 struct FarmOptions {
-  int tile = 64;             // tile size in pixels (square; smaller at the edges)
+  int tile = 128;            // tile size in pixels (square; smaller at the edges)
   int tail_tile = 0;         // the job's last tiles are cut to this size; 0: not cut
   double rank_timeout = 20;  // seconds of silence before a rank is lost
   double tile_timeout = 0;   // seconds a rank may take for a tile; 0: no limit
