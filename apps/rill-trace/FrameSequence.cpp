@@ -5,14 +5,11 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
-#include <deque>
 #include <exception>
 #include <filesystem>
 #include <mutex>
-#include <thread>
 #include <utility>
 
 #include "rill/rt/scene/FramePattern.h"
@@ -106,37 +103,13 @@ void write_video(const std::string& pattern, int first, double fps, const std::s
     throw rt::SceneError("--video: ffmpeg failed writing " + video + " (its message is above)");
 }
 
+// The first write's error, shared by the writes that run on the thread and the caller.
 struct FrameWriter::State {
   std::mutex mutex;
-  std::condition_variable wake;
-  std::deque<std::function<void()>> writes;
-  bool closing = false;
   std::exception_ptr error;
-  std::thread thread;
-  void run() {
-    for (;;) {
-      std::function<void()> write;
-      {
-        std::unique_lock<std::mutex> lock(mutex);
-        wake.wait(lock, [&] { return closing || !writes.empty(); });
-        if (writes.empty()) return;
-        write = std::move(writes.front());
-        writes.pop_front();
-        if (error) continue;  // after a failure the rest are dropped
-      }
-      try {
-        write();
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        error = std::current_exception();
-      }
-    }
-  }
 };
 
-FrameWriter::FrameWriter() : s_(std::make_unique<State>()) {
-  s_->thread = std::thread([s = s_.get()] { s->run(); });
-}
+FrameWriter::FrameWriter() : s_(std::make_shared<State>()) {}
 
 FrameWriter::~FrameWriter() {
   try {
@@ -146,11 +119,18 @@ FrameWriter::~FrameWriter() {
 }
 
 void FrameWriter::post(std::function<void()> write) {
-  {
-    std::lock_guard<std::mutex> lock(s_->mutex);
-    s_->writes.push_back(std::move(write));
-  }
-  s_->wake.notify_one();
+  thread_.post([s = s_, write = std::move(write)] {
+    {
+      std::lock_guard<std::mutex> lock(s->mutex);
+      if (s->error) return;  // after a failure the rest are dropped
+    }
+    try {
+      write();
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(s->mutex);
+      s->error = std::current_exception();
+    }
+  });
 }
 
 void FrameWriter::check() {
@@ -163,14 +143,13 @@ void FrameWriter::check() {
 }
 
 void FrameWriter::finish() {
-  if (!s_->thread.joinable()) return;
+  thread_.drain();
+  std::exception_ptr error;
   {
     std::lock_guard<std::mutex> lock(s_->mutex);
-    s_->closing = true;
+    error = std::exchange(s_->error, nullptr);
   }
-  s_->wake.notify_one();
-  s_->thread.join();
-  if (s_->error) std::rethrow_exception(std::exchange(s_->error, nullptr));
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace trace_cli

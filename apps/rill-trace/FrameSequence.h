@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "JobThread.h"
 #include "rill/rt/scene/Animation.h"
 #include "rill/rt/scene/FramePattern.h"
 
@@ -38,10 +39,10 @@ class Progress {
   bool on_;
 };
 
-// Writes frames on a thread of its own, in the order they were posted, so that the thread that
-// posts them goes on (rank 0 of a distributed sequence keeps feeding the ranks while a PNG is
-// encoded). The first write that throws ends the writing; finish() waits for the rest and
-// throws that error.
+// Writes frames on a thread of its own (a JobThread), in the order they were posted, so that the
+// thread that posts them goes on (rank 0 of a distributed sequence keeps feeding the ranks while a
+// PNG is encoded). The first write that throws ends the writing; finish() waits for the writes
+// posted and throws that error.
 class FrameWriter {
  public:
   FrameWriter();
@@ -55,7 +56,8 @@ class FrameWriter {
 
  private:
   struct State;
-  std::unique_ptr<State> s_;
+  std::shared_ptr<State> s_;  // shared with the writes in flight
+  JobThread thread_;
 };
 
 // Runs ffmpeg on the frames written as `pattern` (frames first..), at `fps`, into `video`.

@@ -275,14 +275,16 @@ std::vector<std::string> write_outputs(
 }
 
 // The --stats-json fields a distributed render shares with a single-process one.
-nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, const rt::RenderResult& r) {
+// width x height images, rays traced over all of them.
+nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, int height,
+                          int64_t rays) {
   const rt::Scene& scene = p.scene;
   const rt::Grid& grid = p.grid;
   nlohmann::json j;
   j["scene"] = o.scene;
   j["triangles"] = scene.triangle_count();
-  j["width"] = r.width;
-  j["height"] = r.height;
+  j["width"] = width;
+  j["height"] = height;
   j["backend"] = o.backend;
   j["accuracy"] = o.accuracy;
   j["strategy"] = o.strategy;
@@ -298,7 +300,7 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, const rt::R
                {"degenerate", grid.degenerate},
                {"non_finite", grid.non_finite}};
   j["warnings"] = scene.warnings;
-  j["rays"] = r.rays;
+  j["rays"] = rays;
   return j;
 }
 
@@ -573,7 +575,7 @@ int render(RenderOptions o) {
   const double rays_per_s =
       r.trace_ms > 0 ? static_cast<double>(r.rays) / (r.trace_ms * 1e-3) : 0.0;
   if (!o.stats_json.empty()) {
-    nlohmann::json j = stats_json(o, p, r);
+    nlohmann::json j = stats_json(o, p, r.width, r.height, r.rays);
     j["launches"] = r.launches;
     if (o.strategy == "multipass") {
       j["wait_threshold"] = rs.wait_threshold;
@@ -926,11 +928,7 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
   }
   const double wall_ms = R.wall_ms;
   if (!o.stats_json.empty()) {
-    rt::RenderResult whole;  // the fields stats_json reads: size and rays, over every frame
-    whole.width = frames.width;
-    whole.height = frames.height;
-    whole.rays = frames.rays;
-    nlohmann::json j = stats_json(o, p, whole);
+    nlohmann::json j = stats_json(o, p, frames.width, frames.height, frames.rays);
     nlohmann::json ranks = nlohmann::json::array();
     for (const dist::RankReport& r : R.ranks)
       ranks.push_back({{"rank", r.rank},

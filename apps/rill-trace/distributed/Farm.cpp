@@ -10,7 +10,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <deque>
@@ -18,78 +17,11 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <thread>
 
 #include "rill/rt/scene/Scene.h"
 
 namespace rt::distributed {
-
-// The one thread that loads the scene and renders every tile of this rank, one job at a time.
-// One thread for all: a GL context is current on one thread at a time (EGL refuses to make it
-// current on another while it is current on a thread that ended). Detached, not joined: a
-// rank that must end while its tile still renders (a hung device) ends the process instead of
-// waiting for it.
-class Lane {
- public:
-  Lane() : s_(std::make_shared<State>()) {
-    std::thread([s = s_] { s->run(); }).detach();
-  }
-  ~Lane() {
-    {
-      std::lock_guard<std::mutex> lock(s_->mutex);
-      s_->quit = true;
-    }
-    s_->wake.notify_one();
-  }
-  Lane(const Lane&) = delete;
-  Lane& operator=(const Lane&) = delete;
-  // Runs job on the lane after the jobs before it (one at a time: the caller polls each).
-  void post(std::function<void()> job) {
-    {
-      std::lock_guard<std::mutex> lock(s_->mutex);
-      s_->jobs.push_back(std::move(job));
-    }
-    s_->wake.notify_one();
-  }
-  // Waits until a job has finished since the last call, or for `poll`, whichever is first:
-  // the caller's loop sends a finished tile at once instead of at its next poll, without a
-  // thread of its own waiting on MPI.
-  void wait_for_a_job(std::chrono::microseconds poll) {
-    std::unique_lock<std::mutex> lock(s_->mutex);
-    s_->finished_cv.wait_for(lock, poll, [&] { return s_->finished != seen_; });
-    seen_ = s_->finished;
-  }
-
- private:
-  struct State {
-    std::mutex mutex;
-    std::condition_variable wake, finished_cv;
-    std::deque<std::function<void()>> jobs;
-    uint64_t finished = 0;  // jobs done
-    bool quit = false;
-    void run() {
-      for (;;) {
-        std::function<void()> job;
-        {
-          std::unique_lock<std::mutex> lock(mutex);
-          wake.wait(lock, [&] { return quit || !jobs.empty(); });
-          if (jobs.empty()) return;
-          job = std::move(jobs.front());
-          jobs.pop_front();
-        }
-        job();
-        {
-          std::lock_guard<std::mutex> lock(mutex);
-          ++finished;
-        }
-        finished_cv.notify_all();
-      }
-    }
-  };
-  std::shared_ptr<State> s_;
-  uint64_t seen_ = 0;  // `finished` at the last wait_for_a_job
-};
 
 namespace {
 

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "JobThread.h"
 #include "distributed/Messages.h"
 #include "distributed/MpiSession.h"
 #include "distributed/TileQueue.h"
@@ -40,7 +41,10 @@
 
 namespace rt::distributed {
 
-class Lane;  // Farm.cpp: the thread that loads and renders
+// The thread that loads the scene and renders every tile of this rank, one job at a time.
+// One thread for all: a GL context is current on one thread at a time (EGL refuses to make it
+// current on another while it is current on a thread that ended).
+using Lane = trace_cli::JobThread;
 
 struct FarmOptions {
   int tile = 128;            // tile size in pixels (square; smaller at the edges)

@@ -23,6 +23,21 @@ double seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// Drops the entries of `list` that `match`: each request is freed, to complete (if ever) on
+// MPI's side; its bytes must live as long, so the entry is leaked on purpose. For sends to and
+// receives from a rank that is lost, or that MPI_Finalize may still be moving.
+template <class T, class Match>
+void abandon(std::vector<T*>& list, Match match) {
+  for (size_t i = 0; i < list.size();) {
+    if (!match(*list[i])) {
+      ++i;
+      continue;
+    }
+    MPI_Request_free(&list[i]->request);
+    list.erase(list.begin() + static_cast<std::ptrdiff_t>(i));
+  }
+}
+
 }  // namespace
 
 struct MpiSession::Pending {
@@ -59,9 +74,8 @@ MpiSession::MpiSession() {
 
 MpiSession::~MpiSession() {
   for (Pending* p : outbox_) delete p;
-  // Receives still arriving may write into their bytes until MPI_Finalize: their requests
-  // are freed and the bytes leaked on purpose.
-  for (Incoming* in : inbox_) MPI_Request_free(&in->request);
+  // Receives still arriving may write into their bytes until MPI_Finalize.
+  abandon(inbox_, [](const Incoming&) { return true; });
   MPI_Finalize();
 }
 
@@ -91,24 +105,8 @@ void MpiSession::progress() {
 }
 
 void MpiSession::forget(int dest) {
-  for (size_t i = 0; i < outbox_.size();) {
-    if (outbox_[i]->dest != dest) {
-      ++i;
-      continue;
-    }
-    // Freed when (if ever) the send completes; its bytes must live as long: leaked on purpose.
-    MPI_Request_free(&outbox_[i]->request);
-    outbox_.erase(outbox_.begin() + static_cast<std::ptrdiff_t>(i));
-  }
-  // Its messages still arriving, the same way.
-  for (size_t i = 0; i < inbox_.size();) {
-    if (inbox_[i]->source != dest) {
-      ++i;
-      continue;
-    }
-    MPI_Request_free(&inbox_[i]->request);
-    inbox_.erase(inbox_.begin() + static_cast<std::ptrdiff_t>(i));
-  }
+  abandon(outbox_, [dest](const Pending& p) { return p.dest == dest; });
+  abandon(inbox_, [dest](const Incoming& in) { return in.source == dest; });
 }
 
 bool MpiSession::flush(double timeout_s) {
@@ -151,10 +149,8 @@ bool MpiSession::receive(int& source, int& tag, Bytes& bytes, double timeout_s) 
       if (now - in->since > timeout_s) {
         source = in->source;
         tag = in->tag;
-        // Forgotten before the throw, or the next call would throw again: freed when (if
-        // ever) the receive completes; its bytes must live as long: leaked on purpose.
-        MPI_Request_free(&in->request);
-        inbox_.erase(inbox_.begin() + static_cast<std::ptrdiff_t>(i));
+        // Forgotten before the throw, or the next call would throw again.
+        abandon(inbox_, [in](const Incoming& other) { return &other == in; });
         throw std::runtime_error("a " + std::string(tag_name(tag)) + " message from rank " +
                                  std::to_string(source) + " did not arrive whole within " +
                                  std::to_string(static_cast<int>(timeout_s)) + " s");
