@@ -3,6 +3,8 @@
 // small ones, and a render reads back only the outputs asked for.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -30,6 +32,11 @@ std::vector<float> hard_linear_values() {
                        std::nanf(""), 1e-45f, 1e-40f, 0.0031308f, 0.5f, 2e38f};
   for (float t : srgb8_thresholds())
     v.insert(v.end(), {std::nextafter(t, 0.0f), t, std::nextafter(t, 2.0f)});
+  // The first and last float of every bucket of the encoder's table.
+  for (size_t b = 1; b < srgb8_tables().below.size(); ++b) {
+    const uint32_t first = static_cast<uint32_t>(b + kSrgb8FirstBucket) << kSrgb8BucketShift;
+    v.insert(v.end(), {std::bit_cast<float>(first), std::bit_cast<float>(first - 1)});
+  }
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(0.0f, 1.25f);
   for (int i = 0; i < 20000; ++i) v.push_back(u(rng));
@@ -45,15 +52,32 @@ TEST(Srgb8Thresholds, AreWhereTheHostEncodingSteps) {
   }
 }
 
+// The encoder's rule (Srgb8.h) on the host, over every 61st float of [0, 1]: a bucket's
+// count and two comparisons give the host's level.
+TEST(Srgb8Tables, TheBucketsCountTheThresholdsBelowEveryValue) {
+  const Srgb8Tables& t = srgb8_tables();
+  ASSERT_EQ(t.thresholds.size(), 257u);
+  size_t differ = 0;
+  for (uint32_t bits = 0; bits <= 0x3f800000u; bits += 61) {
+    const float c = std::bit_cast<float>(bits);
+    const int bucket = std::max(static_cast<int>(bits >> kSrgb8BucketShift) - kSrgb8FirstBucket, 0);
+    const int32_t below = t.below[static_cast<size_t>(bucket)];
+    const int level = below + (t.thresholds[static_cast<size_t>(below)] <= c) +
+                      (t.thresholds[static_cast<size_t>(below) + 1] <= c);
+    if (level != to_srgb8(c) && differ++ < 5)
+      ADD_FAILURE() << c << ": " << level << " from the buckets, " << int{to_srgb8(c)};
+  }
+  EXPECT_EQ(differ, 0u);
+}
+
 TEST_P(FilmTest, DeviceSrgb8EqualsTheHostsForEveryKindOfFloat) {
   RT_REQUIRE_BACKEND(GetParam());
   const std::vector<float> all = hard_linear_values();
-  const Array<Float> thresholds(
-      std::vector<float>(srgb8_thresholds().begin(), srgb8_thresholds().end()), "thresholds");
+  const Srgb8Encoder srgb8;
   Program p = program("srgb8_test", [&] {
     Input<Float> linear("linear");
     Output<Int> level("level");
-    level = encode_srgb8(linear, thresholds);
+    level = srgb8.encode(linear);
   });
   for (Accuracy a : {Accuracy::Strict, Accuracy::Fast}) {
     CompileOptions opt;

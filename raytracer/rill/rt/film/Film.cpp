@@ -17,15 +17,6 @@ namespace rt {
 
 using namespace rill;
 
-namespace {
-
-std::vector<float> threshold_data() {
-  const auto& t = srgb8_thresholds();
-  return std::vector<float>(t.begin(), t.end());
-}
-
-}  // namespace
-
 // One backend's kernels and the streams of its last frame size.
 struct Film::Buffers {
   Buffers(const Film& film, const std::string& backend, Accuracy a)
@@ -47,7 +38,7 @@ struct Film::Buffers {
   std::vector<int32_t> packed_host;   // and its host copy, kept for the next frame
 };
 
-Film::Film() : thresholds_(threshold_data(), "srgb8_thresholds") {
+Film::Film() {
   // sum + colour as a float and the error that rounding dropped (Knuth's two-sum, exact
   // without FMA contraction or reassociation, which strict rules out); the errors add up
   // in the carry. The first sample starts both.
@@ -69,8 +60,7 @@ Film::Film() : thresholds_(threshold_data(), "srgb8_thresholds") {
   encode_ = program("rill_film_encode", [&] {
     Input<Float3> color("color");
     Output<Int> rgb8("rgb8");
-    rgb8 = pack_rgb8(encode_srgb8(color.x(), thresholds_), encode_srgb8(color.y(), thresholds_),
-                     encode_srgb8(color.z(), thresholds_));
+    rgb8 = pack_rgb8(srgb8_.encode(color.x()), srgb8_.encode(color.y()), srgb8_.encode(color.z()));
   });
 }
 

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "rill/rt/Tracer.h"
+#include "rill/rt/film/Srgb8.h"
 
 namespace rt {
 
@@ -49,7 +50,7 @@ class Film {
   struct Buffers;
   rill::Uniform<rill::Int> first_{0, "first_sample"};
   rill::Uniform<rill::Float> samples_{1.0f, "samples"};
-  rill::Array<rill::Float> thresholds_;
+  Srgb8Encoder srgb8_;
   rill::Program add_, mean_, encode_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
   Buffers* now_ = nullptr;                                   // the frame's

@@ -1,8 +1,12 @@
-// The device's 8-bit sRGB encoding (Srgb8.h): thresholds found on the host, a binary search
-// in the kernel.
+// The device's 8-bit sRGB encoding (Srgb8.h): thresholds and buckets found on the host, three
+// gathers and two comparisons in the kernel.
 #include "rill/rt/film/Srgb8.h"
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "rill/rt/scene/Image.h"
 
@@ -32,6 +36,29 @@ float first_float_at(int level) {
   return from_bits(lo);
 }
 
+Srgb8Tables make_tables() {
+  const auto& t = srgb8_thresholds();
+  Srgb8Tables out;
+  out.thresholds.assign(t.begin(), t.end());
+  out.thresholds.insert(out.thresholds.end(), 2, std::numeric_limits<float>::infinity());
+  auto at_or_below = [&](float v) {
+    return static_cast<int32_t>(std::upper_bound(t.begin(), t.end(), v) - t.begin());
+  };
+  // Buckets run up to the one that holds 1.0f alone (the device clamps to [0, 1]).
+  const uint32_t last = (0x3f800000u >> kSrgb8BucketShift) - kSrgb8FirstBucket;
+  for (uint32_t b = 0; b <= last; ++b) {
+    const uint32_t first_bits = b == 0 ? 0u : (b + kSrgb8FirstBucket) << kSrgb8BucketShift;
+    const uint32_t last_bits =
+        b == last ? 0x3f800000u : ((b + kSrgb8FirstBucket + 1) << kSrgb8BucketShift) - 1;
+    const int32_t below = at_or_below(from_bits(first_bits));
+    if (at_or_below(from_bits(last_bits)) - below > 2)
+      throw std::logic_error("srgb8 buckets: bucket " + std::to_string(b) +
+                             " holds more than two thresholds");
+    out.below.push_back(below);
+  }
+  return out;
+}
+
 }  // namespace
 
 const std::array<float, 255>& srgb8_thresholds() {
@@ -44,17 +71,24 @@ const std::array<float, 255>& srgb8_thresholds() {
   return table;
 }
 
-Int encode_srgb8(const Float& linear, const Array<Float>& thresholds) {
-  // How many thresholds lie at or below the value: steps 128, 64, ..., 1 reach any count in
-  // 0..255, and a probe never passes 255 (before step s the count is at most 256 - 2s).
-  // NaN compares false everywhere and encodes to 0, as on the host.
-  Int level = 0;
-  for (int step = 128; step >= 1; step /= 2) {
-    Int probe = level + step;
-    Bool reached = thresholds[probe - 1] <= linear;
-    level = select(reached, probe, level);
-  }
-  return level;
+const Srgb8Tables& srgb8_tables() {
+  static const Srgb8Tables tables = make_tables();
+  return tables;
+}
+
+Srgb8Encoder::Srgb8Encoder()
+    : thresholds_(srgb8_tables().thresholds, "srgb8_thresholds"),
+      below_(srgb8_tables().below, "srgb8_buckets") {}
+
+Int Srgb8Encoder::encode(const Float& linear) const {
+  // max(0, x) returns its first operand for a NaN (Math.h), so NaN and negatives become 0
+  // and encode to 0, as on the host; above 1 every threshold counts.
+  Float c = min(max(Float(0.0f), linear), 1.0f);
+  Int bucket = max((as_int(c) >> kSrgb8BucketShift) - kSrgb8FirstBucket, 0);
+  Int level = below_[bucket];
+  Int next = select(thresholds_[level] <= c, Int(1), Int(0));
+  Int after = select(thresholds_[level + 1] <= c, Int(1), Int(0));
+  return level + next + after;
 }
 
 Int pack_rgb8(const Int& r, const Int& g, const Int& b) {

@@ -3,24 +3,49 @@
 //
 // The host encodes with std::pow in double, which no backend can promise to reproduce bit
 // for bit. The encoding is monotonic, though, so it is fully described by 255 thresholds:
-// the smallest float that encodes to each level 1..255. The device counts the thresholds at
-// or below a value by a binary search (8 gathers), so its byte equals the host's for every
-// float, NaN and infinities included, on every backend and accuracy.
+// the smallest float that encodes to each level 1..255. A level is the count of thresholds
+// at or below the value, so the device's byte equals the host's for every float, NaN and
+// infinities included, on every backend and accuracy.
+//
+// The count takes three gathers instead of a binary search's eight: the value's bit pattern
+// (exponent and top mantissa bits) picks a bucket, a table gives the count below the bucket,
+// and at most two thresholds lie inside any bucket (checked when the table is made), so two
+// comparisons finish it.
 #pragma once
 
 #include <rill/rill.h>
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace rt {
 
 // threshold[L - 1]: the smallest float v with to_srgb8(v) >= L, for L in 1..255.
 const std::array<float, 255>& srgb8_thresholds();
 
-// The encoded level (0..255) of one linear value, gathered from `thresholds` (an array of
-// srgb8_thresholds()).
-rill::Int encode_srgb8(const rill::Float& linear, const rill::Array<rill::Float>& thresholds);
+// The host side of the buckets: a value c in [0, 1] falls in bucket
+// max((bits(c) >> kSrgb8BucketShift) - kSrgb8FirstBucket, 0).
+inline constexpr int kSrgb8BucketShift = 16;
+inline constexpr int kSrgb8FirstBucket = (127 - 13) << (23 - kSrgb8BucketShift);  // 2^-13
+struct Srgb8Tables {
+  std::vector<float> thresholds;  // srgb8_thresholds() and two +infinity, read past the end
+  std::vector<int32_t> below;     // per bucket: the thresholds at or below its first float
+};
+// Made once; throws if a bucket would hold more than two thresholds.
+const Srgb8Tables& srgb8_tables();
+
+// The tables on the device and the encoding that reads them.
+class Srgb8Encoder {
+ public:
+  Srgb8Encoder();
+  // The encoded level (0..255) of one linear value.
+  rill::Int encode(const rill::Float& linear) const;
+
+ private:
+  rill::Array<rill::Float> thresholds_;
+  rill::Array<rill::Int> below_;
+};
 
 // Packs an encoded colour into one Int (r + 256 g + 65536 b), and back on the host.
 rill::Int pack_rgb8(const rill::Int& r, const rill::Int& g, const rill::Int& b);
