@@ -63,7 +63,7 @@ struct Box {
 struct alignas(16) Prim {
   Box box;
   int32_t id = 0;
-  int32_t unused = 0;
+  int32_t bin = 0;  // its bin in the last binning of its node, which the partition reads
   glm::vec3 centroid() const { return box.lo + box.hi; }
   float centroid(int axis) const { return box.lo[axis] + box.hi[axis]; }
 };
@@ -262,12 +262,15 @@ struct Builder {
   }
 
   // The node's triangles binned by their centroids along `axis` into bins[0, nb), which
-  // start empty.
-  void bin(const BuildNode& n, int axis, float scale, int nb, Bin* bins) const {
+  // start empty; each keeps its bin for the partition.
+  void bin(const BuildNode& n, int axis, float scale, int nb, Bin* bins) {
     const float lo = n.centroids.lo[axis];
     auto add = [&](size_t from, size_t to, Bin* into) {
-      for (size_t i = from; i < to; ++i)
-        into[static_cast<size_t>(bin_of(prims[i].centroid(axis), lo, scale, nb))].add(prims[i]);
+      for (size_t i = from; i < to; ++i) {
+        const int b = bin_of(prims[i].centroid(axis), lo, scale, nb);
+        prims[i].bin = b;
+        into[static_cast<size_t>(b)].add(prims[i]);
+      }
     };
     if (n.end - n.begin < 4 * kParallelMin) return add(n.begin, n.end, bins);
     const Bins sum = tbb::parallel_reduce(
@@ -332,10 +335,7 @@ struct Builder {
       if (split > 0) {
         for (int k = 0; k < split; ++k) n_left.add(bins[k]);
         for (int k = split; k < nb; ++k) n_right.add(bins[k]);
-        const float lo = n.centroids.lo[axis];
-        mid = partition(n.begin, n.end, [&](const Prim& p) {
-          return bin_of(p.centroid(axis), lo, scale, nb) < split;
-        });
+        mid = partition(n.begin, n.end, [split](const Prim& p) { return p.bin < split; });
       }
     }
     if (mid == n.begin && count > static_cast<size_t>(kBvhLeafMax)) {
