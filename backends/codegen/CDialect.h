@@ -90,10 +90,13 @@ class CDialect : public Dialect {
     std::string id = std::to_string(s.array);
     std::string shape = "arr" + id + "_shape";
     // Map each index into its dimension under the array's boundary mode, then linearize (x
-    // fastest), in 64 bits.
+    // fastest), in 64 bits. A 1D clamped index is found in 32 bits (Helpers.cpp), against the
+    // count the entry point declared (array_counts32).
     const std::string fn = "rill_" + boundary_index_helper(a.boundary);
     auto dim = [&](size_t d) { return shape + "[" + std::to_string(d) + "]"; };
     std::string lin = fn + "(" + index[0] + ", " + dim(0) + ")";
+    if (index.size() == 1 && fn == "rill_clamp_index")
+      lin = "(int64_t)rill_clamp_index32(" + index[0] + ", arr" + id + "_n32)";
     if (index.size() > 1) lin += " + " + dim(0) + " * " + fn + "(" + index[1] + ", " + dim(1) + ")";
     if (index.size() > 2)
       lin += " + " + dim(0) + " * " + dim(1) + " * " + fn + "(" + index[2] + ", " + dim(2) + ")";

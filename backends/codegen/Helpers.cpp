@@ -64,6 +64,13 @@ RILL_FN int32_t rill_f2i(rill_real x) {
    is the reference). Wrap and mirror map a negative i through -1 - i, which never overflows,
    so no remainder of a negative number is taken. Computed in 64 bits. */
 RILL_FN int64_t rill_clamp_index(int32_t i, int64_t n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
+/* The same for one dimension in 32-bit arithmetic (64-bit compares cost GPUs two or more
+   instructions each): n32 is n capped at 2^31, which no int32 index reaches, so the result is
+   rill_clamp_index's for every n. */
+RILL_FN uint32_t rill_count32(int64_t n) { return n < (int64_t)2147483648u ? (uint32_t)n : 2147483648u; }
+RILL_FN int32_t rill_clamp_index32(int32_t i, uint32_t n32) {
+  return i < 0 ? 0 : ((uint32_t)i >= n32 ? (int32_t)(n32 - 1u) : i);
+}
 RILL_FN int64_t rill_wrap_index(int32_t i, int64_t n) {
   const int64_t j = i >= 0 ? (int64_t)i : -1 - (int64_t)i;
   return i >= 0 ? j % n : n - 1 - j % n;
@@ -76,6 +83,15 @@ RILL_FN int64_t rill_mirror_index(int32_t i, int64_t n) {
 RILL_FN int rill_index_inside(int32_t i, int64_t n) { return i >= 0 && i < n; }
 )";
   return text;
+}
+
+std::string array_counts32(size_t arrays, const std::string& indent) {
+  std::string src;
+  for (size_t i = 0; i < arrays; ++i) {
+    const std::string id = std::to_string(i);
+    src += indent + "const uint32_t arr" + id + "_n32 = rill_count32(arr" + id + "_shape[0]);\n";
+  }
+  return src;
 }
 
 }  // namespace rill::codegen

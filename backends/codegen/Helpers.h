@@ -10,10 +10,16 @@
 //   int32_t, uint32_t, int64_t
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace rill::codegen {
 
 const std::string& c_family_helpers();
+
+// The 32-bit element count of each array (arr<k>_n32, from arr<k>_shape[0]) that 1D clamped
+// gathers index with (CDialect::gather): declarations for an entry point that has set up
+// arr<k>_shape.
+std::string array_counts32(size_t arrays, const std::string& indent);
 
 }  // namespace rill::codegen

@@ -83,6 +83,7 @@ std::string c_entry_locals(const Function& f, const codegen::Dialect& d) {
     src +=
         "  const int64_t* arr" + id + "_shape = L->array_shapes + " + std::to_string(i * 3) + ";\n";
   }
+  src += codegen::array_counts32(f.arrays.size(), "  ");
   return src;
 }
 

@@ -79,6 +79,7 @@ std::string emit_opencl(const Function& f, Accuracy accuracy) {
   for (size_t i = 0; i < f.arrays.size(); ++i)
     src += "  __global const long* arr" + std::to_string(i) + "_shape = rill_shapes + " +
            std::to_string(i * 3) + ";\n";
+  src += codegen::array_counts32(f.arrays.size(), "  ");
   src += codegen::unpack_uniforms(f, d, "rill_uniforms", "  ");
   src += p.declarations(1);
   src += p.body(1);
