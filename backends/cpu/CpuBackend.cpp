@@ -2,10 +2,10 @@
 
 #include <dlfcn.h>
 #include <tbb/blocked_range.h>
-#include <tbb/task_arena.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -150,16 +150,18 @@ class CpuKernel : public CompiledKernel {
       return acc;
     };
     // A launch of one range runs on the calling thread: TBB would only add its dispatch.
+    const Stopwatch loop;
+    if (units == 0) return {0, 0, 0.0};  // nothing ran
     if (units <= range_units) {
       const Counts c = run_range(tbb::blocked_range<int64_t>(0, units, range_units), Counts{});
-      return {c.written, c.selected};
+      return {c.written, c.selected, loop.ms()};
     }
     Counts total =
         tbb::parallel_reduce(tbb::blocked_range<int64_t>(0, units, range_units), Counts{},
                              run_range, [](Counts x, Counts y) {
                                return Counts{x.written + y.written, x.selected + y.selected};
                              });
-    return {total.written, total.selected};
+    return {total.written, total.selected, loop.ms()};
   }
 
   const std::string& source() const override { return source_; }

@@ -38,6 +38,7 @@
 #include "GLContext.h"
 #include "GLSLEmitter.h"
 #include "GLSession.h"
+#include "KernelTimer.h"
 #include "WarmUpLaunch.h"
 #include "rill/Parameters.h"
 #include "rill/StateMask.h"
@@ -355,6 +356,7 @@ class GLSLBackend : public Backend, public SessionOwner {
   GLuint fbo() const { return fbo_; }
   GLuint vao() const { return vao_; }
   GLuint query() const { return query_; }
+  const KernelTimer& timer() const { return timer_; }
   int max_texture_units() const { return max_units_; }
 
  private:
@@ -375,6 +377,7 @@ class GLSLBackend : public Backend, public SessionOwner {
         if (!pool.empty()) gl->glDeleteTextures(static_cast<GLsizei>(pool.size()), pool.data());
       if (mask_program_) gl->glDeleteProgram(mask_program_);
       gl->glDeleteQueries(1, &query_);
+      timer_.destroy(*gl);
       gl->glDeleteVertexArrays(1, &vao_);
       gl->glDeleteFramebuffers(1, &fbo_);
     }
@@ -406,6 +409,7 @@ class GLSLBackend : public Backend, public SessionOwner {
       gl.glGenFramebuffers(1, &fbo_);
       gl.glGenVertexArrays(1, &vao_);
       gl.glGenQueries(1, &query_);
+      timer_.create(gl);
       gl.glDisable(GL_DITHER);
       gl.glDisable(GL_BLEND);
       gl.glDisable(GL_DEPTH_TEST);
@@ -429,6 +433,7 @@ class GLSLBackend : public Backend, public SessionOwner {
   int max_draw_buffers_ = 1, max_units_ = 16;
   Driver driver_;
   GLuint fbo_ = 0, vao_ = 0, query_ = 0;
+  KernelTimer timer_;  // how long a launch's draws ran
   GLuint mask_program_ = 0;
   std::map<std::pair<int, int>, GLuint> stencils_;
   // Textures for copies of outputs, by (internal format, row, rows), for reuse (see
@@ -521,7 +526,7 @@ void GLSLKernel::locate(const GL& gl, const LaunchArgs& a) {
 }
 
 LaunchResult GLSLKernel::run(const LaunchArgs& a) {
-  if (a.count == 0 && !a.warm_up) return {0, 0};
+  if (a.count == 0 && !a.warm_up) return {0, 0, 0.0};  // nothing ran
   if (a.count > kMaxRow * kMaxRow)
     throw Error("GLSL backend: streams are limited to 4096 x 4096 elements");
   std::lock_guard<std::recursive_mutex> lock(be_.mutex());
@@ -604,6 +609,7 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
       gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
   } stencil_off{gl, be_.fbo(), a.mask != nullptr};
+  KernelTimer::Running timed = be_.timer().start(gl);
   const int64_t selected = a.mask ? draw_mask(gl, a, shape) : a.count;
   for (size_t pi = 0; pi < passes_.size(); ++pi) {
     const Pass& p = passes_[pi];
@@ -655,11 +661,12 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
       gl.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k),
                                 GL_TEXTURE_2D, 0, 0);
   }
+  const double device_ms = timed.end_ms();
   gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
   be_.check(gl, "running a kernel");
   // The draws wrote the outputs' textures: their host copies are stale until read back.
   for (auto* s : a.outputs) s->mark_device_written(&be_);
-  return {written, selected};
+  return {written, selected, device_ms};
 }
 
 }  // namespace

@@ -450,7 +450,8 @@ class OpenCLBackend : public Backend {
       cl_int e = CL_SUCCESS;
       d->context = clCreateContext(nullptr, 1, &d->id, nullptr, nullptr, &e);
       check(e, "clCreateContext");
-      d->queue = clCreateCommandQueue(d->context, d->id, 0, &e);
+      // Profiling on: each launch reports how long its kernel ran (LaunchResult::device_ms).
+      d->queue = clCreateCommandQueue(d->context, d->id, CL_QUEUE_PROFILING_ENABLE, &e);
       check(e, "clCreateCommandQueue");
       clGetDeviceInfo(d->id, CL_DEVICE_MAX_WORK_GROUP_SIZE, sizeof d->max_group, &d->max_group,
                       nullptr);
@@ -548,6 +549,7 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
   check(clSetKernelArg(kernel_, arg++, sizeof tiled, &tiled), "clSetKernelArg");
 
   cl_uint written[2] = {0, 0};
+  double device_ms = 0;  // nothing ran
   if (a.count > 0 || a.warm_up) {
     if (group_ == 0) {
       size_t kernel_group = 0;
@@ -563,11 +565,24 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
     cl_uint totals[2] = {0, 0};
     // The blocking read of the counter is the launch's only wait: it returns once the kernel
     // has run (the queue is in order).
+    cl_event ran = nullptr;
     cl_int e =
-        clEnqueueNDRangeKernel(d.queue, kernel_, 1, nullptr, &global, &group_, 0, nullptr, nullptr);
+        clEnqueueNDRangeKernel(d.queue, kernel_, 1, nullptr, &global, &group_, 0, nullptr, &ran);
     if (e == CL_SUCCESS)
       e = clEnqueueReadBuffer(d.queue, counter_, CL_TRUE, 0, sizeof totals, totals, 0, nullptr,
                               nullptr);
+    device_ms = -1;
+    if (ran) {
+      cl_ulong start = 0, end = 0;
+      if (e == CL_SUCCESS &&
+          clGetEventProfilingInfo(ran, CL_PROFILING_COMMAND_START, sizeof start, &start, nullptr) ==
+              CL_SUCCESS &&
+          clGetEventProfilingInfo(ran, CL_PROFILING_COMMAND_END, sizeof end, &end, nullptr) ==
+              CL_SUCCESS &&
+          end >= start)
+        device_ms = static_cast<double>(end - start) * 1e-6;
+      clReleaseEvent(ran);
+    }
     if (e != CL_SUCCESS) {
       // The totals are unknown now: the next launch starts a fresh counter.
       clReleaseMemObject(counter_);
@@ -582,7 +597,7 @@ LaunchResult ClKernel::run(const LaunchArgs& a) {
   const int64_t selected = a.mask ? written[1] : a.count;
   // The device wrote the outputs: their host copies are stale until read back.
   for (auto* s : a.outputs) s->mark_device_written(&be_);
-  return {written[0], selected};
+  return {written[0], selected, device_ms};
 }
 
 }  // namespace

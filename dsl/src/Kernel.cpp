@@ -305,6 +305,7 @@ int64_t Kernel::launch(LaunchArgs& a) {
   const LaunchResult r = shared_->compiled->run(a);
   last_.written = r.written;
   last_.processed = a.mask ? r.selected : a.count;
+  last_.device_ms = r.device_ms;
   return last_.written;
 }
 

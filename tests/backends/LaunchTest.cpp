@@ -2,6 +2,7 @@
 // and output, uniforms, arrays (gathers with clamped indices), element_index/element_coord,
 // Int streams, several inputs and outputs, binding by name, large streams (threading),
 // accuracy modes, and launch errors.
+#include <rill/Stopwatch.h>
 #include <rill/StrictMath.h>
 
 #include "BackendTest.h"
@@ -316,6 +317,41 @@ TEST_P(LaunchTest, RunsOnGpuNamesTheDeviceKind) {
   if (gpu_driver) {
     EXPECT_TRUE(be.runs_on_gpu()) << d;
   }
+}
+
+// A launch reports how long its kernel ran on the device: within the launch's wall time,
+// and more than nothing for a kernel with work to do; 0 when nothing ran. Only Mesa's
+// software renderer's compute stage cannot tell (its timer queries skip dispatches): -1.
+TEST_P(LaunchTest, DeviceTimeIsWithinTheLaunch) {
+  Program p = program("busy", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    Float acc = x;
+    RILL_FOR(Int i = 0, i < 200, i += 1) {
+      acc = acc * 0.999f + 0.001f;
+    }
+    RILL_ENDFOR;
+    y = acc;
+  });
+  Kernel k = compile(p);
+  Stream<Float> in(uniform_floats(3, 1 << 18, 0.0f, 1.0f)), out(int64_t{1} << 18);
+  k.inputs(in).outputs(out);
+  k.execute();  // the first launch may finish the driver's compile
+  const Stopwatch wall;
+  k.execute();
+  const double wall_ms = wall.ms();
+  const double device_ms = k.last_launch().device_ms;
+  const std::string d = rill::backend(backend_name()).description();
+  if (backend_name() == "glsl-compute" && d.find("llvmpipe") != std::string::npos) {
+    EXPECT_EQ(device_ms, -1.0) << d;
+  } else {
+    EXPECT_GT(device_ms, 0.0) << d;
+    EXPECT_LE(device_ms, wall_ms) << d;
+  }
+  Stream<Float> none(0);
+  k.inputs(none).outputs(none);
+  k.execute();
+  EXPECT_EQ(k.last_launch().device_ms, 0.0) << "an empty launch runs nothing";
 }
 
 TEST_P(LaunchTest, EmptyStream) {

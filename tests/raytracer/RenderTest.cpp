@@ -245,6 +245,33 @@ TEST_P(Render, FramesBackToBackEqualFreshFrames) {
   expect_identical(want, reused.render(rs, s.camera), "glass after two other frames");
 }
 
+// A frame's split (FrameTimes): the kernels' own time is part of the launch step, for both
+// strategies; -1 only where the backend cannot time a kernel (Mesa's compute stage).
+TEST_P(Render, KernelTimeIsPartOfTheLaunch) {
+  RT_REQUIRE_BACKEND(GetParam());
+  Scene s = builtin_scene("thesis-b");
+  Grid g = build_grid(s, 8);
+  Tracer t(s, g);
+  RenderSettings rs;
+  rs.backend = GetParam();
+  rs.width = 32;
+  rs.height = 24;
+  rs.spp = 2;
+  const std::string d = rill::backend(GetParam()).description();
+  const bool untimed = GetParam() == "glsl-compute" && d.find("llvmpipe") != std::string::npos;
+  for (Strategy strategy : {Strategy::Megakernel, Strategy::Multipass}) {
+    rs.strategy = strategy;
+    t.render(rs, s.camera);  // compiles
+    const RenderResult r = t.render(rs, s.camera);
+    if (untimed) {
+      EXPECT_EQ(r.times.kernel, -1.0) << d;
+      continue;
+    }
+    EXPECT_GT(r.times.kernel, 0.0) << d;
+    EXPECT_LE(r.times.kernel, r.times.launch) << d;
+  }
+}
+
 TEST_P(Render, BadGeometryAndEmptyScenes) {
   RT_REQUIRE_BACKEND(GetParam());
   // NaN, infinite and degenerate triangles are never hit; the rest renders normally.

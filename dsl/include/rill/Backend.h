@@ -43,6 +43,9 @@ struct LaunchArgs {
 struct LaunchResult {
   int64_t written = 0;   // elements written (not discarded)
   int64_t selected = 0;  // elements run: those the mask selected, or count without a mask
+  // How long the kernel ran, as the device timed it: OpenCL's profiling event, a GL timer
+  // query, or the CPU backends' parallel loop. -1 where the backend cannot tell.
+  double device_ms = -1;
 };
 
 // Where a compiled kernel came from (reported by Kernel::info().origin).

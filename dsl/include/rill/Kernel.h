@@ -28,6 +28,9 @@ namespace rill {
 struct LaunchStats {
   int64_t processed = 0;  // elements the kernel ran on (all, or those selected by the mask)
   int64_t written = 0;    // elements not discarded (<= processed)
+  // How long the kernel itself ran, as the device timed it (the launch's wall time less the
+  // binding, transfers and driver calls around it); -1 where the backend cannot tell.
+  double device_ms = -1;
 };
 
 // What compiling a kernel cost, stage by stage, in milliseconds, and where it came from.

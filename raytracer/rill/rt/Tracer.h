@@ -94,11 +94,20 @@ struct RenderSettings {
 // A render's time, step by step, in milliseconds (wall clock on the host; they add up to
 // RenderResult::trace_ms, less a little bookkeeping).
 struct FrameTimes {
-  double setup = 0;       // output buffers made or resized (0 when a frame reuses them)
-  double launch = 0;      // the tracing kernels' launches, each until its kernel has run
+  double setup = 0;   // output buffers made or resized (0 when a frame reuses them)
+  double launch = 0;  // the tracing kernels' launches, each until its kernel has run
+  // Of `launch`: how long the tracing kernels ran, as the device timed them
+  // (rill::LaunchStats::device_ms, summed); the rest of `launch` is the cost of launching.
+  // -1 where the backend cannot tell.
+  double kernel = 0;
   double accumulate = 0;  // samples added up on the device (spp > 1) and their mean
   double reduce = 0;      // the ray count, reduced on the device
   double read_back = 0;   // the outputs asked for, encoded (8-bit) and read back
+
+  // Adds one launch's device time to `kernel` (which stays -1 once a launch could not tell).
+  void add_kernel(double device_ms) {
+    kernel = kernel < 0 || device_ms < 0 ? -1 : kernel + device_ms;
+  }
 };
 
 // One multipass pass (kernel) over a render: launches, elements run and written, time.

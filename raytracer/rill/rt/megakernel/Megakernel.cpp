@@ -323,6 +323,7 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
     k.execute();
     ++r.launches;
     r.times.launch += step.lap();
+    r.times.add_kernel(k.last_launch().device_ms);
     r.rays += rill::sum(out.rays);  // on the device: only the total comes back
     r.times.reduce += step.lap();
     film.add_sample(out.color, s);

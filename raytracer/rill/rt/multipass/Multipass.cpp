@@ -176,6 +176,7 @@ void Multipass::render(const RenderSettings& rs, Film& film, int width, int heig
     const int64_t written = mask && rs.masking ? k.execute(*mask) : k.execute();
     PassStats& st = r.passes[static_cast<size_t>(pass)];
     st.ms += launch.ms();
+    r.times.add_kernel(k.last_launch().device_ms);
     ++st.calls;
     st.processed += k.last_launch().processed;
     st.written += written;
