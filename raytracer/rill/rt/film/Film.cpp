@@ -111,7 +111,7 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
   read(aovs.depth, r.depth, want.depth);
   read(aovs.prim, r.prim, want.prim);
   read(aovs.normal, r.normal, want.normal);
-  r.rgb8.clear();
+  if (!want.rgb8) r.rgb8.clear();
   if (want.rgb8) {
     if (!now_->packed || now_->packed->width() != color.width() ||
         now_->packed->height() != color.height())
@@ -120,7 +120,8 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     now_->encode.execute();
     read(*now_->packed, now_->packed_host, true);
     const size_t n = now_->packed_host.size();
-    r.rgb8.resize(n * 3);
+    r.rgb8.resize(n * 3);  // every byte is written below: a frame of the last one's size
+                           // keeps its memory and is not cleared first
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& range) {
       for (size_t p = range.begin(); p < range.end(); ++p)
         unpack_rgb8(static_cast<uint32_t>(now_->packed_host[p]), &r.rgb8[p * 3]);
