@@ -537,6 +537,10 @@ LaunchResult ComputeKernel::run(const LaunchArgs& a) {
   const GLuint zero[2] = {0, 0};
   gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, be_.counter());
   gl.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
+  // The outputs' buffers made current first (dispatch() binds them): the timer covers the
+  // dispatches only, and nothing that may switch contexts (a read-back through the other GL
+  // backend) runs while its query is active.
+  for (auto* s : a.outputs) be_.to_device(gl, *s);
   KernelTimer::Running timed = be_.timer().start(gl);
   for (Pass& p : passes_) dispatch(gl, p, a, in_buf_, mask);
   GLuint counts[2] = {0, 0};

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -40,7 +39,9 @@ Srgb8Tables make_tables() {
   const auto& t = srgb8_thresholds();
   Srgb8Tables out;
   out.thresholds.assign(t.begin(), t.end());
-  out.thresholds.insert(out.thresholds.end(), 2, std::numeric_limits<float>::infinity());
+  // Read past the end for values near 1 (which the device clamps to at most 1): 2.0 is above
+  // any of them, and finite (fast mode may assume there are no infinities).
+  out.thresholds.insert(out.thresholds.end(), 2, 2.0f);
   auto at_or_below = [&](float v) {
     return static_cast<int32_t>(std::upper_bound(t.begin(), t.end(), v) - t.begin());
   };

@@ -29,7 +29,7 @@ const std::array<float, 255>& srgb8_thresholds();
 inline constexpr int kSrgb8BucketShift = 16;
 inline constexpr int kSrgb8FirstBucket = (127 - 13) << (23 - kSrgb8BucketShift);  // 2^-13
 struct Srgb8Tables {
-  std::vector<float> thresholds;  // srgb8_thresholds() and two +infinity, read past the end
+  std::vector<float> thresholds;  // srgb8_thresholds() and two 2.0f, read past the end
   std::vector<int32_t> below;     // per bucket: the thresholds at or below its first float
 };
 // Made once; throws if a bucket would hold more than two thresholds.
