@@ -133,7 +133,7 @@ TEST(Cli, GridSettingsFollowTheBackendAndStatsSplitTheFrame) {
     const std::string json = stats_of(std::string("--backend ") + backend);
     EXPECT_GT(subgrids_in(json), 0) << backend << ": " << json;
     for (const char* step :
-         {"\"setup\"", "\"launch\"", "\"accumulate\"", "\"reduce\"", "\"read_back\""})
+         {"\"setup\"", "\"launch\"", "\"kernel\"", "\"accumulate\"", "\"reduce\"", "\"read_back\""})
       EXPECT_NE(json.find(step, json.find("\"trace_split_ms\"")), std::string::npos) << step;
   }
   EXPECT_EQ(subgrids_in(stats_of("--subgrids off")), 0);
