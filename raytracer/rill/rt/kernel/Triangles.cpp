@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "rill/rt/kernel/DeviceArrays.h"
 
@@ -48,17 +49,30 @@ struct Geometry {
   std::vector<glm::vec3> v0, e1, e2, ng, v1, v2, n0, n1, n2;
 };
 
+// The geometry arrays the knobs and features call for, each with the Geometry field that
+// fills it: the one list that geometry(), upload_geometry and update_geometry go by.
+using GeometryArray =
+    std::pair<rill::Array<rill::Float3> Triangles::*, std::vector<glm::vec3> Geometry::*>;
+std::vector<GeometryArray> geometry_arrays(const TracerOptions& K, const Features& F) {
+  std::vector<GeometryArray> a{{&Triangles::v0, &Geometry::v0},
+                               {&Triangles::e1, &Geometry::e1},
+                               {&Triangles::e2, &Geometry::e2},
+                               {&Triangles::ng, &Geometry::ng}};
+  if (K.triangle == TriangleTest::Watertight)
+    a.insert(a.end(), {{&Triangles::v1, &Geometry::v1}, {&Triangles::v2, &Geometry::v2}});
+  if (F.vertex_normals)
+    a.insert(a.end(), {{&Triangles::n0, &Geometry::n0},
+                       {&Triangles::n1, &Geometry::n1},
+                       {&Triangles::n2, &Geometry::n2}});
+  return a;
+}
+
 Geometry geometry(const Scene& scene, const TracerOptions& K, const Features& F, size_t first,
                   size_t end) {
   const size_t n = end - first;
   Geometry g;
-  g.v0.resize(n);
-  g.e1.resize(n);
-  g.e2.resize(n);
-  g.ng.resize(n);
+  for (const auto& [array, field] : geometry_arrays(K, F)) (g.*field).resize(n);
   const bool watertight = K.triangle == TriangleTest::Watertight;
-  if (watertight) g.v1.resize(n), g.v2.resize(n);
-  if (F.vertex_normals) g.n0.resize(n), g.n1.resize(n), g.n2.resize(n);
   // Per triangle on its own (so the same bits on any number of threads): dynamic scenes do
   // this every frame.
   tbb::parallel_for(
@@ -91,19 +105,8 @@ Geometry geometry(const Scene& scene, const TracerOptions& K, const Features& F,
 
 void Triangles::upload_geometry(const Scene& scene, const TracerOptions& K, const Features& F) {
   Geometry g = geometry(scene, K, F, 0, scene.triangle_count());
-  upload_padded(v0, std::move(g.v0));
-  upload_padded(e1, std::move(g.e1));
-  upload_padded(e2, std::move(g.e2));
-  upload_padded(ng, std::move(g.ng));
-  if (K.triangle == TriangleTest::Watertight) {
-    upload_padded(v1, std::move(g.v1));
-    upload_padded(v2, std::move(g.v2));
-  }
-  if (F.vertex_normals) {
-    upload_padded(n0, std::move(g.n0));
-    upload_padded(n1, std::move(g.n1));
-    upload_padded(n2, std::move(g.n2));
-  }
+  for (const auto& [array, field] : geometry_arrays(K, F))
+    upload_padded(this->*array, std::move(g.*field));
 }
 
 void Triangles::update_geometry(const Scene& scene, const TracerOptions& K, const Features& F,
@@ -116,20 +119,8 @@ void Triangles::update_geometry(const Scene& scene, const TracerOptions& K, cons
                            std::to_string(scene.triangle_count()) + " after an upload of " +
                            std::to_string(v0.size()));
   const Geometry g = geometry(scene, K, F, first, end);
-  const auto at = static_cast<int64_t>(first);
-  v0.upload(at, g.v0);
-  e1.upload(at, g.e1);
-  e2.upload(at, g.e2);
-  ng.upload(at, g.ng);
-  if (K.triangle == TriangleTest::Watertight) {
-    v1.upload(at, g.v1);
-    v2.upload(at, g.v2);
-  }
-  if (F.vertex_normals) {
-    n0.upload(at, g.n0);
-    n1.upload(at, g.n1);
-    n2.upload(at, g.n2);
-  }
+  for (const auto& [array, field] : geometry_arrays(K, F))
+    (this->*array).upload(static_cast<int64_t>(first), g.*field);
 }
 
 }  // namespace rt
