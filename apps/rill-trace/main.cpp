@@ -5,6 +5,7 @@
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
 //                           [--grid N|auto] [--grid-density D] [--subgrids N|off|auto]
+//                           [--light-buffer N|off|auto]
 //                           [--strategy megakernel|multipass]
 //                           [--stats-json FILE] [--source FILE] [--quiet]
 //                           [--triangle moller|watertight] [--offset epsilon|scaled]
@@ -51,6 +52,7 @@
 #endif
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/accel/LightBuffer.h"
 #include "rill/rt/scene/Image.h"
 #include "rill/rt/scene/OutputFile.h"
 #include "rill/rt/scene/Pose.h"
@@ -96,6 +98,7 @@ struct RenderOptions {
   int spp = 0;
   std::string grid = "";
   std::string subgrids = "";
+  std::string light_buffer = "";
   std::string grid_density = "";
   std::string strategy = "megakernel";
   bool quiet = false;
@@ -157,12 +160,8 @@ std::vector<float> to_float(const std::vector<int32_t>& v) {
 }
 
 nlohmann::json split_json(const rt::FrameTimes& t) {
-  return {{"setup", t.setup},
-          {"launch", t.launch},
-          {"kernel", t.kernel},
-          {"accumulate", t.accumulate},
-          {"reduce", t.reduce},
-          {"read_back", t.read_back}};
+  return {{"setup", t.setup},           {"launch", t.launch}, {"kernel", t.kernel},
+          {"accumulate", t.accumulate}, {"reduce", t.reduce}, {"read_back", t.read_back}};
 }
 
 // What rill-trace is doing, for the message when memory runs out ("out of memory while
@@ -201,6 +200,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
   if (o.spp > 0) scene.options.spp = o.spp;
   if (!o.grid.empty()) scene.options.grid = parse_grid(o.grid);
   if (!o.subgrids.empty()) scene.options.subgrid_min = rt::parse_subgrid_min(o.subgrids);
+  if (!o.light_buffer.empty()) scene.options.light_buffer = rt::parse_light_buffer(o.light_buffer);
   if (!o.grid_density.empty()) scene.options.grid_density = rt::parse_grid_density(o.grid_density);
   if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
   if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
@@ -300,6 +300,11 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
                {"triangles", grid.usable},
                {"degenerate", grid.degenerate},
                {"non_finite", grid.non_finite}};
+  const rt::Tracer::LightBufferInfo lb = p.tracer->light_buffer();
+  j["light_buffer"] = {{"resolution", lb.res},
+                       {"entries", lb.entries},
+                       {"fallback_cells", lb.fallback_cells},
+                       {"build_ms", lb.build_ms}};
   j["warnings"] = scene.warnings;
   j["rays"] = rays;
   return j;
@@ -528,9 +533,9 @@ int render(RenderOptions o) {
     return v.empty() ? 0.0 : v[v.size() / 2];
   };
   rt::FrameTimes median_split;
-  for (auto step : {&rt::FrameTimes::setup, &rt::FrameTimes::launch, &rt::FrameTimes::kernel,
-                    &rt::FrameTimes::accumulate, &rt::FrameTimes::reduce,
-                    &rt::FrameTimes::read_back})
+  for (auto step :
+       {&rt::FrameTimes::setup, &rt::FrameTimes::launch, &rt::FrameTimes::kernel,
+        &rt::FrameTimes::accumulate, &rt::FrameTimes::reduce, &rt::FrameTimes::read_back})
     median_split.*step = median_of(step);
 
   std::vector<std::string> written = write_outputs(o, p, r, frame_file(span.first));
@@ -1122,6 +1127,9 @@ int main(int argc, char** argv) {
   r->add_option("--subgrids", ro.subgrids,
                 "voxels listing more triangles than this get a subgrid (1..1048576), off, or auto "
                 "(default: 12 when the backend runs on the CPU, off on a GPU)");
+  r->add_option("--light-buffer", ro.light_buffer,
+                "shadow rays: cells per edge of each light's direction cube (1..1024), off (walk "
+                "the grid), or auto (default: 64 where the scene has shadows)");
   r->add_option("--strategy", ro.strategy,
                 "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
       ->default_str("megakernel");

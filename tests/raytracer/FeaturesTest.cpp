@@ -6,6 +6,7 @@
 
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/accel/LightBuffer.h"
 
 namespace rt {
 namespace {
@@ -62,11 +63,19 @@ TEST(Features, DiffuseSceneHasNoReflectionRefractionOrHighlights) {
   EXPECT_FALSE(f.reflection || f.refraction || f.specular || f.vertex_normals || f.vertex_colors);
   EXPECT_EQ(f.stack, 0);
   IrStats d = stats(s);
-  // Loops: the tracer's RILL_DO, the 3D-DDA's RILL_DO, the voxel's triangle RILL_FOR.
-  EXPECT_EQ(d.loops, 3);
+  // Loops: the tracer's RILL_DO, the 3D-DDA's RILL_DO, the voxel's triangle RILL_FOR, and
+  // the shadow rays' RILL_FOR over their light buffer cell.
+  EXPECT_EQ(d.loops, 4);
   EXPECT_EQ(d.pows, 0);
   EXPECT_EQ(d.arrays.count("tri_n0"), 0u);
   EXPECT_EQ(d.arrays.count("light_pos"), 1u);
+  EXPECT_EQ(d.arrays.count("lb_cells"), 1u);
+  // Without the light buffer, shadow rays walk the grid: its loop and arrays are gone.
+  Scene off = base();
+  off.options.light_buffer = kLightBufferOff;
+  IrStats doff = stats(off);
+  EXPECT_EQ(doff.loops, 3);
+  EXPECT_EQ(doff.arrays.count("lb_cells"), 0u);
 
   // A reflective material adds the reflection code (and only that).
   Scene r = base();
@@ -75,7 +84,7 @@ TEST(Features, DiffuseSceneHasNoReflectionRefractionOrHighlights) {
   EXPECT_TRUE(scene_features(r).reflection);
   EXPECT_FALSE(scene_features(r).refraction);
   EXPECT_GT(dr.statements, d.statements);
-  EXPECT_EQ(dr.loops, 3);
+  EXPECT_EQ(dr.loops, 4);
 
   // Glass adds refraction and the ray stack on top.
   Scene g = base();
@@ -85,7 +94,7 @@ TEST(Features, DiffuseSceneHasNoReflectionRefractionOrHighlights) {
   EXPECT_EQ(fg.stack, kRayStack);
   IrStats dg = stats(g);
   EXPECT_GT(dg.statements, dr.statements);
-  EXPECT_EQ(dg.loops, 3);
+  EXPECT_EQ(dg.loops, 4);
 
   // Highlights: a pow, and reads of the specular colour and shininess from the material
   // table.

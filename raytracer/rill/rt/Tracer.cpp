@@ -130,6 +130,10 @@ const Features& Tracer::features() const {
 const TracerOptions& Tracer::options() const {
   return d_->device.K;
 }
+Tracer::LightBufferInfo Tracer::light_buffer() const {
+  const LightBufferView& v = d_->device.light_buffer;
+  return {v.host_res, v.entries, v.fallback_cells, v.build_ms};
+}
 std::vector<std::string> Tracer::shaders() const {
   return d_->device.materials.used_shaders();
 }

@@ -6,6 +6,7 @@
 
 #include "rill/rt/accel/BvhView.h"
 #include "rill/rt/accel/GridView.h"
+#include "rill/rt/accel/LightBufferView.h"
 #include "rill/rt/kernel/CameraRays.h"
 #include "rill/rt/kernel/Intersector.h"
 #include "rill/rt/kernel/MaterialTable.h"
@@ -28,8 +29,9 @@ struct DeviceScene {
   Triangles tris;
   MaterialTable materials;
   Lights lights;
+  LightBufferView light_buffer;  // the shadow rays' (F.shadows, SceneOptions::light_buffer)
   CameraRays camera;
-  Intersector intersector{grid, bvh, tris, K, F};
+  Intersector intersector{grid, bvh, light_buffer, lights.position, tris, K, F};
   Shading shading{tris, materials, lights, K, F};
   int light_count = 0;  // host
 };

@@ -280,7 +280,7 @@ void Intersector::leave_voxel(const RaySteps& r, const Float& t_exit, const Hit&
 // in each (Moller-Trumbore). The closest hit wins (ties: the smaller id, so the result does
 // not depend on the order of the lists); a hit counts once its distance is within the
 // current voxel. With *any_hit true, the first hit before tmax ends the search.
-Hit Intersector::intersect(const Ray& ray, const Bool* any_hit) const {
+Hit Intersector::intersect(const Ray& ray, const Bool* any_hit, const Int* light) const {
   Hit best{ray.tmax, Float2(0.0f), Int(-1)};
   if (!F_.geometry) return best;
   const Float3& o = ray.o;
@@ -289,9 +289,46 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit) const {
   const Bool& any = any_hit != nullptr ? *any_hit : no;
   // The grid first: its hit, usually a near one in a static room, then bounds the BVH walk,
   // which skips every box beyond it.
-  if (!grid_.empty) walk_grid(ray, any, best);
+  if (!grid_.empty && light != nullptr && any_hit != nullptr && lb_.enabled) {
+    Bool listed = false;
+    RILL_IF(any) {
+      listed = occluders(ray, *light, best);
+    }
+    RILL_ENDIF;
+    RILL_IF(!listed) {
+      walk_grid(ray, any, best);
+    }
+    RILL_ENDIF;
+  } else if (!grid_.empty) {
+    walk_grid(ray, any, best);
+  }
   if (F_.dynamic) walk_bvh(o, ray_steps(d), any, best);
   return best;
+}
+
+Bool Intersector::occluders(const Ray& ray, const Int& light, Hit& best) const {
+  const Float3 q = ray.o - light_pos_[light];
+  const Int2 c = lb_.cell(light, q);
+  const Bool listed = c.y() >= 0;
+  RILL_IF(listed) {
+    // Points of the ray before the light are at most |q| from it: an entry farther away
+    // (its distance is a lower bound, LightBuffer.cpp) cannot block it, nor can the rest.
+    Float reach = length(q);
+    RILL_FOR(Int k = 0, k < c.y(), k += 1) {
+      RILL_IF(lb_.near[c.x() + k] > reach) {
+        RILL_BREAK;
+      }
+      RILL_ENDIF;
+      test_primitive(ray.o, ray.d, lb_.tris[c.x() + k], best);
+      RILL_IF(best.id >= 0) {
+        RILL_BREAK;
+      }
+      RILL_ENDIF;
+    }
+    RILL_ENDFOR;
+  }
+  RILL_ENDIF;
+  return listed;
 }
 
 void Intersector::walk_grid(const Ray& ray, const Bool& any, Hit& best) const {

@@ -14,6 +14,7 @@
 
 #include "rill/rt/accel/BvhView.h"
 #include "rill/rt/accel/GridView.h"
+#include "rill/rt/accel/LightBufferView.h"
 #include "rill/rt/kernel/Features.h"
 #include "rill/rt/kernel/Options.h"
 #include "rill/rt/kernel/Records.h"
@@ -44,17 +45,32 @@ struct DdaState {
 
 class Intersector {
  public:
-  Intersector(const GridView& grid, const BvhView& bvh, const Triangles& tris,
+  Intersector(const GridView& grid, const BvhView& bvh, const LightBufferView& light_buffer,
+              const rill::Array<Float3>& light_positions, const Triangles& tris,
               const TracerOptions& K, const Features& F)
-      : grid_(grid), bvh_(bvh), tris_(tris), K_(K), F_(F) {}
+      : grid_(grid),
+        bvh_(bvh),
+        lb_(light_buffer),
+        light_pos_(light_positions),
+        tris_(tris),
+        K_(K),
+        F_(F) {}
 
   // The whole search: the grid over the static triangles, then the BVH over the moving ones
   // (F.dynamic), each keeping the closest hit by test_triangle's rule, so the result is the
   // closest over all triangles whichever holds them (and whichever is searched first: the
   // multipass strategy walks the BVH first). With *any_hit true, the first hit
   // before ray.tmax ends it (shadow rays); any_hit null: closest hit only. No hit: id -1,
-  // t = ray.tmax.
-  Hit intersect(const Ray& ray, const Bool* any_hit) const;
+  // t = ray.tmax. A shadow ray towards light *light (any_hit true, light given) tests its
+  // light buffer cell's list instead of walking the grid where the scene has a light
+  // buffer and the cell a list.
+  Hit intersect(const Ray& ray, const Bool* any_hit, const Int* light = nullptr) const;
+
+  // Whether the light buffer settles a shadow ray towards light `light`: its cell's
+  // entries, nearest first, until one blocks the ray (best.id >= 0) or the next lies
+  // farther from the light than the ray's origin. False where the cell sends it to the grid.
+  Bool occluders(const Ray& ray, const Int& light, Hit& best) const;
+  bool has_light_buffer() const { return lb_.enabled; }
 
   // The grid's part of intersect(): box, 3D-DDA, the voxels' lists; from the hit in best.
   void walk_grid(const Ray& ray, const Bool& any_hit, Hit& best) const;
@@ -103,6 +119,8 @@ class Intersector {
 
   const GridView& grid_;
   const BvhView& bvh_;
+  const LightBufferView& lb_;
+  const rill::Array<Float3>& light_pos_;
   const Triangles& tris_;
   const TracerOptions& K_;
   const Features& F_;

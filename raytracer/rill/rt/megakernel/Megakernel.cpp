@@ -116,7 +116,8 @@ Hit Megakernel::trace(PathLoop& L) const {
   }
   RILL_IF(L.ray_active) {
     Bool any_hit = L.mode == 1;
-    hit = S_.intersector.intersect(L.ray, S_.F.shadows ? &any_hit : nullptr);
+    hit = S_.F.shadows ? S_.intersector.intersect(L.ray, &any_hit, &L.li)
+                       : S_.intersector.intersect(L.ray, nullptr);
     L.rays += 1;
   }
   RILL_ENDIF;

@@ -51,6 +51,15 @@ Program Multipass::capture_setup() const {
       inside = inside && !(any_hit && best.id >= 0);
     }
     if (S_.grid.empty) inside = false;
+    if (X.has_light_buffer() && S_.F.shadows) {
+      // A shadow ray whose light buffer cell lists its possible blockers is settled here,
+      // as in the megakernel's intersect(); the others walk the grid.
+      RILL_IF(any_hit_ != 0 && inside) {
+        Bool listed = X.occluders(ray, light_, best);
+        inside = !listed;
+      }
+      RILL_ENDIF;
+    }
     hit = best;
     steps_out = 0;
     RILL_IF(inside) {

@@ -84,7 +84,10 @@ struct SceneOptions {
   // Voxels listing more triangles get a subgrid; 0 = none; -1 (kSubgridsAuto, the default):
   // chosen for the backend that renders (Grid.h, subgrid_min_for).
   int subgrid_min = -1;
-  double grid_density = 4.0;   // voxels per triangle of the automatic resolution (Grid.h)
+  double grid_density = 4.0;  // voxels per triangle of the automatic resolution (Grid.h)
+  // The shadow rays' light buffer (accel/LightBuffer.h): -1 (kLightBufferAuto) chosen from
+  // the scene, 0 off (shadow rays walk the grid), or cells per cube face edge.
+  int light_buffer = -1;
   int spp = 1;                 // samples per pixel
   bool smooth_normals = true;  // interpolate vertex normals where the mesh has them
 };

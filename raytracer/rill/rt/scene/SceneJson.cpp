@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/accel/LightBuffer.h"
 #include "rill/rt/kernel/Shader.h"
 #include "rill/rt/scene/AnimationJson.h"
 #include "rill/rt/scene/InputFile.h"
@@ -404,8 +405,8 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     if (j.contains("options")) {
       const json& o = j["options"];
       check_keys(c, o, "options",
-                 {"shadows", "ambient", "max_depth", "grid", "grid_density", "subgrids", "spp",
-                  "smooth_normals"});
+                 {"shadows", "ambient", "max_depth", "grid", "grid_density", "subgrids",
+                  "light_buffer", "spp", "smooth_normals"});
       if (o.contains("shadows")) s.options.shadows = boolean(c, o["shadows"], "options.shadows");
       if (o.contains("ambient")) s.options.ambient = num(c, o["ambient"], "options.ambient");
       if (o.contains("max_depth"))
@@ -432,6 +433,15 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
           s.options.subgrid_min = kSubgridsAuto;
         else
           s.options.subgrid_min = integer(c, o["subgrids"], "options.subgrids", 1, 1 << 20);
+      }
+      if (o.contains("light_buffer")) {
+        const json& lb = o["light_buffer"];
+        if (lb.is_string() && lb.get<std::string>() == "off")
+          s.options.light_buffer = kLightBufferOff;
+        else if (lb.is_string() && lb.get<std::string>() == "auto")
+          s.options.light_buffer = kLightBufferAuto;
+        else
+          s.options.light_buffer = integer(c, lb, "options.light_buffer", 1, kLightBufferMaxRes);
       }
     }
     if (j.contains("camera")) {

@@ -1,0 +1,237 @@
+// Builds the light buffer (LightBuffer.h) on the CPU, in double precision.
+#include "rill/rt/accel/LightBuffer.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace rt {
+
+namespace {
+
+// The in-face axes of a face's major axis: x -> (y, z), y -> (x, z), z -> (x, y).
+constexpr int kU[3] = {1, 0, 0};
+constexpr int kV[3] = {2, 2, 1};
+
+// The distance from the origin to triangle (a, b, c): Ericson's closest point on a triangle
+// (Real-Time Collision Detection, 5.1.5), for the point 0.
+double origin_triangle_distance(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 p(0.0);
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return glm::length(a);
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return glm::length(b);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return glm::length(a + ab * (d1 / (d1 - d3)));
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return glm::length(c);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return glm::length(a + ac * (d2 / (d2 - d6)));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return glm::length(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+  const double denom = va + vb + vc;
+  if (!(std::fabs(denom) > 0)) return 0.0;  // degenerate: the grid leaves these out anyway
+  return glm::length(a + ab * (vb / denom) + ac * (vc / denom));
+}
+
+// Sutherland-Hodgman: the part of the polygon where dot(n, p) >= 0.
+std::vector<glm::dvec3> clip(const std::vector<glm::dvec3>& poly, const glm::dvec3& n) {
+  std::vector<glm::dvec3> out;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const glm::dvec3& a = poly[i];
+    const glm::dvec3& b = poly[(i + 1) % poly.size()];
+    const double da = glm::dot(n, a), db = glm::dot(n, b);
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+// The range of cells [lo, hi] covering in-face coordinates [a, b] (in [-1, 1]).
+glm::ivec2 cell_span(double a, double b, int res) {
+  auto cell = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor((x + 1.0) * 0.5 * res)), 0, res - 1);
+  };
+  return {cell(std::max(a, -1.0)), cell(std::min(b, 1.0))};
+}
+
+struct Entry {
+  float near;
+  int32_t tri;
+  bool operator<(const Entry& o) const { return near < o.near || (near == o.near && tri < o.tri); }
+};
+
+}  // namespace
+
+glm::ivec3 light_buffer_cell(const glm::vec3& q, int res) {
+  // The kernels' rule (kernel/Intersector.cpp, occluders), in the same float operations.
+  const glm::vec3 a = glm::abs(q);
+  const bool ax = a.x >= a.y && a.x >= a.z;
+  const bool ay = !ax && a.y >= a.z;
+  const int axis = ax ? 0 : (ay ? 1 : 2);
+  const float w = a[axis];
+  const int face = 2 * axis + (q[axis] < 0.0f ? 1 : 0);
+  const float inv = 1.0f / (w > 0.0f ? w : 1.0f);
+  auto cell = [&](float c) {
+    const float x = (c * inv + 1.0f) * (0.5f * static_cast<float>(res));
+    const float f = std::floor(x);
+    const int i =
+        std::isnan(f) ? 0 : static_cast<int>(std::clamp(f, -1.0f, static_cast<float>(res)));
+    return std::clamp(i, 0, res - 1);
+  };
+  return {face, cell(q[kU[axis]]), cell(q[kV[axis]])};
+}
+
+LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int max_list) {
+  const auto t0 = std::chrono::steady_clock::now();
+  LightBuffer lb;
+  if (res <= 0 || s.lights.empty() || grid.empty()) return lb;
+  if (res > kLightBufferMaxRes)
+    throw std::invalid_argument("light buffer: " + std::to_string(res) +
+                                " cells per face edge (at most " +
+                                std::to_string(kLightBufferMaxRes) + ")");
+  const uint64_t cell_count =
+      6ull * static_cast<uint64_t>(res) * static_cast<uint64_t>(res) * s.lights.size();
+  if (cell_count > (1ull << 24))
+    throw std::invalid_argument("light buffer: " + std::to_string(s.lights.size()) + " lights at " +
+                                std::to_string(res) + " cells per face edge make " +
+                                std::to_string(cell_count) +
+                                " cells (at most 2^24); choose a smaller --light-buffer");
+  lb.res = res;
+  lb.lights = static_cast<int>(s.lights.size());
+  // The triangles the grid holds: the static, usable ones.
+  std::vector<char> in_grid(s.triangle_count(), 0);
+  for (int32_t t : grid.elements) in_grid[static_cast<size_t>(t)] = 1;
+  std::vector<int32_t> ids;
+  for (size_t t = 0; t < in_grid.size(); ++t)
+    if (in_grid[t]) ids.push_back(static_cast<int32_t>(t));
+
+  // The scene's scale: what the triangle test's rounding is relative to.
+  double scale = 0;
+  for (int32_t t : ids)
+    for (int k = 0; k < 3; ++k)
+      scale = std::max(
+          scale, static_cast<double>(glm::length(s.positions[static_cast<size_t>(t) * 3 + k])));
+  for (const Light& l : s.lights)
+    scale = std::max(scale, static_cast<double>(glm::length(l.position)));
+
+  const size_t per_face = static_cast<size_t>(res) * static_cast<size_t>(res);
+  const size_t per_light = 6 * per_face;
+  std::vector<std::vector<Entry>> lists(per_light * s.lights.size());
+  std::vector<char> overflow(lists.size(), 0);
+  tbb::parallel_for(size_t(0), s.lights.size(), [&](size_t li) {
+    const glm::dvec3 L(s.lights[li].position);
+    for (int32_t t : ids) {
+      glm::dvec3 p[3];
+      for (int k = 0; k < 3; ++k)
+        p[k] = glm::dvec3(s.positions[static_cast<size_t>(t) * 3 + k]) - L;
+      const double dmin = origin_triangle_distance(p[0], p[1], p[2]);
+      // A lower bound of the distance from the light of any point the triangle test may
+      // report (its rounding is a few ulps of the scene's scale; 1e-5 of it is far above).
+      const double slack = 1e-5 * scale;
+      double nd = (dmin - slack) * (1.0 - 1e-6);
+      float near = nd > 0 ? std::nextafter(static_cast<float>(nd), 0.0f) : 0.0f;
+      if (static_cast<double>(near) > nd) near = 0.0f;
+      // The angular margin: the float lookup (about 1e-7) and the test's rounding seen from
+      // the light (slack / dmin), each with a wide factor to spare.
+      const double margin = 2e-5 + (dmin > 0 ? 4.0 * slack / dmin : 4.0);
+      for (int axis = 0; axis < 3; ++axis)
+        for (int sign = 0; sign < 2; ++sign) {
+          const double sg = sign ? -1.0 : 1.0;
+          const int U = kU[axis], V = kV[axis];
+          // The face's pyramid, widened so that directions on an edge belong to both faces.
+          const double wide = 1.0 + 1e-3;
+          std::vector<glm::dvec3> poly{p[0], p[1], p[2]};
+          for (int c : {U, V})
+            for (double cs : {1.0, -1.0}) {
+              glm::dvec3 n(0.0);
+              n[axis] = sg * wide;
+              n[c] = -cs;
+              poly = clip(poly, n);
+              if (poly.empty()) break;
+            }
+          if (poly.empty()) continue;
+          double u0 = 2, u1 = -2, v0 = 2, v1 = -2;
+          bool whole = margin >= 1.0;
+          for (const glm::dvec3& q : poly) {
+            const double w = sg * q[axis];
+            // A polygon that reaches the light itself covers every direction of the face.
+            if (!(w > 1e-9 * scale)) {
+              whole = true;
+              break;
+            }
+            u0 = std::min(u0, q[U] / w);
+            u1 = std::max(u1, q[U] / w);
+            v0 = std::min(v0, q[V] / w);
+            v1 = std::max(v1, q[V] / w);
+          }
+          if (whole) u0 = v0 = -1, u1 = v1 = 1;
+          const glm::ivec2 iu = cell_span(u0 - margin, u1 + margin, res);
+          const glm::ivec2 iv = cell_span(v0 - margin, v1 + margin, res);
+          const size_t base = li * per_light + static_cast<size_t>(2 * axis + sign) * per_face;
+          for (int j = iv.x; j <= iv.y; ++j)
+            for (int i = iu.x; i <= iu.y; ++i) {
+              const size_t c =
+                  base + static_cast<size_t>(j) * static_cast<size_t>(res) + static_cast<size_t>(i);
+              if (overflow[c]) continue;
+              if (lists[c].size() >= static_cast<size_t>(max_list)) {
+                overflow[c] = 1;
+                std::vector<Entry>().swap(lists[c]);
+                continue;
+              }
+              lists[c].push_back({near, t});
+            }
+        }
+    }
+  });
+  lb.cells.resize(lists.size());
+  for (size_t c = 0; c < lists.size(); ++c) {
+    if (overflow[c]) {
+      lb.cells[c] = {static_cast<int32_t>(lb.tris.size()), -1};
+      ++lb.fallback_cells;
+      continue;
+    }
+    std::sort(lists[c].begin(), lists[c].end());
+    lb.cells[c] = {static_cast<int32_t>(lb.tris.size()), static_cast<int32_t>(lists[c].size())};
+    for (const Entry& e : lists[c]) {
+      lb.tris.push_back(e.tri);
+      lb.near.push_back(e.near);
+    }
+  }
+  lb.build_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return lb;
+}
+
+int light_buffer_res(const Scene& s) {
+  if (s.options.light_buffer != kLightBufferAuto) return s.options.light_buffer;
+  int res = kLightBufferRes;
+  while (res > 8 &&
+         6ull * static_cast<uint64_t>(res) * static_cast<uint64_t>(res) * s.lights.size() >
+             (1ull << 22))
+    res /= 2;
+  return res;
+}
+
+int parse_light_buffer(const std::string& s) {
+  if (s == "auto") return kLightBufferAuto;
+  if (s == "off") return kLightBufferOff;
+  try {
+    size_t used = 0;
+    const int n = std::stoi(s, &used);
+    if (used == s.size() && n >= 1 && n <= kLightBufferMaxRes) return n;
+  } catch (const std::exception&) {
+  }
+  throw std::invalid_argument("--light-buffer expects auto, off or cells per face edge 1.." +
+                              std::to_string(kLightBufferMaxRes) + " (got '" + s + "')");
+}
+
+}  // namespace rt

@@ -1,0 +1,192 @@
+// The shadow rays' light buffer (accel/LightBuffer.h): the cell rule, that every point of a
+// triangle falls in a cell listing it (the property the shadows' exactness rests on), the
+// fallback to the grid, the option's parsing, and, per backend, images identical with and
+// without it for both strategies.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "RenderCompare.h"
+#include "TestUtil.h"
+#include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/accel/LightBuffer.h"
+
+namespace rt {
+namespace {
+using testing::expect_identical;
+
+size_t cell_index(const LightBuffer& lb, int light, const glm::ivec3& c) {
+  return ((static_cast<size_t>(light) * 6 + static_cast<size_t>(c.x)) *
+              static_cast<size_t>(lb.res) +
+          static_cast<size_t>(c.z)) *
+             static_cast<size_t>(lb.res) +
+         static_cast<size_t>(c.y);
+}
+
+TEST(LightBuffer, CellRuleFacesAndTies) {
+  EXPECT_EQ(light_buffer_cell({1, 0, 0}, 4), glm::ivec3(0, 2, 2));
+  EXPECT_EQ(light_buffer_cell({-1, 0, 0}, 4), glm::ivec3(1, 2, 2));
+  EXPECT_EQ(light_buffer_cell({0, 2, 0}, 4), glm::ivec3(2, 2, 2));
+  EXPECT_EQ(light_buffer_cell({0, -2, 0}, 4), glm::ivec3(3, 2, 2));
+  EXPECT_EQ(light_buffer_cell({0, 0, 3}, 4), glm::ivec3(4, 2, 2));
+  EXPECT_EQ(light_buffer_cell({0, 0, -3}, 4), glm::ivec3(5, 2, 2));
+  // Ties go to the first axis; the in-face coordinates run -1..1 over the cells.
+  EXPECT_EQ(light_buffer_cell({1, 1, 0}, 4), glm::ivec3(0, 3, 2));
+  EXPECT_EQ(light_buffer_cell({0, 1, -1}, 4), glm::ivec3(2, 2, 0));
+  EXPECT_EQ(light_buffer_cell({1, -0.99f, 0.6f}, 4), glm::ivec3(0, 0, 3));
+  // The light itself, and NaN: some cell, never out of range.
+  EXPECT_EQ(light_buffer_cell({0, 0, 0}, 4).x, 0);
+  const glm::ivec3 n = light_buffer_cell({NAN, 1, 0}, 4);
+  EXPECT_TRUE(n.y >= 0 && n.y < 4 && n.z >= 0 && n.z < 4);
+}
+
+// Triangles around two lights: random ones, large ones across several faces of the cube,
+// one through a light, small far ones. Every point of each (vertices, edges, inside, and
+// points pushed a little past the edges, as a rounding triangle test may accept) lands in a
+// cell that lists the triangle with a distance bound below its own, or in a cell that sends
+// the ray to the grid.
+TEST(LightBuffer, EveryPointOfATriangleIsListedInItsCell) {
+  Scene s;
+  Material m;
+  const int mat = s.add_material(m);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> U(-4.0f, 4.0f);
+  for (int t = 0; t < 60; ++t)
+    s.add_triangle({U(rng), U(rng), U(rng)}, {U(rng), U(rng), U(rng)}, {U(rng), U(rng), U(rng)},
+                   mat);
+  s.add_triangle({-30, -1, -30}, {30, -1, -30}, {0, -1, 40}, mat);  // a floor under the lights
+  s.add_triangle({-2, 0.5f, 0.5f}, {2, 0.5f, 0.5f}, {0, 0.5f, -3}, mat);  // through light 0
+  s.add_triangle({9, 9, 9}, {9.01f, 9, 9}, {9, 9.01f, 9}, mat);           // small and far
+  s.lights = {Light{{0.0f, 0.5f, 0.0f}, glm::vec3(1.0f)},
+              Light{{1.5f, 3.0f, -2.0f}, glm::vec3(1.0f)}};
+  const Grid g = build_grid(s, 0);
+  std::uniform_real_distribution<double> B(0.0, 1.0);
+  for (int res : {1, 5, 64}) {
+    const LightBuffer lb = build_light_buffer(s, g, res, 1000);
+    ASSERT_EQ(lb.res, res);
+    ASSERT_EQ(lb.cells.size(), static_cast<size_t>(6 * res * res) * 2);
+    EXPECT_EQ(lb.fallback_cells, 0u);
+    size_t checked = 0;
+    for (size_t t = 0; t < s.triangle_count(); ++t) {
+      const glm::dvec3 a(s.positions[t * 3]), b(s.positions[t * 3 + 1]), c(s.positions[t * 3 + 2]);
+      std::vector<glm::dvec3> pts{a, b, c, (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5};
+      const glm::dvec3 centre = (a + b + c) / 3.0;
+      for (const glm::dvec3& v : {a, b, c}) pts.push_back(v + (v - centre) * 1e-6);
+      for (int k = 0; k < 40; ++k) {
+        double u = B(rng), v = B(rng);
+        if (u + v > 1) u = 1 - u, v = 1 - v;
+        pts.push_back(a + (b - a) * u + (c - a) * v);
+      }
+      for (int li = 0; li < 2; ++li)
+        for (const glm::dvec3& p : pts) {
+          const glm::vec3 q = glm::vec3(p) - s.lights[static_cast<size_t>(li)].position;
+          const glm::ivec3 cell = light_buffer_cell(q, res);
+          const glm::ivec2 e = lb.cells[cell_index(lb, li, cell)];
+          ASSERT_GE(e.y, 0);
+          bool listed = false;
+          for (int k = 0; k < e.y; ++k) {
+            const size_t i = static_cast<size_t>(e.x + k);
+            if (lb.tris[i] != static_cast<int32_t>(t)) continue;
+            listed = true;
+            EXPECT_LE(lb.near[i], glm::length(q)) << "triangle " << t << ", light " << li;
+          }
+          EXPECT_TRUE(listed) << "triangle " << t << " not in cell (" << cell.x << ", " << cell.y
+                              << ", " << cell.z << ") of light " << li << " at res " << res;
+          ++checked;
+        }
+    }
+    // Nearest first, ties by id.
+    for (const glm::ivec2& e : lb.cells)
+      for (int k = 1; k < e.y; ++k) {
+        const size_t i = static_cast<size_t>(e.x + k);
+        ASSERT_TRUE(lb.near[i - 1] < lb.near[i] ||
+                    (lb.near[i - 1] == lb.near[i] && lb.tris[i - 1] < lb.tris[i]));
+      }
+    EXPECT_GT(checked, 6000u);  // 63 triangles, 49 points, 2 lights
+  }
+}
+
+TEST(LightBuffer, LongListsSendTheirRaysToTheGrid) {
+  const Scene a = builtin_scene("thesis-a");
+  const Grid ga = build_grid(a, 0);
+  EXPECT_EQ(build_light_buffer(a, ga, 16).fallback_cells, 0u);
+  const LightBuffer few = build_light_buffer(a, ga, 16, 2);
+  EXPECT_GT(few.fallback_cells, 0u);
+  size_t marked = 0;
+  for (const glm::ivec2& e : few.cells) {
+    EXPECT_GE(e.y, -1);
+    EXPECT_LE(e.y, 2);
+    marked += e.y == -1;
+  }
+  EXPECT_EQ(marked, few.fallback_cells);
+  // One cell a face on thesis B: the render test below relies on its rays falling back.
+  const Scene b = builtin_scene("thesis-b");
+  EXPECT_GT(build_light_buffer(b, build_grid(b, 0), 1).fallback_cells, 0u);
+  // No lights, no grid or resolution 0: none at all.
+  Scene dark = a;
+  dark.lights.clear();
+  EXPECT_TRUE(build_light_buffer(dark, ga, 16).empty());
+  EXPECT_TRUE(build_light_buffer(a, ga, 0).empty());
+  EXPECT_THROW(build_light_buffer(a, ga, kLightBufferMaxRes + 1), std::invalid_argument);
+}
+
+TEST(LightBuffer, OptionParsing) {
+  EXPECT_EQ(parse_light_buffer("auto"), kLightBufferAuto);
+  EXPECT_EQ(parse_light_buffer("off"), kLightBufferOff);
+  EXPECT_EQ(parse_light_buffer("32"), 32);
+  for (const char* bad : {"0", "-3", "1025", "32x", "", "on"}) {
+    try {
+      parse_light_buffer(bad);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("--light-buffer"), std::string::npos) << e.what();
+    }
+  }
+  Scene s = builtin_scene("thesis-a");
+  EXPECT_EQ(light_buffer_res(s), kLightBufferRes);
+  s.options.light_buffer = 7;
+  EXPECT_EQ(light_buffer_res(s), 7);
+  s.options.light_buffer = kLightBufferAuto;
+  s.lights.resize(200);  // 200 lights at 64 x 64 cells a face would be 4.9M cells
+  EXPECT_LT(6 * light_buffer_res(s) * light_buffer_res(s) * 200, (1 << 22) + 1);
+}
+
+class LightBufferRender : public ::testing::TestWithParam<std::string> {};
+
+// Shadows are the same bits with the light buffer as with the grid alone: each scene at
+// several resolutions (1 cell a face: thesis B's faces list more triangles than a cell may,
+// so its rays fall back to the grid), with the megakernel and the multipass strategy.
+TEST_P(LightBufferRender, ImagesEqualTheGridsAlone) {
+  RT_REQUIRE_BACKEND(GetParam());
+  for (const char* name : {"thesis-a", "thesis-b", "cornell", "glass"}) {
+    Scene s = builtin_scene(name);
+    if (std::string(name) == "thesis-b") s.lights.resize(1);  // fewer passes
+    const Grid g = build_grid(s, 0);
+    RenderSettings rs;
+    rs.backend = GetParam();
+    rs.width = 24;
+    rs.height = 16;
+    rs.max_depth = 2;
+    s.options.light_buffer = kLightBufferOff;
+    const RenderResult ref = Tracer(s, g).render(rs, s.camera);
+    for (int res : {1, 3, kLightBufferAuto}) {
+      s.options.light_buffer = res;
+      Tracer t(s, g);
+      const std::string what =
+          std::string(name) + " at light buffer " + std::to_string(res) + " on " + GetParam();
+      expect_identical(ref, t.render(rs, s.camera), what);
+      if (std::string(name) == "glass") continue;  // the multipass strategy has no refraction
+      RenderSettings mp = rs;
+      mp.strategy = Strategy::Multipass;
+      expect_identical(ref, t.render(mp, s.camera), what + ", multipass");
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, LightBufferRender, ::testing::ValuesIn(testing::backend_names()),
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
+
+}  // namespace
+}  // namespace rt
