@@ -150,7 +150,12 @@ TEST(LightBuffer, OptionParsing) {
   EXPECT_EQ(light_buffer_res(s), 7);
   s.options.light_buffer = kLightBufferAuto;
   s.lights.resize(200);  // 200 lights at 64 x 64 cells a face would be 4.9M cells
+  EXPECT_GE(light_buffer_res(s), 8);
   EXPECT_LT(6 * light_buffer_res(s) * light_buffer_res(s) * 200, (1 << 22) + 1);
+  s.lights.resize(100000);  // 8 x 8 cells a face would still be 38M cells: none
+  EXPECT_EQ(light_buffer_res(s), 0);
+  s.lights.resize(2000000);  // 36 triangles x 2M lights: a build of seconds, so none
+  EXPECT_EQ(light_buffer_res(s), 0);
 }
 
 class LightBufferRender : public ::testing::TestWithParam<std::string> {};

@@ -42,15 +42,21 @@ double origin_triangle_distance(const glm::dvec3& a, const glm::dvec3& b, const 
   return glm::length(a + ab * (vb / denom) + ac * (vc / denom));
 }
 
+// A convex polygon of at most 7 vertices: a triangle clipped by four planes.
+struct Polygon {
+  glm::dvec3 v[7];
+  int n = 0;
+};
+
 // Sutherland-Hodgman: the part of the polygon where dot(n, p) >= 0.
-std::vector<glm::dvec3> clip(const std::vector<glm::dvec3>& poly, const glm::dvec3& n) {
-  std::vector<glm::dvec3> out;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const glm::dvec3& a = poly[i];
-    const glm::dvec3& b = poly[(i + 1) % poly.size()];
+Polygon clip(const Polygon& poly, const glm::dvec3& n) {
+  Polygon out;
+  for (int i = 0; i < poly.n; ++i) {
+    const glm::dvec3& a = poly.v[i];
+    const glm::dvec3& b = poly.v[(i + 1) % poly.n];
     const double da = glm::dot(n, a), db = glm::dot(n, b);
-    if (da >= 0) out.push_back(a);
-    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+    if (da >= 0) out.v[out.n++] = a;
+    if ((da >= 0) != (db >= 0)) out.v[out.n++] = a + (b - a) * (da / (da - db));
   }
   return out;
 }
@@ -125,85 +131,116 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
 
   const size_t per_face = static_cast<size_t>(res) * static_cast<size_t>(res);
   const size_t per_light = 6 * per_face;
-  std::vector<std::vector<Entry>> lists(per_light * s.lights.size());
-  std::vector<char> overflow(lists.size(), 0);
-  tbb::parallel_for(size_t(0), s.lights.size(), [&](size_t li) {
+  lb.cells.resize(per_light * s.lights.size());
+  const double slack = 1e-5 * scale;
+  for (size_t li = 0; li < s.lights.size(); ++li) {
     const glm::dvec3 L(s.lights[li].position);
-    for (int32_t t : ids) {
-      glm::dvec3 p[3];
-      for (int k = 0; k < 3; ++k)
-        p[k] = glm::dvec3(s.positions[static_cast<size_t>(t) * 3 + k]) - L;
-      const double dmin = origin_triangle_distance(p[0], p[1], p[2]);
-      // A lower bound of the distance from the light of any point the triangle test may
-      // report (its rounding is a few ulps of the scene's scale; 1e-5 of it is far above).
-      const double slack = 1e-5 * scale;
-      double nd = (dmin - slack) * (1.0 - 1e-6);
-      float near = nd > 0 ? std::nextafter(static_cast<float>(nd), 0.0f) : 0.0f;
-      if (static_cast<double>(near) > nd) near = 0.0f;
-      // The angular margin: the float lookup (about 1e-7) and the test's rounding seen from
-      // the light (slack / dmin), each with a wide factor to spare.
-      const double margin = 2e-5 + (dmin > 0 ? 4.0 * slack / dmin : 4.0);
-      for (int axis = 0; axis < 3; ++axis)
-        for (int sign = 0; sign < 2; ++sign) {
-          const double sg = sign ? -1.0 : 1.0;
-          const int U = kU[axis], V = kV[axis];
-          // The face's pyramid, widened so that directions on an edge belong to both faces.
-          const double wide = 1.0 + 1e-3;
-          std::vector<glm::dvec3> poly{p[0], p[1], p[2]};
-          for (int c : {U, V})
-            for (double cs : {1.0, -1.0}) {
-              glm::dvec3 n(0.0);
-              n[axis] = sg * wide;
-              n[c] = -cs;
-              poly = clip(poly, n);
-              if (poly.empty()) break;
-            }
-          if (poly.empty()) continue;
-          double u0 = 2, u1 = -2, v0 = 2, v1 = -2;
-          bool whole = margin >= 1.0;
-          for (const glm::dvec3& q : poly) {
-            const double w = sg * q[axis];
-            // A polygon that reaches the light itself covers every direction of the face.
-            if (!(w > 1e-9 * scale)) {
-              whole = true;
-              break;
-            }
-            u0 = std::min(u0, q[U] / w);
-            u1 = std::max(u1, q[U] / w);
-            v0 = std::min(v0, q[V] / w);
-            v1 = std::max(v1, q[V] / w);
-          }
-          if (whole) u0 = v0 = -1, u1 = v1 = 1;
-          const glm::ivec2 iu = cell_span(u0 - margin, u1 + margin, res);
-          const glm::ivec2 iv = cell_span(v0 - margin, v1 + margin, res);
-          const size_t base = li * per_light + static_cast<size_t>(2 * axis + sign) * per_face;
-          for (int j = iv.x; j <= iv.y; ++j)
-            for (int i = iu.x; i <= iu.y; ++i) {
-              const size_t c =
-                  base + static_cast<size_t>(j) * static_cast<size_t>(res) + static_cast<size_t>(i);
-              if (overflow[c]) continue;
-              if (lists[c].size() >= static_cast<size_t>(max_list)) {
-                overflow[c] = 1;
-                std::vector<Entry>().swap(lists[c]);
-                continue;
+    // Each chunk of triangles lists its (cell, entry) pairs; then a counting sort by cell.
+    constexpr size_t kChunk = 1024;
+    std::vector<std::vector<std::pair<uint32_t, Entry>>> parts((ids.size() + kChunk - 1) / kChunk);
+    tbb::parallel_for(size_t(0), parts.size(), [&](size_t part) {
+      auto& out = parts[part];
+      const size_t end = std::min(ids.size(), (part + 1) * kChunk);
+      for (size_t k = part * kChunk; k < end; ++k) {
+        const int32_t t = ids[k];
+        Polygon tri;
+        tri.n = 3;
+        for (int c = 0; c < 3; ++c)
+          tri.v[c] = glm::dvec3(s.positions[static_cast<size_t>(t) * 3 + c]) - L;
+        const double dmin = origin_triangle_distance(tri.v[0], tri.v[1], tri.v[2]);
+        // A lower bound of the distance from the light of any point the triangle test may
+        // report (its rounding is a few ulps of the scene's scale; 1e-5 of it is far above).
+        const double nd = (dmin - slack) * (1.0 - 1e-6);
+        float near = nd > 0 ? std::nextafter(static_cast<float>(nd), 0.0f) : 0.0f;
+        if (static_cast<double>(near) > nd) near = 0.0f;
+        // The angular margin: the float lookup (about 1e-7) and the test's rounding seen from
+        // the light (slack / dmin), each with a wide factor to spare.
+        const double margin = 2e-5 + (dmin > 0 ? 4.0 * slack / dmin : 4.0);
+        for (int axis = 0; axis < 3; ++axis)
+          for (int sign = 0; sign < 2; ++sign) {
+            const double sg = sign ? -1.0 : 1.0;
+            const int U = kU[axis], V = kV[axis];
+            // The face's pyramid, widened so that directions on an edge belong to both
+            // faces: four planes through the light. A triangle wholly outside one of them
+            // misses the face; one inside all four needs no clipping.
+            constexpr double kWide = 1.0 + 1e-3;
+            glm::dvec3 planes[4];
+            int pn = 0;
+            for (int c : {U, V})
+              for (double cs : {1.0, -1.0}) {
+                glm::dvec3 n(0.0);
+                n[axis] = sg * kWide;
+                n[c] = -cs;
+                planes[pn++] = n;
               }
-              lists[c].push_back({near, t});
+            Polygon poly = tri;
+            bool outside = false;
+            for (const glm::dvec3& n : planes) {
+              int in = 0;
+              for (int c = 0; c < 3; ++c) in += glm::dot(n, tri.v[c]) >= 0;
+              if (in == 0) outside = true;
             }
-        }
+            if (outside) continue;
+            for (const glm::dvec3& n : planes) {
+              poly = clip(poly, n);
+              if (poly.n == 0) break;
+            }
+            if (poly.n == 0) continue;
+            double u0 = 2, u1 = -2, v0 = 2, v1 = -2;
+            bool whole = margin >= 1.0;
+            for (int c = 0; c < poly.n && !whole; ++c) {
+              const glm::dvec3& q = poly.v[c];
+              const double w = sg * q[axis];
+              // A polygon that reaches the light itself covers every direction of the face.
+              if (!(w > 1e-9 * scale)) {
+                whole = true;
+                break;
+              }
+              u0 = std::min(u0, q[U] / w);
+              u1 = std::max(u1, q[U] / w);
+              v0 = std::min(v0, q[V] / w);
+              v1 = std::max(v1, q[V] / w);
+            }
+            if (whole) u0 = v0 = -1, u1 = v1 = 1;
+            const glm::ivec2 iu = cell_span(u0 - margin, u1 + margin, res);
+            const glm::ivec2 iv = cell_span(v0 - margin, v1 + margin, res);
+            const size_t base = static_cast<size_t>(2 * axis + sign) * per_face;
+            for (int j = iv.x; j <= iv.y; ++j)
+              for (int i = iu.x; i <= iu.y; ++i)
+                out.push_back({static_cast<uint32_t>(base + static_cast<size_t>(j) * res +
+                                                     static_cast<size_t>(i)),
+                               Entry{near, t}});
+          }
+      }
+    });
+    std::vector<uint32_t> count(per_light + 1, 0);
+    for (const auto& part : parts)
+      for (const auto& ce : part) ++count[ce.first + 1];
+    for (size_t c = 0; c < per_light; ++c) count[c + 1] += count[c];
+    std::vector<Entry> sorted(count[per_light]);
+    {
+      std::vector<uint32_t> at(count.begin(), count.end() - 1);
+      for (const auto& part : parts)
+        for (const auto& ce : part) sorted[at[ce.first]++] = ce.second;
     }
-  });
-  lb.cells.resize(lists.size());
-  for (size_t c = 0; c < lists.size(); ++c) {
-    if (overflow[c]) {
-      lb.cells[c] = {static_cast<int32_t>(lb.tris.size()), -1};
-      ++lb.fallback_cells;
-      continue;
-    }
-    std::sort(lists[c].begin(), lists[c].end());
-    lb.cells[c] = {static_cast<int32_t>(lb.tris.size()), static_cast<int32_t>(lists[c].size())};
-    for (const Entry& e : lists[c]) {
-      lb.tris.push_back(e.tri);
-      lb.near.push_back(e.near);
+    parts.clear();
+    tbb::parallel_for(size_t(0), per_light, [&](size_t c) {
+      if (count[c + 1] - count[c] <= static_cast<uint32_t>(max_list))
+        std::sort(sorted.begin() + count[c], sorted.begin() + count[c + 1]);
+    });
+    for (size_t c = 0; c < per_light; ++c) {
+      const uint32_t n = count[c + 1] - count[c];
+      glm::ivec2& cell = lb.cells[li * per_light + c];
+      if (n > static_cast<uint32_t>(max_list)) {
+        cell = {static_cast<int32_t>(lb.tris.size()), -1};
+        ++lb.fallback_cells;
+        continue;
+      }
+      cell = {static_cast<int32_t>(lb.tris.size()), static_cast<int32_t>(n)};
+      for (uint32_t k = count[c]; k < count[c + 1]; ++k) {
+        lb.tris.push_back(sorted[k].tri);
+        lb.near.push_back(sorted[k].near);
+      }
     }
   }
   lb.build_ms =
@@ -213,12 +250,15 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
 
 int light_buffer_res(const Scene& s) {
   if (s.options.light_buffer != kLightBufferAuto) return s.options.light_buffer;
+  // Its build visits every triangle once per light (about 0.1-0.3 us each on one core):
+  // beyond 2^26 pairs (seconds) auto leaves it off, and the shadow rays walk the grid.
+  if (static_cast<uint64_t>(s.triangle_count()) * s.lights.size() > (1ull << 26)) return 0;
   int res = kLightBufferRes;
-  while (res > 8 &&
-         6ull * static_cast<uint64_t>(res) * static_cast<uint64_t>(res) * s.lights.size() >
-             (1ull << 22))
-    res /= 2;
-  return res;
+  auto cells = [&](int r) {
+    return 6ull * static_cast<uint64_t>(r) * static_cast<uint64_t>(r) * s.lights.size();
+  };
+  while (res > 8 && cells(res) > (1ull << 22)) res /= 2;
+  return cells(res) > (1ull << 22) ? 0 : res;  // tens of thousands of lights: none
 }
 
 int parse_light_buffer(const std::string& s) {

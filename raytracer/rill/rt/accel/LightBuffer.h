@@ -61,7 +61,8 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res,
                                int max_list = kLightBufferMaxList);
 
 // The resolution SceneOptions::light_buffer asks for (auto: kLightBufferRes, fewer where
-// many lights would make more than 2^22 cells).
+// many lights would make more than 2^22 cells, and 0, none, where even 8 would or lights times
+// triangles pass 2^26: the build would take seconds).
 int light_buffer_res(const Scene& s);
 
 // The cell of direction q (a point minus the light's position), as the kernels compute it:
