@@ -1,6 +1,8 @@
 // Image sequences for rill-trace (FrameSequence.h).
 #include "FrameSequence.h"
 
+#include "ProgressBar.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -52,13 +54,8 @@ Progress::Progress(int total, bool quiet) : total_(total), on_(!quiet && isatty(
 
 void Progress::update(int done, double last_ms) {
   if (!on_) return;
-  constexpr int kWidth = 30;
-  const int filled = total_ > 0 ? done * kWidth / total_ : kWidth;
-  std::string bar(static_cast<size_t>(filled), '=');
-  if (filled < kWidth) bar += '>';
-  bar.resize(kWidth, ' ');
-  std::fprintf(stderr, "\rframe %d/%d [%s] %3d%%, %.1f ms", done, total_, bar.c_str(),
-               total_ > 0 ? 100 * done / total_ : 100, last_ms);
+  std::fprintf(stderr, "\rframe %d/%d %s %3d%%, %.1f ms", done, total_,
+               progress_bar(done, total_).c_str(), total_ > 0 ? 100 * done / total_ : 100, last_ms);
   std::fflush(stderr);
 }
 

@@ -198,7 +198,8 @@ void CFamilyPrinter::assign(std::string& out, const Stmt& s, const std::string& 
 std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
   auto a = [&](size_t i) { return operand(s.args[i], c); };
   // The kind the op computes on: its operands' (select: its branches').
-  const ScalarKind k = s.args.empty() ? ScalarKind::Int : s.args[s.op == Op::Select ? 1 : 0].type.kind;
+  const ScalarKind k =
+      s.args.empty() ? ScalarKind::Int : s.args[s.op == Op::Select ? 1 : 0].type.kind;
   const OpForm& form = op_info(s.op).form(k);
   switch (form.kind) {
     case FormKind::Copy:

@@ -19,6 +19,7 @@
 #include <memory>
 #include <thread>
 
+#include "ProgressBar.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt::distributed {
@@ -506,10 +507,8 @@ FarmResult Farm::render_master(const FarmJob& job,
   auto draw_progress = [&, last = 0.0](bool final) mutable {
     if (!o_.progress || (!final && now_s() - last < 0.1)) return;
     last = now_s();
-    const int bar = 30, filled = bar * queue.done() / std::max(1, queue.total());
-    std::string line(static_cast<size_t>(filled), '#');
-    line.append(static_cast<size_t>(bar - filled), '.');
-    std::fprintf(stderr, "\rrill-trace: [%s] %d/%d tiles", line.c_str(), queue.done(),
+    std::fprintf(stderr, "\rrill-trace: %s %d/%d tiles",
+                 trace_cli::progress_bar(queue.done(), queue.total()).c_str(), queue.done(),
                  queue.total());
     if (job.frames > 1) std::fprintf(stderr, ", %d/%d frames", frames.complete, job.frames);
     std::fprintf(stderr, "; per rank");
