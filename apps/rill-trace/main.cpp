@@ -226,6 +226,11 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
   g_doing = "uploading the scene and grid (" + std::to_string(p->grid.voxel_count()) + " voxels)";
   p->tracer = std::make_unique<rt::Tracer>(scene, p->grid, p->knobs);
   p->setup_ms = ms_since(t_setup);
+  if (const std::string& why = p->tracer->light_buffer().skipped; !why.empty()) {
+    const std::string w = "no light buffer (" + why + "): shadow rays walk the grid";
+    if (say) std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
+    scene.warnings.push_back(w);
+  }
 
   rt::RenderSettings& rs = p->rs;
   rs.backend = o.backend;
@@ -304,7 +309,8 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
   j["light_buffer"] = {{"resolution", lb.res},
                        {"entries", lb.entries},
                        {"fallback_cells", lb.fallback_cells},
-                       {"build_ms", lb.build_ms}};
+                       {"build_ms", lb.build_ms},
+                       {"skipped", lb.skipped}};
   j["warnings"] = scene.warnings;
   j["rays"] = rays;
   return j;

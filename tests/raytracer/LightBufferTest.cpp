@@ -132,6 +132,23 @@ TEST(LightBuffer, LongListsSendTheirRaysToTheGrid) {
   EXPECT_THROW(build_light_buffer(a, ga, kLightBufferMaxRes + 1), std::invalid_argument);
 }
 
+// Huge triangles around a light at a high resolution: the build stops at its budget of
+// cells and leaves no light buffer, saying why; the images stay the grid's.
+TEST(LightBuffer, ABuildOverItsBudgetGivesUpAndSaysWhy) {
+  Scene s = builtin_scene("thesis-a");
+  const Grid g = build_grid(s, 0);
+  const LightBuffer full = build_light_buffer(s, g, 64);
+  ASSERT_FALSE(full.empty());
+  EXPECT_TRUE(full.skipped.empty());
+  const LightBuffer none = build_light_buffer(s, g, 64, kLightBufferMaxList, 1000);
+  EXPECT_TRUE(none.empty());
+  EXPECT_NE(none.skipped.find("1000 cells"), std::string::npos) << none.skipped;
+  // While it builds, a cell keeps no more than max_list + 1 entries, and one over max_list
+  // falls back: two lists of at most 2 here.
+  const LightBuffer small = build_light_buffer(s, g, 64, 2);
+  for (const glm::ivec2& e : small.cells) EXPECT_LE(e.y, 2);
+}
+
 TEST(LightBuffer, OptionParsing) {
   EXPECT_EQ(parse_light_buffer("auto"), kLightBufferAuto);
   EXPECT_EQ(parse_light_buffer("off"), kLightBufferOff);

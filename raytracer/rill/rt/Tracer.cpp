@@ -132,7 +132,7 @@ const TracerOptions& Tracer::options() const {
 }
 Tracer::LightBufferInfo Tracer::light_buffer() const {
   const LightBufferView& v = d_->device.light_buffer;
-  return {v.host_res, v.entries, v.fallback_cells, v.build_ms};
+  return {v.host_res, v.entries, v.fallback_cells, v.build_ms, v.skipped};
 }
 std::vector<std::string> Tracer::shaders() const {
   return d_->device.materials.used_shaders();

@@ -164,6 +164,7 @@ class Tracer {
     int res = 0;
     size_t entries = 0, fallback_cells = 0;
     double build_ms = 0;
+    std::string skipped;  // why there is none where the scene has shadows and asked for one
   };
   LightBufferInfo light_buffer() const;
   // The shaders generated into the kernels: those of the materials the scene's triangles use.

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -96,7 +97,8 @@ glm::ivec3 light_buffer_cell(const glm::vec3& q, int res) {
   return {face, cell(q[kU[axis]]), cell(q[kV[axis]])};
 }
 
-LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int max_list) {
+LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int max_list,
+                               uint64_t max_visits) {
   const auto t0 = std::chrono::steady_clock::now();
   LightBuffer lb;
   if (res <= 0 || s.lights.empty() || grid.empty()) return lb;
@@ -129,6 +131,9 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
   for (const Light& l : s.lights)
     scale = std::max(scale, static_cast<double>(glm::length(l.position)));
 
+  // Cells visited (a triangle's rectangle of cells on a face): the build's time, bounded.
+  std::atomic<uint64_t> visits{0};
+  std::atomic<bool> over_budget{false};
   const size_t per_face = static_cast<size_t>(res) * static_cast<size_t>(res);
   const size_t per_light = 6 * per_face;
   lb.cells.resize(per_light * s.lights.size());
@@ -138,10 +143,14 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
     // Each chunk of triangles lists its (cell, entry) pairs; then a counting sort by cell.
     constexpr size_t kChunk = 1024;
     std::vector<std::vector<std::pair<uint32_t, Entry>>> parts((ids.size() + kChunk - 1) / kChunk);
+    // Per cell, how many triangles it lists so far: past max_list the cell sends its rays to
+    // the grid, so no more of its entries are kept (memory stays within cells x (max_list +
+    // 1) entries whatever the triangles).
+    std::vector<std::atomic<uint32_t>> listed(per_light);
     tbb::parallel_for(size_t(0), parts.size(), [&](size_t part) {
       auto& out = parts[part];
       const size_t end = std::min(ids.size(), (part + 1) * kChunk);
-      for (size_t k = part * kChunk; k < end; ++k) {
+      for (size_t k = part * kChunk; k < end && !over_budget.load(std::memory_order_relaxed); ++k) {
         const int32_t t = ids[k];
         Polygon tri;
         tri.n = 3;
@@ -205,14 +214,24 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
             const glm::ivec2 iu = cell_span(u0 - margin, u1 + margin, res);
             const glm::ivec2 iv = cell_span(v0 - margin, v1 + margin, res);
             const size_t base = static_cast<size_t>(2 * axis + sign) * per_face;
+            const uint64_t cells =
+                static_cast<uint64_t>(iu.y - iu.x + 1) * static_cast<uint64_t>(iv.y - iv.x + 1);
+            if (visits.fetch_add(cells, std::memory_order_relaxed) + cells > max_visits) {
+              over_budget = true;
+              return;
+            }
             for (int j = iv.x; j <= iv.y; ++j)
-              for (int i = iu.x; i <= iu.y; ++i)
-                out.push_back({static_cast<uint32_t>(base + static_cast<size_t>(j) * res +
-                                                     static_cast<size_t>(i)),
-                               Entry{near, t}});
+              for (int i = iu.x; i <= iu.y; ++i) {
+                const uint32_t c = static_cast<uint32_t>(base + static_cast<size_t>(j) * res +
+                                                         static_cast<size_t>(i));
+                if (listed[c].fetch_add(1, std::memory_order_relaxed) <=
+                    static_cast<uint32_t>(max_list))
+                  out.push_back({c, Entry{near, t}});
+              }
           }
       }
     });
+    if (over_budget) break;
     std::vector<uint32_t> count(per_light + 1, 0);
     for (const auto& part : parts)
       for (const auto& ce : part) ++count[ce.first + 1];
@@ -225,13 +244,13 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
     }
     parts.clear();
     tbb::parallel_for(size_t(0), per_light, [&](size_t c) {
-      if (count[c + 1] - count[c] <= static_cast<uint32_t>(max_list))
+      if (listed[c] <= static_cast<uint32_t>(max_list))
         std::sort(sorted.begin() + count[c], sorted.begin() + count[c + 1]);
     });
     for (size_t c = 0; c < per_light; ++c) {
       const uint32_t n = count[c + 1] - count[c];
       glm::ivec2& cell = lb.cells[li * per_light + c];
-      if (n > static_cast<uint32_t>(max_list)) {
+      if (listed[c] > static_cast<uint32_t>(max_list)) {
         cell = {static_cast<int32_t>(lb.tris.size()), -1};
         ++lb.fallback_cells;
         continue;
@@ -242,6 +261,14 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
         lb.near.push_back(sorted[k].near);
       }
     }
+  }
+  if (over_budget) {
+    LightBuffer none;
+    none.skipped = "its triangles cover more than " + std::to_string(max_visits) + " cells at " +
+                   std::to_string(res) + " cells per face edge";
+    none.build_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return none;
   }
   lb.build_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -43,6 +43,7 @@ constexpr int kLightBufferOff = 0;
 constexpr int kLightBufferRes = 64;
 constexpr int kLightBufferMaxRes = 1024;
 constexpr int kLightBufferMaxList = 48;
+constexpr uint64_t kLightBufferMaxVisits = uint64_t{1} << 27;
 
 struct LightBuffer {
   int res = 0;  // cells per face edge; 0: no light buffer
@@ -51,14 +52,20 @@ struct LightBuffer {
   std::vector<int32_t> tris;      // per cell, nearest first (ties: smaller id)
   std::vector<float> near;        // a lower bound of each entry's distance from the light
   size_t fallback_cells = 0;      // cells marked (start, -1)
+  std::string skipped;            // why there is none although one was asked for
   double build_ms = 0;
   bool empty() const { return res == 0; }
 };
 
 // The light buffer of the scene's lights over the triangles the grid holds (the static
 // ones; moving triangles stay with the BVH), res cells per face edge; max_list as above.
+// Its time and memory are bounded: when the triangles' rectangles of cells add up to more
+// than max_visits (huge triangles close to a light, at a high resolution), it gives up and
+// returns none, saying why in `skipped` (the shadow rays then walk the grid); the entries
+// it keeps are at most max_list + 1 per cell while it builds.
 LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res,
-                               int max_list = kLightBufferMaxList);
+                               int max_list = kLightBufferMaxList,
+                               uint64_t max_visits = kLightBufferMaxVisits);
 
 // The resolution SceneOptions::light_buffer asks for (auto: kLightBufferRes, fewer where
 // many lights would make more than 2^22 cells, and 0, none, where even 8 would or lights times

@@ -13,6 +13,7 @@ void LightBufferView::upload(const LightBuffer& lb) {
   entries = lb.tris.size();
   fallback_cells = lb.fallback_cells;
   build_ms = lb.build_ms;
+  skipped = lb.skipped;
   if (!enabled) return;
   upload_padded(cells, lb.cells);
   upload_padded(tris, lb.tris);

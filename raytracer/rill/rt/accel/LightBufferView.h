@@ -18,6 +18,7 @@ struct LightBufferView {
   int host_res = 0;
   size_t entries = 0, fallback_cells = 0;
   double build_ms = 0;
+  std::string skipped;  // LightBuffer::skipped
 
   void upload(const LightBuffer& lb);
   // The cell of a shadow ray towards light `light` whose origin is q away from the light:
