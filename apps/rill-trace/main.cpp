@@ -223,7 +223,8 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
   p->knobs.triangle = rt::parse_triangle_test(o.triangle);
   p->knobs.offset = rt::parse_self_intersection(o.offset);
   p->knobs.traversal = rt::parse_traversal(o.traversal);
-  g_doing = "uploading the scene and grid (" + std::to_string(p->grid.voxel_count()) + " voxels)";
+  g_doing = "uploading the scene and grid (" + std::to_string(p->grid.voxel_count()) +
+            " voxels) and building the light buffer";
   p->tracer = std::make_unique<rt::Tracer>(scene, p->grid, p->knobs);
   p->setup_ms = ms_since(t_setup);
   if (const std::string& why = p->tracer->light_buffer().skipped; !why.empty()) {

@@ -268,7 +268,7 @@ TEST(Cli, RunningOutOfMemoryNamesTheStep) {
   EXPECT_TRUE(last == "rill-trace: out of memory while building the grid of 36 triangles\n" ||
               last ==
                   "rill-trace: out of memory while uploading the scene and grid (64000000 "
-                  "voxels)\n")
+                  "voxels) and building the light buffer\n")
       << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path("m.png")));
 }

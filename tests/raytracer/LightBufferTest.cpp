@@ -12,6 +12,7 @@
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/accel/LightBuffer.h"
+#include "rill/rt/accel/LightBufferView.h"
 
 namespace rt {
 namespace {
@@ -108,6 +109,68 @@ TEST(LightBuffer, EveryPointOfATriangleIsListedInItsCell) {
   }
 }
 
+// Shadow rays whose blocker lies a few ray offsets from the light, just past the diagonal
+// between two cube faces: the ray's float direction, seen from the light that close, swings
+// by far more than the lookup's rounding, across the faces' edge too. Each ray's blocker as
+// the kernel's own grid walk finds it must be listed in the cell the ray looks up. (A
+// reviewer's case: with the faces widened by a fixed 1e-3 only, a third of these rays were
+// blocked by a triangle their cell did not list.)
+TEST(LightBuffer, ShadowRaysBlockedNextToTheLightFindTheBlockerListed) {
+  Scene s;
+  Material m;
+  const int mat = s.add_material(m);
+  s.add_triangle({-4, -1, -3}, {-4, -1, 3}, {1, -1, 3}, mat);  // the floor the rays start on
+  s.add_triangle({-4, -1, -3}, {1, -1, 3}, {1, -1, -3}, mat);
+  const glm::vec3 A(0.3125847578f, 0.7091845870f, 0.2289859056f),
+      B(0.3125847578f, 0.7091845870f, 0.2292141020f),
+      C(0.3125951588f, 0.7091741562f, 0.2292038053f),
+      D(0.3125951588f, 0.7091741562f, 0.2289962023f);
+  s.add_triangle(A, B, C, mat);  // a small quad 2e-4 from the light, past the -x/-y edge
+  s.add_triangle(A, C, D, mat);
+  const glm::vec3 light(0.3127000034f, 0.7092999816f, 0.2291000038f);
+  s.lights = {Light{light, glm::vec3(1.0f)}};
+  const Grid g = build_grid(s, 0);
+  Tracer tr(s, g);
+  const LightBuffer lb = build_light_buffer(s, g, 64);
+  ASSERT_FALSE(lb.empty());
+  const float eps = 1.6e-4f;  // the shading's offset for this scene's size
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> R(0.0, 1.0);
+  std::vector<glm::vec3> origins, dirs;
+  std::vector<float> tmax;
+  for (int i = 0; i < 20000; ++i) {
+    // Floor points whose direction to the light lies within 1e-3 of the -x/-y diagonal.
+    const double ratio = 0.9993 + 0.0008 * R(rng);
+    const double qx = -(static_cast<double>(light.y) + 1.0) / ratio;
+    const double z = light.z + (R(rng) * 2 - 1) * 1.5;
+    const glm::vec3 o(static_cast<float>(light.x + qx), std::nextafter(-1.0f, 0.0f),
+                      static_cast<float>(z));
+    const glm::vec3 to = light - o;
+    const float dist = glm::length(to);
+    origins.push_back(o);
+    dirs.push_back(to / dist);
+    tmax.push_back(dist - eps);
+  }
+  std::vector<int32_t> prim;
+  std::vector<float> dist;
+  tr.intersect("cpu", origins, dirs, prim, dist);
+  size_t blocked = 0, unlisted = 0;
+  for (size_t i = 0; i < origins.size(); ++i) {
+    if (prim[i] < 2 || !(dist[i] < tmax[i])) continue;
+    ++blocked;
+    const glm::vec3 q = origins[i] - light;
+    const glm::ivec2 e = lb.cells[cell_index(lb, 0, light_buffer_cell(q, 64))];
+    if (e.y < 0) continue;  // the grid's
+    bool listed = false;
+    for (int k = 0; k < e.y; ++k)
+      listed = listed || (lb.tris[static_cast<size_t>(e.x + k)] == prim[i] &&
+                          lb.near[static_cast<size_t>(e.x + k)] <= glm::length(q));
+    unlisted += !listed;
+  }
+  EXPECT_GT(blocked, 1000u);  // the case is exercised
+  EXPECT_EQ(unlisted, 0u) << "of " << blocked << " blocked rays";
+}
+
 TEST(LightBuffer, LongListsSendTheirRaysToTheGrid) {
   const Scene a = builtin_scene("thesis-a");
   const Grid ga = build_grid(a, 0);
@@ -169,6 +232,14 @@ TEST(LightBuffer, OptionParsing) {
   s.lights.resize(200);  // 200 lights at 64 x 64 cells a face would be 4.9M cells
   EXPECT_GE(light_buffer_res(s), 8);
   EXPECT_LT(6 * light_buffer_res(s) * light_buffer_res(s) * 200, (1 << 22) + 1);
+  // 400,000 triangles: 100 lights are 4e7 triangle-light pairs, built; 170 are over 2^26.
+  Scene big;
+  big.add_material(Material{});
+  for (int t = 0; t < 400000; ++t) big.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
+  big.lights.resize(100);
+  EXPECT_EQ(light_buffer_res(big), kLightBufferRes);
+  big.lights.resize(170);
+  EXPECT_EQ(light_buffer_res(big), 0);
   s.lights.resize(100000);  // 8 x 8 cells a face would still be 38M cells: none
   EXPECT_EQ(light_buffer_res(s), 0);
   s.lights.resize(2000000);  // 36 triangles x 2M lights: a build of seconds, so none
@@ -204,6 +275,54 @@ TEST_P(LightBufferRender, ImagesEqualTheGridsAlone) {
       mp.strategy = Strategy::Multipass;
       expect_identical(ref, t.render(mp, s.camera), what + ", multipass");
     }
+  }
+}
+
+// The kernels' cell lookup (LightBufferView::cell) gives the host rule's cell
+// (light_buffer_cell) on every backend: faces, ties between axes, edges and corners of the
+// cells, the light itself, NaN, and random directions.
+TEST_P(LightBufferRender, CellLookupMatchesTheHostRule) {
+  RT_REQUIRE_BACKEND(GetParam());
+  const int res = 5, lights = 2;
+  LightBuffer lb;
+  lb.res = res;
+  lb.lights = lights;
+  lb.reach = 1e30f;
+  for (int k = 0; k < lights * 6 * res * res; ++k) lb.cells.push_back({k, 0});
+  lb.tris = {0};
+  lb.near = {0.0f};
+  LightBufferView view;
+  view.upload(lb);
+  std::vector<glm::vec3> qs = {{1, 0, 0},      {-1, 0, 0},     {0, 1, 0},
+                               {0, -1, 0},     {0, 0, 1},      {0, 0, -1},
+                               {1, 1, 0},      {1, 0, 1},      {0, 1, 1},
+                               {-1, -1, -1},   {2, -2, 2},     {1, 0.2f, -0.6f},
+                               {1, 0.6f, 1},   {1, -1, 0.6f},  {0, 0, 0},
+                               {NAN, 1, 0},    {1e-30f, 0, 0}, {3e38f, 1e38f, -3e38f},
+                               {-0.f, 0, -0.f}};
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> U(-2.0f, 2.0f);
+  for (int k = 0; k < 2000; ++k) qs.push_back({U(rng), U(rng), U(rng)});
+  std::vector<int32_t> light(qs.size());
+  for (size_t k = 0; k < qs.size(); ++k) light[k] = static_cast<int32_t>(k % 2);
+  rill::Stream<Float3> q_in(qs);
+  rill::Stream<Int> l_in(light);
+  rill::Stream<Int2> out(static_cast<int64_t>(qs.size()));
+  rill::Program p = rill::program("lb_cell_lookup", [&] {
+    rill::Input<Float3> q("q");
+    rill::Input<Int> l("l");
+    rill::Output<Int2> c("c");
+    c = view.cell(l, q);
+  });
+  rill::Kernel k = rill::compile(p, GetParam());
+  k.inputs(q_in, l_in).outputs(out);
+  k.execute();
+  const std::vector<glm::ivec2> got = out.download();
+  for (size_t i = 0; i < qs.size(); ++i) {
+    const glm::ivec3 c = light_buffer_cell(qs[i], res);
+    const int want = ((light[i] * 6 + c.x) * res + c.z) * res + c.y;
+    EXPECT_EQ(got[i].x, want) << "q (" << qs[i].x << ", " << qs[i].y << ", " << qs[i].z << ") on "
+                              << GetParam();
   }
 }
 

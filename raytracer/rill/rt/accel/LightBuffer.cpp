@@ -86,9 +86,9 @@ glm::ivec3 light_buffer_cell(const glm::vec3& q, int res) {
   const int axis = ax ? 0 : (ay ? 1 : 2);
   const float w = a[axis];
   const int face = 2 * axis + (q[axis] < 0.0f ? 1 : 0);
-  const float inv = 1.0f / (w > 0.0f ? w : 1.0f);
+  const float w1 = w > 0.0f ? w : 1.0f;
   auto cell = [&](float c) {
-    const float x = (c * inv + 1.0f) * (0.5f * static_cast<float>(res));
+    const float x = (c / w1 + 1.0f) * (0.5f * static_cast<float>(res));
     const float f = std::floor(x);
     const int i =
         std::isnan(f) ? 0 : static_cast<int>(std::clamp(f, -1.0f, static_cast<float>(res)));
@@ -109,10 +109,11 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
   const uint64_t cell_count =
       6ull * static_cast<uint64_t>(res) * static_cast<uint64_t>(res) * s.lights.size();
   if (cell_count > (1ull << 24))
-    throw std::invalid_argument("light buffer: " + std::to_string(s.lights.size()) + " lights at " +
-                                std::to_string(res) + " cells per face edge make " +
-                                std::to_string(cell_count) +
-                                " cells (at most 2^24); choose a smaller --light-buffer");
+    throw std::invalid_argument(
+        "light buffer: " + std::to_string(s.lights.size()) + " lights at " + std::to_string(res) +
+        " cells per face edge make " + std::to_string(cell_count) +
+        " cells (at most 2^24); choose a smaller --light-buffer (options.light_buffer in a "
+        "scene file)");
   lb.res = res;
   lb.lights = static_cast<int>(s.lights.size());
   // The triangles the grid holds: the static, usable ones.
@@ -138,6 +139,10 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
   const size_t per_light = 6 * per_face;
   lb.cells.resize(per_light * s.lights.size());
   const double slack = 1e-5 * scale;
+  // Static triangles and the lights are within `scale` of the origin, so are the shadow
+  // rays' origins on them: 2 scale from a light at most. Only a moving object far outside
+  // the static scene puts one farther.
+  lb.reach = static_cast<float>(32.0 * scale);
   for (size_t li = 0; li < s.lights.size(); ++li) {
     const glm::dvec3 L(s.lights[li].position);
     // Each chunk of triangles lists its (cell, entry) pairs; then a counting sort by cell.
@@ -162,17 +167,22 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
         const double nd = (dmin - slack) * (1.0 - 1e-6);
         float near = nd > 0 ? std::nextafter(static_cast<float>(nd), 0.0f) : 0.0f;
         if (static_cast<double>(near) > nd) near = 0.0f;
-        // The angular margin: the float lookup (about 1e-7) and the test's rounding seen from
-        // the light (slack / dmin), each with a wide factor to spare.
+        // The angular margin: the float lookup (about 1e-7), the test's rounding seen from
+        // the light (slack / dmin), and the shadow ray's own direction, rounded to about
+        // 1.5e-7 and seen from the light at a hit dmin away: 1.5e-7 |q| / dmin, within
+        // 4 slack / dmin for origins up to `reach` from the light (the kernels send rays
+        // from farther to the grid).
         const double margin = 2e-5 + (dmin > 0 ? 4.0 * slack / dmin : 4.0);
         for (int axis = 0; axis < 3; ++axis)
           for (int sign = 0; sign < 2; ++sign) {
             const double sg = sign ? -1.0 : 1.0;
             const int U = kU[axis], V = kV[axis];
             // The face's pyramid, widened so that directions on an edge belong to both
-            // faces: four planes through the light. A triangle wholly outside one of them
-            // misses the face; one inside all four needs no clipping.
-            constexpr double kWide = 1.0 + 1e-3;
+            // faces, by the triangle's margin too (a ray towards a triangle close to the
+            // light swings by as much as the margin allows, across a face's edge as well as
+            // within it): four planes through the light. A triangle wholly outside one of
+            // them misses the face.
+            const double kWide = 1.0 + 1e-3 + 2.0 * margin;
             glm::dvec3 planes[4];
             int pn = 0;
             for (int c : {U, V})

@@ -52,6 +52,7 @@ struct LightBuffer {
   std::vector<int32_t> tris;      // per cell, nearest first (ties: smaller id)
   std::vector<float> near;        // a lower bound of each entry's distance from the light
   size_t fallback_cells = 0;      // cells marked (start, -1)
+  float reach = 0;                // farthest ray origin from a light that the margins cover
   std::string skipped;            // why there is none although one was asked for
   double build_ms = 0;
   bool empty() const { return res == 0; }

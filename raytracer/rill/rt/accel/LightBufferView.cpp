@@ -19,6 +19,7 @@ void LightBufferView::upload(const LightBuffer& lb) {
   upload_padded(tris, lb.tris);
   upload_padded(near, lb.near);
   res.set(lb.res);
+  reach.set(lb.reach);
 }
 
 Int2 LightBufferView::cell(const Int& light, const Float3& q) const {
@@ -30,12 +31,15 @@ Int2 LightBufferView::cell(const Int& light, const Float3& q) const {
   Float w = select(ax, a.x(), select(ay, a.y(), a.z()));
   Float major = select(ax, q.x(), select(ay, q.y(), q.z()));
   Int face = select(ax, Int(0), select(ay, Int(2), Int(4))) + select(major < 0.0f, Int(1), Int(0));
-  Float inv = 1.0f / select(w > 0.0f, w, Float(1.0f));
+  // Divided, not multiplied by 1 / w: a reciprocal of a huge w is denormal, which some
+  // backends flush to zero, while the quotients lie in [-1, 1] (a denormal one adds nothing
+  // to 1 below).
+  Float w1 = select(w > 0.0f, w, Float(1.0f));
   Float cu = select(ax, q.y(), q.x());
   Float cv = select(ax || ay, q.z(), q.y());
   Float half = to_float(res) * 0.5f;
-  Int i = clamp(to_int(floor((cu * inv + 1.0f) * half)), Int(0), res - 1);
-  Int j = clamp(to_int(floor((cv * inv + 1.0f) * half)), Int(0), res - 1);
+  Int i = clamp(to_int(floor((cu / w1 + 1.0f) * half)), Int(0), res - 1);
+  Int j = clamp(to_int(floor((cv / w1 + 1.0f) * half)), Int(0), res - 1);
   return cells[((light * 6 + face) * res + j) * res + i];
 }
 

@@ -13,6 +13,7 @@ struct LightBufferView {
   rill::Array<rill::Int> tris{1, "lb_tris"};
   rill::Array<rill::Float> near{1, "lb_near"};
   rill::Uniform<rill::Int> res{1, "lb_res"};
+  rill::Uniform<rill::Float> reach{0.0f, "lb_reach"};  // LightBuffer::reach
   // Host: whether there is one (the shadow rays' code uses it only then), and what it holds.
   bool enabled = false;
   int host_res = 0;

@@ -309,11 +309,13 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit, const Int* light
 Bool Intersector::occluders(const Ray& ray, const Int& light, Hit& best) const {
   const Float3 q = ray.o - light_pos_[light];
   const Int2 c = lb_.cell(light, q);
-  const Bool listed = c.y() >= 0;
+  // Points of the ray before the light are at most |q| from it: an entry farther away (its
+  // distance is a lower bound, LightBuffer.cpp) cannot block it, nor can the rest. An origin
+  // farther than the light buffer's margins cover (a moving object far outside the static
+  // scene) walks the grid.
+  const Float reach = length(q);
+  const Bool listed = c.y() >= 0 && reach <= lb_.reach;
   RILL_IF(listed) {
-    // Points of the ray before the light are at most |q| from it: an entry farther away
-    // (its distance is a lower bound, LightBuffer.cpp) cannot block it, nor can the rest.
-    Float reach = length(q);
     RILL_FOR(Int k = 0, k < c.y(), k += 1) {
       RILL_IF(lb_.near[c.x() + k] > reach) {
         RILL_BREAK;
