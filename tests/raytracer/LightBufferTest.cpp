@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <random>
 
 #include "RenderCompare.h"
@@ -168,6 +169,74 @@ TEST(LightBuffer, ShadowRaysBlockedNextToTheLightFindTheBlockerListed) {
     unlisted += !listed;
   }
   EXPECT_GT(blocked, 1000u);  // the case is exercised
+  EXPECT_EQ(unlisted, 0u) << "of " << blocked << " blocked rays";
+}
+
+// The same within faces: small triangles 5e-5 to 1.5e-4 from a light in every direction,
+// at 256 cells a face edge, and rays from 2 units away aimed at points near their corners,
+// where a direction's rounding carries the lookup into the next cell for about 2% of them.
+// Each blocker is listed.
+TEST(LightBuffer, RaysGrazingTrianglesNearTheLightFindThemListed) {
+  Scene s;
+  const int mat = s.add_material(Material{});
+  const glm::vec3 light(0.25f, 0.5f, -0.125f);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1.0, 1.0), R(0.0, 1.0);
+  auto unit = [&] {
+    glm::dvec3 d;
+    do d = glm::dvec3(U(rng), U(rng), U(rng));
+    while (glm::length(d) < 0.1 || glm::length(d) > 1.0);
+    return glm::normalize(d);
+  };
+  std::vector<std::array<glm::dvec3, 3>> tris;
+  for (int t = 0; t < 40; ++t) {
+    const glm::dvec3 c = glm::dvec3(light) + unit() * (5e-5 + 1e-4 * R(rng));
+    std::array<glm::dvec3, 3> v;
+    for (auto& p : v) p = c + unit() * 1e-5;
+    s.add_triangle(glm::vec3(v[0]), glm::vec3(v[1]), glm::vec3(v[2]), mat);
+    for (size_t k = 0; k < 3; ++k)  // as stored, in float
+      v[k] = glm::dvec3(s.positions[s.positions.size() - 3 + k]);
+    tris.push_back(v);
+  }
+  s.add_triangle({-3, -3, -3}, {3, -3, -3}, {0, -3, 3}, mat);  // a far floor, for the grid's size
+  s.lights = {Light{light, glm::vec3(1.0f)}};
+  const Grid g = build_grid(s, 0);
+  Tracer tr(s, g);
+  const LightBuffer lb = build_light_buffer(s, g, 256);
+  std::vector<glm::vec3> origins, dirs;
+  std::vector<float> tmax;
+  for (const auto& v : tris)
+    for (int k = 0; k < 600; ++k) {
+      // A point near a corner (where the triangle's extent on the face lies), inside or
+      // just outside.
+      const size_t corner = static_cast<size_t>(k % 3);
+      const double a = (R(rng) * 2 - 1) * 2e-3, b = (R(rng) * 2 - 1) * 2e-3;
+      const glm::dvec3 x =
+          v[corner] + (v[(corner + 1) % 3] - v[corner]) * a + (v[(corner + 2) % 3] - v[corner]) * b;
+      const glm::dvec3 from_light = glm::normalize(x - glm::dvec3(light));
+      const glm::vec3 o(glm::dvec3(light) + from_light * 2.0);
+      const glm::vec3 to = light - o;
+      origins.push_back(o);
+      dirs.push_back(to / glm::length(to));
+      tmax.push_back(glm::length(to) - 1e-5f);  // stops short of the light, as shadow rays do
+    }
+  std::vector<int32_t> prim;
+  std::vector<float> dist;
+  tr.intersect("cpu", origins, dirs, prim, dist);
+  size_t blocked = 0, unlisted = 0;
+  for (size_t i = 0; i < origins.size(); ++i) {
+    if (prim[i] < 0 || prim[i] >= 40 || !(dist[i] < tmax[i])) continue;
+    ++blocked;
+    const glm::vec3 q = origins[i] - light;
+    const glm::ivec2 e = lb.cells[cell_index(lb, 0, light_buffer_cell(q, 256))];
+    if (e.y < 0) continue;
+    bool listed = false;
+    for (int k = 0; k < e.y; ++k)
+      listed = listed || (lb.tris[static_cast<size_t>(e.x + k)] == prim[i] &&
+                          lb.near[static_cast<size_t>(e.x + k)] <= glm::length(q));
+    unlisted += !listed;
+  }
+  EXPECT_GT(blocked, 5000u);
   EXPECT_EQ(unlisted, 0u) << "of " << blocked << " blocked rays";
 }
 
