@@ -141,27 +141,34 @@ TEST_P(FilmTest, RendersReadBackOnlyWhatIsAskedFor) {
   Tracer t(s, g);
   RenderSettings rs;
   rs.backend = GetParam();
-  rs.width = 20;
-  rs.height = 14;
-  rs.spp = 2;
-  for (Strategy strategy : {Strategy::Megakernel, Strategy::Multipass}) {
-    rs.strategy = strategy;
-    rs.outputs = FrameOutputs{};
-    const RenderResult all = t.render(rs, s.camera);
-    rs.outputs = FrameOutputs{false, true, false, false, false};
-    const RenderResult png = t.render(rs, s.camera);
-    EXPECT_TRUE(png.color.empty() && png.depth.empty() && png.prim.empty() && png.normal.empty());
-    ASSERT_EQ(png.rgb8.size(), all.color.size() * 3);
-    for (size_t p = 0; p < all.color.size(); ++p)
-      for (int c = 0; c < 3; ++c)
-        ASSERT_EQ(png.rgb8[p * 3 + static_cast<size_t>(c)], to_srgb8(all.color[p][c]))
-            << "pixel " << p;
-    EXPECT_EQ(png.rays, all.rays);
-    rs.outputs = FrameOutputs{false, false, false, true, false};
-    const RenderResult prim = t.render(rs, s.camera);
-    EXPECT_EQ(prim.prim, all.prim);
-    EXPECT_TRUE(prim.color.empty() && prim.rgb8.empty() && prim.depth.empty());
-  }
+  // The 8-bit image comes back 4 pixels to an element: sizes with 0 to 3 pixels over a
+  // multiple of 4, rows of 1 to 3 pixels (a group spans several rows), one sample (the
+  // strategy's colour) and two (the film's mean), both strategies, and one result reused
+  // across sizes.
+  RenderResult png;
+  for (glm::ivec3 size_spp : {glm::ivec3(20, 14, 2), glm::ivec3(7, 5, 1), glm::ivec3(9, 3, 2),
+                              glm::ivec3(2, 5, 1), glm::ivec3(1, 7, 2), glm::ivec3(3, 1, 1)})
+    for (Strategy strategy : {Strategy::Megakernel, Strategy::Multipass}) {
+      rs.width = size_spp.x;
+      rs.height = size_spp.y;
+      rs.spp = size_spp.z;
+      rs.strategy = strategy;
+      rs.outputs = FrameOutputs{};
+      const RenderResult all = t.render(rs, s.camera);
+      rs.outputs = FrameOutputs{false, true, false, false, false};
+      t.render(rs, s.camera, png);
+      EXPECT_TRUE(png.color.empty() && png.depth.empty() && png.prim.empty() && png.normal.empty());
+      ASSERT_EQ(png.rgb8.size(), all.color.size() * 3);
+      for (size_t p = 0; p < all.color.size(); ++p)
+        for (int c = 0; c < 3; ++c)
+          ASSERT_EQ(png.rgb8[p * 3 + static_cast<size_t>(c)], to_srgb8(all.color[p][c]))
+              << "pixel " << p << " of " << rs.width << "x" << rs.height;
+      EXPECT_EQ(png.rays, all.rays);
+      rs.outputs = FrameOutputs{false, false, false, true, false};
+      const RenderResult prim = t.render(rs, s.camera);
+      EXPECT_EQ(prim.prim, all.prim);
+      EXPECT_TRUE(prim.color.empty() && prim.rgb8.empty() && prim.depth.empty());
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, FilmTest, ::testing::ValuesIn(testing::backend_names()),

@@ -2,9 +2,7 @@
 // read-back of what was asked for.
 #include "rill/rt/film/Film.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
+#include <bit>
 #include <span>
 
 #include "rill/Stopwatch.h"
@@ -22,7 +20,8 @@ struct Film::Buffers {
   Buffers(const Film& film, const std::string& backend, Accuracy a)
       : add(compile_for(film.add_, backend, a)),
         mean(compile_for(film.mean_, backend, a)),
-        encode(compile_for(film.encode_, backend, a)) {}
+        backend(backend),
+        accuracy(a) {}
   void resize(int w, int h) {
     if (w == width && h == height) return;
     width = w;
@@ -31,11 +30,16 @@ struct Film::Buffers {
     carry.emplace(w, h, "film_carry");
     mean_color.emplace(w, h, "film_mean");
   }
-  Kernel add, mean, encode;
+  Kernel add, mean;
+  std::string backend;
+  Accuracy accuracy;
   int width = 0, height = 0;  // of sum, carry and mean_color (made for frames of spp > 1)
   std::optional<Stream<Float3>> sum, carry, mean_color;
-  std::optional<Stream<Int>> packed;  // the 8-bit image, at the size last encoded
-  std::vector<int32_t> packed_host;   // and its host copy, kept for the next frame
+  // The encoder gathers from the colour stream it was captured with: it is captured again
+  // when a frame's colour is another stream (another size, or the other strategy's).
+  std::optional<Kernel> encode;
+  std::shared_ptr<detail::StreamState> encode_source;
+  std::optional<Stream<Int3>> packed;  // the 8-bit image as bytes, 4 pixels per element
 };
 
 Film::Film() {
@@ -57,10 +61,37 @@ Film::Film() {
     Output<Float3> mean("mean");
     mean = (sum + carry) / samples_;
   });
-  encode_ = program("rill_film_encode", [&] {
-    Input<Float3> color("color");
-    Output<Int> rgb8("rgb8");
-    rgb8 = pack_rgb8(srgb8_.encode(color.x()), srgb8_.encode(color.y()), srgb8_.encode(color.z()));
+}
+
+// Element i encodes pixels 4i .. 4i + 3 (the last one repeated past the end) into 12 bytes,
+// R G B R G B ..., as three little-endian Ints: the memory of the 8-bit image itself, which
+// is read back into RenderResult::rgb8 as it is, with nothing to unpack on the host.
+Program Film::encode_program(const Stream<Float3>& color) const {
+  return program("rill_film_encode", [&] {
+    Output<Int3> rgb("rgb");
+    // One division for the first pixel's (x, y); the next three step along the row, onto
+    // the next rows where they end (up to three times over for images 1 to 3 wide), and
+    // stay on the last pixel past the end.
+    Int first = element_index() * 4;
+    Int x0 = first % width_, y0 = first / width_;
+    Int last_y = (pixels_ - 1) / width_, last_x = (pixels_ - 1) - last_y * width_;
+    std::vector<Int> bytes;
+    for (int k = 0; k < 4; ++k) {
+      Int x = x0 + k, y = y0;
+      for (int wrap = 0; wrap < k; ++wrap) {
+        Bool past = x >= width_;
+        x = select(past, x - width_, x);
+        y = select(past, y + 1, y);
+      }
+      Bool beyond = first + k >= pixels_;
+      Float3 c = color(select(beyond, last_x, x), select(beyond, last_y, y));
+      for (int ch = 0; ch < 3; ++ch) bytes.push_back(srgb8_.encode(c[ch]));
+    }
+    auto word = [&](int w) {  // integer arithmetic wraps: the top byte lands in the sign bit
+      return bytes[4 * w] + bytes[4 * w + 1] * 256 + bytes[4 * w + 2] * 65536 +
+             bytes[4 * w + 3] * 16777216;
+    };
+    rgb = Int3(word(0), word(1), word(2));
   });
 }
 
@@ -113,19 +144,24 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
   read(aovs.normal, r.normal, want.normal);
   if (!want.rgb8) r.rgb8.clear();
   if (want.rgb8) {
-    if (!now_->packed || now_->packed->width() != color.width() ||
-        now_->packed->height() != color.height())
-      now_->packed.emplace(color.width(), color.height(), "film_rgb8");
-    now_->encode.inputs(color).outputs(*now_->packed);
-    now_->encode.execute();
-    read(*now_->packed, now_->packed_host, true);
-    const size_t n = now_->packed_host.size();
-    r.rgb8.resize(n * 3);  // every byte is written below: a frame of the last one's size
-                           // keeps its memory and is not cleared first
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& range) {
-      for (size_t p = range.begin(); p < range.end(); ++p)
-        unpack_rgb8(static_cast<uint32_t>(now_->packed_host[p]), &r.rgb8[p * 3]);
-    });
+    static_assert(std::endian::native == std::endian::little,
+                  "the 8-bit image is read back as little-endian Ints");
+    const int64_t n = color.size(), groups = (n + 3) / 4;
+    if (!now_->packed || now_->packed->size() != groups) now_->packed.emplace(groups, "film_rgb8");
+    if (!now_->encode || now_->encode_source != StreamRef(color).shared()) {
+      now_->encode.emplace(compile_for(encode_program(color), now_->backend, now_->accuracy));
+      now_->encode_source = StreamRef(color).shared();
+    }
+    width_.set(static_cast<int32_t>(color.width()));
+    pixels_.set(static_cast<int32_t>(n));
+    now_->encode->outputs(*now_->packed);
+    now_->encode->execute();
+    // Read straight into the image's memory (a frame of the last one's size keeps it and
+    // does not clear it), with room for the last group's padding, then cut to 3 n bytes.
+    r.rgb8.resize(static_cast<size_t>(groups) * 12);
+    now_->packed->download_into(
+        std::span(reinterpret_cast<glm::ivec3*>(r.rgb8.data()), static_cast<size_t>(groups)));
+    r.rgb8.resize(static_cast<size_t>(n) * 3);
   }
   r.times.read_back += step.ms();
 }

@@ -5,7 +5,8 @@
 // the film, which adds it to a running sum on the same backend (a compensated sum: a float
 // sum and the rounding error it dropped, so many samples lose almost nothing). At the end,
 // the film makes the mean and reads back only what FrameOutputs asks for: the 8-bit image
-// is encoded on the device (Srgb8.h), so a PNG costs one Int per pixel to read back.
+// is encoded on the device (Srgb8.h) into the very bytes of RenderResult::rgb8, so a PNG
+// costs 3 bytes per pixel to read back and nothing to unpack.
 //
 // Its buffers and kernels are kept per backend and accuracy and reused by later frames of
 // the same size: a frame allocates nothing and uploads nothing. They are never shared
@@ -48,10 +49,14 @@ class Film {
 
  private:
   struct Buffers;
+  // The 8-bit encoder, gathering from one colour stream (the strategy's, or the mean).
+  rill::Program encode_program(const rill::Stream<rill::Float3>& color) const;
+
   rill::Uniform<rill::Int> first_{0, "first_sample"};
   rill::Uniform<rill::Float> samples_{1.0f, "samples"};
+  rill::Uniform<rill::Int> width_{1, "film_width"}, pixels_{1, "film_pixels"};
   Srgb8Encoder srgb8_;
-  rill::Program add_, mean_, encode_;
+  rill::Program add_, mean_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
   Buffers* now_ = nullptr;                                   // the frame's
   int spp_ = 1;

@@ -92,8 +92,4 @@ Int Srgb8Encoder::encode(const Float& linear) const {
   return level + next + after;
 }
 
-Int pack_rgb8(const Int& r, const Int& g, const Int& b) {
-  return r + g * 256 + b * 65536;
-}
-
 }  // namespace rt

@@ -47,12 +47,4 @@ class Srgb8Encoder {
   rill::Array<rill::Int> below_;
 };
 
-// Packs an encoded colour into one Int (r + 256 g + 65536 b), and back on the host.
-rill::Int pack_rgb8(const rill::Int& r, const rill::Int& g, const rill::Int& b);
-inline void unpack_rgb8(uint32_t packed, unsigned char* rgb) {
-  rgb[0] = static_cast<unsigned char>(packed & 0xff);
-  rgb[1] = static_cast<unsigned char>((packed >> 8) & 0xff);
-  rgb[2] = static_cast<unsigned char>((packed >> 16) & 0xff);
-}
-
 }  // namespace rt
