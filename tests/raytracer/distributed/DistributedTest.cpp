@@ -222,15 +222,20 @@ class KilledWorker : public Distributed {
                              dir_);
     ASSERT_EQ(ref.status, 0) << ref.err;
     reference_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // Rank 2 is killed (kill -9, from outside the program) a quarter of the way into the
-    // single-process time: three ranks share the cores, so the render is under way (a few
-    // checkpoints written) and far from done.
+    // Rank 2 is killed (kill -9, from outside the program) once rank 0 has written its first
+    // checkpoint: the render is under way, with tiles done, and far from done (the
+    // checkpoints come every 0.2 s of a render of several seconds). A fixed delay could land
+    // before the first tile on a loaded machine, where start-up (MPI, the scene, kernels
+    // from the cache) takes longer than a share of the single process's time. (The wait
+    // ends after 30 s, or when the whole image is there: the test then says the render
+    // ended first.)
     // The same with SIGSTOP: a rank that hangs.
-    const double kill_after = std::max(0.8, reference_s_ / 4);
     for (const char* signal : {"KILL", "STOP"})
-      dir_.file(std::string(signal) + ".sh", "echo $$ > rank2.pid\n(sleep " +
-                                                 std::to_string(kill_after) + "; kill -" + signal +
-                                                 " $$) &\nexec " + kExe + " \"$@\"\n");
+      dir_.file(
+          std::string(signal) + ".sh",
+          std::string("echo $$ > rank2.pid\n(n=0; while [ ! -e g.partial.png ] && [ ! -e "
+                      "g.png ] && [ $n -lt 600 ]; do sleep 0.05; n=$((n + 1)); done; kill -") +
+              signal + " $$) &\nexec " + kExe + " \"$@\"\n");
   }
   Result run_with_killed_rank(const std::string& mpirun_options, const char* signal = "KILL",
                               int timeout_s = 120) {
