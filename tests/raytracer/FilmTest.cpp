@@ -132,6 +132,50 @@ TEST_P(FilmTest, SamplesAddUpWithoutLosingSmallOnes) {
   EXPECT_EQ(r.color[1].x, exact_mean(2.0, 6e-8f));
 }
 
+// The 8-bit image's bytes, 4 pixels to an element, straight from colour streams whose
+// pixels all differ: widths 1 to 5 (a group of 4 spans up to four rows), pixel counts 0 to 3
+// over a multiple of 4, two different streams of one size in a row (the encoder follows the
+// stream it is given), and one sample then the mean of two at the same size.
+TEST_P(FilmTest, TheEightBitImageIsEveryPixelsBytesInOrder) {
+  RT_REQUIRE_BACKEND(GetParam());
+  rt::Film film;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  RenderResult r;
+  FrameOutputs want;
+  want.color = want.depth = want.prim = want.normal = false;
+  want.rgb8 = true;
+  for (int w = 1; w <= 5; ++w)
+    for (int h : {1, 2, 3, 7}) {
+      Stream<Float> depth(w, h);
+      Stream<Int> prim(w, h);
+      Stream<Float3> normal(w, h);
+      for (int spp : {1, 1, 2}) {
+        const std::string what = std::to_string(w) + "x" + std::to_string(h) + ", spp " +
+                                 std::to_string(spp) + " on " + GetParam();
+        film.begin(GetParam(), Accuracy::Strict, w, h, spp);
+        std::vector<glm::vec3> mean(static_cast<size_t>(w * h), glm::vec3(0.0f));
+        for (int s = 0; s < spp; ++s) {
+          std::vector<glm::vec3> px(static_cast<size_t>(w * h));
+          for (glm::vec3& c : px) c = glm::vec3(U(rng), U(rng), U(rng));
+          Stream<Float3> sample(w, h, "sample");  // a new stream each time
+          sample.upload(px);
+          film.add_sample(sample, s);
+          for (size_t p = 0; p < px.size(); ++p) mean[p] += px[p];
+        }
+        film.finish(AovStreams{depth, prim, normal}, want, r);
+        ASSERT_EQ(r.rgb8.size(), static_cast<size_t>(w * h * 3)) << what;
+        for (size_t p = 0; p < mean.size(); ++p)
+          for (int c = 0; c < 3; ++c) {
+            // Two samples: the film's compensated mean of two floats is their rounded mean.
+            const float m = spp == 1 ? mean[p][c] : mean[p][c] / 2.0f;
+            ASSERT_EQ(r.rgb8[p * 3 + static_cast<size_t>(c)], to_srgb8(m))
+                << "pixel " << p << " channel " << c << ", " << what;
+          }
+      }
+    }
+}
+
 // A render reads back what FrameOutputs asks for and nothing else; its 8-bit image is the
 // host's encoding of its colour.
 TEST_P(FilmTest, RendersReadBackOnlyWhatIsAskedFor) {

@@ -39,6 +39,7 @@ struct Film::Buffers {
   // when a frame's colour is another stream (another size, or the other strategy's).
   std::optional<Kernel> encode;
   std::shared_ptr<detail::StreamState> encode_source;
+  glm::ivec2 encode_size{0};
   std::optional<Stream<Int3>> packed;  // the 8-bit image as bytes, 4 pixels per element
 };
 
@@ -71,10 +72,11 @@ Program Film::encode_program(const Stream<Float3>& color) const {
     Output<Int3> rgb("rgb");
     // One division for the first pixel's (x, y); the next three step along the row, onto
     // the next rows where they end (up to three times over for images 1 to 3 wide), and
-    // stay on the last pixel past the end.
+    // stay on the last pixel past the end (bytes cut off on the host).
     Int first = element_index() * 4;
-    Int x0 = first % width_, y0 = first / width_;
-    Int last_y = (pixels_ - 1) / width_, last_x = (pixels_ - 1) - last_y * width_;
+    Int y0 = first / width_;
+    Int x0 = first - y0 * width_;
+    Int last_x = width_ - 1, last_y = height_ - 1;
     std::vector<Int> bytes;
     for (int k = 0; k < 4; ++k) {
       Int x = x0 + k, y = y0;
@@ -83,7 +85,7 @@ Program Film::encode_program(const Stream<Float3>& color) const {
         x = select(past, x - width_, x);
         y = select(past, y + 1, y);
       }
-      Bool beyond = first + k >= pixels_;
+      Bool beyond = first + k >= width_ * height_;
       Float3 c = color(select(beyond, last_x, x), select(beyond, last_y, y));
       for (int ch = 0; ch < 3; ++ch) bytes.push_back(srgb8_.encode(c[ch]));
     }
@@ -104,6 +106,12 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
     it = buffers_.emplace(key, std::make_unique<Buffers>(*this, backend, a)).first;
   now_ = it->second.get();
   if (spp > 1) now_->resize(width, height);
+  // The encoder holds the colour stream it gathers from: one of another size goes now,
+  // before the strategy makes this frame's streams (PerBackend.h: the old streams go first).
+  if (now_->encode_source && (now_->encode_size.x != width || now_->encode_size.y != height)) {
+    now_->encode.reset();
+    now_->encode_source.reset();
+  }
   spp_ = spp;
   single_.reset();
   accumulate_ms_ = 0;
@@ -151,9 +159,10 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     if (!now_->encode || now_->encode_source != StreamRef(color).shared()) {
       now_->encode.emplace(compile_for(encode_program(color), now_->backend, now_->accuracy));
       now_->encode_source = StreamRef(color).shared();
+      now_->encode_size = {static_cast<int>(color.width()), static_cast<int>(color.height())};
     }
     width_.set(static_cast<int32_t>(color.width()));
-    pixels_.set(static_cast<int32_t>(n));
+    height_.set(static_cast<int32_t>(color.height()));
     now_->encode->outputs(*now_->packed);
     now_->encode->execute();
     // Read straight into the image's memory (a frame of the last one's size keeps it and
