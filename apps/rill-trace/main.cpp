@@ -306,7 +306,7 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
                {"triangles", grid.usable},
                {"degenerate", grid.degenerate},
                {"non_finite", grid.non_finite}};
-  const rt::Tracer::LightBufferInfo lb = p.tracer->light_buffer();
+  const rt::LightBufferStats& lb = p.tracer->light_buffer();
   j["light_buffer"] = {{"resolution", lb.res},
                        {"entries", lb.entries},
                        {"fallback_cells", lb.fallback_cells},

@@ -27,6 +27,30 @@ size_t cell_index(const LightBuffer& lb, int light, const glm::ivec3& c) {
          static_cast<size_t>(c.y);
 }
 
+// Shadow rays blocked, by the kernel's own closest hit, by a triangle in [first, end) before
+// their tmax, and how many of them look up a cell that does not list that triangle with a
+// distance bound at most the origin's (a cell that sends its rays to the grid counts as
+// listing it).
+std::pair<size_t, size_t> blockers(const LightBuffer& lb, const glm::vec3& light,
+                                   const std::vector<glm::vec3>& origins,
+                                   const std::vector<int32_t>& prim, const std::vector<float>& dist,
+                                   const std::vector<float>& tmax, int32_t first, int32_t end) {
+  size_t blocked = 0, unlisted = 0;
+  for (size_t i = 0; i < origins.size(); ++i) {
+    if (prim[i] < first || prim[i] >= end || !(dist[i] < tmax[i])) continue;
+    ++blocked;
+    const glm::vec3 q = origins[i] - light;
+    const glm::ivec2 e = lb.cells[cell_index(lb, 0, light_buffer_cell(q, lb.res))];
+    if (e.y < 0) continue;  // the grid's
+    bool listed = false;
+    for (int k = 0; k < e.y; ++k)
+      listed = listed || (lb.tris[static_cast<size_t>(e.x + k)] == prim[i] &&
+                          lb.near[static_cast<size_t>(e.x + k)] <= glm::length(q));
+    unlisted += !listed;
+  }
+  return {blocked, unlisted};
+}
+
 TEST(LightBuffer, CellRuleFacesAndTies) {
   EXPECT_EQ(light_buffer_cell({1, 0, 0}, 4), glm::ivec3(0, 2, 2));
   EXPECT_EQ(light_buffer_cell({-1, 0, 0}, 4), glm::ivec3(1, 2, 2));
@@ -155,19 +179,7 @@ TEST(LightBuffer, ShadowRaysBlockedNextToTheLightFindTheBlockerListed) {
   std::vector<int32_t> prim;
   std::vector<float> dist;
   tr.intersect("cpu", origins, dirs, prim, dist);
-  size_t blocked = 0, unlisted = 0;
-  for (size_t i = 0; i < origins.size(); ++i) {
-    if (prim[i] < 2 || !(dist[i] < tmax[i])) continue;
-    ++blocked;
-    const glm::vec3 q = origins[i] - light;
-    const glm::ivec2 e = lb.cells[cell_index(lb, 0, light_buffer_cell(q, 64))];
-    if (e.y < 0) continue;  // the grid's
-    bool listed = false;
-    for (int k = 0; k < e.y; ++k)
-      listed = listed || (lb.tris[static_cast<size_t>(e.x + k)] == prim[i] &&
-                          lb.near[static_cast<size_t>(e.x + k)] <= glm::length(q));
-    unlisted += !listed;
-  }
+  const auto [blocked, unlisted] = blockers(lb, light, origins, prim, dist, tmax, 2, 4);
   EXPECT_GT(blocked, 1000u);  // the case is exercised
   EXPECT_EQ(unlisted, 0u) << "of " << blocked << " blocked rays";
 }
@@ -223,19 +235,7 @@ TEST(LightBuffer, RaysGrazingTrianglesNearTheLightFindThemListed) {
   std::vector<int32_t> prim;
   std::vector<float> dist;
   tr.intersect("cpu", origins, dirs, prim, dist);
-  size_t blocked = 0, unlisted = 0;
-  for (size_t i = 0; i < origins.size(); ++i) {
-    if (prim[i] < 0 || prim[i] >= 40 || !(dist[i] < tmax[i])) continue;
-    ++blocked;
-    const glm::vec3 q = origins[i] - light;
-    const glm::ivec2 e = lb.cells[cell_index(lb, 0, light_buffer_cell(q, 256))];
-    if (e.y < 0) continue;
-    bool listed = false;
-    for (int k = 0; k < e.y; ++k)
-      listed = listed || (lb.tris[static_cast<size_t>(e.x + k)] == prim[i] &&
-                          lb.near[static_cast<size_t>(e.x + k)] <= glm::length(q));
-    unlisted += !listed;
-  }
+  const auto [blocked, unlisted] = blockers(lb, light, origins, prim, dist, tmax, 0, 40);
   EXPECT_GT(blocked, 5000u);
   EXPECT_EQ(unlisted, 0u) << "of " << blocked << " blocked rays";
 }
@@ -355,7 +355,6 @@ TEST_P(LightBufferRender, CellLookupMatchesTheHostRule) {
   const int res = 5, lights = 2;
   LightBuffer lb;
   lb.res = res;
-  lb.lights = lights;
   lb.reach = 1e30f;
   for (int k = 0; k < lights * 6 * res * res; ++k) lb.cells.push_back({k, 0});
   lb.tris = {0};

@@ -130,9 +130,8 @@ const Features& Tracer::features() const {
 const TracerOptions& Tracer::options() const {
   return d_->device.K;
 }
-Tracer::LightBufferInfo Tracer::light_buffer() const {
-  const LightBufferView& v = d_->device.light_buffer;
-  return {v.host_res, v.entries, v.fallback_cells, v.build_ms, v.skipped};
+const LightBufferStats& Tracer::light_buffer() const {
+  return d_->device.light_buffer.stats;
 }
 std::vector<std::string> Tracer::shaders() const {
   return d_->device.materials.used_shaders();

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/accel/LightBuffer.h"
 #include "rill/rt/kernel/Features.h"
 #include "rill/rt/kernel/Options.h"
 #include "rill/rt/kernel/Shader.h"
@@ -159,14 +160,8 @@ class Tracer {
   const rill::Program& program() const;
   const Features& features() const;
   const TracerOptions& options() const;
-  // The shadow rays' light buffer (accel/LightBuffer.h), res 0 where there is none.
-  struct LightBufferInfo {
-    int res = 0;
-    size_t entries = 0, fallback_cells = 0;
-    double build_ms = 0;
-    std::string skipped;  // why there is none where the scene has shadows and asked for one
-  };
-  LightBufferInfo light_buffer() const;
+  // The shadow rays' light buffer (accel/LightBuffer.h): res 0 where there is none.
+  const LightBufferStats& light_buffer() const;
   // The shaders generated into the kernels: those of the materials the scene's triangles use.
   std::vector<std::string> shaders() const;
   // Dynamic scenes (Scene::animation, docs/dynamic-scenes.md): moves the animated objects

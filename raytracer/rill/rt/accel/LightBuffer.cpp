@@ -115,7 +115,6 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
         " cells (at most 2^24); choose a smaller --light-buffer (options.light_buffer in a "
         "scene file)");
   lb.res = res;
-  lb.lights = static_cast<int>(s.lights.size());
   // The triangles the grid holds: the static, usable ones.
   std::vector<char> in_grid(s.triangle_count(), 0);
   for (int32_t t : grid.elements) in_grid[static_cast<size_t>(t)] = 1;

@@ -45,9 +45,16 @@ constexpr int kLightBufferMaxRes = 1024;
 constexpr int kLightBufferMaxList = 48;
 constexpr uint64_t kLightBufferMaxVisits = uint64_t{1} << 27;
 
+// What a light buffer holds, for --stats-json and warnings.
+struct LightBufferStats {
+  int res = 0;  // cells per face edge; 0: none
+  size_t entries = 0, fallback_cells = 0;
+  double build_ms = 0;
+  std::string skipped;  // why there is none although one was asked for
+};
+
 struct LightBuffer {
-  int res = 0;  // cells per face edge; 0: no light buffer
-  int lights = 0;
+  int res = 0;                    // cells per face edge; 0: no light buffer
   std::vector<glm::ivec2> cells;  // (start, count) into tris/near; count -1: walk the grid
   std::vector<int32_t> tris;      // per cell, nearest first (ties: smaller id)
   std::vector<float> near;        // a lower bound of each entry's distance from the light
@@ -56,6 +63,7 @@ struct LightBuffer {
   std::string skipped;            // why there is none although one was asked for
   double build_ms = 0;
   bool empty() const { return res == 0; }
+  LightBufferStats stats() const { return {res, tris.size(), fallback_cells, build_ms, skipped}; }
 };
 
 // The light buffer of the scene's lights over the triangles the grid holds (the static

@@ -8,13 +8,8 @@ namespace rt {
 using namespace rill;
 
 void LightBufferView::upload(const LightBuffer& lb) {
-  enabled = !lb.empty();
-  host_res = lb.res;
-  entries = lb.tris.size();
-  fallback_cells = lb.fallback_cells;
-  build_ms = lb.build_ms;
-  skipped = lb.skipped;
-  if (!enabled) return;
+  stats = lb.stats();
+  if (!enabled()) return;
   upload_padded(cells, lb.cells);
   upload_padded(tris, lb.tris);
   upload_padded(near, lb.near);

@@ -15,11 +15,8 @@ struct LightBufferView {
   rill::Uniform<rill::Int> res{1, "lb_res"};
   rill::Uniform<rill::Float> reach{0.0f, "lb_reach"};  // LightBuffer::reach
   // Host: whether there is one (the shadow rays' code uses it only then), and what it holds.
-  bool enabled = false;
-  int host_res = 0;
-  size_t entries = 0, fallback_cells = 0;
-  double build_ms = 0;
-  std::string skipped;  // LightBuffer::skipped
+  LightBufferStats stats;
+  bool enabled() const { return stats.res > 0; }
 
   void upload(const LightBuffer& lb);
   // The cell of a shadow ray towards light `light` whose origin is q away from the light:

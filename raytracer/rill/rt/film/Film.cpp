@@ -71,12 +71,12 @@ Program Film::encode_program(const Stream<Float3>& color) const {
   return program("rill_film_encode", [&] {
     Output<Int3> rgb("rgb");
     // One division for the first pixel's (x, y); the next three step along the row, onto
-    // the next rows where they end (up to three times over for images 1 to 3 wide), and
-    // stay on the last pixel past the end (bytes cut off on the host).
+    // the next rows where they end (up to three times over for images 1 to 3 wide). Past
+    // the last pixel the gather's clamp reads some pixel of the image: those bytes are cut
+    // off on the host.
     Int first = element_index() * 4;
     Int y0 = first / width_;
     Int x0 = first - y0 * width_;
-    Int last_x = width_ - 1, last_y = height_ - 1;
     std::vector<Int> bytes;
     for (int k = 0; k < 4; ++k) {
       Int x = x0 + k, y = y0;
@@ -85,8 +85,7 @@ Program Film::encode_program(const Stream<Float3>& color) const {
         x = select(past, x - width_, x);
         y = select(past, y + 1, y);
       }
-      Bool beyond = first + k >= width_ * height_;
-      Float3 c = color(select(beyond, last_x, x), select(beyond, last_y, y));
+      Float3 c = color(x, y);
       for (int ch = 0; ch < 3; ++ch) bytes.push_back(srgb8_.encode(c[ch]));
     }
     auto word = [&](int w) {  // integer arithmetic wraps: the top byte lands in the sign bit
@@ -162,7 +161,6 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
       now_->encode_size = {static_cast<int>(color.width()), static_cast<int>(color.height())};
     }
     width_.set(static_cast<int32_t>(color.width()));
-    height_.set(static_cast<int32_t>(color.height()));
     now_->encode->outputs(*now_->packed);
     now_->encode->execute();
     // Read straight into the image's memory (a frame of the last one's size keeps it and

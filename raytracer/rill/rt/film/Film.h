@@ -54,7 +54,7 @@ class Film {
 
   rill::Uniform<rill::Int> first_{0, "first_sample"};
   rill::Uniform<rill::Float> samples_{1.0f, "samples"};
-  rill::Uniform<rill::Int> width_{1, "film_width"}, height_{1, "film_height"};
+  rill::Uniform<rill::Int> width_{1, "film_width"};
   Srgb8Encoder srgb8_;
   rill::Program add_, mean_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy

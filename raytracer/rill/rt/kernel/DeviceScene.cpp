@@ -10,8 +10,7 @@ DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions&
   tris.upload(scene, K, F);
   materials.upload(scene, F);
   lights.upload(scene);
-  if (F.shadows && scene.options.light_buffer != kLightBufferOff)
-    light_buffer.upload(build_light_buffer(scene, g, light_buffer_res(scene)));
+  if (F.shadows) light_buffer.upload(build_light_buffer(scene, g, light_buffer_res(scene)));
   shading.upload(scene);
   light_count = static_cast<int>(scene.lights.size());
 }

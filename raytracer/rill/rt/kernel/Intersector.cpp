@@ -289,7 +289,7 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit, const Int* light
   const Bool& any = any_hit != nullptr ? *any_hit : no;
   // The grid first: its hit, usually a near one in a static room, then bounds the BVH walk,
   // which skips every box beyond it.
-  if (!grid_.empty && light != nullptr && any_hit != nullptr && lb_.enabled) {
+  if (!grid_.empty && light != nullptr && any_hit != nullptr && lb_.enabled()) {
     Bool listed = false;
     RILL_IF(any) {
       listed = occluders(ray, *light, best);

@@ -70,7 +70,7 @@ class Intersector {
   // entries, nearest first, until one blocks the ray (best.id >= 0) or the next lies
   // farther from the light than the ray's origin. False where the cell sends it to the grid.
   Bool occluders(const Ray& ray, const Int& light, Hit& best) const;
-  bool has_light_buffer() const { return lb_.enabled; }
+  bool has_light_buffer() const { return lb_.enabled(); }
 
   // The grid's part of intersect(): box, 3D-DDA, the voxels' lists; from the hit in best.
   void walk_grid(const Ray& ray, const Bool& any_hit, Hit& best) const;
