@@ -5,6 +5,10 @@
 #include <rill/Stopwatch.h>
 #include <rill/StrictMath.h>
 
+#include <bit>
+#include <cmath>
+#include <limits>
+
 #include "BackendTest.h"
 
 namespace rill::testing {
@@ -778,6 +782,41 @@ TEST_P(LaunchTest, StrictRoutinesInEveryMode) {
     Kernel k = compile(p, a);
     auto y = flatten(run_kernel<Float4>(k, static_cast<int64_t>(xs.size()), xs));
     EXPECT_TRUE(within_ulps(y, want, 8, describe_inputs(xs), 4)) << accuracy_name(a);
+  }
+}
+
+// strict::pow_of_zero gives pow's bits for both zeros and every kind of exponent: odd and
+// even integers of both signs, fractions, 2^24 and beyond, infinities, NaN. (The zeros are
+// inputs, so no pow is folded away at compile time.)
+TEST_P(LaunchTest, PowOfZeroIsPowAtBothZeros) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const std::vector<float> ys{0.0f,         -0.0f,    1.0f,     2.0f,     3.0f,         -1.0f,
+                              -2.0f,        -3.0f,    0.5f,     -0.5f,    40.0f,        41.0f,
+                              1e-45f,       -1e-45f,  16777215, 16777216, 1e30f,        -1e30f,
+                              -16777215.0f, 10000.0f, inf,      -inf,     std::nanf("")};
+  std::vector<float> xs, yy;
+  for (float x : {0.0f, -0.0f})
+    for (float y : ys) {
+      xs.push_back(x);
+      yy.push_back(y);
+    }
+  Program p = program("pow_of_zero", [] {
+    Input<Float> x("x"), y("y");
+    Output<Float2> r("r");
+    r = Float2(strict::pow(x, y), strict::pow_of_zero(x, y));
+  });
+  Kernel k = compile(p);
+  const std::vector<glm::vec2> r = run_kernel<Float2>(k, static_cast<int64_t>(xs.size()), xs, yy);
+  for (size_t i = 0; i < xs.size(); ++i) {
+    EXPECT_EQ(std::bit_cast<uint32_t>(r[i].x), std::bit_cast<uint32_t>(r[i].y))
+        << "pow(" << xs[i] << ", " << yy[i] << ") = " << r[i].x << ", pow_of_zero " << r[i].y;
+    // C99's pow (std::pow) agrees, of the exponent the backend reads (a backend that flushes
+    // denormals reads +-1e-45 as +-0).
+    if (!std::isnan(yy[i])) {
+      const float y = flushes_denormals() ? flush(yy[i]) : yy[i];
+      EXPECT_EQ(std::bit_cast<uint32_t>(r[i].y), std::bit_cast<uint32_t>(std::pow(xs[i], y)))
+          << "pow(" << xs[i] << ", " << yy[i] << ")";
+    }
   }
 }
 

@@ -197,6 +197,35 @@ TEST_P(MaskTest, CountsOfSuccessiveLaunchesOfOneKernel) {
   EXPECT_TRUE(bits_equal(v.download(), values));
 }
 
+// Runs of selected elements start and end anywhere in a row: each element still sees its
+// own column and row (the C backend steps them along the row from where a run begins).
+TEST_P(MaskTest, SelectedElementsOfAnImageSeeTheirOwnCoordinates) {
+  Program p = program("mask_coord", [] {
+    Output<Int> xy("xy");
+    Int2 c = element_coord();
+    xy = c.x() * 4096 + c.y();
+  });
+  Kernel k = compile(p);
+  for (auto [w, h] : {std::pair<int, int>{37, 61}, {1, 50}, {1000, 3}}) {
+    const int64_t count = int64_t{w} * h;
+    const std::vector<int32_t> states = random_states(static_cast<uint32_t>(w), count, 3);
+    Stream<Int> xy(w, h), state(w, h);
+    state.upload(states);
+    xy.fill(-1);
+    k.outputs(xy);
+    int64_t want_written = 0;
+    EXPECT_EQ(k.execute(where(state, 1)), std::count(states.begin(), states.end(), 1));
+    const std::vector<int32_t> got = xy.download();
+    for (int64_t e = 0; e < count; ++e) {
+      const bool selected = states[static_cast<size_t>(e)] == 1;
+      want_written += selected;
+      const int32_t want = selected ? static_cast<int32_t>((e % w) * 4096 + e / w) : -1;
+      ASSERT_EQ(got[static_cast<size_t>(e)], want) << w << "x" << h << " element " << e;
+    }
+    ASSERT_GT(want_written, 0);
+  }
+}
+
 TEST_P(MaskTest, EmptySelectionRunsNothing) {
   std::vector<float> xs = floats(9);
   Kernel k = compile(scale_program());

@@ -53,10 +53,12 @@ TEST(Srgb8Thresholds, AreWhereTheHostEncodingSteps) {
 }
 
 // The encoder's rule (Srgb8.h) on the host, over every 61st float of [0, 1]: a bucket's
-// count and two comparisons give the host's level.
+// count and two comparisons give the host's level, both from the count and thresholds and
+// from the device's table of one entry per bucket.
 TEST(Srgb8Tables, TheBucketsCountTheThresholdsBelowEveryValue) {
   const Srgb8Tables& t = srgb8_tables();
   ASSERT_EQ(t.thresholds.size(), 257u);
+  ASSERT_EQ(t.buckets.size(), t.below.size());
   size_t differ = 0;
   for (uint32_t bits = 0; bits <= 0x3f800000u; bits += 61) {
     const float c = std::bit_cast<float>(bits);
@@ -64,8 +66,12 @@ TEST(Srgb8Tables, TheBucketsCountTheThresholdsBelowEveryValue) {
     const int32_t below = t.below[static_cast<size_t>(bucket)];
     const int level = below + (t.thresholds[static_cast<size_t>(below)] <= c) +
                       (t.thresholds[static_cast<size_t>(below) + 1] <= c);
-    if (level != to_srgb8(c) && differ++ < 5)
-      ADD_FAILURE() << c << ": " << level << " from the buckets, " << int{to_srgb8(c)};
+    const glm::ivec3 entry = t.buckets[static_cast<size_t>(bucket)];
+    const int device_level =
+        entry.x + (std::bit_cast<float>(entry.y) <= c) + (std::bit_cast<float>(entry.z) <= c);
+    if ((level != to_srgb8(c) || device_level != level) && differ++ < 5)
+      ADD_FAILURE() << c << ": " << level << " from the buckets, " << device_level
+                    << " from the device's table, " << int{to_srgb8(c)};
   }
   EXPECT_EQ(differ, 0u);
 }

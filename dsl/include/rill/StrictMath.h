@@ -25,6 +25,10 @@ Float exp2(const Float& x);
 Float log(const Float& x);
 Float log2(const Float& x);
 Float pow(const Float& x, const Float& y);
+// pow(x, y) for x = +0 or -0, with pow's bits, in a few selects: for a caller that skips
+// pow's work where its base is zero (and still must give pow's result there). Undefined
+// for any other x.
+Float pow_of_zero(const Float& x, const Float& y);
 Float sin(const Float& x);
 Float cos(const Float& x);
 Float tan(const Float& x);

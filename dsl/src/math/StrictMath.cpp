@@ -48,8 +48,12 @@ Float horner(const Float& x, std::initializer_list<float> c) {
   return p;
 }
 
-Float nan_value() { return Float(std::numeric_limits<float>::quiet_NaN()); }
-Float inf_value() { return Float(std::numeric_limits<float>::infinity()); }
+Float nan_value() {
+  return Float(std::numeric_limits<float>::quiet_NaN());
+}
+Float inf_value() {
+  return Float(std::numeric_limits<float>::infinity());
+}
 
 // atan on [0, 1]: reduce above tan(pi/8) with atan(t) = pi/4 + atan((t - 1) / (t + 1)).
 Float atan_unit(const Float& t) {
@@ -68,7 +72,8 @@ Float sin_poly(const Float& r, const Float& z) {
   return r + r * z * horner(z, {-1.0f / 6, 1.0f / 120, -1.0f / 5040, 1.0f / 362880});
 }
 Float cos_poly(const Float& z) {
-  return (1.0f - 0.5f * z) + z * z * horner(z, {1.0f / 24, -1.0f / 720, 1.0f / 40320, -1.0f / 3628800});
+  return (1.0f - 0.5f * z) +
+         z * z * horner(z, {1.0f / 24, -1.0f / 720, 1.0f / 40320, -1.0f / 3628800});
 }
 
 // Argument reduction for sin, cos, tan: |x| = j * pi/4 + r with j even, |r| <= pi/4.
@@ -116,9 +121,15 @@ Split split_exponent(const Float& x) {
 
 }  // namespace
 
-Bool is_nan(const Float& x) { return (as_int(x) & kAbsMask) > kInfBits; }
-Bool is_inf(const Float& x) { return (as_int(x) & kAbsMask) == kInfBits; }
-Bool sign_bit(const Float& x) { return as_int(x) < 0; }
+Bool is_nan(const Float& x) {
+  return (as_int(x) & kAbsMask) > kInfBits;
+}
+Bool is_inf(const Float& x) {
+  return (as_int(x) & kAbsMask) == kInfBits;
+}
+Bool sign_bit(const Float& x) {
+  return as_int(x) < 0;
+}
 Float copy_sign(const Float& magnitude, const Float& sign) {
   return as_float((as_int(magnitude) & kAbsMask) | (as_int(sign) & kSignMask));
 }
@@ -138,7 +149,8 @@ Float exp2(const Float& x) {
   Float f = xc - n;  // [-0.5, 0.5], exact
   // 2^f = e^(f ln 2), Taylor to degree 7 (truncation < 0.1 ulp on this interval).
   Float g = f * 0.693147180559945309417f;
-  Float p = horner(g, {1.0f, 1.0f, 1.0f / 2, 1.0f / 6, 1.0f / 24, 1.0f / 120, 1.0f / 720, 1.0f / 5040});
+  Float p =
+      horner(g, {1.0f, 1.0f, 1.0f / 2, 1.0f / 6, 1.0f / 24, 1.0f / 120, 1.0f / 720, 1.0f / 5040});
   Float r = scale_by_power_of_two(p, to_int(n));
   return select(is_nan(x), x, r);
 }
@@ -147,7 +159,8 @@ Float exp(const Float& x) {
   Float xc = clamp(x, -104.0f, 89.0f);
   Float k = floor(xc * kLog2e + 0.5f);
   Float r = (xc - k * kLn2Hi) - k * kLn2Lo;  // |r| <= 0.35
-  Float p = horner(r, {1.0f, 1.0f, 1.0f / 2, 1.0f / 6, 1.0f / 24, 1.0f / 120, 1.0f / 720, 1.0f / 5040});
+  Float p =
+      horner(r, {1.0f, 1.0f, 1.0f / 2, 1.0f / 6, 1.0f / 24, 1.0f / 120, 1.0f / 720, 1.0f / 5040});
   Float res = scale_by_power_of_two(p, to_int(k));
   return select(is_nan(x), x, res);
 }
@@ -211,7 +224,9 @@ Pair log2_extended(const Float& x) {
   Float s_lo = ((u - sv.hi) - sv.lo - s * v.lo) / v.hi;
   Float z = s * s;
   // Terms to s^17: |s| <= 0.1716, so the first one left out is below 2^-45 relative.
-  Float tail = s * z * horner(z, {2.0f / 3, 2.0f / 5, 2.0f / 7, 2.0f / 9, 2.0f / 11, 2.0f / 13, 2.0f / 15, 2.0f / 17});
+  Float tail = s * z *
+               horner(z, {2.0f / 3, 2.0f / 5, 2.0f / 7, 2.0f / 9, 2.0f / 11, 2.0f / 13, 2.0f / 15,
+                          2.0f / 17});
   Pair ln = two_sum(2.0f * s, tail + 2.0f * s_lo);
   // times log2(e) = kLog2Hi + kLog2Lo
   const float kLog2Hi = 1.44269502162933349609f, kLog2Lo = 1.92596299112661746887e-8f;
@@ -219,6 +234,13 @@ Pair log2_extended(const Float& x) {
   Float p_lo = p.lo + (ln.hi * kLog2Lo + ln.lo * kLog2Hi);
   Pair l = two_sum(sp.e, p.hi);
   return {l.hi, l.lo + p_lo};
+}
+}  // namespace
+
+namespace {
+// y is an odd integer (no float of 2^24 or more is one).
+Bool is_odd_integer(const Float& y) {
+  return floor(y) == y && abs(y) < 16777216.0f && (to_int(y) & 1) == 1;
 }
 }  // namespace
 
@@ -235,7 +257,8 @@ Float pow(const Float& x, const Float& y) {
   Float n = floor(th + 0.5f);
   Float f = (th - n) + select(th == t.hi, t_lo, Float(0.0f));
   Float g = f * 0.693147180559945309417f;
-  Float p = horner(g, {1.0f, 1.0f, 1.0f / 2, 1.0f / 6, 1.0f / 24, 1.0f / 120, 1.0f / 720, 1.0f / 5040});
+  Float p =
+      horner(g, {1.0f, 1.0f, 1.0f / 2, 1.0f / 6, 1.0f / 24, 1.0f / 120, 1.0f / 720, 1.0f / 5040});
   Float r = scale_by_power_of_two(p, to_int(n));
   // Zero and infinite bases: log2 is -inf or +inf there.
   Bool x_zero = (as_int(x) & kAbsMask) == 0;
@@ -243,7 +266,7 @@ Float pow(const Float& x, const Float& y) {
   r = select(is_inf(x), select(y < 0.0f, Float(0.0f), inf_value()), r);
   // Negative bases: defined for integer y, odd ones keep the sign.
   Bool y_int = floor(y) == y;
-  Bool y_odd = y_int && abs(y) < 16777216.0f && (to_int(y) & 1) == 1;
+  Bool y_odd = is_odd_integer(y);
   Bool x_neg = sign_bit(x);
   r = select(x_neg && y_odd, -r, r);
   r = select(x_neg && !y_int && !x_zero && !is_inf(x), nan_value(), r);
@@ -253,6 +276,15 @@ Float pow(const Float& x, const Float& y) {
   r = select(x == 1.0f, Float(1.0f), r);
   r = select(y == 0.0f, Float(1.0f), r);
   return r;
+}
+
+// pow's rules above as they apply to a zero base: +-0 or +-inf by the sign of y, negative
+// for -0 and an odd integer y; NaN for a NaN y; 1 for y = 0.
+Float pow_of_zero(const Float& x, const Float& y) {
+  Float r = select(y < 0.0f, inf_value(), Float(0.0f));
+  r = select(sign_bit(x) && is_odd_integer(y), -r, r);
+  r = select(is_nan(y), x + y, r);
+  return select(y == 0.0f, Float(1.0f), r);
 }
 
 Float sin(const Float& x) {

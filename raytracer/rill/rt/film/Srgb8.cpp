@@ -1,8 +1,9 @@
-// The device's 8-bit sRGB encoding (Srgb8.h): thresholds and buckets found on the host, three
-// gathers and two comparisons in the kernel.
+// The device's 8-bit sRGB encoding (Srgb8.h): thresholds and buckets found on the host, one
+// gather and two comparisons in the kernel.
 #include "rill/rt/film/Srgb8.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -56,6 +57,9 @@ Srgb8Tables make_tables() {
       throw std::logic_error("srgb8 buckets: bucket " + std::to_string(b) +
                              " holds more than two thresholds");
     out.below.push_back(below);
+    out.buckets.emplace_back(
+        below, std::bit_cast<int32_t>(out.thresholds[static_cast<size_t>(below)]),
+        std::bit_cast<int32_t>(out.thresholds[static_cast<size_t>(below) + 1]));
   }
   return out;
 }
@@ -77,19 +81,17 @@ const Srgb8Tables& srgb8_tables() {
   return tables;
 }
 
-Srgb8Encoder::Srgb8Encoder()
-    : thresholds_(srgb8_tables().thresholds, "srgb8_thresholds"),
-      below_(srgb8_tables().below, "srgb8_buckets") {}
+Srgb8Encoder::Srgb8Encoder() : buckets_(srgb8_tables().buckets, "srgb8_buckets") {}
 
 Int Srgb8Encoder::encode(const Float& linear) const {
   // max(0, x) returns its first operand for a NaN (Math.h), so NaN and negatives become 0
   // and encode to 0, as on the host; above 1 every threshold counts.
   Float c = min(max(Float(0.0f), linear), 1.0f);
   Int bucket = max((as_int(c) >> kSrgb8BucketShift) - kSrgb8FirstBucket, 0);
-  Int level = below_[bucket];
-  Int next = select(thresholds_[level] <= c, Int(1), Int(0));
-  Int after = select(thresholds_[level + 1] <= c, Int(1), Int(0));
-  return level + next + after;
+  Int3 entry = buckets_[bucket];
+  Int next = select(as_float(entry.y()) <= c, Int(1), Int(0));
+  Int after = select(as_float(entry.z()) <= c, Int(1), Int(0));
+  return entry.x() + next + after;
 }
 
 }  // namespace rt

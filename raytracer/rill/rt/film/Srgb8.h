@@ -7,13 +7,15 @@
 // at or below the value, so the device's byte equals the host's for every float, NaN and
 // infinities included, on every backend and accuracy.
 //
-// The count takes three gathers instead of a binary search's eight: the value's bit pattern
-// (exponent and top mantissa bits) picks a bucket, a table gives the count below the bucket,
-// and at most two thresholds lie inside any bucket (checked when the table is made), so two
-// comparisons finish it.
+// The count takes one gather instead of a binary search's eight: the value's bit pattern
+// (exponent and top mantissa bits) picks a bucket, and at most two thresholds lie inside any
+// bucket (checked when the table is made). The bucket's entry holds the count below it and
+// the next two thresholds, so two comparisons finish the count.
 #pragma once
 
 #include <rill/rill.h>
+
+#include <glm/vec3.hpp>
 
 #include <array>
 #include <cstdint>
@@ -31,6 +33,9 @@ inline constexpr int kSrgb8FirstBucket = (127 - 13) << (23 - kSrgb8BucketShift);
 struct Srgb8Tables {
   std::vector<float> thresholds;  // srgb8_thresholds() and two 2.0f, read past the end
   std::vector<int32_t> below;     // per bucket: the thresholds at or below its first float
+  // The device's table, per bucket: below, and the bit patterns of thresholds[below] and
+  // thresholds[below + 1] (one gather instead of three, two of them waiting on the first).
+  std::vector<glm::ivec3> buckets;
 };
 // Made once; throws if a bucket would hold more than two thresholds.
 const Srgb8Tables& srgb8_tables();
@@ -43,8 +48,7 @@ class Srgb8Encoder {
   rill::Int encode(const rill::Float& linear) const;
 
  private:
-  rill::Array<rill::Float> thresholds_;
-  rill::Array<rill::Int> below_;
+  rill::Array<rill::Int3> buckets_;
 };
 
 }  // namespace rt
