@@ -198,7 +198,7 @@ TEST_P(MaskTest, CountsOfSuccessiveLaunchesOfOneKernel) {
 }
 
 // Runs of selected elements start and end anywhere in a row: each element still sees its
-// own column and row (the C backend steps them along the row from where a run begins).
+// own column and row (the CPU backends run each run of selected elements as a range).
 TEST_P(MaskTest, SelectedElementsOfAnImageSeeTheirOwnCoordinates) {
   Program p = program("mask_coord", [] {
     Output<Int> xy("xy");
