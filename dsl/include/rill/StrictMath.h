@@ -39,6 +39,8 @@ Float atan2(const Float& y, const Float& x);
 // shading language).
 Bool is_nan(const Float& x);
 Bool is_inf(const Float& x);
+// +0 or -0, by the bits: a denormal is not zero even where a backend flushes it in arithmetic.
+Bool is_zero(const Float& x);
 Bool sign_bit(const Float& x);
 Float copy_sign(const Float& magnitude, const Float& sign);
 // x * 2^n for n in [-252, 254], rounded once.

@@ -127,6 +127,9 @@ Bool is_nan(const Float& x) {
 Bool is_inf(const Float& x) {
   return (as_int(x) & kAbsMask) == kInfBits;
 }
+Bool is_zero(const Float& x) {
+  return (as_int(x) & kAbsMask) == 0;
+}
 Bool sign_bit(const Float& x) {
   return as_int(x) < 0;
 }
@@ -169,8 +172,8 @@ namespace {
 // log for the special inputs: NaN, negative -> NaN; +-0 -> -inf; +inf -> +inf.
 Float log_specials(const Float& x, const Float& finite) {
   Float r = select(as_int(x) == kInfBits, inf_value(), finite);
-  r = select((as_int(x) & kAbsMask) == 0, -inf_value(), r);
-  r = select(sign_bit(x) && (as_int(x) & kAbsMask) != 0, nan_value(), r);
+  r = select(is_zero(x), -inf_value(), r);
+  r = select(sign_bit(x) && !is_zero(x), nan_value(), r);
   return select(is_nan(x), x, r);
 }
 }  // namespace
@@ -261,7 +264,7 @@ Float pow(const Float& x, const Float& y) {
       horner(g, {1.0f, 1.0f, 1.0f / 2, 1.0f / 6, 1.0f / 24, 1.0f / 120, 1.0f / 720, 1.0f / 5040});
   Float r = scale_by_power_of_two(p, to_int(n));
   // Zero and infinite bases: log2 is -inf or +inf there.
-  Bool x_zero = (as_int(x) & kAbsMask) == 0;
+  Bool x_zero = is_zero(x);
   r = select(x_zero, select(y < 0.0f, inf_value(), Float(0.0f)), r);
   r = select(is_inf(x), select(y < 0.0f, Float(0.0f), inf_value()), r);
   // Negative bases: defined for integer y, odd ones keep the sign.

@@ -56,7 +56,6 @@ Srgb8Tables make_tables() {
     if (at_or_below(from_bits(last_bits)) - below > 2)
       throw std::logic_error("srgb8 buckets: bucket " + std::to_string(b) +
                              " holds more than two thresholds");
-    out.below.push_back(below);
     out.buckets.emplace_back(
         below, std::bit_cast<int32_t>(out.thresholds[static_cast<size_t>(below)]),
         std::bit_cast<int32_t>(out.thresholds[static_cast<size_t>(below) + 1]));

@@ -32,9 +32,8 @@ inline constexpr int kSrgb8BucketShift = 16;
 inline constexpr int kSrgb8FirstBucket = (127 - 13) << (23 - kSrgb8BucketShift);  // 2^-13
 struct Srgb8Tables {
   std::vector<float> thresholds;  // srgb8_thresholds() and two 2.0f, read past the end
-  std::vector<int32_t> below;     // per bucket: the thresholds at or below its first float
-  // The device's table, per bucket: below, and the bit patterns of thresholds[below] and
-  // thresholds[below + 1] (one gather instead of three, two of them waiting on the first).
+  // Per bucket: the count of thresholds at or below its first float (`below`), and the bit
+  // patterns of thresholds[below] and thresholds[below + 1]: the device reads one entry.
   std::vector<glm::ivec3> buckets;
 };
 // Made once; throws if a bucket would hold more than two thresholds.

@@ -43,10 +43,10 @@ Float3 phong_reflected(const ShadingPoint& sp, const LightSample& light) {
     const Float n = sp.number("shininess");
     // pow is the light's costliest step (in strict mode Rill's own routine, about a hundred
     // operations), and rv is 0 wherever the mirror direction faces away from the eye, where
-    // pow_of_zero gives pow's bits in a few selects. Zero is told by the bits, as pow tells
-    // it: a backend that flushes denormals in comparisons still sends a denormal to pow.
+    // pow_of_zero gives pow's bits in a few selects. Zero is told as pow tells it (is_zero:
+    // by the bits), so a backend that flushes denormals in comparisons still sends one to pow.
     Float highlight = rill::strict::pow_of_zero(rv, n);
-    RILL_IF((as_int(rv) & 0x7fffffff) != 0) {
+    RILL_IF(!rill::strict::is_zero(rv)) {
       highlight = pow(rv, n);
     }
     RILL_ENDIF;
