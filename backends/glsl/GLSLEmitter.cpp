@@ -169,6 +169,11 @@ class GLSLDialect : public codegen::Dialect {
   // Float constants a strict kernel uses, in the order of rill_k[] (see literal()).
   mutable std::vector<uint32_t> constants;
 
+  // Printing meets constants in the order C++ evaluates the printer's string expressions,
+  // which differs between compilers; in ascending bits, rill_k[] is the same for every
+  // build. The body is printed again after this.
+  void sort_constants() const { std::sort(constants.begin(), constants.end()); }
+
   bool scalarize() const override { return true; }
   std::string scalar_type(ScalarKind k) const override {
     return k == ScalarKind::Float ? "float" : k == ScalarKind::Int ? "int" : "bool";
@@ -389,8 +394,11 @@ GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int
                      const DriverRules& rules) {
   GLSLDialect d(accuracy, Stage::Fragment, outputs);
   codegen::CFamilyPrinter p(f, d);
-  // The body first: printing it collects the constants that the declarations need.
+  // The body first: printing it collects the constants that the declarations need; printed
+  // again once they are in their own order.
   std::string body = p.declarations(1) + p.body(1);
+  d.sort_constants();
+  body = p.declarations(1) + p.body(1);
   std::string src = header(f, accuracy, "fragment");
   for (size_t i = 0; i < f.inputs.size(); ++i)
     src +=
@@ -446,6 +454,8 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   GLSLDialect d(accuracy, Stage::Compute, outputs);
   codegen::CFamilyPrinter p(f, d);
   std::string body = p.declarations(1) + p.body(1);
+  d.sort_constants();  // as in emit_glsl
+  body = p.declarations(1) + p.body(1);
   const ComputeBindings bind = compute_bindings(f, outputs.size());
   // Counting one atomic per subgroup where the driver has ballots (NVIDIA, recent Mesa); an
   // extension the driver lacks is a warning, and its macro stays undefined.

@@ -297,30 +297,36 @@ TEST(Capture, ArraysAreRegisteredOncePerProgram) {
   Program p = program("arrays", [&] {
     Input<Int> i("i");
     Output<Float3> y("y");
-    Float t0 = table[i];  // statements sequence the first uses: table, vol, grid
+    Float t0 = table[i];
     Float t1 = table(i + 1);
     Float v = to_float(vol(i, i, i));
     Float3 g = grid(i, i);
     y = g * (t0 + t1 + v);
   });
+  // Arrays are numbered in the order the canonical listing first reads them: each gather
+  // just before the statement that needs it, operands left to right (g first), whatever
+  // order C++ ran the body in.
   const ir::Function& f = p.ir();
   ASSERT_EQ(f.arrays.size(), 3u);
-  EXPECT_EQ(f.arrays[0].name, "table");
-  EXPECT_EQ(f.arrays[0].dims, 1);
-  EXPECT_EQ(f.arrays[0].elem, ir::float_type(1));
-  EXPECT_EQ(f.arrays[1].name, "vol");
-  EXPECT_EQ(f.arrays[1].dims, 3);
-  EXPECT_EQ(f.arrays[2].elem, ir::float_type(3));
+  EXPECT_EQ(f.arrays[0].name, "grid");
+  EXPECT_EQ(f.arrays[0].dims, 2);
+  EXPECT_EQ(f.arrays[0].elem, ir::float_type(3));
+  EXPECT_EQ(f.arrays[1].name, "table");
+  EXPECT_EQ(f.arrays[1].dims, 1);
+  EXPECT_EQ(f.arrays[2].name, "vol");
+  EXPECT_EQ(f.arrays[2].elem, ir::int_type(1));
   EXPECT_EQ(p.captured().arrays.size(), 3u);
-  EXPECT_EQ(p.captured().arrays[0].get(), table.state().get());
+  EXPECT_EQ(p.captured().arrays[0].get(), grid.state().get());
+  EXPECT_EQ(p.captured().arrays[1].get(), table.state().get());
+  EXPECT_EQ(p.captured().arrays[2].get(), vol.state().get());
   EXPECT_EQ(count_ops(f, ir::Op::Gather), 4);
   std::string text = normalized(p.print());
-  EXPECT_LINE(text, "array1d float a0:table");
-  EXPECT_LINE(text, "array3d int a1:vol");
-  EXPECT_LINE(text, "array2d float3 a2:grid");
-  EXPECT_LINE(text, "t# = gather a0:table(i_0)");
-  EXPECT_LINE(text, "t# = gather a1:vol(i_0, i_0, i_0)");
-  EXPECT_LINE(text, "t# = gather a2:grid(i_0, i_0)");
+  EXPECT_LINE(text, "array2d float3 a0:grid");
+  EXPECT_LINE(text, "array1d float a1:table");
+  EXPECT_LINE(text, "array3d int a2:vol");
+  EXPECT_LINE(text, "t# = gather a0:grid(i_0, i_0)");
+  EXPECT_LINE(text, "t# = gather a1:table(i_0)");
+  EXPECT_LINE(text, "t# = gather a2:vol(i_0, i_0, i_0)");
   EXPECT_EQ(test::problems(f), "");
 }
 

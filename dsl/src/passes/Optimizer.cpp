@@ -22,7 +22,9 @@ std::vector<int> count_definitions(const Function& f) {
 
 Function optimize(const Function& input, const PassOptions& p, Accuracy accuracy) {
   Function f = input;
-  if (accuracy == Accuracy::Strict) lower_math(f);
+  // lower_math records Rill's math routines with the DSL, in the order the C++ compiler
+  // evaluates them: canonicalize puts them, like the capture, in an order of its own.
+  if (accuracy == Accuracy::Strict && lower_math(f)) canonicalize(f);
   // A program is small and each pass is linear, so running to a fixed point is cheap; the
   // bound only guards against a pass that keeps reporting changes.
   for (int round = 0; round < 32; ++round) {
@@ -34,6 +36,9 @@ Function optimize(const Function& input, const PassOptions& p, Accuracy accuracy
     if (!changed) break;
   }
   if (lower_continue(f) && p.dead_code) eliminate_dead_code(f);  // drop unread skip flags
+  // Once more, now that dead code is gone: variables numbered densely, and the only part of
+  // the capture left in C++'s order (unread temporaries) no longer shifts the numbers.
+  canonicalize(f);
   verify_or_throw(f, "optimizer", /*outputs_written=*/false);
   return f;
 }

@@ -17,8 +17,13 @@
 //                            built from exact operations (StrictMath.h), so every backend
 //                            computes the same bits (not optional in strict mode)
 //
-// optimize() runs lower_math (strict), the enabled passes to a fixed point, then
-// lower_continue.
+//   canonicalize             statements and variables in an order of their own, not the one the
+//                            C++ compiler evaluated the DSL in: the same kernel source
+//                            whichever compiler built Rill (not optional: capture runs it,
+//                            and optimize() after lower_math, which records DSL code too)
+//
+// optimize() runs lower_math (strict), canonicalize, the enabled passes to a fixed point,
+// then lower_continue.
 //
 // For the simd backend, after optimize():
 //
@@ -41,6 +46,15 @@ bool eliminate_dead_code(ir::Function& f);
 bool lower_continue(ir::Function& f);
 // Strict mode only: transcendental ops become Rill's own routines (StrictMath.h).
 bool lower_math(ir::Function& f);
+
+// Where canonicalize moved the uniforms and arrays: new slot i holds what old slot
+// uniforms[i] (arrays[i]) held. Whoever keeps lists parallel to them permutes those alike.
+struct InterfaceOrder {
+  std::vector<size_t> uniforms, arrays;
+};
+// Without `interface`, uniforms and arrays keep their slots (a compiled kernel's launch
+// already binds them by slot); with it, they too are ordered by first use.
+void canonicalize(ir::Function& f, InterfaceOrder* interface = nullptr);
 
 ir::Function optimize(const ir::Function& f, const PassOptions& passes, Accuracy accuracy);
 
