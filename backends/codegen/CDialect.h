@@ -18,10 +18,15 @@ namespace rill::codegen {
 
 class CDialect : public Dialect {
  public:
-  // discard: the statement that abandons an element; width: expression for the domain's
-  // row length (for element_coord).
-  CDialect(Accuracy a, std::string discard, std::string width)
-      : accuracy_(a), discard_(std::move(discard)), width_(std::move(width)) {}
+  // discard: the statement that abandons an element; coord_x, coord_y: 64-bit expressions
+  // for element_coord (the C loop keeps two counters in step with rill_i, where OpenCL
+  // divides rill_i by the row length).
+  CDialect(Accuracy a, std::string discard, std::string coord_x = "rill_x",
+           std::string coord_y = "rill_y")
+      : accuracy_(a),
+        discard_(std::move(discard)),
+        coord_x_(std::move(coord_x)),
+        coord_y_(std::move(coord_y)) {}
 
   bool scalarize() const override { return true; }
   std::string scalar_type(ir::ScalarKind k) const override {
@@ -122,12 +127,12 @@ class CDialect : public Dialect {
 
   std::string element_index() const override { return "((int32_t)rill_i)"; }
   std::string element_coord(int c) const override {
-    return c == 0 ? "((int32_t)(rill_i % " + width_ + "))" : "((int32_t)(rill_i / " + width_ + "))";
+    return "((int32_t)" + (c == 0 ? coord_x_ : coord_y_) + ")";
   }
 
  private:
   Accuracy accuracy_;
-  std::string discard_, width_;
+  std::string discard_, coord_x_, coord_y_;
 };
 
 // Statements both C-family entry points share, in the naming convention above.

@@ -15,6 +15,7 @@
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
 #include "../codegen/SourceText.h"
+#include "rill/ir/Visitor.h"
 
 namespace rill::cpu {
 
@@ -88,13 +89,27 @@ std::string c_entry_locals(const Function& f, const codegen::Dialect& d) {
 }
 
 std::string emit_c(const Function& f, Accuracy accuracy) {
-  codegen::CDialect d(accuracy, "goto rill_discarded;", "L->width");
+  codegen::CDialect d(accuracy, "goto rill_discarded;");
   codegen::CFamilyPrinter p(f, d);
   std::string src = c_head(f, accuracy);
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
   src += c_entry_locals(f, d);
   src += "  int64_t rill_written = 0;\n";
-  src += "  for (int64_t rill_i = rill_begin; rill_i < rill_end; ++rill_i) {\n";
+  bool coords = false;
+  ir::for_each_stmt(f.body, [&](const ir::Stmt& s) {
+    coords |= s.kind == ir::StmtKind::Assign && s.op == ir::Op::ElementCoord;
+  });
+  if (coords) {
+    // element_coord (rill_x, rill_y): one division for the range's first element, then a
+    // step per element, the same (i % width, i / width) for every i without a 64-bit
+    // division per element, which costs more than many a kernel's arithmetic.
+    src += "  int64_t rill_y = L->width > 0 ? rill_begin / L->width : 0;\n";
+    src += "  int64_t rill_x = rill_begin - rill_y * L->width;\n";
+    src += "  for (int64_t rill_i = rill_begin; rill_i < rill_end;\n";
+    src += "       ++rill_i, ++rill_x == L->width ? (rill_x = 0, ++rill_y) : 0) {\n";
+  } else {
+    src += "  for (int64_t rill_i = rill_begin; rill_i < rill_end; ++rill_i) {\n";
+  }
   src += p.declarations(2);
   src += p.body(2);
   src += codegen::store_outputs(f, p, "    ");

@@ -309,7 +309,7 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   src += kVectorPrelude;
   src += lane_wise_helpers();
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
-  src += c_entry_locals(f, codegen::CDialect(accuracy, "", "L->width"));  // scalar locals
+  src += c_entry_locals(f, codegen::CDialect(accuracy, ""));  // scalar locals
   src += "  int64_t rill_written = 0;\n";
   // Groups of RILL_W elements: tiles of a 2D stream where they fit (rill_next_group).
   src += "  rill_groups rill_gs = rill_groups_of(L, rill_begin, rill_end);\n";

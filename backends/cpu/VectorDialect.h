@@ -16,7 +16,7 @@ namespace rill::cpu {
 
 class VectorDialect : public codegen::CDialect {
  public:
-  VectorDialect(Accuracy a, int lanes) : CDialect(a, "", "L->width"), lanes_(lanes) {}
+  VectorDialect(Accuracy a, int lanes) : CDialect(a, ""), lanes_(lanes) {}
 
   std::string scalar_type(ir::ScalarKind k) const override {
     return k == ir::ScalarKind::Float ? "rill_vr" : "rill_vi";
