@@ -116,8 +116,7 @@ void for_each_read(const Stmt& s, F&& f) {
 
 class Scheduler {
  public:
-  explicit Scheduler(const Function& f)
-      : movable_(movable_values(f)), at_(f.vars.size(), kNone) {}
+  explicit Scheduler(const Function& f) : movable_(movable_values(f)), at_(f.vars.size(), kNone) {}
 
   void schedule(Block& b) {
     for (Stmt& s : b) {
@@ -145,19 +144,44 @@ class Scheduler {
  private:
   static constexpr size_t kNone = ~size_t{0};
 
+  // Calls done(k) for start and the unvisited movable values it reads, operands first, left
+  // to right. A loop with its own stack: a chain of values (a sum built term by term) can be
+  // as long as the kernel.
+  template <class F>
+  void post_order(const Block& b, size_t start, std::vector<bool>& visited, F&& done) const {
+    if (visited[start]) return;
+    visited[start] = true;
+    struct Frame {
+      size_t at, next_arg;
+    };
+    std::vector<Frame> stack{{start, 0}};
+    while (!stack.empty()) {
+      Frame& fr = stack.back();
+      const std::vector<Operand>& args = b[fr.at].args;
+      if (fr.next_arg < args.size()) {
+        const Operand& a = args[fr.next_arg++];
+        if (a.is_var() && at_[a.var] != kNone && !visited[at_[a.var]]) {
+          visited[at_[a.var]] = true;
+          stack.push_back({at_[a.var], 0});
+        }
+        continue;
+      }
+      const size_t k = fr.at;
+      stack.pop_back();
+      done(k);
+    }
+  }
+
   void reorder(Block& b, const std::vector<size_t>& roots, const std::vector<size_t>& temps) {
     // The order a purely lazy schedule would compute the temporaries in (operands first,
     // depth first from each remaining statement in turn): the canonical order, also for
     // those that must be computed earlier to stay ahead of a write.
     std::vector<size_t> rank(b.size(), kNone);
     size_t next_rank = 0;
-    std::function<void(VarId)> rank_temp = [&](VarId v) {
-      const size_t i = at_[v];
-      if (i == kNone || rank[i] != kNone) return;
-      rank[i] = kNone - 1;  // in progress (operands never refer back: written once)
-      for (const Operand& a : b[i].args)
-        if (a.is_var()) rank_temp(a.var);
-      rank[i] = next_rank++;
+    std::vector<bool> ranked(b.size(), false);
+    auto rank_temp = [&](VarId v) {
+      if (at_[v] == kNone) return;
+      post_order(b, at_[v], ranked, [&](size_t i) { rank[i] = next_rank++; });
     };
     for (size_t r : roots)
       for_each_read(b[r], [&](const Operand& o) {
@@ -173,12 +197,8 @@ class Scheduler {
     Block out;
     out.reserve(b.size());
     std::vector<bool> placed(b.size(), false);
-    std::function<void(size_t)> place = [&](size_t i) {
-      if (placed[i]) return;
-      placed[i] = true;
-      for (const Operand& a : b[i].args)
-        if (a.is_var() && at_[a.var] != kNone) place(at_[a.var]);
-      out.push_back(std::move(b[i]));
+    auto place = [&](size_t i) {
+      post_order(b, i, placed, [&](size_t k) { out.push_back(std::move(b[k])); });
     };
     size_t dead_from = 0;  // unread temporaries stay where they were
     for (size_t r : roots) {

@@ -3,6 +3,8 @@
 // GCC and clang evaluate a call's arguments (and the operands of `a * b + c * d`) in
 // different orders. These tests write one kernel in two statement orders, as the two compilers
 // would record it, and expect one listing, one hash and one set of results.
+#include <memory>
+
 #include "TestUtil.h"
 
 namespace rill {
@@ -205,6 +207,22 @@ TEST(Canonicalize, IsIdempotentAndKeepsDeadCode) {
   passes::canonicalize(f);
   EXPECT_EQ(ir::print(f), p.print());
   EXPECT_EQ(test::count_ops(f, ir::Op::Mul), 1);  // the captured program keeps dead code
+}
+
+// A chain of values as long as the kernel (a sum built term by term, each term a new value)
+// keeps every link and its order. (The walk keeps its own stack; a recursive one also passed
+// this length in an optimized build, so this does not prove the stack is safe.)
+TEST(Canonicalize, LongChainsOfValues) {
+  constexpr int kLinks = 100000;
+  Program p = program("chain", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    auto sum = std::make_unique<Float>(x + 1.0f);
+    for (int i = 1; i < kLinks; ++i) sum = std::make_unique<Float>(*sum + 1.0f);
+    y = *sum;
+  });
+  EXPECT_EQ(test::count_ops(p.ir(), ir::Op::Add), kLinks);
+  EXPECT_EQ(p.ir().body.back().op, ir::Op::Copy);  // y, after every link
 }
 
 // Strict lowering records Rill's math routines with the DSL too: optimize() canonicalizes
