@@ -15,7 +15,6 @@
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
 #include "../codegen/SourceText.h"
-#include "rill/ir/Visitor.h"
 
 namespace rill::cpu {
 
@@ -95,11 +94,7 @@ std::string emit_c(const Function& f, Accuracy accuracy) {
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
   src += c_entry_locals(f, d);
   src += "  int64_t rill_written = 0;\n";
-  bool coords = false;
-  ir::for_each_stmt(f.body, [&](const ir::Stmt& s) {
-    coords |= s.kind == ir::StmtKind::Assign && s.op == ir::Op::ElementCoord;
-  });
-  if (coords) {
+  if (ir::contains(f.body, ir::Op::ElementCoord)) {
     // element_coord (rill_x, rill_y): one division for the range's first element, then a
     // step per element, the same (i % width, i / width) for every i without a 64-bit
     // division per element, which costs more than many a kernel's arithmetic.

@@ -316,13 +316,7 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   src += "  int64_t rill_lane[RILL_W];\n";
   src += "  int rill_n;\n";
   src += "  while ((rill_n = rill_next_group(&rill_gs, rill_lane)) > 0) {\n";
-  auto uses = [&](Op op) {
-    bool found = false;
-    for_each_stmt(f.body, [&](const Stmt& s) {
-      found = found || (s.kind == StmtKind::Assign && s.op == op);
-    });
-    return found;
-  };
+  auto uses = [&](Op op) { return contains(f.body, op); };
   if (uses(Op::ElementIndex)) {
     src += "    rill_vi rill_element;\n";
     src += "    for (int l = 0; l < RILL_W; ++l) rill_element[l] = (int32_t)rill_lane[l];\n";

@@ -51,16 +51,11 @@ struct Builder {
     if (open.empty()) return root ? *root : fn->body;
     Frame& f = open.back();
     switch (f.section) {
-      case Section::Then:
-        return f.stmt.then_body;
-      case Section::Else:
-        return f.stmt.else_body;
-      case Section::Cond:
-        return f.stmt.cond_body;
-      case Section::Body:
-        return f.stmt.body;
-      case Section::Step:
-        return f.stmt.step;
+      case Section::Then: return f.stmt.then_body;
+      case Section::Else: return f.stmt.else_body;
+      case Section::Cond: return f.stmt.cond_body;
+      case Section::Body: return f.stmt.body;
+      case Section::Step: return f.stmt.step;
     }
     return fn->body;
   }
@@ -73,9 +68,8 @@ std::map<uint64_t, std::string> g_names;
 
 Builder& builder(const char* what, SourceLoc loc) {
   if (t_builders.empty())
-    throw Error(std::string(what) +
-                    " outside a program: DSL operations must run inside "
-                    "the body given to rill::program()",
+    throw Error(std::string(what) + " outside a program: DSL operations must run inside "
+                                    "the body given to rill::program()",
                 loc);
   return *t_builders.back();
 }
@@ -87,7 +81,8 @@ std::string describe(const Frame& f) {
 // Checks that the innermost open construct is the one `macro` closes or continues.
 Frame& expect(Builder& b, const char* macro, SourceLoc loc, bool (*ok)(const Frame&),
               const char* expected) {
-  if (b.open.empty()) throw Error(std::string(macro) + " without a matching " + expected, loc);
+  if (b.open.empty())
+    throw Error(std::string(macro) + " without a matching " + expected, loc);
   Frame& f = b.open.back();
   if (!ok(f))
     throw Error(std::string(macro) + " does not match the innermost open construct, " +
@@ -102,12 +97,8 @@ void close_into_parent(Builder& b) {
   b.current().push_back(std::move(s));
 }
 
-bool is_if(const Frame& f) {
-  return f.stmt.kind == ir::StmtKind::If;
-}
-bool is_if_then(const Frame& f) {
-  return is_if(f) && f.section == Section::Then;
-}
+bool is_if(const Frame& f) { return f.stmt.kind == ir::StmtKind::If; }
+bool is_if_then(const Frame& f) { return is_if(f) && f.section == Section::Then; }
 bool is_while_body(const Frame& f) {
   return f.stmt.kind == ir::StmtKind::Loop && f.stmt.loop == ir::LoopKind::While &&
          f.section == Section::Body;
@@ -127,15 +118,9 @@ bool is_do_cond(const Frame& f) {
 bool is_for(ir::LoopKind k, const Frame& f) {
   return f.stmt.kind == ir::StmtKind::Loop && f.stmt.loop == k;
 }
-bool is_for_cond(const Frame& f) {
-  return is_for(ir::LoopKind::For, f) && f.section == Section::Cond;
-}
-bool is_for_step(const Frame& f) {
-  return is_for(ir::LoopKind::For, f) && f.section == Section::Step;
-}
-bool is_for_body(const Frame& f) {
-  return is_for(ir::LoopKind::For, f) && f.section == Section::Body;
-}
+bool is_for_cond(const Frame& f) { return is_for(ir::LoopKind::For, f) && f.section == Section::Cond; }
+bool is_for_step(const Frame& f) { return is_for(ir::LoopKind::For, f) && f.section == Section::Step; }
+bool is_for_body(const Frame& f) { return is_for(ir::LoopKind::For, f) && f.section == Section::Body; }
 
 void push(Builder& b, ir::Stmt s, Section sec, SourceLoc loc, const char* macro,
           bool chained = false) {
@@ -144,13 +129,9 @@ void push(Builder& b, ir::Stmt s, Section sec, SourceLoc loc, const char* macro,
 
 }  // namespace
 
-bool in_program() {
-  return !t_builders.empty();
-}
+bool in_program() { return !t_builders.empty(); }
 
-void require_program(const char* what, SourceLoc loc) {
-  builder(what, loc);
-}
+void require_program(const char* what, SourceLoc loc) { builder(what, loc); }
 
 std::string program_name(uint64_t serial) {
   std::lock_guard<std::mutex> lock(g_names_mutex);
@@ -301,8 +282,7 @@ Ref new_var(ir::Type t, ir::VarRole role, std::string name, SourceLoc loc) {
 
 void assign(const Ref& dst, const ir::Mask& mask, const ir::Operand& src, SourceLoc loc) {
   Builder& b = builder("an assignment", loc);
-  if (dst.kind != Ref::Kind::Var)
-    throw Error("assignment to something that is not a variable", loc);
+  if (dst.kind != Ref::Kind::Var) throw Error("assignment to something that is not a variable", loc);
   if (dst.program != b.serial)
     throw Error("assignment to a value of program '" + program_name(dst.program) +
                     "' inside program '" + b.fn->name + "'",
@@ -430,7 +410,8 @@ void jump(ir::StmtKind kind, const char* macro, SourceLoc loc) {
       if (it->stmt.kind != ir::StmtKind::Loop) continue;
       ok = it->section == Section::Body;
       if (!ok)
-        throw Error(std::string(macro) + " inside the condition or step of " + describe(*it), loc);
+        throw Error(std::string(macro) + " inside the condition or step of " + describe(*it),
+                    loc);
       break;
     }
     if (!ok) throw Error(std::string(macro) + " outside a loop", loc);
@@ -439,15 +420,9 @@ void jump(ir::StmtKind kind, const char* macro, SourceLoc loc) {
 }
 }  // namespace
 
-void emit_break(SourceLoc loc) {
-  jump(ir::StmtKind::Break, "RILL_BREAK", loc);
-}
-void emit_continue(SourceLoc loc) {
-  jump(ir::StmtKind::Continue, "RILL_CONTINUE", loc);
-}
-void emit_discard(SourceLoc loc) {
-  jump(ir::StmtKind::Discard, "RILL_DISCARD", loc);
-}
+void emit_break(SourceLoc loc) { jump(ir::StmtKind::Break, "RILL_BREAK", loc); }
+void emit_continue(SourceLoc loc) { jump(ir::StmtKind::Continue, "RILL_CONTINUE", loc); }
+void emit_discard(SourceLoc loc) { jump(ir::StmtKind::Discard, "RILL_DISCARD", loc); }
 
 // --- program scope -----------------------------------------------------------------------
 
@@ -501,18 +476,18 @@ ir::Block ExtendScope::take() {
 CapturedProgram ProgramScope::finish() {
   Builder& b = *t_builders.back();
   if (!b.open.empty())
-    throw Error(
-        "program '" + b.fn->name + "' ends while " + describe(b.open.back()) + " is still open",
-        b.defined_at);
+    throw Error("program '" + b.fn->name + "' ends while " + describe(b.open.back()) +
+                    " is still open",
+                b.defined_at);
   for (ir::VarId o : b.fn->outputs) {
     bool written = false;
     ir::for_each_stmt(b.fn->body, [&](const ir::Stmt& s) {
       if (s.kind == ir::StmtKind::Assign && s.dst == o) written = true;
     });
     if (!written)
-      throw Error(
-          "program '" + b.fn->name + "': output '" + b.fn->vars[o].name + "' is never written",
-          b.defined_at);
+      throw Error("program '" + b.fn->name + "': output '" + b.fn->vars[o].name +
+                      "' is never written",
+                  b.defined_at);
   }
   ir::verify_or_throw(*b.fn, "capture");
   // The listing in an order of its own, not the one this C++ compiler evaluated the body in

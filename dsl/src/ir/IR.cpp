@@ -159,6 +159,14 @@ bool contains(const Block& b, StmtKind kind) {
   return found;
 }
 
+bool contains(const Block& b, Op op) {
+  bool found = false;
+  for_each_stmt(b, [&](const Stmt& s) {
+    found = found || (s.kind == StmtKind::Assign && s.op == op);
+  });
+  return found;
+}
+
 bool jumps_out_of_loop(const Block& b, StmtKind jump) {
   for (const Stmt& s : b) {
     if (s.kind == jump) return true;

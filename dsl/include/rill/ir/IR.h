@@ -167,6 +167,8 @@ int count_statements(const Block& b);  // all statements, nested ones included
 int count_loops(const Block& b);
 // Does b contain a statement of this kind anywhere, nested loops included?
 bool contains(const Block& b, StmtKind kind);
+// Does b compute op anywhere (element_coord, say, which an emitter sets up for)?
+bool contains(const Block& b, Op op);
 // Does b contain a jump (Break or Continue) of the loop whose body it is in: searched through
 // ifs, not into nested loops, whose jumps are their own?
 bool jumps_out_of_loop(const Block& b, StmtKind jump);
