@@ -196,7 +196,10 @@ class CpuBackend : public Backend {
     return name() + ": " + what + c_compiler() + ", " +
            std::to_string(
                tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)) +
-           " threads (oneTBB), cache " + cache_directory();
+           " threads (oneTBB), " +
+           (profile_directory().empty()
+                ? "cache " + cache_directory()
+                : "profiling: kernels with debug information in " + profile_directory());
   }
   bool supports(Accuracy) const override { return true; }
 
@@ -212,7 +215,7 @@ class CpuBackend : public Backend {
     // are then one exact instruction instead of a conversion sequence; 3-4% on a ray traced
     // frame (docs/benchmarks/2026-11-25-gpu-frame.md).
     if (!lockstep && has_sse41()) flags.push_back("-msse4.1");
-    SharedObject so = compile_shared_object(name(), source, flags, "rill_run");
+    SharedObject so = compile_shared_object(name(), f.name, source, flags, "rill_run");
     auto k = std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep);
     k->set_build_times(codegen_ms, stage.lap());
     return k;

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -124,9 +125,110 @@ void release(SharedObject& so) {
   so.fd = -1;
 }
 
-SharedObject compile_shared_object(const std::string& backend, const std::string& source,
+namespace {
+
+// Compiles the C file src (whose text is `source`) into out; throws rill::Error with the
+// compiler's messages and the numbered source.
+void compile_file(const std::string& cc, const std::vector<std::string>& flags,
+                  const fs::path& src, const fs::path& out, const fs::path& log,
+                  const std::string& source) {
+  std::vector<std::string> argv{cc};
+  argv.insert(argv.end(), flags.begin(), flags.end());
+  argv.insert(argv.end(), {"-o", out.string(), src.string(), "-lm"});
+  int rc = run(argv, log);
+  std::string messages = read_file(log);
+  std::error_code ec;
+  fs::remove(log, ec);
+  if (rc == 0) return;
+  fs::remove(out, ec);
+  if (rc < 0)
+    throw Error("CPU backend: the C compiler '" + cc +
+                "' could not be run; install one (apt-get install gcc) or set RILL_CC");
+  throw Error("CPU backend: the C compiler rejected the generated kernel (exit " +
+              std::to_string(rc) + "):\n" + messages + "\ngenerated source:\n" +
+              codegen::numbered(source));
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  std::ofstream file(p);
+  file << text;
+  if (!file) throw Error("CPU backend: cannot write '" + p.string() + "'");
+}
+
+// A unique suffix for temporary files of this process and thread.
+std::string temporary_tag() {
+  std::ostringstream tag;
+  tag << getpid() << "." << std::hash<std::thread::id>{}(std::this_thread::get_id());
+  return tag.str();
+}
+
+// RILL_PROFILE_DIR (see the header): the kernel as NAME.c and NAME.so with debug
+// information, loaded from that path so that a profiler finds both. A file from an earlier
+// run is reused when its source is the same; the disk cache is not involved.
+SharedObject compile_for_profiling(const fs::path& dir, const std::string& backend,
+                                   const std::string& kernel, const std::string& source,
+                                   std::vector<std::string> flags, const std::string& entry) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec)
+    throw Error("CPU backend: cannot create the profile directory '" + dir.string() + "' (" +
+                ec.message() + "); set RILL_PROFILE_DIR to a writable directory");
+  // -g adds the line tables and leaves the generated code as it is (GCC and clang promise
+  // that), so the profile is the kernel's.
+  flags.push_back("-g");
+  const std::string cc = c_compiler();
+  std::string command = cc;
+  for (const auto& f : flags) command += " " + f;
+  std::string name;
+  for (char c : kernel) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  const std::string stem = backend + "-" + (name.empty() ? "kernel" : name) + "-" +
+                           ir::hex(ir::hash_bytes(command + "\n" + source)).substr(0, 12);
+  const fs::path c_path = dir / (stem + ".c"), so_path = dir / (stem + ".so");
+  SharedObject so;
+  so.from_disk_cache = fs::exists(so_path) && read_file(c_path) == source;
+  if (!so.from_disk_cache) {
+    // Written under temporary names and renamed into place, so that processes profiling at
+    // the same time never read a half-written file. The compiler reads the source under its
+    // final name, which the line tables then record.
+    const std::string tmp = stem + ".tmp." + temporary_tag();
+    write_text(dir / (tmp + ".c"), source);
+    fs::rename(dir / (tmp + ".c"), c_path, ec);
+    if (ec)
+      throw Error("CPU backend: cannot write the kernel into the profile directory '" +
+                  dir.string() + "' (" + ec.message() + ")");
+    compile_file(cc, flags, c_path, dir / (tmp + ".so"), dir / (tmp + ".log"), source);
+    fs::rename(dir / (tmp + ".so"), so_path, ec);
+    if (ec)
+      throw Error("CPU backend: cannot write the kernel into the profile directory '" +
+                  dir.string() + "' (" + ec.message() + ")");
+  }
+  so.handle = dlopen(so_path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!so.handle) {
+    const char* e = dlerror();
+    throw Error("CPU backend: cannot load '" + so_path.string() + "': " +
+                (e ? e : "unknown error"));
+  }
+  so.symbol = dlsym(so.handle, entry.c_str());
+  if (!so.symbol) {
+    release(so);
+    throw Error("CPU backend: '" + so_path.string() + "' has no '" + entry + "'");
+  }
+  so.path = so_path.string();
+  return so;
+}
+
+}  // namespace
+
+std::string profile_directory() {
+  return env("RILL_PROFILE_DIR");
+}
+
+SharedObject compile_shared_object(const std::string& backend, const std::string& kernel,
+                                   const std::string& source,
                                    const std::vector<std::string>& flags,
                                    const std::string& entry) {
+  if (const std::string dir = profile_directory(); !dir.empty())
+    return compile_for_profiling(dir, backend, kernel, source, flags, entry);
   const std::string cc = c_compiler();
   std::string command = cc;
   for (const auto& f : flags) command += " " + f;
@@ -155,33 +257,16 @@ SharedObject compile_shared_object(const std::string& backend, const std::string
                 ec.message() + "); set RILL_CACHE_DIR to a writable directory");
 
   // Unique temporary names per process and thread.
-  std::ostringstream tag;
-  tag << ir::hex(ir::hash_bytes(key_text)) << ".rill.tmp." << getpid() << "."
-      << std::hash<std::thread::id>{}(std::this_thread::get_id());
-  fs::path src = dir / (tag.str() + ".c");
-  fs::path tmp = dir / (tag.str() + ".so");
-  fs::path log = dir / (tag.str() + ".log");
-  {
-    std::ofstream out(src);
-    out << source;
-    if (!out) throw Error("CPU backend: cannot write '" + src.string() + "'");
+  const std::string tag = ir::hex(ir::hash_bytes(key_text)) + ".rill.tmp." + temporary_tag();
+  const fs::path src = dir / (tag + ".c"), tmp = dir / (tag + ".so");
+  write_text(src, source);
+  try {
+    compile_file(cc, flags, src, tmp, dir / (tag + ".log"), source);
+  } catch (...) {
+    fs::remove(src, ec);
+    throw;
   }
-  std::vector<std::string> argv{cc};
-  argv.insert(argv.end(), flags.begin(), flags.end());
-  argv.insert(argv.end(), {"-o", tmp.string(), src.string(), "-lm"});
-  int rc = run(argv, log);
-  std::string messages = read_file(log);
-  fs::remove(log, ec);
   fs::remove(src, ec);
-  if (rc != 0) {
-    fs::remove(tmp, ec);
-    if (rc < 0)
-      throw Error("CPU backend: the C compiler '" + cc +
-                  "' could not be run; install one (apt-get install gcc) or set RILL_CC");
-    throw Error("CPU backend: the C compiler rejected the generated kernel (exit " +
-                std::to_string(rc) + "):\n" + messages + "\ngenerated source:\n" +
-                codegen::numbered(source));
-  }
   std::string binary = read_file(tmp);
   fs::remove(tmp, ec);
   cache::store(backend, key_text, binary);

@@ -15,6 +15,12 @@
 // same /proc/self/fd/N name. A fresh compile takes the same path, after storing the entry.
 //
 // Which compiler: $RILL_CC, else the C compiler Rill was built with, else `cc`.
+//
+// Profiling: with RILL_PROFILE_DIR set, each kernel is compiled with debug information into
+// that directory instead, as BACKEND-KERNEL-HASH.c and .so, and dlopen'ed from there (files
+// the user asked for, not the cache's). A profiler then maps samples in the kernel to lines
+// of the generated C: perf report and annotate, valgrind --tool=callgrind, gdb. From a memory
+// file they see only addresses.
 #pragma once
 
 #include <string>
@@ -26,19 +32,23 @@ struct SharedObject {
   void* handle = nullptr;  // from dlopen
   void* symbol = nullptr;  // the requested entry point
   int fd = -1;             // the memory file the object was loaded from (see above)
-  bool from_disk_cache = false;
-  std::string path;  // the cache entry
+  bool from_disk_cache = false;  // or, when profiling, an earlier run's file
+  std::string path;               // the cache entry, or the file when profiling
 };
 
 // Compiles `source` with `flags` (or finds it in the cache entries of `backend`), loads it
 // and looks up `entry`. Throws rill::Error with the compiler's messages and the numbered
-// source on failure.
-SharedObject compile_shared_object(const std::string& backend, const std::string& source,
-                                   const std::vector<std::string>& flags, const std::string& entry);
+// source on failure. `kernel` (the program's name) names the files when profiling.
+SharedObject compile_shared_object(const std::string& backend, const std::string& kernel,
+                                   const std::string& source,
+                                   const std::vector<std::string>& flags,
+                                   const std::string& entry);
 // Unloads the object and closes its memory file.
 void release(SharedObject& so);
 
 std::string cache_directory();
+// $RILL_PROFILE_DIR, or "" when kernels are not compiled for profiling.
+std::string profile_directory();
 std::string c_compiler();
 
 }  // namespace rill::cpu
