@@ -173,36 +173,55 @@ SharedObject compile_for_profiling(const fs::path& dir, const std::string& backe
   if (ec)
     throw Error("CPU backend: cannot create the profile directory '" + dir.string() + "' (" +
                 ec.message() + "); set RILL_PROFILE_DIR to a writable directory");
-  // -g adds the line tables and leaves the generated code as it is (GCC and clang promise
-  // that), so the profile is the kernel's.
+  // -g adds the line tables; it is meant not to change the generated code (GCC checks that
+  // with -fcompare-debug), and for the ray tracer's megakernel objdump -d shows the same code
+  // with and without it (GCC 12 and clang 14), so the profile is the kernel's.
   flags.push_back("-g");
   const std::string cc = c_compiler();
   std::string command = cc;
   for (const auto& f : flags) command += " " + f;
+  // The program's name, cut to a length that leaves room in a file name for the rest.
   std::string name;
-  for (char c : kernel) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  for (char c : kernel.substr(0, 64)) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
   const std::string stem = backend + "-" + (name.empty() ? "kernel" : name) + "-" +
                            ir::hex(ir::hash_bytes(command + "\n" + source)).substr(0, 12);
   const fs::path c_path = dir / (stem + ".c"), so_path = dir / (stem + ".so");
-  SharedObject so;
-  so.from_disk_cache = fs::exists(so_path) && read_file(c_path) == source;
-  if (!so.from_disk_cache) {
+  auto fail = [&](const std::string& what) {
+    throw Error("CPU backend: cannot " + what + " in the profile directory '" + dir.string() +
+                "' (" + ec.message() + ")");
+  };
+  auto build = [&] {
     // Written under temporary names and renamed into place, so that processes profiling at
     // the same time never read a half-written file. The compiler reads the source under its
-    // final name, which the line tables then record.
+    // final name, which the line tables then record; a kernel the compiler rejects leaves
+    // its .c there, for reading beside the error.
     const std::string tmp = stem + ".tmp." + temporary_tag();
-    write_text(dir / (tmp + ".c"), source);
-    fs::rename(dir / (tmp + ".c"), c_path, ec);
-    if (ec)
-      throw Error("CPU backend: cannot write the kernel into the profile directory '" +
-                  dir.string() + "' (" + ec.message() + ")");
-    compile_file(cc, flags, c_path, dir / (tmp + ".so"), dir / (tmp + ".log"), source);
-    fs::rename(dir / (tmp + ".so"), so_path, ec);
-    if (ec)
-      throw Error("CPU backend: cannot write the kernel into the profile directory '" +
-                  dir.string() + "' (" + ec.message() + ")");
-  }
+    const fs::path tmp_c = dir / (tmp + ".c"), tmp_so = dir / (tmp + ".so");
+    struct Cleanup {  // the temporary files go on every path out
+      fs::path c, so;
+      ~Cleanup() {
+        std::error_code ignored;
+        fs::remove(c, ignored);
+        fs::remove(so, ignored);
+      }
+    } cleanup{tmp_c, tmp_so};
+    write_text(tmp_c, source);
+    fs::rename(tmp_c, c_path, ec);
+    if (ec) fail("write '" + c_path.filename().string() + "'");
+    compile_file(cc, flags, c_path, tmp_so, dir / (tmp + ".log"), source);
+    fs::rename(tmp_so, so_path, ec);
+    if (ec) fail("write '" + so_path.filename().string() + "'");
+  };
+  SharedObject so;
+  so.from_disk_cache = fs::exists(so_path, ec) && read_file(c_path) == source;
+  if (!so.from_disk_cache) build();
   so.handle = dlopen(so_path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!so.handle && so.from_disk_cache) {
+    // An earlier run's file the loader refuses (damaged, or from another system): made again.
+    so.from_disk_cache = false;
+    build();
+    so.handle = dlopen(so_path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  }
   if (!so.handle) {
     const char* e = dlerror();
     throw Error("CPU backend: cannot load '" + so_path.string() + "': " +

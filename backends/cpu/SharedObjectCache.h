@@ -21,8 +21,8 @@
 // the user asked for, not the cache's). A profiler then maps samples in the kernel to lines
 // of the generated C: perf report and annotate, valgrind --tool=callgrind, gdb. From a memory
 // file they see only addresses. Unlike cache entries, these files carry no checksum: a later
-// run reuses a .so whose .c matches its source as it is (the directory is the developer's
-// own; deleting it starts afresh).
+// run reuses a .so whose .c matches its source, compiling it again only if the loader
+// refuses it (the directory is the developer's own; deleting it starts afresh).
 #pragma once
 
 #include <string>

@@ -40,11 +40,13 @@ class DiskCacheTest : public BackendTest {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     env_.emplace("RILL_CACHE_DIR", dir_.string());
+    no_profile_.emplace("RILL_PROFILE_DIR", "");  // profiling would bypass the cache
     clear_kernel_cache();
   }
   void TearDown() override {
     clear_kernel_cache();  // no kernel of this test's cache serves a later test
     env_.reset();
+    no_profile_.reset();
     if (!dir_.empty()) fs::remove_all(dir_);
   }
 
@@ -122,7 +124,7 @@ class DiskCacheTest : public BackendTest {
   }
 
   fs::path dir_;
-  std::optional<ScopedEnv> env_;
+  std::optional<ScopedEnv> env_, no_profile_;
 };
 
 #define SKIP_WITHOUT_BINARIES()                                                           \

@@ -50,7 +50,8 @@ struct CompileInfo {
   // Mesa says whether a build came from its own cache (see docs/programming-model.md).
   KernelOrigin origin = KernelOrigin::Built;
   bool cache_hit = false;        // served from the in-process kernel cache (origin ProcessCache)
-  bool from_disk_cache = false;  // the backend loaded a binary from Rill's disk cache
+  bool from_disk_cache = false;  // the backend loaded a binary from Rill's disk cache (cpu
+                                 // and simd with RILL_PROFILE_DIR: an earlier run's file)
 };
 
 class Kernel {
