@@ -128,10 +128,9 @@ void release(SharedObject& so) {
 namespace {
 
 // Compiles the C file src (whose text is `source`) into out; throws rill::Error with the
-// compiler's messages and the numbered source.
-void compile_file(const std::string& cc, const std::vector<std::string>& flags,
-                  const fs::path& src, const fs::path& out, const fs::path& log,
-                  const std::string& source) {
+// compiler's messages and the numbered source. The callers remove out (TemporaryFiles).
+void compile_file(const std::string& cc, const std::vector<std::string>& flags, const fs::path& src,
+                  const fs::path& out, const fs::path& log, const std::string& source) {
   std::vector<std::string> argv{cc};
   argv.insert(argv.end(), flags.begin(), flags.end());
   argv.insert(argv.end(), {"-o", out.string(), src.string(), "-lm"});
@@ -140,7 +139,6 @@ void compile_file(const std::string& cc, const std::vector<std::string>& flags,
   std::error_code ec;
   fs::remove(log, ec);
   if (rc == 0) return;
-  fs::remove(out, ec);
   if (rc < 0)
     throw Error("CPU backend: the C compiler '" + cc +
                 "' could not be run; install one (apt-get install gcc) or set RILL_CC");
@@ -154,6 +152,23 @@ void write_text(const fs::path& p, const std::string& text) {
   file << text;
   if (!file) throw Error("CPU backend: cannot write '" + p.string() + "'");
 }
+
+// The compiler and its flags as one line: the cache key's "driver=" and the profile files'
+// hash.
+std::string compiler_command(const std::string& cc, const std::vector<std::string>& flags) {
+  std::string command = cc;
+  for (const auto& f : flags) command += " " + f;
+  return command;
+}
+
+// Temporary files of one compile, removed on every path out of its scope.
+struct TemporaryFiles {
+  std::vector<fs::path> paths;
+  ~TemporaryFiles() {
+    std::error_code ignored;
+    for (const fs::path& p : paths) fs::remove(p, ignored);
+  }
+};
 
 // A unique suffix for temporary files of this process and thread.
 std::string temporary_tag() {
@@ -178,8 +193,7 @@ SharedObject compile_for_profiling(const fs::path& dir, const std::string& backe
   // with and without it (GCC 12 and clang 14), so the profile is the kernel's.
   flags.push_back("-g");
   const std::string cc = c_compiler();
-  std::string command = cc;
-  for (const auto& f : flags) command += " " + f;
+  const std::string command = compiler_command(cc, flags);
   // The program's name, cut to a length that leaves room in a file name for the rest.
   std::string name;
   for (char c : kernel.substr(0, 64)) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
@@ -197,14 +211,7 @@ SharedObject compile_for_profiling(const fs::path& dir, const std::string& backe
     // its .c there, for reading beside the error.
     const std::string tmp = stem + ".tmp." + temporary_tag();
     const fs::path tmp_c = dir / (tmp + ".c"), tmp_so = dir / (tmp + ".so");
-    struct Cleanup {  // the temporary files go on every path out
-      fs::path c, so;
-      ~Cleanup() {
-        std::error_code ignored;
-        fs::remove(c, ignored);
-        fs::remove(so, ignored);
-      }
-    } cleanup{tmp_c, tmp_so};
+    const TemporaryFiles temporaries{{tmp_c, tmp_so}};
     write_text(tmp_c, source);
     fs::rename(tmp_c, c_path, ec);
     if (ec) fail("write '" + c_path.filename().string() + "'");
@@ -224,8 +231,8 @@ SharedObject compile_for_profiling(const fs::path& dir, const std::string& backe
   }
   if (!so.handle) {
     const char* e = dlerror();
-    throw Error("CPU backend: cannot load '" + so_path.string() + "': " +
-                (e ? e : "unknown error"));
+    throw Error("CPU backend: cannot load '" + so_path.string() +
+                "': " + (e ? e : "unknown error"));
   }
   so.symbol = dlsym(so.handle, entry.c_str());
   if (!so.symbol) {
@@ -243,14 +250,12 @@ std::string profile_directory() {
 }
 
 SharedObject compile_shared_object(const std::string& backend, const std::string& kernel,
-                                   const std::string& source,
-                                   const std::vector<std::string>& flags,
+                                   const std::string& source, const std::vector<std::string>& flags,
                                    const std::string& entry) {
   if (const std::string dir = profile_directory(); !dir.empty())
     return compile_for_profiling(dir, backend, kernel, source, flags, entry);
   const std::string cc = c_compiler();
-  std::string command = cc;
-  for (const auto& f : flags) command += " " + f;
+  const std::string command = compiler_command(cc, flags);
   const std::string key_text = "backend=" + backend + "\ndriver=" + command + "\nentry=" + entry +
                                "\n" + cache::source_line(source);
   const std::string cache_path = cache::entry_path(backend, key_text).string();
@@ -278,16 +283,13 @@ SharedObject compile_shared_object(const std::string& backend, const std::string
   // Unique temporary names per process and thread.
   const std::string tag = ir::hex(ir::hash_bytes(key_text)) + ".rill.tmp." + temporary_tag();
   const fs::path src = dir / (tag + ".c"), tmp = dir / (tag + ".so");
-  write_text(src, source);
-  try {
+  std::string binary;
+  {
+    const TemporaryFiles temporaries{{src, tmp}};
+    write_text(src, source);
     compile_file(cc, flags, src, tmp, dir / (tag + ".log"), source);
-  } catch (...) {
-    fs::remove(src, ec);
-    throw;
+    binary = read_file(tmp);
   }
-  fs::remove(src, ec);
-  std::string binary = read_file(tmp);
-  fs::remove(tmp, ec);
   cache::store(backend, key_text, binary);
 
   SharedObject so = load_from_memory(binary, entry, why);
