@@ -125,9 +125,10 @@ int child(const std::string& backend, Row row, int w, int h, int reps, const std
   std::vector<double> traces;
   for (int r = 0; r < reps; ++r) traces.push_back(tracer.render(rs, scene.camera).trace_ms);
   std::ofstream f(out);
-  f << rill::ir::count_statements(tracer.program().ir().body) << ' '
-    << tracer.source(backend).size() << ' ' << tracer.program().hash() << ' ' << first.compile_ms
-    << ' ' << rill::bench::median(traces) << '\n';
+  const rill::Program& program =
+      tracer.program(rt::megakernel_loop_for(rt::MegakernelLoop::Auto, backend));
+  f << rill::ir::count_statements(program.ir().body) << ' ' << tracer.source(backend).size() << ' '
+    << program.hash() << ' ' << first.compile_ms << ' ' << rill::bench::median(traces) << '\n';
   return f ? 0 : 1;
 }
 

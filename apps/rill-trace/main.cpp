@@ -6,7 +6,7 @@
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
 //                           [--grid N|auto] [--grid-density D] [--subgrids N|off|auto]
 //                           [--light-buffer N|off|auto]
-//                           [--strategy megakernel|multipass]
+//                           [--strategy megakernel|multipass] [--loop auto|ray|segment]
 //                           [--stats-json FILE] [--source FILE] [--quiet]
 //                           [--triangle moller|watertight] [--offset epsilon|scaled]
 //                           [--traversal incremental|recompute]
@@ -101,6 +101,7 @@ struct RenderOptions {
   std::string light_buffer = "";
   std::string grid_density = "";
   std::string strategy = "megakernel";
+  std::string loop = "auto";
   bool quiet = false;
   // Input files (Scene.h, InputOptions): malformed lines as errors; mesh files without faces.
   bool strict_input = false, allow_empty = false;
@@ -237,6 +238,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
   rs.backend = o.backend;
   rs.accuracy = p->acc;
   rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
+  rs.loop = rt::parse_megakernel_loop(o.loop);
   rs.width = scene.width;
   rs.height = scene.height;
   if (o.masking != "on" && o.masking != "off")
@@ -295,6 +297,8 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
   j["backend"] = o.backend;
   j["accuracy"] = o.accuracy;
   j["strategy"] = o.strategy;
+  if (o.strategy == "megakernel")
+    j["megakernel_loop"] = rt::megakernel_loop_name(rt::megakernel_loop_for(p.rs.loop, o.backend));
   j["knobs"] = p.knobs.str();
   j["spp"] = scene.options.spp;
   j["max_depth"] = scene.options.max_depth;
@@ -582,7 +586,7 @@ int render(RenderOptions o) {
   }
   if (!o.source.empty()) {
     std::ofstream f(o.source);
-    f << tracer.source(o.backend, p.acc);
+    f << tracer.source(o.backend, p.acc, p.rs.loop);
     if (!f) throw rt::SceneError("cannot write " + o.source);
   }
 
@@ -942,7 +946,7 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
   }
   if (!o.source.empty()) {
     std::ofstream f(o.source);
-    f << p.tracer->source(o.backend, p.acc);
+    f << p.tracer->source(o.backend, p.acc, p.rs.loop);
     if (!f) throw rt::SceneError("cannot write " + o.source);
   }
   const double wall_ms = R.wall_ms;
@@ -1140,6 +1144,11 @@ int main(int argc, char** argv) {
   r->add_option("--strategy", ro.strategy,
                 "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
       ->default_str("megakernel");
+  r->add_option("--loop", ro.loop,
+                "megakernel: one traced ray per loop iteration (ray: what GPUs run fastest), or "
+                "one path segment with its shadow rays (segment: what CPUs run fastest), or auto "
+                "(default: segment on cpu and simd, ray on a GPU). Images do not depend on it")
+      ->default_str("auto");
   r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
   r->add_option("--source", ro.source, "write the generated kernel source");
   r->add_flag("--quiet", ro.quiet, "print only the stats line");

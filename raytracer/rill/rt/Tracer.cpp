@@ -121,8 +121,8 @@ Tracer::Tracer(const Scene& scene, const Grid& grid, const TracerOptions& option
 
 Tracer::~Tracer() = default;
 
-const Program& Tracer::program() const {
-  return d_->megakernel.program();
+const Program& Tracer::program(MegakernelLoop loop) const {
+  return d_->megakernel.program(loop == MegakernelLoop::Auto ? MegakernelLoop::Ray : loop);
 }
 const Features& Tracer::features() const {
   return d_->device.F;
@@ -137,8 +137,8 @@ std::vector<std::string> Tracer::shaders() const {
   return d_->device.materials.used_shaders();
 }
 
-std::string Tracer::source(const std::string& backend, Accuracy a) {
-  return d_->megakernel.kernel(backend, a).source();
+std::string Tracer::source(const std::string& backend, Accuracy a, MegakernelLoop loop) {
+  return d_->megakernel.kernel(backend, a, megakernel_loop_for(loop, backend)).source();
 }
 
 FrameUpdate Tracer::set_time(double time, BvhUpdate how) {
@@ -204,6 +204,7 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y));
   if (rs.strategy == Strategy::Multipass) {
     if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);
+    r.loop.clear();
     return I.multipass->render(rs, I.film, win.width, win.height, depth, spp, r);
   }
   I.megakernel.render(rs, I.film, win.width, win.height, depth, spp, r);

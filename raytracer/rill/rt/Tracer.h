@@ -39,6 +39,21 @@ enum class Strategy {
   Multipass,   // the thesis's kernel sequence with ray states, no refraction (multipass/)
 };
 
+// The shape of the megakernel's loop (megakernel/Megakernel.h). Images do not depend on it,
+// only speed does (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23").
+enum class MegakernelLoop {
+  Auto,     // Segment on a backend that runs on the CPU, Ray on a GPU
+  Ray,      // one traced ray per iteration, camera, secondary or shadow: the walk has one call
+            // site, so a GPU's lanes walk together whichever kind of ray each one holds
+  Segment,  // one path segment per iteration, its shadow rays traced in a light loop inside
+            // it: no loop iteration per light, and a walk specialized for each kind of ray
+};
+// "auto", "ray" or "segment"; throws std::invalid_argument naming the bad value.
+MegakernelLoop parse_megakernel_loop(const std::string& s);
+const char* megakernel_loop_name(MegakernelLoop loop);
+// The shape `loop` stands for on `backend`: Auto resolved, the others as they are.
+MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backend);
+
 // What a render reads back to the host (RenderResult): everything else stays on the device.
 // A PNG needs only `rgb8`; a PFM needs `color`; the AOVs only when asked for.
 struct FrameOutputs {
@@ -73,6 +88,7 @@ struct FrameUpdate {
 struct RenderSettings {
   std::string backend = "cpu";
   Strategy strategy = Strategy::Megakernel;
+  MegakernelLoop loop = MegakernelLoop::Auto;  // the megakernel strategy's loop
   rill::Accuracy accuracy = rill::Accuracy::Strict;
   int width = 0, height = 0;  // 0: the scene's
   int max_depth = -1;         // -1: the scene's
@@ -140,6 +156,7 @@ struct RenderResult {
   int64_t launches = 0;           // kernel launches while tracing
   std::vector<PassStats> passes;  // multipass only: per pass (Multipass.cpp)
   std::string backend;
+  std::string loop;  // the megakernel's loop as run ("ray" or "segment"); empty for multipass
 };
 
 class Tracer {
@@ -157,7 +174,9 @@ class Tracer {
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
 
-  const rill::Program& program() const;
+  // The megakernel's program with the given loop (Auto: Ray). The Segment loop's is captured
+  // with the tracer, the Ray loop's at its first use.
+  const rill::Program& program(MegakernelLoop loop = MegakernelLoop::Ray) const;
   const Features& features() const;
   const TracerOptions& options() const;
   // The shadow rays' light buffer (accel/LightBuffer.h): res 0 where there is none.
@@ -175,8 +194,9 @@ class Tracer {
   // The same into `result`, whose image memory is reused: frame after frame into one
   // RenderResult allocates nothing on the host.
   void render(const RenderSettings& settings, const Camera& camera, RenderResult& result);
-  // The generated source on a backend (compiles if needed).
-  std::string source(const std::string& backend, rill::Accuracy a = rill::Accuracy::Strict);
+  // The megakernel's generated source on a backend (compiles if needed).
+  std::string source(const std::string& backend, rill::Accuracy a = rill::Accuracy::Strict,
+                     MegakernelLoop loop = MegakernelLoop::Auto);
 
   // The camera rays the tracer casts (the kernel's own ray generation), for tests.
   std::vector<glm::vec3> camera_rays(const std::string& backend, const Camera& camera, int width,

@@ -11,11 +11,47 @@ namespace rt {
 
 using namespace rill;
 
+MegakernelLoop parse_megakernel_loop(const std::string& s) {
+  if (s == "auto") return MegakernelLoop::Auto;
+  if (s == "ray") return MegakernelLoop::Ray;
+  if (s == "segment") return MegakernelLoop::Segment;
+  throw std::invalid_argument("--loop expects auto, ray or segment (got '" + s + "')");
+}
+
+const char* megakernel_loop_name(MegakernelLoop loop) {
+  switch (loop) {
+    case MegakernelLoop::Auto:
+      return "auto";
+    case MegakernelLoop::Ray:
+      return "ray";
+    case MegakernelLoop::Segment:
+      return "segment";
+  }
+  return "?";
+}
+
+MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backend) {
+  if (loop != MegakernelLoop::Auto) return loop;
+  // Measured (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23"): Segment is faster on
+  // cpu and simd; GPUs keep the shape their frame times were measured with.
+  return rill::backend(backend).runs_on_gpu() ? MegakernelLoop::Ray : MegakernelLoop::Segment;
+}
+
+// One loop is captured now, so that a shader's misuse of its parameters is an error of the
+// Tracer's constructor (the other loop runs the same shader code); the other at its first use.
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
-  program_ = capture();
+  (void)program(MegakernelLoop::Segment);
 }
 
 Megakernel::~Megakernel() = default;
+
+const Program& Megakernel::program(MegakernelLoop loop) const {
+  if (loop == MegakernelLoop::Auto)
+    throw std::invalid_argument("Megakernel::program: resolve Auto first (megakernel_loop_for)");
+  std::optional<Program>& p = loop == MegakernelLoop::Ray ? per_ray_ : per_segment_;
+  if (!p) p = capture(loop);
+  return *p;
+}
 
 // The loop's state, carried from one iteration (one traced ray) to the next: the ray being
 // traced and what it is for, the path (colour, weight, depth), the light loop's position
@@ -58,7 +94,7 @@ struct Megakernel::Aovs {
   Output<Float3> normal{"normal"};
 };
 
-Program Megakernel::capture() const {
+Program Megakernel::capture(MegakernelLoop loop) const {
   return rill::program("rill_trace", [&] {
     Output<Float3> out_color("color");
     Aovs aovs;
@@ -73,25 +109,28 @@ Program Megakernel::capture() const {
     // max_iter = 0 skips all tracing: render() uses that for a warm-up launch.
     RILL_IF(max_iter_ > 0) {
       RILL_DO {
-        if (S_.F.shadows) L.shade_done = false;
         L.path_done = false;
-        const Hit hit = trace(L);
-        Int cur_mode = L.mode;  // the steps below may change mode for the next iteration
-        RILL_IF(cur_mode == 0) {
-          camera_or_secondary_ray(L, hit, aovs);
-        }
-        RILL_ENDIF;
-        if (S_.F.shadows) {
-          RILL_IF(cur_mode == 1) {
-            shadow_ray_back(L, hit);
+        if (loop == MegakernelLoop::Segment) {
+          path_segment(L, aovs);
+        } else {
+          if (S_.F.shadows) L.shade_done = false;
+          const Hit hit = trace(L);
+          Int cur_mode = L.mode;  // the steps below may change mode for the next iteration
+          RILL_IF(cur_mode == 0) {
+            camera_or_secondary_ray(L, hit, aovs);
           }
           RILL_ENDIF;
-        }
-        if (S_.F.shadows) {  // without, camera_or_secondary_ray went on to the next ray
-          RILL_IF(L.shade_done) {
-            next_ray(L);
+          if (S_.F.shadows) {
+            RILL_IF(cur_mode == 1) {
+              shadow_ray_back(L, hit);
+            }
+            RILL_ENDIF;
+            // Without shadows, camera_or_secondary_ray went on to the next ray itself.
+            RILL_IF(L.shade_done) {
+              next_ray(L);
+            }
+            RILL_ENDIF;
           }
-          RILL_ENDIF;
         }
         RILL_IF(L.path_done) {
           pop_or_finish(L);
@@ -138,8 +177,24 @@ void Megakernel::set_surface(Surface& to, const Surface& from) const {
   if (S_.F.vertex_colors) to.vertex_color = from.vertex_color;
 }
 
-// A hit starts the surface's local light (the shader's emitted light) and its light loop;
-// a miss adds the background and ends the path.
+// A hit: the surface, the shader's emitted light and the camera ray's AOVs. Returns the
+// material's parameters, read once for the lights and the next ray.
+MaterialTable::Slots Megakernel::begin_surface(PathLoop& L, const Hit& hit, Aovs& aovs) const {
+  const Shading& sh = S_.shading;
+  set_surface(L.surf, sh.surface(L.ray, hit));
+  const MaterialTable::Slots slots = sh.material(L.surf);
+  L.local = sh.emitted(L.surf, &slots);
+  RILL_IF(L.depth == 0) {
+    aovs.depth = hit.t;
+    aovs.prim = hit.id;
+    aovs.normal = L.surf.ns;
+  }
+  RILL_ENDIF;
+  return slots;
+}
+
+// Ray: a hit starts the surface's local light (the shader's emitted light) and its light
+// loop; a miss adds the background and ends the path.
 void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const {
   const Shading& sh = S_.shading;
   auto miss = [&] {
@@ -152,17 +207,7 @@ void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs
   }
   Bool hit_something = hit.id >= 0;
   RILL_IF(hit_something) {
-    set_surface(L.surf, sh.surface(L.ray, hit));
-    // The material's parameters, read once for the local light (and, without shadow rays,
-    // for every light).
-    const MaterialTable::Slots slots = sh.material(L.surf);
-    L.local = sh.emitted(L.surf, &slots);
-    RILL_IF(L.depth == 0) {
-      aovs.depth = hit.t;
-      aovs.prim = hit.id;
-      aovs.normal = L.surf.ns;
-    }
-    RILL_ENDIF;
+    const MaterialTable::Slots slots = begin_surface(L, hit, aovs);
     if (S_.F.shadows) {
       L.mode = 1;
       L.li = 0;
@@ -196,6 +241,51 @@ void Megakernel::shadow_ray_back(PathLoop& L, const Hit& hit) const {
     L.shade_done = true;
   }
   RILL_ENDIF;
+}
+
+// Segment: the camera or secondary ray, and on a hit the whole surface: its local light, with
+// a shadow ray per light, then eq. 5.1 and the next ray. The same operations in the same
+// order as the Ray loop's iterations for this ray and its shadow rays.
+void Megakernel::path_segment(PathLoop& L, Aovs& aovs) const {
+  const Shading& sh = S_.shading;
+  Hit hit{Float(0.0f), Float2(0.0f), Int(-1)};
+  if (S_.F.geometry) hit = S_.intersector.intersect(L.ray, nullptr);
+  L.rays += 1;
+  RILL_IF(hit.id >= 0) {
+    const MaterialTable::Slots slots = begin_surface(L, hit, aovs);
+    if (S_.F.shadows) {
+      shadowed_lights(L, slots);
+    } else {
+      L.local += sh.unshadowed_light(L.surf, &slots);
+    }
+    next_ray(L, &slots);
+  }
+  RILL_ELSE {
+    L.color += L.weight * sh.background;
+    L.path_done = true;
+  }
+  RILL_ENDIF;
+}
+
+// Segment: each light's shadow ray, traced for any hit (the light buffer first); a light
+// that is not blocked adds its share.
+void Megakernel::shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots) const {
+  const Shading& sh = S_.shading;
+  RILL_FOR(Int l = 0, l < S_.lights.count, l += 1) {
+    Bool active = false;
+    const Ray shadow = sh.shadow_ray(l, L.surf, active);
+    RILL_IF(active) {
+      const Bool any_hit = true;
+      const Hit blocker = S_.intersector.intersect(shadow, &any_hit, &l);
+      L.rays += 1;
+      RILL_IF(blocker.id < 0) {
+        L.local += sh.light(l, L.surf, &slots);
+      }
+      RILL_ENDIF;
+    }
+    RILL_ENDIF;
+  }
+  RILL_ENDFOR;
 }
 
 // Eq. 5.1 for the finished surface, and the path's next ray (a second branch waits on the
@@ -257,11 +347,12 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
   RILL_ENDIF;
 }
 
-Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a) {
-  const std::string key = backend_key(backend_name, a);
+Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a, MegakernelLoop loop) {
+  loop = megakernel_loop_for(loop, backend_name);
+  const std::string key = backend_key(backend_name, a) + "/" + megakernel_loop_name(loop);
   auto it = kernels_.find(key);
   if (it != kernels_.end()) return it->second;
-  return kernels_.emplace(key, compile_for(program_, backend_name, a)).first->second;
+  return kernels_.emplace(key, compile_for(program(loop), backend_name, a)).first->second;
 }
 
 // One backend's output streams, kept for its next frame of the same size (Film.h says why
@@ -286,18 +377,22 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   r.backend = rs.backend;
   r.width = width;
   r.height = height;
+  const MegakernelLoop loop = megakernel_loop_for(rs.loop, rs.backend);
+  r.loop = megakernel_loop_name(loop);
   Stopwatch since_start;
-  Kernel& k = kernel(rs.backend, rs.accuracy);
+  Kernel& k = kernel(rs.backend, rs.accuracy, loop);
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
   add_stages(r, k.info());
 
   // The loop's iteration limit: every ray of a path (the camera ray or a bounce, its shadow
-  // rays, the stacked branches) takes one iteration.
+  // rays, the stacked branches) takes one iteration of the Ray loop; the Segment loop takes
+  // fewer, and the limit is only a backstop for it.
   S_.shading.max_depth.set(depth);
   const int stack_factor = S_.F.stack + 1;
   const int64_t iters =
       int64_t{depth + 1} * (static_cast<int64_t>(S_.light_count) + 1) * stack_factor * 2 + 8;
 
+  // Both loops write the same outputs: they share the backend's buffers, and each warms up.
   const std::string key = backend_key(rs.backend, rs.accuracy);
   Stopwatch setup;
   Frame& out = buffers_for(frames_, key, width, height);
@@ -307,7 +402,8 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
   // below is tracing alone. The ray count's reduction kernels compile here too.
-  const auto warm_key = std::make_pair(key, int64_t{width} * height);
+  const auto warm_key =
+      std::make_pair(key + "/" + megakernel_loop_name(loop), int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
     max_iter_.set(0);
     k.execute();

@@ -1,16 +1,27 @@
 // The megakernel strategy (Sh style, after Moreno-Fortuny and McCool): one kernel instance
-// per pixel. It makes the camera ray, then a RILL_DO ... RILL_UNTIL loop traces one ray per
-// iteration and reacts to what it hit: a camera or secondary ray gets its shader's emitted
-// light and then one shadow ray per light; when the lights are done, the local colour is
-// weighted as in the thesis's eq. 5.1 and the path continues with the shader's reflected or
-// transmitted ray (a second branch goes on a small ray stack), until the path ends, the
-// stack is empty and the loop finishes.
+// per pixel. It makes the camera ray, then a RILL_DO ... RILL_UNTIL loop follows the path: a
+// camera or secondary ray that hits gets its shader's emitted light and then one shadow ray
+// per light; when the lights are done, the local colour is weighted as in the thesis's
+// eq. 5.1 and the path continues with the shader's reflected or transmitted ray (a second
+// branch goes on a small ray stack), until the path ends, the stack is empty and the loop
+// finishes.
+//
+// The loop has two shapes (MegakernelLoop, Tracer.h), with the same operations in the same
+// order and so the same bits:
+// - Ray: each iteration traces one ray and reacts to what it hit, a state (`mode`) telling a
+//   shadow ray from the others. The walk has a single call site, so a GPU's lanes, each
+//   holding a different kind of ray, still run it together.
+// - Segment: each iteration traces a camera or secondary ray, shades what it hit and traces
+//   that point's shadow rays in a light loop inside. Lane divergence costs a CPU nothing; it
+//   saves the iterations (and their state merges) per light, and each walk is specialized to
+//   its kind of ray: closest hit, or any hit through the light buffer.
 #pragma once
 
 #include <rill/rill.h>
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -26,9 +37,12 @@ class Megakernel {
  public:
   explicit Megakernel(DeviceScene& scene);
   ~Megakernel();
-  const rill::Program& program() const { return program_; }
-  // Compiled once per backend and accuracy.
-  rill::Kernel& kernel(const std::string& backend, rill::Accuracy a);
+  // The program with loop Ray or Segment (Segment's captured by the constructor, Ray's at its
+  // first use).
+  const rill::Program& program(MegakernelLoop loop) const;
+  // Compiled once per backend, accuracy and loop (Auto: the backend's, megakernel_loop_for).
+  rill::Kernel& kernel(const std::string& backend, rill::Accuracy a,
+                       MegakernelLoop loop = MegakernelLoop::Auto);
   // Renders spp samples through the camera set in the scene's CameraRays; the samples meet
   // on `film`.
   void render(const RenderSettings& rs, Film& film, int width, int height, int depth, int spp,
@@ -38,19 +52,24 @@ class Megakernel {
   struct PathLoop;
   struct Aovs;
   struct Frame;  // a backend's output streams (PerBackend.h: buffers_for)
-  rill::Program capture() const;
-  // The loop body's steps, in order (Megakernel.cpp).
+  rill::Program capture(MegakernelLoop loop) const;
+  // The loop body's steps (Megakernel.cpp). Ray: trace, camera_or_secondary_ray or
+  // shadow_ray_back, next_ray once the lights are done, pop_or_finish.
   Hit trace(PathLoop& L) const;
   void set_surface(Surface& to, const Surface& from) const;
+  MaterialTable::Slots begin_surface(PathLoop& L, const Hit& hit, Aovs& aovs) const;
   void camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const;
   void shadow_ray_back(PathLoop& L, const Hit& hit) const;
+  // Segment: path_segment (which ends with next_ray), pop_or_finish.
+  void path_segment(PathLoop& L, Aovs& aovs) const;
+  void shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots) const;
   void next_ray(PathLoop& L, const MaterialTable::Slots* slots = nullptr) const;
   void pop_or_finish(PathLoop& L) const;
 
   DeviceScene& S_;
   // The loop's iteration limit; 0 skips all tracing (render()'s warm-up launch).
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
-  rill::Program program_;
+  mutable std::optional<rill::Program> per_ray_, per_segment_;
   std::map<std::string, rill::Kernel> kernels_;
   std::map<std::string, std::unique_ptr<Frame>> frames_;  // per backend and accuracy
   std::set<std::pair<std::string, int64_t>> warmed_;      // kernels launched at a size before

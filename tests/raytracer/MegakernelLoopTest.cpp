@@ -1,0 +1,121 @@
+// The megakernel's two loops (megakernel/Megakernel.h): Ray and Segment give the same bits on
+// every backend, over scenes that between them take every branch of the loop (shadow rays
+// through the light buffer and through the grid, blocked by static and by moving objects,
+// reflection, refraction with its ray stack, vertex normals and colours); Auto
+// picks Segment where the backend runs on the CPU; the names parse.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "RenderCompare.h"
+#include "TestUtil.h"
+#include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/accel/LightBuffer.h"
+#include "rill/rt/scene/Pose.h"
+
+namespace rt {
+namespace {
+using testing::expect_identical;
+
+class MegakernelLoopRender : public ::testing::TestWithParam<std::string> {};
+
+// Thesis A with a mirror and a cube that move: shadow rays blocked through the BVH.
+const char* kMoving = R"({
+  "builtin": "thesis-a",
+  "animation": {"start": 0, "end": 1},
+  "materials": {"mirror": {"diffuse": [0.1, 0.1, 0.1], "reflect": 0.6}},
+  "meshes": [
+    {"shape": "quad", "vertices": [[-3, 0, -2], [3, 0, -2], [3, 3, -2], [-3, 3, -2]],
+     "material": "mirror",
+     "animate": {"keys": [{"time": 0, "translate": [-1, 0, 0]}, {"time": 1, "translate": [1, 0, 0]}]}},
+    {"shape": "box", "min": [-0.4, 0, -0.4], "max": [0.4, 0.8, 0.4], "material": "mirror",
+     "animate": {"keys": [{"time": 0, "translate": [-1.5, 0.5, 0.6]}, {"time": 1, "translate": [0.4, 1.2, 0.2]}]}}
+  ]
+})";
+
+struct Case {
+  std::string what;
+  Scene scene;
+  TracerOptions options;
+  double time = -1;  // a dynamic scene's time
+};
+
+// Two scenes keep the compiles (two per scene and backend) few.
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  // Every effect's code in the kernel (specular, reflection, refraction and its ray stack,
+  // vertex normals and colours), shadow rays through the light buffer (and the grid where a
+  // cell of it falls back).
+  TracerOptions all;
+  all.extra_features.specular = all.extra_features.reflection = all.extra_features.refraction =
+      all.extra_features.vertex_normals = all.extra_features.vertex_colors = true;
+  out.push_back({"glass with every effect", builtin_scene("glass"), all});
+  // Shadow rays through the static grid and the moving objects' BVH.
+  Scene moving = parse_json_scene(kMoving, ".", "moving.json");
+  moving.options.light_buffer = kLightBufferOff;
+  out.push_back({"moving objects, no light buffer", moving, {}, 0.6});
+  return out;
+}
+
+TEST_P(MegakernelLoopRender, RayAndSegmentGiveTheSameBits) {
+  RT_REQUIRE_BACKEND(GetParam());
+  for (Case& c : cases()) {
+    SCOPED_TRACE(c.what);
+    const Grid g = build_grid(c.scene, 0);
+    Tracer t(c.scene, g, c.options);
+    Camera camera = c.scene.camera;
+    if (c.time >= 0) {
+      t.set_time(c.time);
+      camera = camera_at(c.scene, c.time);
+    }
+    // Two different programs, or the comparison below would prove nothing.
+    ASSERT_NE(t.program(MegakernelLoop::Ray).hash(), t.program(MegakernelLoop::Segment).hash());
+    RenderSettings rs;
+    rs.backend = GetParam();
+    rs.width = 24;
+    rs.height = 18;
+    rs.max_depth = 3;
+    rs.loop = MegakernelLoop::Ray;
+    const RenderResult ray = t.render(rs, camera);
+    EXPECT_EQ(ray.loop, "ray");
+    rs.loop = MegakernelLoop::Segment;
+    const RenderResult segment = t.render(rs, camera);
+    EXPECT_EQ(segment.loop, "segment");
+    EXPECT_GT(segment.rays, int64_t{rs.width} * rs.height);  // some shadow or secondary rays
+    expect_identical(ray, segment, c.what + ": ray vs segment loop");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, MegakernelLoopRender,
+                         ::testing::ValuesIn(testing::backend_names()),
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
+
+TEST(MegakernelLoop, AutoIsSegmentWhereTheBackendRunsOnTheCpu) {
+  for (const std::string& name : testing::backend_names()) {
+    SCOPED_TRACE(name);
+    const MegakernelLoop want =
+        rill::backend(name).runs_on_gpu() ? MegakernelLoop::Ray : MegakernelLoop::Segment;
+    EXPECT_EQ(megakernel_loop_for(MegakernelLoop::Auto, name), want);
+    // A loop named explicitly is kept.
+    EXPECT_EQ(megakernel_loop_for(MegakernelLoop::Ray, name), MegakernelLoop::Ray);
+    EXPECT_EQ(megakernel_loop_for(MegakernelLoop::Segment, name), MegakernelLoop::Segment);
+  }
+  EXPECT_EQ(megakernel_loop_for(MegakernelLoop::Auto, "cpu"), MegakernelLoop::Segment);
+  EXPECT_EQ(megakernel_loop_for(MegakernelLoop::Auto, "simd"), MegakernelLoop::Segment);
+}
+
+TEST(MegakernelLoop, NamesParseAndABadNameIsNamed) {
+  for (MegakernelLoop l : {MegakernelLoop::Auto, MegakernelLoop::Ray, MegakernelLoop::Segment})
+    EXPECT_EQ(parse_megakernel_loop(megakernel_loop_name(l)), l);
+  try {
+    parse_megakernel_loop("wavefront");
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'wavefront'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("segment"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rt
