@@ -4,7 +4,7 @@
 //                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends
 //                    all|cpu,simd,opencl,glsl,glsl-compute]
 //                    [--repeats R] [--subgrids N|off|auto] [--grid-density D] [--grid-scene S]
-//                    [--grids auto,16,32,...]
+//                    [--grids auto,16,32,...] [--loops auto|ray,segment]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu] [--md F] [--csv F]
 //
 // Sections (each a table; all timings are medians of R interleaved repeats, after an
@@ -14,7 +14,8 @@
 //               the backend keeps them) and full shading (Tracer::render, its rays/s counted
 //               as rill-trace counts them: camera, shadow and secondary rays over the trace
 //               time, which includes what `rill-trace render` reads back by default: the
-//               8-bit image for its PNG).
+//               8-bit image for its PNG). With --loops ray,segment each backend's full
+//               frames run with both megakernel loops, interleaved, one row each.
 //   embree      the same primary rays through Intel Embree 3 (rtcIntersect1, one ray at a
 //               time, oneTBB over the same cores), interleaved with Rill's CPU backend:
 //               Mrays/s of both, the ratio, and how many rays agree (same primitive, or the
@@ -116,6 +117,9 @@ struct Options {
   std::string grid_density;         // empty: the scene's (default 4)
   std::string accuracy = "strict";  // of the throughput and Embree sections
   rill::Accuracy acc = rill::Accuracy::Strict;
+  // The megakernel loops of the throughput section's full frames, side by side (Tracer.h).
+  std::string loops = "auto";
+  std::vector<rt::MegakernelLoop> loop_list{rt::MegakernelLoop::Auto};
   std::string depth_scene = "builtin:thesis-b,builtin:glass";
   std::string depths = "1-8";
   std::string sweep_backends = "cpu";
@@ -316,12 +320,22 @@ class Bench {
         ebr->trace(scene.camera.eye, dirs, e_prim.data(), e_dist.data());  // warm-up
       }
 #endif
-      std::vector<std::vector<double>> prim_ms(bes.size()), full_ms(bes.size());
+      const std::vector<rt::MegakernelLoop>& loops = o_.loop_list;
+      auto full_settings = [&](size_t b, size_t l) {
+        rt::RenderSettings rs = settings(bes[b], scene, -1, o_.acc);
+        rs.loop = loops[l];
+        return rs;
+      };
+      // [backend][loop]: the full frames' times and rays.
+      std::vector<std::vector<double>> prim_ms(bes.size());
+      std::vector<std::vector<std::vector<double>>> full_ms(
+          bes.size(), std::vector<std::vector<double>>(loops.size()));
       std::vector<double> embree_ms;
-      std::vector<int64_t> full_rays(bes.size());
+      std::vector<std::vector<int64_t>> full_rays(bes.size(), std::vector<int64_t>(loops.size()));
       if (throughput)
         for (size_t b = 0; b < bes.size(); ++b)  // warm-up and compile
-          setup_of[b]->tracer->render(settings(bes[b], scene, -1, o_.acc), scene.camera);
+          for (size_t l = 0; l < loops.size(); ++l)
+            setup_of[b]->tracer->render(full_settings(b, l), scene.camera);
       for (int r = 0; r < o_.repeats; ++r) {
         for (size_t b = 0; b < bes.size(); ++b) {
           prim_ms[b].push_back(runs[b]->run());
@@ -334,12 +348,12 @@ class Bench {
 #endif
         }
         if (throughput)
-          for (size_t b = 0; b < bes.size(); ++b) {
-            rt::RenderResult res =
-                setup_of[b]->tracer->render(settings(bes[b], scene, -1, o_.acc), scene.camera);
-            full_ms[b].push_back(res.trace_ms);
-            full_rays[b] = res.rays;
-          }
+          for (size_t b = 0; b < bes.size(); ++b)
+            for (size_t l = 0; l < loops.size(); ++l) {
+              rt::RenderResult res = setup_of[b]->tracer->render(full_settings(b, l), scene.camera);
+              full_ms[b][l].push_back(res.trace_ms);
+              full_rays[b][l] = res.rays;
+            }
       }
       const std::vector<int32_t> cpu_prim = runs[0]->hits(n);
       auto build_ms_of = [&](size_t b) { return setup_of[b]->grid.build_ms; };
@@ -360,13 +374,20 @@ class Bench {
             std::printf("error: %s: %zu primary hits differ from cpu's\n", bes[b].c_str(), differ);
         }
         if (!throughput) continue;
-        const double pm = median(prim_ms[b]), fm = median(full_ms[b]);
-        tp.rows.push_back({scene.name, std::to_string(scene.triangle_count()),
-                           res_str(setup_of[b]->grid), fmt("%.1f", build_ms_of(b)),
-                           fmt("%.1f", bpt_of(b)), bes[b], fmt("%.2f", pm),
-                           fmt("%.3f", mrays(static_cast<double>(n), pm)), fmt("%.1f", fm),
-                           fmt("%.2f", static_cast<double>(full_rays[b]) / static_cast<double>(n)),
-                           fmt("%.3f", mrays(static_cast<double>(full_rays[b]), fm)), vs});
+        const double pm = median(prim_ms[b]);
+        for (size_t l = 0; l < loops.size(); ++l) {
+          const double fm = median(full_ms[b][l]);
+          const double rays = static_cast<double>(full_rays[b][l]);
+          // The loop is named when it was asked for: "cpu (segment)".
+          const std::string label = loops[l] == rt::MegakernelLoop::Auto
+                                        ? bes[b]
+                                        : bes[b] + " (" + rt::megakernel_loop_name(loops[l]) + ")";
+          tp.rows.push_back(
+              {scene.name, std::to_string(scene.triangle_count()), res_str(setup_of[b]->grid),
+               fmt("%.1f", build_ms_of(b)), fmt("%.1f", bpt_of(b)), label, fmt("%.2f", pm),
+               fmt("%.3f", mrays(static_cast<double>(n), pm)), fmt("%.1f", fm),
+               fmt("%.2f", rays / static_cast<double>(n)), fmt("%.3f", mrays(rays, fm)), vs});
+        }
       }
 #ifdef RILL_BENCH_HAVE_EMBREE
       if (ebr) {
@@ -628,6 +649,10 @@ int main(int argc, char** argv) {
                  "accuracy of the throughput and Embree sections: strict or fast (fast: hits "
                  "may differ between backends, and are reported, not checked)")
       ->default_str(o.accuracy);
+  app.add_option("--loops", o.loops,
+                 "the megakernel loops of the throughput section's full frames, side by side: "
+                 "comma list of auto, ray, segment (Tracer.h: MegakernelLoop)")
+      ->default_str(o.loops);
   app.add_option("--grids", o.grids, "grid resolutions of the sweep: auto or N (N^3 voxels)")
       ->default_str(o.grids);
   app.add_option("--depth-scene", o.depth_scene, "scenes of the depth sweep (comma list)")
@@ -650,6 +675,10 @@ int main(int argc, char** argv) {
   try {
     parse_size(o.size, o.width, o.height);
     o.acc = rill::parse_accuracy(o.accuracy);
+    o.loop_list.clear();
+    for (const std::string& l : split_list(o.loops))
+      o.loop_list.push_back(rt::parse_megakernel_loop(l));
+    if (o.loop_list.empty()) throw rt::SceneError("--loops: name at least one loop");
     if (o.acc == rill::Accuracy::Double)
       throw rt::SceneError("--accuracy: strict or fast (double is the accuracy reference)");
     const auto sections = split_list(o.sections);

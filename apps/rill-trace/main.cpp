@@ -1147,7 +1147,8 @@ int main(int argc, char** argv) {
   r->add_option("--loop", ro.loop,
                 "megakernel: one traced ray per loop iteration (ray: what GPUs run fastest), or "
                 "one path segment with its shadow rays (segment: what CPUs run fastest), or auto "
-                "(default: segment on cpu and simd, ray on a GPU). Images do not depend on it")
+                "(default: segment on cpu and simd, ray on opencl and glsl). Images do not "
+                "depend on it")
       ->default_str("auto");
   r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
   r->add_option("--source", ro.source, "write the generated kernel source");

@@ -42,7 +42,7 @@ enum class Strategy {
 // The shape of the megakernel's loop (megakernel/Megakernel.h). Images do not depend on it,
 // only speed does (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23").
 enum class MegakernelLoop {
-  Auto,     // Segment on a backend that runs on the CPU, Ray on a GPU
+  Auto,     // Segment on cpu and simd, Ray on OpenCL and GLSL (whatever the device)
   Ray,      // one traced ray per iteration, camera, secondary or shadow: the walk has one call
             // site, so a GPU's lanes walk together whichever kind of ray each one holds
   Segment,  // one path segment per iteration, its shadow rays traced in a light loop inside

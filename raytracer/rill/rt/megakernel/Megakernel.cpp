@@ -32,9 +32,11 @@ const char* megakernel_loop_name(MegakernelLoop loop) {
 
 MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backend) {
   if (loop != MegakernelLoop::Auto) return loop;
-  // Measured (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23"): Segment is faster on
-  // cpu and simd; GPUs keep the shape their frame times were measured with.
-  return rill::backend(backend).runs_on_gpu() ? MegakernelLoop::Ray : MegakernelLoop::Segment;
+  // Measured (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23"): Segment takes 3-8%
+  // fewer instructions on cpu and simd; on NVIDIA's OpenCL and GLSL compute Ray was as fast
+  // or faster. OpenCL and GLSL keep Ray on every device, PoCL and llvmpipe included: then
+  // CI, which has no GPU, runs the GPUs' program and checks its images against cpu's.
+  return backend == "cpu" || backend == "simd" ? MegakernelLoop::Segment : MegakernelLoop::Ray;
 }
 
 // One loop is captured now, so that a shader's misuse of its parameters is an error of the
