@@ -68,6 +68,8 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --backend nope --size 4x4", "nope");
   expect_clean_failure("render builtin:thesis-a --strategy quantum --size 4x4", "strategy");
   expect_clean_failure("render builtin:glass --strategy multipass --size 4x4", "megakernel");
+  expect_clean_failure("render builtin:thesis-a --loop wavefront --size 4x4",
+                       "--loop expects auto, ray or segment (got 'wavefront')");
   expect_clean_failure("render builtin:thesis-a --strategy multipass --masking maybe --size 4x4",
                        "--masking");
   expect_clean_failure("render builtin:thesis-a --strategy multipass --wait-threshold 0 --size 4x4",
@@ -112,7 +114,8 @@ TEST(Cli, InfoListsShadersAndTheirParameters) {
 }
 
 // The grid settings left open ("subgrids": auto, the default) are chosen for the backend:
-// subgrids on the CPU backends, none where asked; and the stats JSON splits the frame time.
+// subgrids on the CPU backends, none where asked; so is the megakernel's loop (segment on the
+// CPU backends, ray where asked); and the stats JSON splits the frame time.
 TEST(Cli, GridSettingsFollowTheBackendAndStatsSplitTheFrame) {
   testing::TempDir dir;
   auto stats_of = [&](const std::string& extra) {
@@ -132,11 +135,13 @@ TEST(Cli, GridSettingsFollowTheBackendAndStatsSplitTheFrame) {
   for (const char* backend : {"cpu", "simd"}) {
     const std::string json = stats_of(std::string("--backend ") + backend);
     EXPECT_GT(subgrids_in(json), 0) << backend << ": " << json;
+    EXPECT_NE(json.find("\"megakernel_loop\": \"segment\""), std::string::npos) << json;
     for (const char* step :
          {"\"setup\"", "\"launch\"", "\"kernel\"", "\"accumulate\"", "\"reduce\"", "\"read_back\""})
       EXPECT_NE(json.find(step, json.find("\"trace_split_ms\"")), std::string::npos) << step;
   }
   EXPECT_EQ(subgrids_in(stats_of("--subgrids off")), 0);
+  EXPECT_NE(stats_of("--loop ray").find("\"megakernel_loop\": \"ray\""), std::string::npos);
   EXPECT_GT(subgrids_in(stats_of("--subgrids auto")), 0);
 }
 
