@@ -225,7 +225,8 @@ int child(const std::string& kernel, const std::string& be, const std::string& s
     scene.validate();
     rt::Grid grid = rt::build_grid_for(scene);
     rt::Tracer tracer(scene, grid);
-    timed_compile(tracer.program());  // the same kernel render() compiles: a cache hit there
+    // The same kernel render() compiles, a cache hit there: the backend's loop.
+    timed_compile(tracer.program(rt::megakernel_loop_for(rt::MegakernelLoop::Auto, be)));
     rt::RenderSettings s;
     s.backend = be;
     s.width = scene.width;

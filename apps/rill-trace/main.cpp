@@ -189,6 +189,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
   g_doing = "loading " + rt::clipped(o.scene);
   if (o.strategy != "megakernel" && o.strategy != "multipass")
     throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
+  const rt::MegakernelLoop loop = rt::parse_megakernel_loop(o.loop);  // before the slow steps
   p->acc = rill::parse_accuracy(o.accuracy);
   const auto t_load = Clock::now();
   rt::InputOptions input;
@@ -238,7 +239,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say = true) {
   rs.backend = o.backend;
   rs.accuracy = p->acc;
   rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
-  rs.loop = rt::parse_megakernel_loop(o.loop);
+  rs.loop = loop;
   rs.width = scene.width;
   rs.height = scene.height;
   if (o.masking != "on" && o.masking != "off")
@@ -1145,10 +1146,9 @@ int main(int argc, char** argv) {
                 "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
       ->default_str("megakernel");
   r->add_option("--loop", ro.loop,
-                "megakernel: one traced ray per loop iteration (ray: what GPUs run fastest), or "
-                "one path segment with its shadow rays (segment: what CPUs run fastest), or auto "
-                "(default: segment on cpu and simd, ray on opencl and glsl). Images do not "
-                "depend on it")
+                "megakernel: one traced ray per loop iteration (ray), or one path segment with "
+                "its shadow rays (segment), or auto (default: segment on cpu and simd, ray on "
+                "opencl, glsl and glsl-compute). Images do not depend on it")
       ->default_str("auto");
   r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
   r->add_option("--source", ro.source, "write the generated kernel source");

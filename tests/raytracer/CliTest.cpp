@@ -114,8 +114,8 @@ TEST(Cli, InfoListsShadersAndTheirParameters) {
 }
 
 // The grid settings left open ("subgrids": auto, the default) are chosen for the backend:
-// subgrids on the CPU backends, none where asked; so is the megakernel's loop (segment on the
-// CPU backends, ray where asked); and the stats JSON splits the frame time.
+// subgrids on the CPU backends, none where asked; so is the megakernel's loop (segment on cpu
+// and simd, ray where asked); and the stats JSON splits the frame time.
 TEST(Cli, GridSettingsFollowTheBackendAndStatsSplitTheFrame) {
   testing::TempDir dir;
   auto stats_of = [&](const std::string& extra) {

@@ -31,10 +31,11 @@ void walk(const rill::ir::Block& b, IrStats& s) {
 }
 
 // The tracer's IR for the scene, on a one-level grid (the subgrid's loops: Subgrids below).
-IrStats stats(const Scene& scene, int32_t subgrid_min = kNoSubgrids) {
+IrStats stats(const Scene& scene, int32_t subgrid_min = kNoSubgrids,
+              MegakernelLoop loop = MegakernelLoop::Ray) {
   Grid g = build_grid(scene, 4, subgrid_min);
   Tracer t(scene, g);
-  const rill::ir::Function& fn = t.program().ir();
+  const rill::ir::Function& fn = t.program(loop).ir();
   IrStats s;
   s.statements = rill::ir::count_statements(fn.body);
   s.loops = rill::ir::count_loops(fn.body);
@@ -174,6 +175,24 @@ TEST(Features, EmptySceneHasNoIntersector) {
   z.add_triangle({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, 0);
   EXPECT_FALSE(scene_features(z).geometry);
   EXPECT_EQ(stats(z).loops, 1);
+}
+
+// The CPU backends' loop (Segment) generates only what the scene calls for too: the same
+// arrays and highlights as the GPUs' loop, and an empty scene's kernel has no intersector.
+TEST(Features, BothLoopsGenerateWhatTheSceneCallsFor) {
+  Scene spec = base();
+  spec.materials[0].specular = glm::vec3(0.5f);
+  for (const Scene& s : {base(), spec, builtin_scene("glass"), builtin_scene("empty")}) {
+    SCOPED_TRACE(s.name);
+    const IrStats ray = stats(s, kNoSubgrids, MegakernelLoop::Ray);
+    const IrStats segment = stats(s, kNoSubgrids, MegakernelLoop::Segment);
+    EXPECT_EQ(segment.arrays, ray.arrays);
+    EXPECT_EQ(segment.pows, ray.pows);
+  }
+  const IrStats empty = stats(builtin_scene("empty"), kNoSubgrids, MegakernelLoop::Segment);
+  EXPECT_EQ(empty.loops, 1);
+  EXPECT_EQ(empty.gathers, 0);
+  EXPECT_TRUE(empty.arrays.empty());
 }
 
 TEST(Features, UnusedMaterialsDoNotCount) {

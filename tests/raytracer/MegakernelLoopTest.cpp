@@ -1,8 +1,9 @@
 // The megakernel's two loops (megakernel/Megakernel.h): Ray and Segment give the same bits on
-// every backend, over scenes that between them take every branch of the loop (shadow rays
-// through the light buffer and through the grid, blocked by static and by moving objects,
-// reflection, refraction with its ray stack, vertex normals and colours); Auto
-// picks Segment on cpu and simd, Ray on OpenCL and GLSL; the names parse.
+// every backend, over scenes that between them take the loop's branches (shadow rays through
+// the light buffer and through the grid, blocked by static and by moving objects; lights
+// without shadow rays; textures; reflection, refraction with a ray stack that fills up;
+// vertex normals and colours; no geometry); Auto picks Segment on cpu and simd, Ray on the
+// others; the names parse.
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -38,23 +39,29 @@ struct Case {
   std::string what;
   Scene scene;
   TracerOptions options;
+  int max_depth = 3;
   double time = -1;  // a dynamic scene's time
 };
 
-// Two scenes keep the compiles (two per scene and backend) few.
+// Few scenes keep the compiles (two per scene and backend) few.
 std::vector<Case> cases() {
   std::vector<Case> out;
-  // Every effect's code in the kernel (specular, reflection, refraction and its ray stack,
-  // vertex normals and colours), shadow rays through the light buffer (and the grid where a
-  // cell of it falls back).
+  // Every effect's code in the kernel (specular, reflection, refraction, vertex normals and
+  // colours), shadow rays through the light buffer (and the grid where a cell of it falls
+  // back); depth 5 fills the ray stack (3 entries).
   TracerOptions all;
   all.extra_features.specular = all.extra_features.reflection = all.extra_features.refraction =
       all.extra_features.vertex_normals = all.extra_features.vertex_colors = true;
-  out.push_back({"glass with every effect", builtin_scene("glass"), all});
+  out.push_back({"glass with every effect", builtin_scene("glass"), all, 5});
   // Shadow rays through the static grid and the moving objects' BVH.
   Scene moving = parse_json_scene(kMoving, ".", "moving.json");
   moving.options.light_buffer = kLightBufferOff;
-  out.push_back({"moving objects, no light buffer", moving, {}, 0.6});
+  out.push_back({"moving objects, no light buffer", moving, {}, 3, 0.6});
+  // Textured materials, lights without shadow rays.
+  Scene textured = builtin_scene("textured");
+  textured.options.shadows = false;
+  out.push_back({"textured, no shadows", textured, {}});
+  out.push_back({"empty", builtin_scene("empty"), {}});
   return out;
 }
 
@@ -64,6 +71,20 @@ TEST_P(MegakernelLoopRender, RayAndSegmentGiveTheSameBits) {
     SCOPED_TRACE(c.what);
     const Grid g = build_grid(c.scene, 0);
     Tracer t(c.scene, g, c.options);
+    // What each case is there for.
+    const Features& f = t.features();
+    if (c.what == "glass with every effect") {
+      EXPECT_TRUE(f.shadows && f.refraction && f.stack > 0 && t.light_buffer().res > 0);
+    }
+    if (c.time >= 0) {
+      EXPECT_TRUE(f.dynamic && f.shadows && t.light_buffer().res == 0);
+    }
+    if (c.what == "textured, no shadows") {
+      EXPECT_TRUE(f.lights && f.texcoords && !f.shadows);
+    }
+    if (c.what == "empty") {
+      EXPECT_FALSE(f.geometry);
+    }
     Camera camera = c.scene.camera;
     if (c.time >= 0) {
       t.set_time(c.time);
@@ -75,14 +96,16 @@ TEST_P(MegakernelLoopRender, RayAndSegmentGiveTheSameBits) {
     rs.backend = GetParam();
     rs.width = 24;
     rs.height = 18;
-    rs.max_depth = 3;
+    rs.max_depth = c.max_depth;
     rs.loop = MegakernelLoop::Ray;
     const RenderResult ray = t.render(rs, camera);
     EXPECT_EQ(ray.loop, "ray");
     rs.loop = MegakernelLoop::Segment;
     const RenderResult segment = t.render(rs, camera);
     EXPECT_EQ(segment.loop, "segment");
-    EXPECT_GT(segment.rays, int64_t{rs.width} * rs.height);  // some shadow or secondary rays
+    if (f.geometry && (f.shadows || f.reflection)) {  // some shadow or secondary rays
+      EXPECT_GT(segment.rays, int64_t{rs.width} * rs.height);
+    }
     expect_identical(ray, segment, c.what + ": ray vs segment loop");
   }
 }

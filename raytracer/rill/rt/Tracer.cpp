@@ -204,7 +204,6 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y));
   if (rs.strategy == Strategy::Multipass) {
     if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);
-    r.loop.clear();
     return I.multipass->render(rs, I.film, win.width, win.height, depth, spp, r);
   }
   I.megakernel.render(rs, I.film, win.width, win.height, depth, spp, r);

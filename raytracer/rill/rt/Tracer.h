@@ -42,7 +42,7 @@ enum class Strategy {
 // The shape of the megakernel's loop (megakernel/Megakernel.h). Images do not depend on it,
 // only speed does (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23").
 enum class MegakernelLoop {
-  Auto,     // Segment on cpu and simd, Ray on OpenCL and GLSL (whatever the device)
+  Auto,     // Segment on cpu and simd; Ray on every other backend, whatever its device
   Ray,      // one traced ray per iteration, camera, secondary or shadow: the walk has one call
             // site, so a GPU's lanes walk together whichever kind of ray each one holds
   Segment,  // one path segment per iteration, its shadow rays traced in a light loop inside
@@ -174,8 +174,9 @@ class Tracer {
   Tracer(const Tracer&) = delete;
   Tracer& operator=(const Tracer&) = delete;
 
-  // The megakernel's program with the given loop (Auto: Ray). The Segment loop's is captured
-  // with the tracer, the Ray loop's at its first use.
+  // The megakernel's program with the given loop (Auto: Ray, the program GPUs run; the
+  // CPU backends run Segment's, megakernel_loop_for). The Segment loop's is captured with the
+  // tracer, the Ray loop's at its first use.
   const rill::Program& program(MegakernelLoop loop = MegakernelLoop::Ray) const;
   const Features& features() const;
   const TracerOptions& options() const;

@@ -33,9 +33,9 @@ const char* megakernel_loop_name(MegakernelLoop loop) {
 MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backend) {
   if (loop != MegakernelLoop::Auto) return loop;
   // Measured (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23"): Segment takes 3-8%
-  // fewer instructions on cpu and simd; on NVIDIA's OpenCL and GLSL compute Ray was as fast
-  // or faster. OpenCL and GLSL keep Ray on every device, PoCL and llvmpipe included: then
-  // CI, which has no GPU, runs the GPUs' program and checks its images against cpu's.
+  // fewer instructions on cpu and simd; on the H200, NVIDIA's OpenCL ran Ray 3-8% faster.
+  // Every other backend keeps Ray on every device, PoCL and llvmpipe included: then CI, which
+  // has no GPU, runs the GPUs' program and checks its images against cpu's.
   return backend == "cpu" || backend == "simd" ? MegakernelLoop::Segment : MegakernelLoop::Ray;
 }
 
@@ -55,9 +55,9 @@ const Program& Megakernel::program(MegakernelLoop loop) const {
   return *p;
 }
 
-// The loop's state, carried from one iteration (one traced ray) to the next: the ray being
-// traced and what it is for, the path (colour, weight, depth), the light loop's position
-// and the surface it shades, and the ray stack.
+// The loop's state, carried from one iteration to the next: the ray being traced and (Ray
+// loop) what it is for, the path (colour, weight, depth), the light loop's position (Ray) and
+// the surface it shades, and the ray stack. What a loop does not use, the optimizer removes.
 struct Megakernel::PathLoop {
   explicit PathLoop(int stack_size) {
     for (int s = 0; s < stack_size; ++s) {
@@ -250,9 +250,16 @@ void Megakernel::shadow_ray_back(PathLoop& L, const Hit& hit) const {
 // order as the Ray loop's iterations for this ray and its shadow rays.
 void Megakernel::path_segment(PathLoop& L, Aovs& aovs) const {
   const Shading& sh = S_.shading;
-  Hit hit{Float(0.0f), Float2(0.0f), Int(-1)};
-  if (S_.F.geometry) hit = S_.intersector.intersect(L.ray, nullptr);
   L.rays += 1;
+  auto miss = [&] {
+    L.color += L.weight * sh.background;
+    L.path_done = true;
+  };
+  if (!S_.F.geometry) {  // an empty scene's kernel only writes the background
+    miss();
+    return;
+  }
+  const Hit hit = S_.intersector.intersect(L.ray, nullptr);
   RILL_IF(hit.id >= 0) {
     const MaterialTable::Slots slots = begin_surface(L, hit, aovs);
     if (S_.F.shadows) {
@@ -263,8 +270,7 @@ void Megakernel::path_segment(PathLoop& L, Aovs& aovs) const {
     next_ray(L, &slots);
   }
   RILL_ELSE {
-    L.color += L.weight * sh.background;
-    L.path_done = true;
+    miss();
   }
   RILL_ENDIF;
 }
@@ -386,13 +392,17 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
   add_stages(r, k.info());
 
-  // The loop's iteration limit: every ray of a path (the camera ray or a bounce, its shadow
-  // rays, the stacked branches) takes one iteration of the Ray loop; the Segment loop takes
-  // fewer, and the limit is only a backstop for it.
+  // The loop's iteration limit: a backstop that must never end a path early. Where it did,
+  // the two loops, which take different numbers of iterations for the same path, would give
+  // different images. A path has at most depth + 1 segments (camera ray and bounces), or with
+  // a ray stack at most 2^(depth + 1) - 1 (each segment spawns two at most). The Ray loop
+  // takes one iteration per segment and one per light on a hit; the Segment loop one per
+  // segment.
   S_.shading.max_depth.set(depth);
-  const int stack_factor = S_.F.stack + 1;
-  const int64_t iters =
-      int64_t{depth + 1} * (static_cast<int64_t>(S_.light_count) + 1) * stack_factor * 2 + 8;
+  const int64_t segments = S_.F.stack == 0 ? int64_t{depth} + 1
+                           : depth >= 29   ? int64_t{1} << 30
+                                           : (int64_t{1} << (depth + 1)) - 1;
+  const int64_t iters = segments * (static_cast<int64_t>(S_.light_count) + 1) + 8;
 
   // Both loops write the same outputs: they share the backend's buffers, and each warms up.
   const std::string key = backend_key(rs.backend, rs.accuracy);

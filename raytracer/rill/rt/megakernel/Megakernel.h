@@ -12,9 +12,10 @@
 //   shadow ray from the others. The walk has a single call site, so a GPU's lanes, each
 //   holding a different kind of ray, still run it together.
 // - Segment: each iteration traces a camera or secondary ray, shades what it hit and traces
-//   that point's shadow rays in a light loop inside. Lane divergence costs a CPU nothing; it
-//   saves the iterations (and their state merges) per light, and each walk is specialized to
-//   its kind of ray: closest hit, or any hit through the light buffer.
+//   that point's shadow rays in a light loop inside. It saves the iterations (and their state
+//   merges) per light, and each walk is specialized to its kind of ray: the closest-hit walk
+//   has no any-hit tests, and for shadow rays any-hit is a constant. The CPU backends run it
+//   (megakernel_loop_for); on a GPU, lanes holding different kinds of rays would diverge.
 #pragma once
 
 #include <rill/rill.h>
@@ -69,6 +70,8 @@ class Megakernel {
   DeviceScene& S_;
   // The loop's iteration limit; 0 skips all tracing (render()'s warm-up launch).
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
+  // Captured on demand, from const accessors (Tracer::program is const): a GPU never needs
+  // Segment's program beyond the constructor's, a CPU backend never Ray's.
   mutable std::optional<rill::Program> per_ray_, per_segment_;
   std::map<std::string, rill::Kernel> kernels_;
   std::map<std::string, std::unique_ptr<Frame>> frames_;  // per backend and accuracy
