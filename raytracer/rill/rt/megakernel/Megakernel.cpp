@@ -199,12 +199,8 @@ MaterialTable::Slots Megakernel::begin_surface(PathLoop& L, const Hit& hit, Aovs
 // loop; a miss adds the background and ends the path.
 void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const {
   const Shading& sh = S_.shading;
-  auto miss = [&] {
-    L.color += L.weight * sh.background;
-    L.path_done = true;
-  };
   if (!S_.F.geometry) {
-    miss();
+    miss(L);
     return;
   }
   Bool hit_something = hit.id >= 0;
@@ -220,7 +216,7 @@ void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs
     }
   }
   RILL_ELSE {
-    miss();
+    miss(L);
   }
   RILL_ENDIF;
 }
@@ -245,18 +241,20 @@ void Megakernel::shadow_ray_back(PathLoop& L, const Hit& hit) const {
   RILL_ENDIF;
 }
 
+// A camera or secondary ray that hit nothing: the background, and the path ends.
+void Megakernel::miss(PathLoop& L) const {
+  L.color += L.weight * S_.shading.background;
+  L.path_done = true;
+}
+
 // Segment: the camera or secondary ray, and on a hit the whole surface: its local light, with
 // a shadow ray per light, then eq. 5.1 and the next ray. The same operations in the same
 // order as the Ray loop's iterations for this ray and its shadow rays.
 void Megakernel::path_segment(PathLoop& L, Aovs& aovs) const {
   const Shading& sh = S_.shading;
   L.rays += 1;
-  auto miss = [&] {
-    L.color += L.weight * sh.background;
-    L.path_done = true;
-  };
   if (!S_.F.geometry) {  // an empty scene's kernel only writes the background
-    miss();
+    miss(L);
     return;
   }
   const Hit hit = S_.intersector.intersect(L.ray, nullptr);
@@ -270,7 +268,7 @@ void Megakernel::path_segment(PathLoop& L, Aovs& aovs) const {
     next_ray(L, &slots);
   }
   RILL_ELSE {
-    miss();
+    miss(L);
   }
   RILL_ENDIF;
 }
@@ -355,9 +353,15 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
   RILL_ENDIF;
 }
 
+// "backend/accuracy/loop": a compiled kernel's key, and its warm-up's.
+std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a,
+                                   MegakernelLoop loop) {
+  return backend_key(backend_name, a) + "/" + megakernel_loop_name(loop);
+}
+
 Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a, MegakernelLoop loop) {
   loop = megakernel_loop_for(loop, backend_name);
-  const std::string key = backend_key(backend_name, a) + "/" + megakernel_loop_name(loop);
+  const std::string key = kernel_key(backend_name, a, loop);
   auto it = kernels_.find(key);
   if (it != kernels_.end()) return it->second;
   return kernels_.emplace(key, compile_for(program(loop), backend_name, a)).first->second;
@@ -414,8 +418,8 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
   // below is tracing alone. The ray count's reduction kernels compile here too.
-  const auto warm_key =
-      std::make_pair(key + "/" + megakernel_loop_name(loop), int64_t{width} * height);
+  const auto warm_key = std::make_pair(kernel_key(rs.backend, rs.accuracy, loop),
+                                       int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
     max_iter_.set(0);
     k.execute();

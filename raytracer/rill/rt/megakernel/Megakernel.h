@@ -54,11 +54,13 @@ class Megakernel {
   struct Aovs;
   struct Frame;  // a backend's output streams (PerBackend.h: buffers_for)
   rill::Program capture(MegakernelLoop loop) const;
+  static std::string kernel_key(const std::string& backend, rill::Accuracy a, MegakernelLoop loop);
   // The loop body's steps (Megakernel.cpp). Ray: trace, camera_or_secondary_ray or
   // shadow_ray_back, next_ray once the lights are done, pop_or_finish.
   Hit trace(PathLoop& L) const;
   void set_surface(Surface& to, const Surface& from) const;
   MaterialTable::Slots begin_surface(PathLoop& L, const Hit& hit, Aovs& aovs) const;
+  void miss(PathLoop& L) const;
   void camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const;
   void shadow_ray_back(PathLoop& L, const Hit& hit) const;
   // Segment: path_segment (which ends with next_ray), pop_or_finish.
