@@ -38,8 +38,8 @@ TEST(Knobs, DefaultsAndNames) {
   EXPECT_THROW(parse_traversal("Recompute"), std::invalid_argument);
 }
 
-// Every combination captures a different program: the kernel cache (keyed on the
-// program's hash) can never hand one setting's kernel to another.
+// Every combination, with either megakernel loop, captures a different program: the kernel
+// cache (keyed on the program's hash) can never hand one setting's kernel to another.
 TEST(Knobs, EverySettingGeneratesDifferentCode) {
   Scene s = builtin_scene("cornell");
   Grid g = build_grid(s, 0);
@@ -47,9 +47,10 @@ TEST(Knobs, EverySettingGeneratesDifferentCode) {
   for (const TracerOptions& k : all_knobs()) {
     Tracer t(s, g, k);
     EXPECT_EQ(t.options().str(), k.str());
-    hashes.insert(t.program().hash());
+    hashes.insert(t.program(MegakernelLoop::Ray).hash());
+    hashes.insert(t.program(MegakernelLoop::Segment).hash());
   }
-  EXPECT_EQ(hashes.size(), 8u);
+  EXPECT_EQ(hashes.size(), 16u);
 }
 
 bool same_bits(const RenderResult& a, const RenderResult& b, std::string& why) {
