@@ -2,6 +2,7 @@
 // headers that do not match their data (the image fuzzer's findings stay fixed here), and
 // whole-or-nothing writes (scene/OutputFile.h).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -123,6 +124,44 @@ TEST(OutputFile, AFailedWriteLeavesTheEarlierFileAndNoPartialOne) {
   // Writing into a folder that does not exist: an error naming the file, nothing left.
   EXPECT_THROW(write_pfm(dir.path("no/such/x.pfm"), 1, 1, std::vector<float>{1.0f}),
                std::runtime_error);
+}
+
+// A symbolic link stays a link (its target is replaced); a FIFO or a device under the name
+// is written in place, never replaced by a regular file.
+TEST(OutputFile, LinksAreFollowedAndDevicesWrittenInPlace) {
+  namespace fs = std::filesystem;
+  TempDir dir;
+  auto read = [](const std::string& p) {
+    std::ifstream f(p);
+    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  };
+  const std::string target = dir.file("target.png", "old");
+  const std::string link = dir.path("link.png");
+  fs::create_symlink("target.png", link);
+  write_output_file(link, [&](const std::string& tmp) { std::ofstream(tmp) << "new"; });
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_EQ(read(target), "new");
+
+  const std::string fifo = dir.path("pipe");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const pid_t reader = fork();
+  ASSERT_GE(reader, 0);
+  if (reader == 0) {  // drains the pipe, exits 0 when it read what was written
+    std::ifstream f(fifo);
+    std::string got((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    _exit(got == "image" ? 0 : 1);
+  }
+  write_output_file(fifo, [&](const std::string& to) {
+    EXPECT_EQ(to, fifo);
+    std::ofstream(to) << "image";
+  });
+  int status = 0;
+  ASSERT_EQ(waitpid(reader, &status, 0), reader);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_TRUE(fs::is_fifo(fs::status(fifo))) << "the FIFO was replaced";
+
+  write_output_file("/dev/null", [&](const std::string& to) { std::ofstream(to) << "x"; });
+  EXPECT_TRUE(fs::is_character_file(fs::status("/dev/null")));
 }
 
 TEST(OutputFile, AnInterruptRemovesThePartialFile) {

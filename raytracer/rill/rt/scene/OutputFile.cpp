@@ -32,8 +32,37 @@ void remove_partial_output() {
   if (g_busy.load()) ::unlink(g_partial);
 }
 
-void write_output_file(const std::string& path,
+namespace {
+
+namespace fs = std::filesystem;
+
+// Where a write to `path` should land: a symbolic link is followed (the link stays, its target
+// is replaced), up to the system's limit on a chain of links.
+fs::path final_target(const fs::path& path) {
+  fs::path p = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(p, ec))) return p;
+    const fs::path link = fs::read_symlink(p, ec);
+    if (ec) return p;
+    p = link.is_absolute() ? link : p.parent_path() / link;
+  }
+  throw std::runtime_error("cannot write " + path.string() + ": too many levels of symbolic links");
+}
+
+}  // namespace
+
+void write_output_file(const std::string& asked,
                        const std::function<void(const std::string&)>& write) {
+  const std::string path = final_target(asked).string();
+  // A device or a FIFO (/dev/null, /dev/stdout, a pipe) is written in place: renaming a
+  // regular file over it would replace the device itself.
+  std::error_code st_ec;
+  const fs::file_status st = fs::status(path, st_ec);
+  if (!st_ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st)) {
+    write(path);
+    return;
+  }
   const std::string tmp = path + ".partial-" + std::to_string(::getpid());
   // One file at a time is tracked for the signal handler (the first writer claims it).
   bool expected = false;
@@ -61,7 +90,7 @@ void write_output_file(const std::string& path,
   if (ec) {
     std::remove(tmp.c_str());
     done();
-    throw std::runtime_error("cannot write " + path + ": " + ec.message());
+    throw std::runtime_error("cannot write " + asked + ": " + ec.message());
   }
   done();
 }

@@ -2,6 +2,8 @@
 // name (NAME.partial-PID) and is renamed over the final name once complete. A write error, a
 // backend that fails, a crash or an interrupt never leaves a half-written image under the name
 // the user asked for; an earlier file of that name stays as it was until the new one is whole.
+// A symbolic link is followed: its target is the file replaced. A device or FIFO that exists
+// under the name (/dev/null, /dev/stdout, a pipe) is written in place, not replaced.
 #pragma once
 
 #include <functional>
