@@ -25,8 +25,11 @@ namespace fs = std::filesystem;
 // Turns the line checks' findings (ObjSyntax.h) into errors and warnings naming `file` and the
 // line: a bad value is an error; a malformed line is one too under --strict-input, else the
 // first few are warnings and the rest a count.
-void report_lines(const std::string& file, const std::vector<LineIssue>& issues,
+void report_lines(const std::string& file, const std::vector<LineIssue>& all,
                   const InputOptions& input, std::vector<std::string>& warnings) {
+  std::vector<LineIssue> issues;
+  for (const LineIssue& i : all)
+    if (!i.rewrite_only()) issues.push_back(i);
   if (issues.empty()) return;
   auto at = [&](const LineIssue& i) { return file + ":" + std::to_string(i.line) + ": " + i.what; };
   for (const LineIssue& i : issues)
@@ -166,7 +169,10 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
     if (lines.faces == 0)
       throw SceneError(path + ": no faces in " + std::to_string(lines.lines) + " lines (" +
                        std::to_string(lines.vertices) + " vertices, " +
-                       std::to_string(lines.issues.size()) +
+                       std::to_string(std::count_if(lines.issues.begin(), lines.issues.end(),
+                                                    [](const LineIssue& i) {
+                                                      return !i.rewrite_only();
+                                                    })) +
                        " malformed lines): is it an OBJ file? (--allow-empty loads it as no "
                        "triangles)");
   }

@@ -124,6 +124,37 @@ ObjLines check_obj_lines(const std::string& text) {
         return bad_line("'vn' expects 3 numbers (got " + std::to_string(n) + ")");
       if (k == 0) ++r.vertices;
       if (k == 0 && n >= 6) colours = true;
+      // Values that would render wrongly are errors naming the line: texture coordinates and
+      // normals must be finite floats, vertex colours finite and >= 0.
+      auto finite_float = [](double v) { return std::fabs(v) <= 3.4028234663852886e38; };
+      auto bad_value = [&](const std::string& what) {
+        r.issues.push_back({line, "'" + key + "' " + what + " (" + quoted(s) + ")", true, ""});
+      };
+      if (k == 1 || k == 2) {
+        for (double v : nums)
+          if (!finite_float(v))
+            return bad_value(k == 1 ? "texture coordinates must be finite numbers"
+                                    : "normals must be finite numbers");
+      } else if (n >= 6) {
+        for (size_t c = 3; c < 6; ++c)
+          if (!finite_float(nums[c]) || nums[c] < 0)
+            return bad_value("vertex colours must be finite numbers >= 0");
+      }
+      // A position written as nan or inf: tinyobjloader would read it as 0, a vertex that
+      // renders. Rewritten as a number too large for a float, it reaches the loader as the
+      // non-finite vertex it is (never hit, counted in the scene's note), like 1e39 does.
+      if (k == 0) {
+        std::string fixed = "v";
+        bool rewritten = false;
+        for (size_t i = 1; i < w.size(); ++i) {
+          const bool position = i <= 3;
+          const bool nonfinite = !std::isfinite(nums[i - 1]);
+          fixed += " ";
+          fixed += position && nonfinite ? (nums[i - 1] < 0 ? "-1e999" : "1e999") : w[i];
+          rewritten = rewritten || (position && nonfinite);
+        }
+        if (rewritten) r.issues.push_back({line, "", false, fixed});
+      }
     } else if (key == "f") {
       if (n < 3)
         return malformed("a face needs at least 3 vertices (got " + std::to_string(n) + ")");

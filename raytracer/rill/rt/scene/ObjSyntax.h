@@ -21,6 +21,9 @@ struct LineIssue {
   // placeholder that keeps the later lines' indices as written (faces that use it are
   // malformed too, so the placeholder is never rendered).
   std::string placeholder;
+  // An empty `what`: not an issue, only a line the parser must read as `placeholder` (a
+  // position written as nan or inf, rewritten so that it stays non-finite).
+  bool rewrite_only() const { return what.empty(); }
 };
 
 struct ObjLines {
