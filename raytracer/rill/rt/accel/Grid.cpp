@@ -57,6 +57,10 @@ bool triangle_usable(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
   return n.x != 0.0 || n.y != 0.0 || n.z != 0.0;
 }
 
+// The auto grid's bound on the build's triangle-voxel tests (build_grid).
+constexpr double kAutoGridBoxVoxels = 256;
+constexpr double kAutoGridMinTests = double{1 << 24};
+
 glm::ivec3 auto_grid_resolution(const glm::dvec3& extent, size_t n, double density) {
   density = checked_grid_density(density);
   const double mx = std::max({extent.x, extent.y, extent.z});
@@ -127,6 +131,27 @@ Subgrid make_subgrid(const Grid& g, const Scene& s, int64_t v, double mag) {
     sub[a] = static_cast<double>(g.cell[a] / static_cast<float>(m));
   }
   const glm::dvec3 margin = sub * 1e-4 + glm::dvec3(4e-7 * mag);
+  // Triangles whose boxes cover on average more than 4x the sub-voxels the growth bound
+  // allows span the voxel: the subgrid would not pay, and finding that out by the exact tests
+  // took seconds for a pile of 30000 large triangles (every voxel tested them all).
+  int64_t boxes = 0;
+  for (int32_t i = 0; i < e.y; ++i) {
+    glm::dvec3 tri[3];
+    triangle_vertices(s, static_cast<size_t>(g.elements[static_cast<size_t>(e.x + i)]), tri);
+    int64_t box = 1;
+    for (int k = 0; k < 3; ++k) {
+      const double mn = std::min({tri[0][k], tri[1][k], tri[2][k]}) - margin[k];
+      const double mx = std::max({tri[0][k], tri[1][k], tri[2][k]}) + margin[k];
+      const int a = std::clamp(static_cast<int>(std::floor((mn - corner[k]) / sub[k])), 0, m - 1);
+      const int b = std::clamp(static_cast<int>(std::floor((mx - corner[k]) / sub[k])), 0, m - 1);
+      box *= b - a + 1;
+    }
+    boxes += box;
+  }
+  if (boxes > 4 * kSubgridMaxGrowth * e.y) {
+    r.m = 0;
+    return r;
+  }
   std::vector<std::pair<int32_t, int32_t>> refs;  // (sub-voxel, triangle)
   for (int32_t i = 0; i < e.y; ++i) {
     const int32_t t = g.elements[static_cast<size_t>(e.x + i)];
@@ -402,6 +427,34 @@ Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double dens
   hi += glm::dvec3(pad);
   g.res =
       resolution > 0 ? glm::ivec3(resolution) : auto_grid_resolution(hi - lo, g.usable, density);
+  if (resolution <= 0) {
+    // The build tests each triangle against every voxel of its bounding box. Where many
+    // triangles span much of the scene (a pile of large overlapping ones), the voxels auto
+    // picks for their count make that quadratic: 8000 such triangles took 15 s, 30000 over a
+    // minute. Coarser, until the voxels tested stay within kAutoGridBoxVoxels per triangle
+    // (ordinary meshes test a few each, so their grids do not change).
+    const double budget =
+        std::max(kAutoGridMinTests, kAutoGridBoxVoxels * static_cast<double>(g.usable));
+    const glm::dvec3 extent = hi - lo;
+    for (int round = 0; round < 64; ++round) {
+      const glm::dvec3 cell = extent / glm::dvec3(g.res);
+      double tested = 0;
+      for (size_t t = 0; t < n && tested <= budget; ++t) {
+        if (!usable[t]) continue;
+        double box = 1;
+        for (int k = 0; k < 3; ++k) {
+          const double a = std::min({double{s.positions[3 * t][k]}, double{s.positions[3 * t + 1][k]},
+                                     double{s.positions[3 * t + 2][k]}});
+          const double b = std::max({double{s.positions[3 * t][k]}, double{s.positions[3 * t + 1][k]},
+                                     double{s.positions[3 * t + 2][k]}});
+          box *= std::min(std::floor((b - a) / cell[k]) + 2.0, static_cast<double>(g.res[k]));
+        }
+        tested += box;
+      }
+      if (tested <= budget || g.res == glm::ivec3(1)) break;
+      for (int a = 0; a < 3; ++a) g.res[a] = std::max(1, g.res[a] * 3 / 4);
+    }
+  }
   g.lo = glm::vec3(lo);
   for (int a = 0; a < 3; ++a) {
     // The float cell size must cover the padded box: round up.
