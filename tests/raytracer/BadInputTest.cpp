@@ -455,7 +455,35 @@ TEST(BadInput, NanFromTheObjFile) {
   Scene s =
       load_obj(dir.file("n.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nv 1e39 0 0\nf 1 2 3\nf 4 2 3\n"));
   EXPECT_EQ(s.triangle_count(), 2u);
-  EXPECT_NO_THROW(build_grid(s, 0));
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  // Both are non-finite (never hit): "nan" is not read as 0, as tinyobjloader alone would.
+  Grid g = build_grid(s, 0);
+  EXPECT_EQ(g.non_finite, 2u);
+  EXPECT_EQ(g.usable, 0u);
+  Scene words = load_obj(dir.file("w.obj", "v 0 0 0\nv -inf 0 0\nv 0 INF 1\nf 1 2 3\n"));
+  EXPECT_EQ(build_grid(words, 0).non_finite, 1u);
+}
+
+// Texture coordinates, normals and vertex colours that would render wrongly are errors naming
+// the OBJ's line.
+TEST(BadInput, ObjAttributeValuesAreCheckedPerLine) {
+  TempDir dir;
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  auto error = [&](const std::string& name, const std::string& text) {
+    const std::string p = dir.file(name, text);
+    return std::make_pair(p, error_of([&] { load_obj(p); }));
+  };
+  auto [vt, vt_error] = error("vt.obj", tri + "vt 1e39 0\nf 1/1 2/1 3/1\n");
+  EXPECT_EQ(vt_error, vt + ":4: 'vt' texture coordinates must be finite numbers ('vt 1e39 0')");
+  auto [vn, vn_error] = error("vn.obj", tri + "vn inf 0 1\nf 1//1 2//1 3//1\n");
+  EXPECT_EQ(vn_error, vn + ":4: 'vn' normals must be finite numbers ('vn inf 0 1')");
+  auto [vc, vc_error] = error("vc.obj", "v 0 0 0 1 1 1\nv 1 0 0 -5 1 0\nv 0 1 0 1 1 1\nf 1 2 3\n");
+  EXPECT_EQ(vc_error,
+            vc + ":2: 'v' vertex colours must be finite numbers >= 0 ('v 1 0 0 -5 1 0')");
+  auto [big, big_error] =
+      error("big.obj", "v 0 0 0 1 1 1\nv 1 0 0 1e39 1 0\nv 0 1 0 1 1 1\nf 1 2 3\n");
+  EXPECT_NE(big_error.find(":2: 'v' vertex colours must be finite"), std::string::npos)
+      << big_error;
 }
 
 TEST(BadInput, AbsurdSizesAndOptions) {
@@ -483,6 +511,29 @@ TEST(BadInput, AbsurdSizesAndOptions) {
       "reflect+transmit");
   bad([](Scene& c) { c.materials[0].ior = 0; }, "ior");
   bad([](Scene& c) { c.background.z = -INFINITY; }, "background");
+}
+
+// A shape's triangles are counted before it is made: three 4096 x 4096 spheres (100 million
+// triangles) are an error at the third, not gigabytes later.
+TEST(BadInput, ShapesOverTheTriangleLimitFailBeforeTheyAreBuilt) {
+  const std::string sphere = R"({"shape": "sphere", "slices": 4096, "stacks": 4096})";
+  const std::string err = error_of([&] {
+    parse_json_scene(R"({"meshes": [)" + sphere + "," + sphere + "," + sphere + "]}", ".",
+                     "big.json");
+  });
+  EXPECT_NE(err.find("big.json: meshes[2]: it would make"), std::string::npos) << err;
+  EXPECT_NE(err.find("at most 67108864 are supported"), std::string::npos) << err;
+}
+
+// Every material the JSON defines is checked, whether a mesh uses it or not.
+TEST(BadInput, UnusedMaterialsAreCheckedToo) {
+  const std::string err = error_of([&] {
+    parse_json_scene(R"({"materials": {"m": {"reflect": 0.6, "transmit": 0.6}}})", ".",
+                     "unused.json");
+  });
+  EXPECT_EQ(err,
+            "unused.json: material 'm': reflect and transmit must be >= 0 with reflect + "
+            "transmit <= 1");
 }
 
 // Negative colours (they rendered negative radiance): an error that names the colour, from

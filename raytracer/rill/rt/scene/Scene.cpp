@@ -251,6 +251,42 @@ void check_camera(const Camera& camera, const std::string& where) {
     throw SceneError(where + ": up " + vec_str(camera.up) + " is parallel to the view direction");
 }
 
+// One material's values (Scene::validate; the JSON reader checks every material it defines
+// with it, used by a mesh or not). texture_count: the scene's textures, which a parameter may
+// refer to.
+void validate_material(const Material& m, size_t texture_count) {
+  const std::string where = "material '" + m.name + "': ";
+  if (!finite3(m.diffuse) || !finite3(m.specular) || !std::isfinite(m.shininess) ||
+      !std::isfinite(m.reflect) || !std::isfinite(m.transmit) || !std::isfinite(m.ior))
+    throw SceneError(where + "values must be finite numbers");
+  // Colours are reflectances and light: a negative one would render negative radiance.
+  auto negative = [](const glm::vec3& c) { return c.x < 0.0f || c.y < 0.0f || c.z < 0.0f; };
+  if (negative(m.diffuse) || negative(m.specular))
+    throw SceneError(where +
+                     (negative(m.diffuse) ? "diffuse " + vec_str(m.diffuse)
+                                          : "specular " + vec_str(m.specular)) +
+                     " has a negative component; colours must be >= 0");
+  for (const auto& [name, v] : m.params)
+    if (v.kind == ParamValue::Kind::Color && negative(v.color))
+      throw SceneError(where + name + " " + vec_str(v.color) +
+                       " has a negative component; colours must be >= 0");
+  if (m.reflect < 0 || m.transmit < 0 || m.reflect + m.transmit > 1.0f)
+    throw SceneError(where + "reflect and transmit must be >= 0 with reflect + transmit <= 1");
+  if (m.shininess < 0 || m.shininess > 1e4f)
+    throw SceneError(where + "shininess must be in [0, 10000]");
+  if (!(m.ior > 0.0f) || m.ior > 100.0f) throw SceneError(where + "ior must be in (0, 100]");
+  for (const auto& [name, v] : m.params) {
+    const bool finite = v.kind == ParamValue::Kind::Number  ? std::isfinite(v.number)
+                        : v.kind == ParamValue::Kind::Color ? finite3(v.color)
+                                                            : true;
+    if (!finite) throw SceneError(where + name + " must be finite");
+    if (v.kind == ParamValue::Kind::Texture &&
+        (v.texture < 0 || static_cast<size_t>(v.texture) >= texture_count))
+      throw SceneError(where + name + " refers to texture " + std::to_string(v.texture) +
+                       ", but the scene has " + std::to_string(texture_count));
+  }
+}
+
 void Scene::validate() const {
   const size_t n = triangle_count();
   if (positions.size() != 3 * n) throw SceneError("internal: positions and materials disagree");
@@ -272,38 +308,7 @@ void Scene::validate() const {
   for (int32_t m : material)
     if (m < 0 || static_cast<size_t>(m) >= materials.size())
       throw SceneError("internal: triangle with material index " + std::to_string(m));
-  for (const Material& m : materials) {
-    const std::string where = "material '" + m.name + "': ";
-    if (!finite3(m.diffuse) || !finite3(m.specular) || !std::isfinite(m.shininess) ||
-        !std::isfinite(m.reflect) || !std::isfinite(m.transmit) || !std::isfinite(m.ior))
-      throw SceneError(where + "values must be finite numbers");
-    // Colours are reflectances and light: a negative one would render negative radiance.
-    auto negative = [](const glm::vec3& c) { return c.x < 0.0f || c.y < 0.0f || c.z < 0.0f; };
-    if (negative(m.diffuse) || negative(m.specular))
-      throw SceneError(where +
-                       (negative(m.diffuse) ? "diffuse " + vec_str(m.diffuse)
-                                            : "specular " + vec_str(m.specular)) +
-                       " has a negative component; colours must be >= 0");
-    for (const auto& [name, v] : m.params)
-      if (v.kind == ParamValue::Kind::Color && negative(v.color))
-        throw SceneError(where + name + " " + vec_str(v.color) +
-                         " has a negative component; colours must be >= 0");
-    if (m.reflect < 0 || m.transmit < 0 || m.reflect + m.transmit > 1.0f)
-      throw SceneError(where + "reflect and transmit must be >= 0 with reflect + transmit <= 1");
-    if (m.shininess < 0 || m.shininess > 1e4f)
-      throw SceneError(where + "shininess must be in [0, 10000]");
-    if (!(m.ior > 0.0f) || m.ior > 100.0f) throw SceneError(where + "ior must be in (0, 100]");
-    for (const auto& [name, v] : m.params) {
-      const bool finite = v.kind == ParamValue::Kind::Number  ? std::isfinite(v.number)
-                          : v.kind == ParamValue::Kind::Color ? finite3(v.color)
-                                                              : true;
-      if (!finite) throw SceneError(where + name + " must be finite");
-      if (v.kind == ParamValue::Kind::Texture &&
-          (v.texture < 0 || static_cast<size_t>(v.texture) >= textures.size()))
-        throw SceneError(where + name + " refers to texture " + std::to_string(v.texture) +
-                         ", but the scene has " + std::to_string(textures.size()));
-    }
-  }
+  for (const Material& m : materials) validate_material(m, textures.size());
   for (const Light& l : lights) {
     if (!finite3(l.position) || !finite3(l.color))
       throw SceneError("light at " + vec_str(l.position) + ": values must be finite numbers");

@@ -144,6 +144,9 @@ struct Scene {
 // along the view), with messages starting "where: ". Dynamic scenes check every key, and
 // rill-trace each frame's interpolated camera.
 void check_camera(const Camera& camera, const std::string& where);
+// A material's values: finite, colours >= 0, reflect + transmit <= 1, shininess and ior in
+// range, texture parameters within texture_count. Throws SceneError naming the material.
+void validate_material(const Material& m, size_t texture_count);
 
 // Bounding box of the finite triangles; returns false if there are none.
 bool scene_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi);

@@ -215,6 +215,14 @@ std::vector<glm::vec3> points(const Ctx& c, const json& j, const std::string& wh
   return p;
 }
 
+// The scene's triangle limit (Scene::validate), checked before a shape is generated: a few
+// numbers in the JSON could otherwise ask for more triangles than there is memory for.
+void check_room(const Ctx& c, const Scene& s, size_t more, const std::string& where) {
+  if (s.triangle_count() + more > (size_t{1} << 26))
+    fail(c, where + ": it would make " + std::to_string(s.triangle_count() + more) +
+                " triangles; at most 67108864 are supported");
+}
+
 void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
           const std::map<std::string, Material>& materials) {
   const std::string where = "meshes[" + std::to_string(index) + "]";
@@ -269,6 +277,7 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     int sl = j.contains("slices") ? integer(c, j["slices"], where + ".slices", 3, 4096) : 48;
     int st = j.contains("stacks") ? integer(c, j["stacks"], where + ".stacks", 2, 4096) : 24;
     bool smooth = !j.contains("smooth") || boolean(c, j["smooth"], where + ".smooth");
+    check_room(c, s, 2 * static_cast<size_t>(sl) * static_cast<size_t>(st), where);
     Scene tmp;
     tmp.add_material(Material{});
     add_sphere(tmp, ctr, r, sl, st, 0, smooth);
@@ -297,6 +306,7 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
                 ? integer(c, j["subdivisions"], where + ".subdivisions", 1, 256)
                 : 8;
     bool smooth = !j.contains("smooth") || boolean(c, j["smooth"], where + ".smooth");
+    check_room(c, s, 64 * static_cast<size_t>(n) * static_cast<size_t>(n), where);  // 32 patches
     add_teapot(s, n, m, t, smooth);
   } else {
     fail(c, where + ".shape '" + shape + "' is unknown (box, sphere, quad, triangle, teapot)");
@@ -334,6 +344,15 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
       if (!j["materials"].is_object()) fail(c, "materials must be an object of named materials");
       for (auto it = j["materials"].begin(); it != j["materials"].end(); ++it)
         materials[it.key()] = material(c, it.key(), it.value(), texture_names);
+      // Every material defined, used by a mesh or not: a mistake in one is found before a
+      // mesh starts using it.
+      for (const auto& [name, m] : materials) {
+        try {
+          validate_material(m, s.textures.size());
+        } catch (const SceneError& e) {
+          fail(c, e.what());
+        }
+      }
     }
     MeshNames mesh_names;
     if (j.contains("meshes")) {
@@ -364,6 +383,7 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
         }
         const size_t first = s.triangle_count();
         mesh(c, s, m, i, materials);
+        check_room(c, s, 0, where);  // an OBJ file: the next mesh is not read past the limit
         const MeshRange range{first, s.triangle_count() - first};
         if (!name.empty()) mesh_names[name] = range;
         if (!animate.is_null() || !sequence_of.is_null()) {
