@@ -478,8 +478,7 @@ TEST(BadInput, ObjAttributeValuesAreCheckedPerLine) {
   auto [vn, vn_error] = error("vn.obj", tri + "vn inf 0 1\nf 1//1 2//1 3//1\n");
   EXPECT_EQ(vn_error, vn + ":4: 'vn' normals must be finite numbers ('vn inf 0 1')");
   auto [vc, vc_error] = error("vc.obj", "v 0 0 0 1 1 1\nv 1 0 0 -5 1 0\nv 0 1 0 1 1 1\nf 1 2 3\n");
-  EXPECT_EQ(vc_error,
-            vc + ":2: 'v' vertex colours must be finite numbers >= 0 ('v 1 0 0 -5 1 0')");
+  EXPECT_EQ(vc_error, vc + ":2: 'v' vertex colours must be finite numbers >= 0 ('v 1 0 0 -5 1 0')");
   auto [big, big_error] =
       error("big.obj", "v 0 0 0 1 1 1\nv 1 0 0 1e39 1 0\nv 0 1 0 1 1 1\nf 1 2 3\n");
   EXPECT_NE(big_error.find(":2: 'v' vertex colours must be finite"), std::string::npos)

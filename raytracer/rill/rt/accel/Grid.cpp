@@ -443,10 +443,12 @@ Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double dens
         if (!usable[t]) continue;
         double box = 1;
         for (int k = 0; k < 3; ++k) {
-          const double a = std::min({double{s.positions[3 * t][k]}, double{s.positions[3 * t + 1][k]},
-                                     double{s.positions[3 * t + 2][k]}});
-          const double b = std::max({double{s.positions[3 * t][k]}, double{s.positions[3 * t + 1][k]},
-                                     double{s.positions[3 * t + 2][k]}});
+          const double a =
+              std::min({double{s.positions[3 * t][k]}, double{s.positions[3 * t + 1][k]},
+                        double{s.positions[3 * t + 2][k]}});
+          const double b =
+              std::max({double{s.positions[3 * t][k]}, double{s.positions[3 * t + 1][k]},
+                        double{s.positions[3 * t + 2][k]}});
           box *= std::min(std::floor((b - a) / cell[k]) + 2.0, static_cast<double>(g.res[k]));
         }
         tested += box;

@@ -167,14 +167,13 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
     if (text.empty())
       throw SceneError(path + ": the file is empty (--allow-empty loads it as no triangles)");
     if (lines.faces == 0)
-      throw SceneError(path + ": no faces in " + std::to_string(lines.lines) + " lines (" +
-                       std::to_string(lines.vertices) + " vertices, " +
-                       std::to_string(std::count_if(lines.issues.begin(), lines.issues.end(),
-                                                    [](const LineIssue& i) {
-                                                      return !i.rewrite_only();
-                                                    })) +
-                       " malformed lines): is it an OBJ file? (--allow-empty loads it as no "
-                       "triangles)");
+      throw SceneError(
+          path + ": no faces in " + std::to_string(lines.lines) + " lines (" +
+          std::to_string(lines.vertices) + " vertices, " +
+          std::to_string(std::count_if(lines.issues.begin(), lines.issues.end(),
+                                       [](const LineIssue& i) { return !i.rewrite_only(); })) +
+          " malformed lines): is it an OBJ file? (--allow-empty loads it as no "
+          "triangles)");
   }
   // usemtl names that no MTL file defines (unless an MTL file was missing, which has its own
   // warning): their faces get the default grey.
