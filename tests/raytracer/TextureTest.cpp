@@ -507,7 +507,12 @@ TEST(BadInputTextures, JsonTextures) {
   EXPECT_HAS(err(R"({"w": {"type": "checker", "file": "x.png"}})"),
              scene + ": textures.w: unknown key 'file'");
   EXPECT_HAS(err(R"({"w": {"type": "marble", "scale": 0}})"),
-             scene + ": textures.w.scale must be positive");
+             scene + ": textures.w.scale must be in (0, 1e6]");
+  // A scale of 1e20 gave NaN pixels; negative colours negative radiance.
+  EXPECT_HAS(err(R"({"w": {"type": "wood", "scale": 1e20}})"),
+             scene + ": textures.w.scale must be in (0, 1e6]");
+  EXPECT_HAS(err(R"({"w": {"type": "checker", "color1": -1}})"),
+             "texture 'w': colour [-1, -1, -1] has a negative component; colours must be >= 0");
   EXPECT_HAS(err(R"({"w": {"type": "marble", "color1": "white"}})"), "textures.w.color1");
   EXPECT_HAS(err(R"([])"), scene + ": textures must be an object");
   std::vector<unsigned char> px(12, 100);

@@ -57,8 +57,12 @@ void validate_texture(const Texture& t) {
       throw SceneError(where + "needs width * height texels (" + std::to_string(t.width) + "x" +
                        std::to_string(t.height) + ", " + std::to_string(t.texels.size()) +
                        " given)");
-    for (const glm::vec3& c : t.texels)
+    for (const glm::vec3& c : t.texels) {
       if (!finite3(c)) throw SceneError(where + "texels must be finite");
+      if (c.x < 0.0f || c.y < 0.0f || c.z < 0.0f)
+        throw SceneError(where + "texel " + vec_str(c) +
+                         " has a negative component; colours must be >= 0");
+    }
     return;
   }
   const auto& types = procedural_texture_types();
@@ -69,6 +73,14 @@ void validate_texture(const Texture& t) {
   }
   if (!finite3(t.color1) || !finite3(t.color2) || !std::isfinite(t.scale))
     throw SceneError(where + "values must be finite numbers");
+  for (const glm::vec3& c : {t.color1, t.color2})
+    if (c.x < 0.0f || c.y < 0.0f || c.z < 0.0f)
+      throw SceneError(where + "colour " + vec_str(c) +
+                       " has a negative component; colours must be >= 0");
+  // Beyond this the pattern repeats below a float's resolution of the hit point, and noise
+  // of huge coordinates turned into NaN pixels (a scale of 1e20).
+  if (!(t.scale > 0.0f) || t.scale > kMaxTextureScale)
+    throw SceneError(where + "scale must be in (0, 1e6]");
 }
 
 }  // namespace

@@ -18,6 +18,9 @@ enum class WrapMode { Repeat, Clamp, Mirror };
 WrapMode parse_wrap_mode(const std::string& s);
 const char* wrap_mode_name(WrapMode w);
 
+// A procedural texture's largest scale (Scene::validate).
+inline constexpr float kMaxTextureScale = 1e6f;
+
 struct Texture {
   std::string name;             // the key in the scene's "textures" (or the file name)
   std::string type = "bitmap";  // "bitmap", or a procedural texture's name (checker, ...)
