@@ -524,6 +524,28 @@ TEST(BadInput, ShapesOverTheTriangleLimitFailBeforeTheyAreBuilt) {
   EXPECT_NE(err.find("at most 67108864 are supported"), std::string::npos) << err;
 }
 
+// A key given twice in one object is an error naming it and where (JSON parsers keep the
+// last one, so a typo could silently replace a setting).
+TEST(BadInput, DuplicateJsonKeysAreErrors) {
+  EXPECT_EQ(error_of([] {
+              parse_json_scene(R"({"builtin": "thesis-a", "builtin": "cornell"})", ".", "d.json");
+            }),
+            "d.json: key 'builtin' appears twice in scene");
+  EXPECT_EQ(error_of([] {
+              parse_json_scene(R"({"materials": {"m": {"reflect": 0.1, "reflect": 0.2}}})", ".",
+                               "d.json");
+            }),
+            "d.json: key 'reflect' appears twice in materials.m");
+  EXPECT_EQ(error_of([] {
+              parse_json_scene(R"({"lights": [{"position": [0, 1, 0], "position": [1, 1, 1]}]})",
+                               ".", "d.json");
+            }),
+            "d.json: key 'position' appears twice in lights[]");
+  // The same key in two objects is fine.
+  EXPECT_NO_THROW(parse_json_scene(
+      R"({"lights": [{"position": [0, 1, 0]}, {"position": [1, 1, 1]}]})", ".", "ok.json"));
+}
+
 // Every material the JSON defines is checked, whether a mesh uses it or not.
 TEST(BadInput, UnusedMaterialsAreCheckedToo) {
   const std::string err = error_of([&] {

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <stdexcept>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -83,7 +85,8 @@ void textures(const Ctx& c, Scene& s, const json& j, TextureNames& names) {
       if (t.contains("color1")) tex.color1 = vec3_or_scalar(c, t["color1"], where + ".color1");
       if (t.contains("color2")) tex.color2 = vec3_or_scalar(c, t["color2"], where + ".color2");
       if (t.contains("scale")) tex.scale = num(c, t["scale"], where + ".scale");
-      if (!(tex.scale > 0.0f)) fail(c, where + ".scale must be positive");
+      if (!(tex.scale > 0.0f) || tex.scale > kMaxTextureScale)
+        fail(c, where + ".scale must be in (0, 1e6]");
     } else {
       fail(c,
            where + ".type: unknown texture type '" + type + "' (bitmap, " + join(procedural) + ")");
@@ -313,6 +316,47 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
   }
 }
 
+// A parser callback that rejects a key given twice in one object (JSON parsers keep the
+// last, so a repeated "builtin" silently replaced the first), naming the key and its path.
+json::parser_callback_t duplicate_key_check() {
+  struct Frame {
+    bool object = false;
+    std::set<std::string> keys;
+    std::string name;  // the frame's path: "scene", "materials.m", "lights[]"
+  };
+  auto stack = std::make_shared<std::vector<Frame>>();
+  auto pending = std::make_shared<std::string>();  // the last key read, naming what follows
+  return [stack, pending](int, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    auto child_name = [&] {
+      if (stack->empty()) return std::string("scene");
+      const Frame& top = stack->back();
+      return top.object ? (top.name == "scene" ? *pending : top.name + "." + *pending)
+                        : top.name + "[]";
+    };
+    switch (event) {
+      case E::object_start:
+      case E::array_start:
+        stack->push_back(Frame{event == E::object_start, {}, child_name()});
+        break;
+      case E::object_end:
+      case E::array_end:
+        if (!stack->empty()) stack->pop_back();
+        break;
+      case E::key: {
+        const std::string key = parsed.get<std::string>();
+        if (!stack->empty() && !stack->back().keys.insert(key).second)
+          throw std::runtime_error("key '" + key + "' appears twice in " + stack->back().name);
+        *pending = key;
+        break;
+      }
+      case E::value:
+        break;
+    }
+    return true;
+  };
+}
+
 }  // namespace
 
 Scene parse_json_scene(const std::string& text, const std::string& base_dir,
@@ -320,11 +364,13 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
   Ctx c{name, base_dir, input};
   json j;
   try {
-    j = json::parse(text);
+    j = json::parse(text, duplicate_key_check());
   } catch (const json::exception& e) {
     std::string msg = e.what();
     auto p = msg.find("parse error");
     fail(c, "invalid JSON: " + (p == std::string::npos ? msg : msg.substr(p)));
+  } catch (const std::runtime_error& e) {  // duplicate_key_check
+    fail(c, e.what());
   }
   try {
     check_keys(c, j, "scene",
