@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <stdexcept>
 #include <memory>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/accel/LightBuffer.h"
