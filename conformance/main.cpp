@@ -24,7 +24,8 @@ const char* kUsage = R"(usage: rill-conformance [options]
 Runs Rill's backend conformance suite: every operation and control-flow construct on each
 backend, in each accuracy mode, against the reference (see docs/conformance.md).
 
-  --backend B        cpu, opencl, glsl (repeat or comma-separate; default: every backend)
+  --backend B        cpu, simd, opencl, glsl, glsl-compute (repeat or comma-separate;
+                     default: every backend)
   --accuracy A       strict, fast, double (repeat or comma-separate; default: all three)
   --markdown FILE    write the result tables as Markdown
   --csv FILE         write the result tables as CSV
@@ -131,6 +132,17 @@ int run(int argc, char** argv) {
       throw std::invalid_argument("this build has no backend named '" + b + "' (it has " + list +
                                   ")");
     }
+  // A filter that matches no case would run nothing and report success.
+  if (!options.filter.empty()) {
+    bool any = false;
+    for (const auto& n : rill::conformance::case_names())
+      for (const auto& f : options.filter) any = any || n.find(f) != std::string::npos;
+    if (!any) {
+      std::string list;
+      for (const auto& f : options.filter) list += (list.empty() ? "'" : ", '") + f + "'";
+      throw std::invalid_argument("--filter " + list + " matches no case (--list shows them)");
+    }
+  }
   if (accuracies.empty()) accuracies = {"strict", "fast", "double"};
   std::vector<rill::Accuracy> modes;
   for (const auto& a : accuracies) {

@@ -1252,7 +1252,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "rill-trace: %s (see --help)\n", e.what());
+    // An unknown first word: CLI11 only says that a subcommand is required.
+    std::string what = e.what();
+    if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty())
+      what = std::string("unknown command '") + argv[1] + "' (render, accuracy, demo, info)";
+    std::fprintf(stderr, "rill-trace: %s (see --help)\n", what.c_str());
     return 2;
   }
   int rc = 0;

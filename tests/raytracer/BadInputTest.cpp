@@ -41,8 +41,13 @@ TEST(BadInput, MissingFiles) {
   EXPECT_NE(error_of([&] { load_scene(txt); }).find("unknown scene type"), std::string::npos);
   // A JSON scene naming a missing OBJ.
   std::string json = dir.file("s.json", R"({"meshes": [{"file": "missing.obj"}]})");
-  EXPECT_NE(error_of([&] { load_json(json); }).find("missing.obj: no such file"),
-            std::string::npos);
+  // The message names the scene, the key and where the relative path was looked for.
+  EXPECT_EQ(error_of([&] { load_json(json); }),
+            json + ": meshes[0].file: " + dir.path("missing.obj") +
+                ": no such file ('missing.obj' is relative to the scene's folder)");
+  // A folder given as the scene: said so, not that its extension is unknown.
+  EXPECT_EQ(error_of([&] { load_scene(dir.dir()); }),
+            dir.dir() + ": is a directory, not a scene (.json or .obj)");
 }
 
 // A path naming a device or a pipe is refused before anything is read (reading /dev/zero
@@ -479,6 +484,14 @@ TEST(BadInput, ObjAttributeValuesAreCheckedPerLine) {
   EXPECT_EQ(vn_error, vn + ":4: 'vn' normals must be finite numbers ('vn inf 0 1')");
   auto [vc, vc_error] = error("vc.obj", "v 0 0 0 1 1 1\nv 1 0 0 -5 1 0\nv 0 1 0 1 1 1\nf 1 2 3\n");
   EXPECT_EQ(vc_error, vc + ":2: 'v' vertex colours must be finite numbers >= 0 ('v 1 0 0 -5 1 0')");
+  auto [ix, ix_error] = error("ix.obj", tri + "f 1 2 2147483648\n");
+  EXPECT_EQ(ix_error, ix + ":4: face vertex '2147483648' has an index out of range (the file "
+                           "has 3 v lines before it) ('f 1 2 2147483648')");
+  // 1e39 is a finite double but no float: an MTL value that overflows is an error too.
+  const std::string mtl = dir.file("m.mtl", "newmtl x\nKd 1e39 0 0\n");
+  const std::string obj = dir.file("m.obj", "mtllib m.mtl\nusemtl x\n" + tri + "f 1 2 3\n");
+  const std::string kd = error_of([&] { load_obj(obj); });
+  EXPECT_EQ(kd, mtl + ":2: 'Kd' of material 'x' must be finite numbers ('Kd 1e39 0 0')");
   auto [big, big_error] =
       error("big.obj", "v 0 0 0 1 1 1\nv 1 0 0 1e39 1 0\nv 0 1 0 1 1 1\nf 1 2 3\n");
   EXPECT_NE(big_error.find(":2: 'v' vertex colours must be finite"), std::string::npos)

@@ -40,10 +40,23 @@ void expect_clean_failure(const std::string& args, const std::string& needle = "
   }
 }
 
+// A backend named only by the environment: the error says where the name came from.
+TEST(Cli, AnUnknownBackendFromTheEnvironmentIsNamed) {
+  testing::TempDir dir;
+  const testing::Run r = run_command("env RILL_TRACE_BACKEND=bogus '" RILL_TRACE_EXE
+                                     "' render builtin:cornell --size 8x8 --quiet",
+                                     dir);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(
+      r.err.rfind("rill-trace: RILL_TRACE_BACKEND='bogus': unknown backend (this build has: ", 0),
+      0u)
+      << r.err;
+}
+
 TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("");
   expect_clean_failure("render");
-  expect_clean_failure("frobnicate");
+  expect_clean_failure("frobnicate", "unknown command 'frobnicate' (render, accuracy, demo, info)");
   expect_clean_failure("render builtin:thesis-a --frobnicate");
   expect_clean_failure("render no-such-scene.json", "no such file");
   expect_clean_failure("render builtin:nope", "unknown built-in");

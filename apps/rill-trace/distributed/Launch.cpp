@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 
+#include "rill/Backend.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt::distributed {
@@ -30,7 +31,16 @@ int launcher_world_size() {
 std::string rank_backend(const std::string& cli_backend, bool cli_given) {
   if (cli_given) return cli_backend;
   const std::string v = env("RILL_TRACE_BACKEND");
-  return v.empty() ? cli_backend : v;
+  if (v.empty()) return cli_backend;
+  // Named here: without --backend, a message about an unknown name would leave the user
+  // looking for where it came from.
+  std::string known;
+  for (rill::Backend* b : rill::backends()) {
+    if (b->name() == v) return v;
+    known += (known.empty() ? "" : ", ") + b->name();
+  }
+  throw SceneError("RILL_TRACE_BACKEND='" + clipped(v) +
+                   "': unknown backend (this build has: " + known + ")");
 }
 
 std::string rank_device(const std::string& cli_device, int local_rank) {

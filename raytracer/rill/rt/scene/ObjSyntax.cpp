@@ -82,6 +82,11 @@ std::string quoted(const std::string& line) {
   return "'" + clipped(line, 60) + "'";
 }
 
+// Finite once read as a float (1e39 is a finite double but an infinite float).
+bool finite_float(double v) {
+  return std::fabs(v) <= 3.4028234663852886e38;
+}
+
 bool one_of(const std::string& w, std::initializer_list<const char*> list) {
   for (const char* s : list)
     if (w == s) return true;
@@ -126,7 +131,6 @@ ObjLines check_obj_lines(const std::string& text) {
       if (k == 0 && n >= 6) colours = true;
       // Values that would render wrongly are errors naming the line: texture coordinates and
       // normals must be finite floats, vertex colours finite and >= 0.
-      auto finite_float = [](double v) { return std::fabs(v) <= 3.4028234663852886e38; };
       auto bad_value = [&](const std::string& what) {
         r.issues.push_back({line, "'" + key + "' " + what + " (" + quoted(s) + ")", true, ""});
       };
@@ -182,6 +186,16 @@ ObjLines check_obj_lines(const std::string& text) {
                                     "' has index 0 (OBJ indices start at 1; negative ones count "
                                     "back from the last) (" +
                                     quoted(s) + ")",
+                                true, ""});
+            return;
+          }
+          // tinyobjloader keeps indices in 32 bits: a larger one would wrap and be reported
+          // as some other, wrong number.
+          if (v > 2147483647LL || v < -2147483647LL) {
+            r.issues.push_back({line,
+                                "face vertex '" + clipped(ref, 30) + "' has an index out of " +
+                                    "range (the file has " + std::to_string(count[k]) + " " +
+                                    kinds[k] + " lines before it) (" + quoted(s) + ")",
                                 true, ""});
             return;
           }
@@ -243,7 +257,7 @@ MtlLines check_mtl_lines(const std::string& text) {
       if (!all_numbers(w, nums) || (n != 1 && n != 3))
         return malformed("'" + key + "' expects 1 or 3 numbers");
       for (double v : nums)
-        if (!std::isfinite(v)) return bad_value("must be finite numbers");
+        if (!finite_float(v)) return bad_value("must be finite numbers");
       // Rill renders Kd and Ks; a negative one would give negative radiance.
       if (key == "Kd" || key == "Ks")
         for (double v : nums)
@@ -251,7 +265,7 @@ MtlLines check_mtl_lines(const std::string& text) {
     } else if (one_of(key, {"Ns", "Ni", "d", "Tr", "illum", "sharpness", "Pr", "Pm", "Ps", "Pc",
                             "Pcr", "aniso", "anisor"})) {
       if (!all_numbers(w, nums) || n != 1) return malformed("'" + key + "' expects one number");
-      if (!std::isfinite(nums[0])) return bad_value("must be a finite number");
+      if (!finite_float(nums[0])) return bad_value("must be a finite number");
       if (key == "Ns" && nums[0] < 0) return bad_value("is negative; shininess must be >= 0");
       if ((key == "d" || key == "Tr") && (nums[0] < 0 || nums[0] > 1))
         return bad_value("must be in 0..1");

@@ -3,6 +3,8 @@
 // Builtin.cpp.
 #include "rill/rt/scene/Scene.h"
 
+#include "rill/rt/scene/InputFile.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -439,6 +441,8 @@ Scene load_scene(const std::string& spec, const InputOptions& input) {
       if (n == spec) return builtin_scene(spec);
     throw SceneError(spec + ": no such file (built-in scenes are named builtin:NAME)");
   }
+  // A folder or a device: say so, rather than that its (empty) extension is unknown.
+  if (ext != ".json" && ext != ".obj") check_input_file(spec, "a scene (.json or .obj)");
   if (ext == ".json") return load_json(spec, input);
   if (ext == ".obj") {
     ObjLoadOptions o;

@@ -246,6 +246,13 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     if (!j["file"].is_string()) fail(c, where + ".file must be a path");
     std::filesystem::path p(j["file"].get<std::string>());
     if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
+    std::error_code ec;
+    if (!std::filesystem::exists(p, ec))
+      fail(c,
+           where + ".file: " + p.string() + ": no such file" +
+               (j["file"].get<std::string>() != p.string()
+                    ? " ('" + j["file"].get<std::string>() + "' is relative to the scene's folder)"
+                    : ""));
     ObjLoadOptions o;
     o.transform = t;
     o.override_material = mat;
