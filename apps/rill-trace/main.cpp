@@ -37,6 +37,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <new>
 #include <optional>
@@ -453,6 +454,22 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools = tr
       throw rt::SceneError("--frames " + o.frames + " writes " + std::to_string(span.count()) +
                            " frames: " + option + " needs a frame number, such as frame-%04d" +
                            std::filesystem::path(*path).extension().string());
+  }
+  // Two options naming one file: the later write would silently replace the earlier one.
+  {
+    const std::pair<std::string, const std::string*> files[] = {
+        {"--out", &p.out},      {"--pfm", &o.pfm},       {"--depth", &o.depth},
+        {"--prim", &o.prim},    {"--normal", &o.normal}, {"--stats-json", &o.stats_json},
+        {"--source", &o.source}};
+    std::map<std::string, std::string> seen;  // normalized path -> option
+    for (const auto& [option, path] : files) {
+      if (path->empty() || *path == "/dev/null") continue;
+      const std::string key = std::filesystem::path(*path).lexically_normal().string();
+      auto [it, fresh] = seen.emplace(key, option);
+      if (!fresh)
+        throw rt::SceneError(it->second + " and " + option + " both name " + *path +
+                             ": one would overwrite the other");
+    }
   }
   if (!o.video.empty()) {
     if (p.out.empty() || !plan.sequence)
