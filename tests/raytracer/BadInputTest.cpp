@@ -559,6 +559,18 @@ TEST(BadInput, DuplicateJsonKeysAreErrors) {
       R"({"lights": [{"position": [0, 1, 0]}, {"position": [1, 1, 1]}]})", ".", "ok.json"));
 }
 
+// A word an option does not take is named with the words it does.
+TEST(BadInput, OptionWordsAreNamed) {
+  EXPECT_EQ(error_of([] { parse_json_scene(R"({"options": {"grid": "AUTO"}})", ".", "o.json"); }),
+            "o.json: options.grid 'AUTO': expected \"auto\" or an integer in 1..512");
+  EXPECT_NE(error_of([] {
+              parse_json_scene(R"({"options": {"light_buffer": "on"}})", ".", "o.json");
+            }).find("options.light_buffer 'on': expected \"auto\", \"off\" or an integer in 1.."),
+            std::string::npos);
+  EXPECT_NO_THROW(
+      parse_json_scene(R"({"options": {"grid": "auto", "subgrids": "off"}})", ".", "o.json"));
+}
+
 // Every material the JSON defines is checked, whether a mesh uses it or not.
 TEST(BadInput, UnusedMaterialsAreCheckedToo) {
   const std::string err = error_of([&] {

@@ -487,6 +487,21 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
       if (o.contains("spp")) s.options.spp = integer(c, o["spp"], "options.spp", 1, 4096);
       if (o.contains("smooth_normals"))
         s.options.smooth_normals = boolean(c, o["smooth_normals"], "options.smooth_normals");
+      // A word other than the option's own: name the words, not only the number range.
+      auto words = [&](const char* key, const char* accepted, const char* range) {
+        const json& v = o[key];
+        if (!v.is_string()) return;
+        const std::string w = v.get<std::string>();
+        for (const char* a : {"auto", "off"})
+          if (w == a && std::string(accepted).find(a) != std::string::npos) return;
+        fail(c, std::string("options.") + key + " '" + clipped(w) + "': expected " + accepted +
+                    " or an integer in " + range);
+      };
+      if (o.contains("grid")) words("grid", "\"auto\"", "1..512");
+      if (o.contains("subgrids")) words("subgrids", "\"auto\", \"off\"", "1..1048576");
+      if (o.contains("light_buffer"))
+        words("light_buffer", "\"auto\", \"off\"",
+              ("1.." + std::to_string(kLightBufferMaxRes)).c_str());
       if (o.contains("grid")) {
         if (o["grid"].is_string() && o["grid"].get<std::string>() == "auto")
           s.options.grid = 0;
