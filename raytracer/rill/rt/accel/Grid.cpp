@@ -79,16 +79,30 @@ namespace {
 // Calls fn(x, y, z) for each cell of the grid with corner lo, cell size cell and res cells
 // that the triangle overlaps, the cells enlarged by margin on every side: the cells of its
 // bounding box, then the exact test. The top level and the subgrids share it.
-template <class Fn>
-void for_each_overlapped_cell(const glm::dvec3 tri[3], const glm::dvec3& lo, const glm::dvec3& cell,
-                              const glm::ivec3& res, const glm::dvec3& margin, Fn&& fn) {
-  glm::ivec3 a, b;
+// The cells a..b (inclusive, per axis) of the triangle's bounding box enlarged by margin.
+void bounding_cells(const glm::dvec3 tri[3], const glm::dvec3& lo, const glm::dvec3& cell,
+                    const glm::ivec3& res, const glm::dvec3& margin, glm::ivec3& a, glm::ivec3& b) {
   for (int k = 0; k < 3; ++k) {
     const double mn = std::min({tri[0][k], tri[1][k], tri[2][k]}) - margin[k];
     const double mx = std::max({tri[0][k], tri[1][k], tri[2][k]}) + margin[k];
     a[k] = std::clamp(static_cast<int>(std::floor((mn - lo[k]) / cell[k])), 0, res[k] - 1);
     b[k] = std::clamp(static_cast<int>(std::floor((mx - lo[k]) / cell[k])), 0, res[k] - 1);
   }
+}
+
+// How many cells the triangle's bounding box covers: the exact tests its build makes.
+double bounding_cell_count(const glm::dvec3 tri[3], const glm::dvec3& lo, const glm::dvec3& cell,
+                           const glm::ivec3& res, const glm::dvec3& margin) {
+  glm::ivec3 a, b;
+  bounding_cells(tri, lo, cell, res, margin, a, b);
+  return double(b.x - a.x + 1) * double(b.y - a.y + 1) * double(b.z - a.z + 1);
+}
+
+template <class Fn>
+void for_each_overlapped_cell(const glm::dvec3 tri[3], const glm::dvec3& lo, const glm::dvec3& cell,
+                              const glm::ivec3& res, const glm::dvec3& margin, Fn&& fn) {
+  glm::ivec3 a, b;
+  bounding_cells(tri, lo, cell, res, margin, a, b);
   const glm::dvec3 half = cell * 0.5 + margin;
   for (int z = a.z; z <= b.z; ++z)
     for (int y = a.y; y <= b.y; ++y)
@@ -134,21 +148,13 @@ Subgrid make_subgrid(const Grid& g, const Scene& s, int64_t v, double mag) {
   // Triangles whose boxes cover on average more than 4x the sub-voxels the growth bound
   // allows span the voxel: the subgrid would not pay, and finding that out by the exact tests
   // took seconds for a pile of 30000 large triangles (every voxel tested them all).
-  int64_t boxes = 0;
+  double boxes = 0;
   for (int32_t i = 0; i < e.y; ++i) {
     glm::dvec3 tri[3];
     triangle_vertices(s, static_cast<size_t>(g.elements[static_cast<size_t>(e.x + i)]), tri);
-    int64_t box = 1;
-    for (int k = 0; k < 3; ++k) {
-      const double mn = std::min({tri[0][k], tri[1][k], tri[2][k]}) - margin[k];
-      const double mx = std::max({tri[0][k], tri[1][k], tri[2][k]}) + margin[k];
-      const int a = std::clamp(static_cast<int>(std::floor((mn - corner[k]) / sub[k])), 0, m - 1);
-      const int b = std::clamp(static_cast<int>(std::floor((mx - corner[k]) / sub[k])), 0, m - 1);
-      box *= b - a + 1;
-    }
-    boxes += box;
+    boxes += bounding_cell_count(tri, corner, sub, glm::ivec3(m), margin);
   }
-  if (boxes > 4 * kSubgridMaxGrowth * e.y) {
+  if (boxes > double(4 * kSubgridMaxGrowth * e.y)) {
     r.m = 0;
     return r;
   }
@@ -441,17 +447,9 @@ Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double dens
       double tested = 0;
       for (size_t t = 0; t < n && tested <= budget; ++t) {
         if (!usable[t]) continue;
-        double box = 1;
-        for (int k = 0; k < 3; ++k) {
-          const double a =
-              std::min({double{s.positions[3 * t][k]}, double{s.positions[3 * t + 1][k]},
-                        double{s.positions[3 * t + 2][k]}});
-          const double b =
-              std::max({double{s.positions[3 * t][k]}, double{s.positions[3 * t + 1][k]},
-                        double{s.positions[3 * t + 2][k]}});
-          box *= std::min(std::floor((b - a) / cell[k]) + 2.0, static_cast<double>(g.res[k]));
-        }
-        tested += box;
+        glm::dvec3 tri[3];
+        triangle_vertices(s, t, tri);
+        tested += bounding_cell_count(tri, lo, cell, g.res, glm::dvec3(0.0));
       }
       if (tested <= budget || g.res == glm::ivec3(1)) break;
       for (int a = 0; a < 3; ++a) g.res[a] = std::max(1, g.res[a] * 3 / 4);

@@ -161,10 +161,7 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
     Transform t;
     if (inst.contains("transform")) t = transform(c, inst["transform"], where + ".transform");
     const MeshRange r = it->second;
-    // Before copying: a few lines of JSON could otherwise ask for more memory than there is.
-    if (s.triangle_count() + r.count > (size_t{1} << 26))
-      fail(c, where + ": the copy would make " + std::to_string(s.triangle_count() + r.count) +
-                  " triangles; at most 67108864 are supported");
+    check_room(c, s, r.count, where);  // before copying
     const size_t first = s.triangle_count();
     for (size_t k = r.first; k < r.first + r.count; ++k) {
       glm::vec3 p[3], n[3], col[3];

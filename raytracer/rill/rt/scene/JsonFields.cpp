@@ -74,4 +74,10 @@ double num_double(const Ctx& c, const json& j, const std::string& where) {
   return v;
 }
 
+void check_room(const Ctx& c, const Scene& s, size_t more, const std::string& where) {
+  if (s.triangle_count() + more > kMaxTriangles)
+    fail(c, where + ": it would make " + std::to_string(s.triangle_count() + more) +
+                " triangles; at most " + std::to_string(kMaxTriangles) + " are supported");
+}
+
 }  // namespace rt::json_fields

@@ -35,5 +35,9 @@ glm::vec3 vec3(const Ctx& c, const json& j, const std::string& where);
 // A number gives a grey colour / uniform scale.
 glm::vec3 vec3_or_scalar(const Ctx& c, const json& j, const std::string& where);
 Transform transform(const Ctx& c, const json& j, const std::string& where);
+// Adding `more` triangles keeps the scene within kMaxTriangles; checked before a shape is made
+// or an instance copied: a few numbers in the JSON could otherwise ask for more triangles than
+// there is memory for.
+void check_room(const Ctx& c, const Scene& s, size_t more, const std::string& where);
 
 }  // namespace rt::json_fields

@@ -316,9 +316,9 @@ void Scene::validate() const {
                        ": texture coordinates must be finite numbers");
   for (const Texture& t : textures) validate_texture(t);
   validate_animation(animation, n);
-  if (n > (size_t{1} << 26))
-    throw SceneError("scene has " + std::to_string(n) +
-                     " triangles; at most 67108864 are supported");
+  if (n > kMaxTriangles)
+    throw SceneError("scene has " + std::to_string(n) + " triangles; at most " +
+                     std::to_string(kMaxTriangles) + " are supported");
   for (int32_t m : material)
     if (m < 0 || static_cast<size_t>(m) >= materials.size())
       throw SceneError("internal: triangle with material index " + std::to_string(m));

@@ -143,6 +143,10 @@ struct Scene {
 // The camera checks of Scene::validate (finite, fov_y in (0, 180), eye not at look_at, up not
 // along the view), with messages starting "where: ". Dynamic scenes check every key, and
 // rill-trace each frame's interpolated camera.
+// The most triangles a scene may hold (Scene::validate; the JSON reader checks it before it
+// makes a shape or copies an instance).
+inline constexpr size_t kMaxTriangles = size_t{1} << 26;
+
 void check_camera(const Camera& camera, const std::string& where);
 // A material's values: finite, colours >= 0, reflect + transmit <= 1, shininess and ior in
 // range, texture parameters within texture_count. Throws SceneError naming the material.

@@ -218,14 +218,6 @@ std::vector<glm::vec3> points(const Ctx& c, const json& j, const std::string& wh
   return p;
 }
 
-// The scene's triangle limit (Scene::validate), checked before a shape is generated: a few
-// numbers in the JSON could otherwise ask for more triangles than there is memory for.
-void check_room(const Ctx& c, const Scene& s, size_t more, const std::string& where) {
-  if (s.triangle_count() + more > (size_t{1} << 26))
-    fail(c, where + ": it would make " + std::to_string(s.triangle_count() + more) +
-                " triangles; at most 67108864 are supported");
-}
-
 void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
           const std::map<std::string, Material>& materials) {
   const std::string where = "meshes[" + std::to_string(index) + "]";
