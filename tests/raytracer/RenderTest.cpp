@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include "RenderCompare.h"
 #include "TestUtil.h"
@@ -55,6 +56,88 @@ TEST(Camera, HostFrameMatchesTheFormula) {
   // t is tan evaluated in double, rounded once.
   EXPECT_EQ(f.tan_half,
             static_cast<float>(std::tan(static_cast<double>(53.7f * 0.5f * 0.0174532924f))));
+}
+
+// Whether the ray o + t d, t >= 0, meets the box [lo, hi] (in double).
+bool ray_meets_box(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi) {
+  double t0 = 0, t1 = HUGE_VAL;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      continue;
+    }
+    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  }
+  return t0 <= t1;
+}
+
+// pixels_seeing_box is what lets the megakernel skip a pixel's camera ray: every pixel whose
+// ray, at any sample offset, meets the box must lie inside its rectangle.
+TEST(Camera, PixelsSeeingABoxHoldEveryRayThatMeetsIt) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const float fovs[] = {5.0f, 45.0f, 90.0f, 150.0f};
+  const glm::vec2 offsets[] = {
+      {0.0f, 0.0f}, {0.9999f, 0.0f}, {0.0f, 0.9999f}, {0.9999f, 0.9999f}, {0.5f, 0.5f}};
+  int cut = 0, whole = 0, inside_hits = 0;
+  for (int c = 0; c < 400; ++c) {
+    const int W = 41 + c % 23, H = 29 + c % 17;
+    Camera cam{{4 * u(rng), 4 * u(rng), 6 + 2 * u(rng)},
+               {u(rng), u(rng), u(rng)},
+               {0.2f * u(rng), 1.0f, 0.2f * u(rng)},
+               fovs[c % 4]};
+    const glm::vec3 centre(2 * u(rng), 2 * u(rng), 2 * u(rng));
+    const glm::vec3 half(0.05f + std::fabs(u(rng)), 0.05f + std::fabs(u(rng)),
+                         c % 5 == 0 ? 0.0f : 0.05f + std::fabs(u(rng)));  // some flat
+    const glm::vec3 lo = centre - half, hi = centre + half;
+    const CameraFrame f = camera_frame(cam, W, H);
+    const PixelRect r = pixels_seeing_box(f, lo, hi);
+    const bool all = r.first == glm::ivec2(0) && r.end == glm::ivec2(W, H);
+    (all ? whole : cut) += 1;
+    for (int j = 0; j < H; ++j)
+      for (int i = 0; i < W; ++i)
+        for (const glm::vec2 o : offsets) {
+          const glm::vec3 d = camera_ray(f, i, j, o.x, o.y);
+          if (!ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d), glm::dvec3(lo), glm::dvec3(hi)))
+            continue;
+          const bool inside = i >= r.first.x && i < r.end.x && j >= r.first.y && j < r.end.y;
+          ASSERT_TRUE(inside) << "camera " << c << ": pixel (" << i << ", " << j
+                              << ") sees the box but lies outside [" << r.first.x << ", " << r.end.x
+                              << ") x [" << r.first.y << ", " << r.end.y << ")";
+          inside_hits += !all;
+        }
+  }
+  // Not vacuous: most boxes leave pixels out, and their rectangles hold rays that meet them.
+  EXPECT_GT(cut, 200);
+  EXPECT_GT(inside_hits, 1000);
+  EXPECT_GT(whole, 0);  // boxes around or beside the eye
+}
+
+TEST(Camera, PixelsSeeingABoxSpecialCases) {
+  const Camera cam{{0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 45.0f};
+  const CameraFrame f = camera_frame(cam, 64, 48);
+  auto is_whole = [](const PixelRect& r) {
+    return r.first == glm::ivec2(0) && r.end == glm::ivec2(64, 48);
+  };
+  // A small box ahead: a small rectangle around the image's centre.
+  const PixelRect ahead = pixels_seeing_box(f, glm::vec3(-0.1f), glm::vec3(0.1f));
+  EXPECT_FALSE(ahead.empty());
+  EXPECT_LT(ahead.end.x - ahead.first.x, 16);
+  EXPECT_LE(ahead.first.x, 31);
+  EXPECT_GE(ahead.end.x, 33);
+  // Around the eye, behind it, or not finite: the whole image.
+  EXPECT_TRUE(
+      is_whole(pixels_seeing_box(f, glm::vec3(-1.0f, -1.0f, 4.0f), glm::vec3(1.0f, 1.0f, 6.0f))));
+  EXPECT_TRUE(
+      is_whole(pixels_seeing_box(f, glm::vec3(-1.0f, -1.0f, 7.0f), glm::vec3(1.0f, 1.0f, 8.0f))));
+  EXPECT_TRUE(is_whole(pixels_seeing_box(f, glm::vec3(-1.0f), glm::vec3(1.0f, 1.0f, INFINITY))));
+  EXPECT_TRUE(is_whole(pixels_seeing_box(f, glm::vec3(NAN), glm::vec3(1.0f))));
+  // Beside the image: no pixel. An empty box (lo > hi): none either.
+  EXPECT_TRUE(
+      pixels_seeing_box(f, glm::vec3(40.0f, -0.1f, -0.1f), glm::vec3(41.0f, 0.1f, 0.1f)).empty());
+  EXPECT_TRUE(pixels_seeing_box(f, glm::vec3(1.0f), glm::vec3(0.0f)).empty());
 }
 
 TEST_P(Render, CameraRaysBitForBit) {
@@ -344,6 +427,59 @@ TEST_P(Render, MultipassMatchesMegakernel) {
   rs.width = rs.height = 4;
   rs.strategy = Strategy::Multipass;
   EXPECT_THROW(t.render(rs, glass.camera), std::runtime_error);
+}
+
+// The megakernel skips the camera rays of pixels outside the scene's box on screen, and the
+// AOV outputs when no AOV is asked for: neither changes a bit. Multipass, which traces every
+// pixel, is the reference, at sizes and sample counts where the box covers part of the image.
+TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
+  RT_REQUIRE_BACKEND(GetParam());
+  for (const char* name : {"thesis-a", "cornell"}) {
+    Scene s = builtin_scene(name);
+    if (std::string(name) == "cornell") s.camera.eye.z += 6.0f;  // the room small in the image
+    Grid g = build_grid(s, 0);
+    Tracer t(s, g);
+    RenderSettings rs;
+    rs.backend = GetParam();
+    rs.width = 40;
+    rs.height = 26;
+    rs.max_depth = 2;
+    rs.spp = 2;
+    rs.outputs = {true, true, true, true, true};
+    const PixelRect seen =
+        pixels_seeing_box(camera_frame(s.camera, rs.width, rs.height), g.lo, g.hi);
+    const int64_t inside = int64_t{seen.end.x - seen.first.x} * (seen.end.y - seen.first.y);
+    EXPECT_GT(inside, 0) << name;
+    EXPECT_LT(inside, int64_t{rs.width} * rs.height * 3 / 4) << name << ": nothing skipped";
+    const RenderResult mega = t.render(rs, s.camera);
+    rs.strategy = Strategy::Multipass;
+    const RenderResult multi = t.render(rs, s.camera);
+    expect_identical(mega, multi, std::string(name) + ": megakernel vs multipass on " + GetParam());
+    EXPECT_EQ(mega.rgb8, multi.rgb8) << name;
+    // Without AOVs: the same colour, image and ray count, and no AOV read back.
+    rs.strategy = Strategy::Megakernel;
+    rs.outputs = {true, true, false, false, false};
+    const RenderResult plain = t.render(rs, s.camera);
+    EXPECT_TRUE(plain.depth.empty() && plain.prim.empty() && plain.normal.empty()) << name;
+    ASSERT_EQ(plain.color.size(), mega.color.size());
+    EXPECT_EQ(
+        std::memcmp(plain.color.data(), mega.color.data(), plain.color.size() * sizeof(glm::vec3)),
+        0)
+        << name;
+    EXPECT_EQ(plain.rgb8, mega.rgb8) << name;
+    EXPECT_EQ(plain.rays, mega.rays) << name;
+  }
+  // The variant without AOVs does not write them (the normal output's variables are named
+  // normal_<n>).
+  Scene s = builtin_scene("thesis-a");
+  Grid g = build_grid(s, 0);
+  Tracer t(s, g);
+  EXPECT_NE(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto).find("normal_"),
+            std::string::npos);
+  EXPECT_EQ(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
+                     FrameOutputs{false, true, false, false, false})
+                .find("normal_"),
+            std::string::npos);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Render, ::testing::ValuesIn(testing::backend_names()),

@@ -11,6 +11,7 @@
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Camera.h"
 
 namespace rt {
 namespace {
@@ -74,6 +75,24 @@ TEST_P(Window, TilesEqualTheWholeRender) {
     expect_tiles_match(t, s, rs, 8, 8, "glass, tiles 8x8 (the last row one pixel high)");
     rs.spp = 3;
     expect_tiles_match(t, s, rs, 10, 6, "glass, spp 3, tiles 10x6");
+  }
+  {
+    // The boxes cover part of the image: the megakernel skips the other pixels' camera rays,
+    // by the rectangle of the whole image, in every tile.
+    Scene s = builtin_scene("thesis-a");
+    Grid g = build_grid(s, 0);
+    Tracer t(s, g);
+    RenderSettings rs;  // larger: the rectangle is conservative by a few pixels
+    rs.backend = GetParam();
+    rs.width = 48;
+    rs.height = 36;
+    rs.spp = 2;
+    rs.max_depth = 1;
+    const PixelRect seen =
+        pixels_seeing_box(camera_frame(s.camera, rs.width, rs.height), g.lo, g.hi);
+    EXPECT_LT((seen.end.x - seen.first.x) * (seen.end.y - seen.first.y),
+              rs.width * rs.height * 3 / 4);  // a quarter of the pixels or more skipped
+    expect_tiles_match(t, s, rs, 13, 10, "thesis-a, spp 2, tiles 13x10");
   }
   {
     Scene s = builtin_scene("cornell");

@@ -87,7 +87,9 @@ struct Tracer::Impl {
         rest(features.dynamic ? std::make_unique<Scene>(scene) : nullptr),
         posed(posed_at_start(scene, features)),
         device(posed ? *posed : scene, grid, options, features),
-        megakernel(device) {
+        megakernel(device),
+        static_lo(grid.usable > 0 ? grid.lo : glm::vec3(1.0f)),
+        static_hi(grid.usable > 0 ? grid.hi : glm::vec3(0.0f)) {
     if (posed) {
       bvh = build_bvh(*posed, moving_triangles(*posed));
       device.bvh.upload(bvh);
@@ -103,6 +105,8 @@ struct Tracer::Impl {
   DeviceScene device;
   Megakernel megakernel;
   std::unique_ptr<Multipass> multipass;
+  // The grid's box: every static triangle that can be hit lies inside (empty: lo > hi).
+  glm::vec3 static_lo, static_hi;
   Film film;  // both strategies' samples meet here  // built at its first render
   Program intersect_program, camera_program;
 };
@@ -137,8 +141,10 @@ std::vector<std::string> Tracer::shaders() const {
   return d_->device.materials.used_shaders();
 }
 
-std::string Tracer::source(const std::string& backend, Accuracy a, MegakernelLoop loop) {
-  return d_->megakernel.kernel(backend, a, megakernel_loop_for(loop, backend)).source();
+std::string Tracer::source(const std::string& backend, Accuracy a, MegakernelLoop loop,
+                           const FrameOutputs& outputs) {
+  const bool aovs = outputs.depth || outputs.prim || outputs.normal;
+  return d_->megakernel.kernel(backend, a, megakernel_loop_for(loop, backend), aovs).source();
 }
 
 FrameUpdate Tracer::set_time(double time, BvhUpdate how) {
@@ -202,6 +208,15 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
                              std::to_string(width) + "x" + std::to_string(height) + " image");
   // The camera spans the whole image; the launches cover the window.
   I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y));
+  // What a camera ray can hit: the grid's triangles and the moving ones' BVH, as they are now.
+  glm::vec3 lo = I.static_lo, hi = I.static_hi;
+  if (!I.bvh.nodes.empty()) {
+    const BvhNode& root = I.bvh.nodes.front();
+    const bool none = lo.x > hi.x;
+    lo = none ? root.lo : glm::min(lo, root.lo);
+    hi = none ? root.hi : glm::max(hi, root.hi);
+  }
+  I.device.camera.set_bounds(lo, hi);
   if (rs.strategy == Strategy::Multipass) {
     if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);
     return I.multipass->render(rs, I.film, win.width, win.height, depth, spp, r);

@@ -195,9 +195,11 @@ class Tracer {
   // The same into `result`, whose image memory is reused: frame after frame into one
   // RenderResult allocates nothing on the host.
   void render(const RenderSettings& settings, const Camera& camera, RenderResult& result);
-  // The megakernel's generated source on a backend (compiles if needed).
+  // The megakernel's generated source on a backend (compiles if needed): the variant a
+  // render with these outputs runs (without AOV outputs when none is asked for).
   std::string source(const std::string& backend, rill::Accuracy a = rill::Accuracy::Strict,
-                     MegakernelLoop loop = MegakernelLoop::Auto);
+                     MegakernelLoop loop = MegakernelLoop::Auto,
+                     const FrameOutputs& outputs = FrameOutputs{});
 
   // The camera rays the tracer casts (the kernel's own ray generation), for tests.
   std::vector<glm::vec3> camera_rays(const std::string& backend, const Camera& camera, int width,

@@ -42,17 +42,18 @@ MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backe
 // One loop is captured now, so that a shader's misuse of its parameters is an error of the
 // Tracer's constructor (the other loop runs the same shader code); the other at its first use.
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
-  (void)program(MegakernelLoop::Segment);
+  (void)program(MegakernelLoop::Segment, true);
 }
 
 Megakernel::~Megakernel() = default;
 
-const Program& Megakernel::program(MegakernelLoop loop) const {
+const Program& Megakernel::program(MegakernelLoop loop, bool aovs) const {
   if (loop == MegakernelLoop::Auto)
     throw std::invalid_argument("Megakernel::program: resolve Auto first (megakernel_loop_for)");
-  std::optional<Program>& p = loop == MegakernelLoop::Ray ? per_ray_ : per_segment_;
-  if (!p) p = capture(loop);
-  return *p;
+  auto it = programs_.find({loop, aovs});
+  if (it == programs_.end())
+    it = programs_.emplace(std::pair{loop, aovs}, capture(loop, aovs)).first;
+  return it->second;
 }
 
 // The loop's state, carried from one iteration to the next: the ray being traced and (Ray
@@ -89,27 +90,29 @@ struct Megakernel::PathLoop {
   Bool shade_done = false, path_done = false;
 };
 
-// The AOVs of the camera ray.
+// The AOVs of the camera ray: what a miss leaves, until its hit sets them.
 struct Megakernel::Aovs {
-  Output<Float> depth{"depth"};
-  Output<Int> prim{"prim"};
-  Output<Float3> normal{"normal"};
+  Float depth = as_float(Int(0x7f800000));
+  Int prim = -1;
+  Float3 normal{0.0f};
 };
 
-Program Megakernel::capture(MegakernelLoop loop) const {
+Program Megakernel::capture(MegakernelLoop loop, bool aov_outputs) const {
   return rill::program("rill_trace", [&] {
-    Output<Float3> out_color("color");
     Aovs aovs;
-    Output<Int> out_rays("rays");
-    aovs.depth = as_float(Int(0x7f800000));
-    aovs.prim = -1;
-    aovs.normal = Float3(0.0f);
 
     PathLoop L(S_.F.stack);
     L.ray.o = S_.camera.eye;
-    L.ray.d = S_.camera.direction(element_coord());
+    const Int2 pix = element_coord();
     // max_iter = 0 skips all tracing: render() uses that for a warm-up launch.
-    RILL_IF(max_iter_ > 0) {
+    RILL_IF(max_iter_ > 0 && !S_.camera.may_see_scene(pix)) {
+      // A camera ray outside the scene's box on screen: the miss its first segment would
+      // give (the same operations), without making the ray or walking it.
+      L.rays += 1;
+      miss(L);
+    }
+    RILL_ELSE_IF(max_iter_ > 0) {
+      L.ray.d = S_.camera.direction(pix);
       RILL_DO {
         L.path_done = false;
         if (loop == MegakernelLoop::Segment) {
@@ -144,8 +147,18 @@ Program Megakernel::capture(MegakernelLoop loop) const {
       RILL_UNTIL(L.finished);
     }
     RILL_ENDIF;
+    Output<Float3> out_color("color");
     out_color = L.color;
+    Output<Int> out_rays("rays");
     out_rays = L.rays;
+    if (aov_outputs) {
+      Output<Float> depth("depth");
+      Output<Int> prim("prim");
+      Output<Float3> normal("normal");
+      depth = aovs.depth;
+      prim = aovs.prim;
+      normal = aovs.normal;
+    }
   });
 }
 
@@ -354,17 +367,19 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
 }
 
 // "backend/accuracy/loop": a compiled kernel's key, and its warm-up's.
-std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a,
-                                   MegakernelLoop loop) {
-  return backend_key(backend_name, a) + "/" + megakernel_loop_name(loop);
+std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a, MegakernelLoop loop,
+                                   bool aovs) {
+  return backend_key(backend_name, a) + "/" + megakernel_loop_name(loop) +
+         (aovs ? "/aovs" : "/color");
 }
 
-Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a, MegakernelLoop loop) {
+Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a, MegakernelLoop loop,
+                           bool aovs) {
   loop = megakernel_loop_for(loop, backend_name);
-  const std::string key = kernel_key(backend_name, a, loop);
+  const std::string key = kernel_key(backend_name, a, loop, aovs);
   auto it = kernels_.find(key);
   if (it != kernels_.end()) return it->second;
-  return kernels_.emplace(key, compile_for(program(loop), backend_name, a)).first->second;
+  return kernels_.emplace(key, compile_for(program(loop, aovs), backend_name, a)).first->second;
 }
 
 // One backend's output streams, kept for its next frame of the same size (Film.h says why
@@ -392,7 +407,10 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   const MegakernelLoop loop = megakernel_loop_for(rs.loop, rs.backend);
   r.loop = megakernel_loop_name(loop);
   Stopwatch since_start;
-  Kernel& k = kernel(rs.backend, rs.accuracy, loop);
+  // The AOVs cost a third of the kernel's writes (about 3% of a cpu frame of thesis A):
+  // written only for a render that reads one of them back.
+  const bool aovs = rs.outputs.depth || rs.outputs.prim || rs.outputs.normal;
+  Kernel& k = kernel(rs.backend, rs.accuracy, loop, aovs);
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
   add_stages(r, k.info());
 
@@ -412,14 +430,15 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   const std::string key = backend_key(rs.backend, rs.accuracy);
   Stopwatch setup;
   Frame& out = buffers_for(frames_, key, width, height);
-  k.outputs(out.color, out.dist, out.prim, out.normal, out.rays);
+  k.bind("color", out.color).bind("rays", out.rays);
+  if (aovs) k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
   film.begin(rs.backend, rs.accuracy, width, height, spp);
   r.times.setup = setup.ms();
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
   // below is tracing alone. The ray count's reduction kernels compile here too.
-  const auto warm_key = std::make_pair(kernel_key(rs.backend, rs.accuracy, loop),
-                                       int64_t{width} * height);
+  const auto warm_key =
+      std::make_pair(kernel_key(rs.backend, rs.accuracy, loop, aovs), int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
     max_iter_.set(0);
     k.execute();

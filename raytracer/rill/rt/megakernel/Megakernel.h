@@ -4,7 +4,11 @@
 // per light; when the lights are done, the local colour is weighted as in the thesis's
 // eq. 5.1 and the path continues with the shader's reflected or transmitted ray (a second
 // branch goes on a small ray stack), until the path ends, the stack is empty and the loop
-// finishes.
+// finishes. A camera ray whose pixel lies outside the scene's box on screen
+// (CameraRays::may_see_scene) is a miss without being made or walked.
+//
+// The kernel writes the colour and the ray count, and the camera ray's AOVs (depth,
+// primitive, normal) only in the variant compiled for renders that ask for one of them.
 //
 // The loop has two shapes (MegakernelLoop, Tracer.h), with the same operations in the same
 // order and so the same bits:
@@ -38,12 +42,13 @@ class Megakernel {
  public:
   explicit Megakernel(DeviceScene& scene);
   ~Megakernel();
-  // The program with loop Ray or Segment (Segment's captured by the constructor, Ray's at its
-  // first use).
-  const rill::Program& program(MegakernelLoop loop) const;
-  // Compiled once per backend, accuracy and loop (Auto: the backend's, megakernel_loop_for).
+  // The program with loop Ray or Segment, with the AOV outputs or without (Segment's with
+  // them captured by the constructor, the others at their first use).
+  const rill::Program& program(MegakernelLoop loop, bool aovs = true) const;
+  // Compiled once per backend, accuracy, loop (Auto: the backend's, megakernel_loop_for) and
+  // AOVs or not.
   rill::Kernel& kernel(const std::string& backend, rill::Accuracy a,
-                       MegakernelLoop loop = MegakernelLoop::Auto);
+                       MegakernelLoop loop = MegakernelLoop::Auto, bool aovs = true);
   // Renders spp samples through the camera set in the scene's CameraRays; the samples meet
   // on `film`.
   void render(const RenderSettings& rs, Film& film, int width, int height, int depth, int spp,
@@ -53,8 +58,9 @@ class Megakernel {
   struct PathLoop;
   struct Aovs;
   struct Frame;  // a backend's output streams (PerBackend.h: buffers_for)
-  rill::Program capture(MegakernelLoop loop) const;
-  static std::string kernel_key(const std::string& backend, rill::Accuracy a, MegakernelLoop loop);
+  rill::Program capture(MegakernelLoop loop, bool aovs) const;
+  static std::string kernel_key(const std::string& backend, rill::Accuracy a, MegakernelLoop loop,
+                                bool aovs);
   // The loop body's steps (Megakernel.cpp). Ray: trace, camera_or_secondary_ray or
   // shadow_ray_back, next_ray once the lights are done, pop_or_finish.
   Hit trace(PathLoop& L) const;
@@ -74,7 +80,7 @@ class Megakernel {
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
   // Captured on demand, from const accessors (Tracer::program is const): a GPU never needs
   // Segment's program beyond the constructor's, a CPU backend never Ray's.
-  mutable std::optional<rill::Program> per_ray_, per_segment_;
+  mutable std::map<std::pair<MegakernelLoop, bool>, rill::Program> programs_;
   std::map<std::string, rill::Kernel> kernels_;
   std::map<std::string, std::unique_ptr<Frame>> frames_;  // per backend and accuracy
   std::set<std::pair<std::string, int64_t>> warmed_;      // kernels launched at a size before

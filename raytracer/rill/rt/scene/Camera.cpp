@@ -1,6 +1,7 @@
 // Built with -ffp-contract=off (see CMakeLists.txt): every operation rounds to float32.
 #include "rill/rt/scene/Camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rt {
@@ -38,6 +39,46 @@ glm::vec3 camera_ray(const CameraFrame& f, int i, int j, float ox, float oy) {
   glm::vec3 d = f.forward + sx * f.right;
   d = d + sy * f.up;
   return normalize3(d);
+}
+
+PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm::vec3& hi) {
+  const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
+  const PixelRect all{glm::ivec2(0), glm::ivec2(w, h)};
+  if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) return PixelRect{};
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(lo[a]) || !std::isfinite(hi[a])) return all;
+  // In double, against the camera's float frame: the box's corners as (sx, sy), the screen
+  // coordinates of docs/camera.md. The box is convex and, when every corner is in front of
+  // the eye, so is all of it: its rays lie within the corners' (sx, sy) range.
+  const glm::dvec3 fw(f.forward), rt(f.right), up(f.up), eye(f.eye);
+  const double size = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
+  double sx_min = HUGE_VAL, sx_max = -HUGE_VAL, sy_min = HUGE_VAL, sy_max = -HUGE_VAL;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+    const glm::dvec3 v = p - eye;
+    const double z = glm::dot(v, fw);
+    if (!(z > 1e-3 * std::max(size, glm::length(v)))) return all;
+    const double sx = glm::dot(v, rt) / z, sy = glm::dot(v, up) / z;
+    sx_min = std::min(sx_min, sx);
+    sx_max = std::max(sx_max, sx);
+    sy_min = std::min(sy_min, sy);
+    sy_max = std::max(sy_max, sy);
+  }
+  // sx = ((i + ox) / W * 2 - 1) t a and sy = (1 - (j + oy) / H * 2) t, solved for i and j;
+  // ox, oy in [0, 1) widen each range by one pixel, and two more cover rounding.
+  const double t = f.tan_half, a = f.aspect;
+  if (!(t > 0) || !(a > 0)) return all;
+  auto column = [&](double sx) { return (sx / (t * a) + 1.0) * 0.5 * f.width; };
+  auto row = [&](double sy) { return (1.0 - sy / t) * 0.5 * f.height; };
+  auto clamp_to = [](double v, int n) {
+    return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(n)));
+  };
+  PixelRect r;
+  r.first.x = clamp_to(std::floor(column(sx_min)) - 3.0, w);
+  r.end.x = clamp_to(std::ceil(column(sx_max)) + 3.0, w);
+  r.first.y = clamp_to(std::floor(row(sy_max)) - 3.0, h);
+  r.end.y = clamp_to(std::ceil(row(sy_min)) + 3.0, h);
+  return r;
 }
 
 }  // namespace rt
