@@ -14,8 +14,9 @@
 //               the backend keeps them) and full shading (Tracer::render, its rays/s counted
 //               as rill-trace counts them: camera, shadow and secondary rays over the trace
 //               time, which includes what `rill-trace render` reads back by default: the
-//               8-bit image for its PNG). With --loops ray,segment each backend's full
-//               frames run with both megakernel loops, interleaved, one row each.
+//               8-bit image for its PNG, into the memory of the last frame's, as
+//               `rill-trace render --bench-frames` does). With --loops ray,segment each backend's
+//               full frames run with both megakernel loops, interleaved, one row each.
 //   embree      the same primary rays through Intel Embree 3 (rtcIntersect1, one ray at a
 //               time, oneTBB over the same cores), interleaved with Rill's CPU backend:
 //               Mrays/s of both, the ratio, and how many rays agree (same primitive, or the
@@ -332,10 +333,14 @@ class Bench {
           bes.size(), std::vector<std::vector<double>>(loops.size()));
       std::vector<double> embree_ms;
       std::vector<std::vector<int64_t>> full_rays(bes.size(), std::vector<int64_t>(loops.size()));
+      // One result per backend and loop, rendered into frame after frame as rill-trace's
+      // --bench-frames does: its images' memory is allocated once, by the warm-up.
+      std::vector<std::vector<rt::RenderResult>> results(
+          bes.size(), std::vector<rt::RenderResult>(loops.size()));
       if (throughput)
         for (size_t b = 0; b < bes.size(); ++b)  // warm-up and compile
           for (size_t l = 0; l < loops.size(); ++l)
-            setup_of[b]->tracer->render(full_settings(b, l), scene.camera);
+            setup_of[b]->tracer->render(full_settings(b, l), scene.camera, results[b][l]);
       for (int r = 0; r < o_.repeats; ++r) {
         for (size_t b = 0; b < bes.size(); ++b) {
           prim_ms[b].push_back(runs[b]->run());
@@ -350,7 +355,8 @@ class Bench {
         if (throughput)
           for (size_t b = 0; b < bes.size(); ++b)
             for (size_t l = 0; l < loops.size(); ++l) {
-              rt::RenderResult res = setup_of[b]->tracer->render(full_settings(b, l), scene.camera);
+              rt::RenderResult& res = results[b][l];
+              setup_of[b]->tracer->render(full_settings(b, l), scene.camera, res);
               full_ms[b][l].push_back(res.trace_ms);
               full_rays[b][l] = res.rays;
             }

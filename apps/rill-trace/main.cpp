@@ -604,7 +604,7 @@ int render(RenderOptions o) {
   }
   if (!o.source.empty()) {
     std::ofstream f(o.source);
-    f << tracer.source(o.backend, p.acc, p.rs.loop, p.rs.outputs);
+    f << tracer.source(o.backend, p.acc, p.rs.loop, p.rs.outputs, scene.options.spp);
     if (!f) throw rt::SceneError("cannot write " + o.source);
   }
 

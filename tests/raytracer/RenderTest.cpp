@@ -429,8 +429,9 @@ TEST_P(Render, MultipassMatchesMegakernel) {
   EXPECT_THROW(t.render(rs, glass.camera), std::runtime_error);
 }
 
-// The megakernel skips the camera rays of pixels outside the scene's box on screen, and the
-// AOV outputs when no AOV is asked for: neither changes a bit. Multipass, which traces every
+// The megakernel skips the camera rays of pixels outside the scene's box on screen, the AOV
+// outputs when no AOV is asked for, and encodes the 8-bit image itself when only that is read
+// back from one sample: none of it changes a bit. Multipass, which traces every
 // pixel, is the reference, at sizes and sample counts where the box covers part of the image.
 TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
   RT_REQUIRE_BACKEND(GetParam());
@@ -468,6 +469,29 @@ TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
         << name;
     EXPECT_EQ(plain.rgb8, mega.rgb8) << name;
     EXPECT_EQ(plain.rays, mega.rays) << name;
+    // Only the 8-bit image: one sample encoded in the megakernel, two by the film.
+    rs.outputs = {false, true, false, false, false};
+    const RenderResult encoded2 = t.render(rs, s.camera);
+    EXPECT_TRUE(encoded2.color.empty()) << name;
+    EXPECT_EQ(encoded2.rgb8, mega.rgb8) << name;
+    EXPECT_EQ(encoded2.rays, mega.rays) << name;
+    rs.spp = 1;
+    const RenderResult encoded1 = t.render(rs, s.camera);
+    rs.outputs = {true, true, false, false, false};
+    const RenderResult film1 = t.render(rs, s.camera);
+    EXPECT_FALSE(encoded1.rgb8.empty()) << name;
+    EXPECT_EQ(encoded1.rgb8, film1.rgb8) << name;
+    EXPECT_EQ(encoded1.rays, film1.rays) << name;
+    // A window of the image, encoded in the megakernel: the whole image's pixels.
+    rs.outputs = {false, true, false, false, false};
+    rs.window = {3, 5, 29, 17};
+    const RenderResult part = t.render(rs, s.camera);
+    ASSERT_EQ(part.rgb8.size(), size_t{29 * 17 * 3}) << name;
+    for (int y = 0; y < 17; ++y)
+      ASSERT_EQ(std::memcmp(&part.rgb8[size_t(y) * 29 * 3],
+                            &film1.rgb8[(size_t(y + 5) * 40 + 3) * 3], 29 * 3),
+                0)
+          << name << ", window row " << y;
   }
   // The variant without AOVs does not write them (the normal output's variables are named
   // normal_<n>).
@@ -479,6 +503,16 @@ TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
   EXPECT_EQ(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
                      FrameOutputs{false, true, false, false, false})
                 .find("normal_"),
+            std::string::npos);
+  // One sample that only wants the 8-bit image: encoded in the kernel (which reads the
+  // background's encoding).
+  EXPECT_NE(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
+                     FrameOutputs{false, true, false, false, false})
+                .find("background_rgb8"),
+            std::string::npos);
+  EXPECT_EQ(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
+                     FrameOutputs{false, true, false, false, false}, 2)
+                .find("background_rgb8"),
             std::string::npos);
 }
 

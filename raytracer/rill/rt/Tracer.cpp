@@ -142,9 +142,11 @@ std::vector<std::string> Tracer::shaders() const {
 }
 
 std::string Tracer::source(const std::string& backend, Accuracy a, MegakernelLoop loop,
-                           const FrameOutputs& outputs) {
-  const bool aovs = outputs.depth || outputs.prim || outputs.normal;
-  return d_->megakernel.kernel(backend, a, megakernel_loop_for(loop, backend), aovs).source();
+                           const FrameOutputs& outputs, int spp) {
+  return d_->megakernel
+      .kernel(backend, a, megakernel_loop_for(loop, backend),
+              MegakernelOutputs::for_frame(outputs, spp))
+      .source();
 }
 
 FrameUpdate Tracer::set_time(double time, BvhUpdate how) {

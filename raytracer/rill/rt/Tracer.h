@@ -196,10 +196,11 @@ class Tracer {
   // RenderResult allocates nothing on the host.
   void render(const RenderSettings& settings, const Camera& camera, RenderResult& result);
   // The megakernel's generated source on a backend (compiles if needed): the variant a
-  // render with these outputs runs (without AOV outputs when none is asked for).
+  // render with these outputs and samples per pixel runs (without AOV outputs when none is
+  // asked for; encoding the 8-bit image itself for one sample without the linear colour).
   std::string source(const std::string& backend, rill::Accuracy a = rill::Accuracy::Strict,
                      MegakernelLoop loop = MegakernelLoop::Auto,
-                     const FrameOutputs& outputs = FrameOutputs{});
+                     const FrameOutputs& outputs = FrameOutputs{}, int spp = 1);
 
   // The camera rays the tracer casts (the kernel's own ray generation), for tests.
   std::vector<glm::vec3> camera_rays(const std::string& backend, const Camera& camera, int width,

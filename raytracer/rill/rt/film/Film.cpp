@@ -2,7 +2,9 @@
 // read-back of what was asked for.
 #include "rill/rt/film/Film.h"
 
+#include <array>
 #include <bit>
+#include <functional>
 #include <span>
 
 #include "rill/Stopwatch.h"
@@ -64,35 +66,53 @@ Film::Film() {
   });
 }
 
-// Element i encodes pixels 4i .. 4i + 3 (the last one repeated past the end) into 12 bytes,
-// R G B R G B ..., as three little-endian Ints: the memory of the 8-bit image itself, which
-// is read back into RenderResult::rgb8 as it is, with nothing to unpack on the host.
-Program Film::encode_program(const Stream<Float3>& color) const {
-  return program("rill_film_encode", [&] {
-    Output<Int3> rgb("rgb");
+namespace {
+
+// Element i makes pixels 4i .. 4i + 3 into 12 bytes, R G B R G B ..., as three little-endian
+// Ints: the memory of the 8-bit image itself, which is read back into RenderResult::rgb8 as
+// it is, with nothing to unpack on the host. rgb(x, y) gives a pixel's three bytes.
+Program rgb8_program(const char* name, const Uniform<Int>& width,
+                     const std::function<std::array<Int, 3>(const Int&, const Int&)>& rgb) {
+  return program(name, [&] {
+    Output<Int3> out("rgb");
     // One division for the first pixel's (x, y); the next three step along the row, onto
     // the next rows where they end (up to three times over for images 1 to 3 wide). Past
     // the last pixel the gather's clamp reads some pixel of the image: those bytes are cut
     // off on the host.
     Int first = element_index() * 4;
-    Int y0 = first / width_;
-    Int x0 = first - y0 * width_;
+    Int y0 = first / width;
+    Int x0 = first - y0 * width;
     std::vector<Int> bytes;
     for (int k = 0; k < 4; ++k) {
       Int x = x0 + k, y = y0;
       for (int wrap = 0; wrap < k; ++wrap) {
-        Bool past = x >= width_;
-        x = select(past, x - width_, x);
+        Bool past = x >= width;
+        x = select(past, x - width, x);
         y = select(past, y + 1, y);
       }
-      Float3 c = color(x, y);
-      for (int ch = 0; ch < 3; ++ch) bytes.push_back(srgb8_.encode(c[ch]));
+      for (const Int& b : rgb(x, y)) bytes.push_back(b);
     }
     auto word = [&](int w) {  // integer arithmetic wraps: the top byte lands in the sign bit
       return bytes[4 * w] + bytes[4 * w + 1] * 256 + bytes[4 * w + 2] * 65536 +
              bytes[4 * w + 3] * 16777216;
     };
-    rgb = Int3(word(0), word(1), word(2));
+    out = Int3(word(0), word(1), word(2));
+  });
+}
+
+}  // namespace
+
+Program Film::encode_program(const Stream<Float3>& color) const {
+  return rgb8_program("rill_film_encode", width_, [&](const Int& x, const Int& y) {
+    Float3 c = color(x, y);
+    return std::array<Int, 3>{srgb8_.encode(c[0]), srgb8_.encode(c[1]), srgb8_.encode(c[2])};
+  });
+}
+
+Program Film::pack_program(const Stream<Int>& pixels) const {
+  return rgb8_program("rill_film_pack", width_, [&](const Int& x, const Int& y) {
+    Int p = pixels(x, y);
+    return std::array<Int, 3>{p & 255, (p >> 8) & 255, (p >> 16) & 255};
   });
 }
 
@@ -113,6 +133,7 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
   }
   spp_ = spp;
   single_.reset();
+  encoded_.reset();
   accumulate_ms_ = 0;
 }
 
@@ -128,12 +149,32 @@ void Film::add_sample(const Stream<Float3>& color, int s) {
   accumulate_ms_ += add.ms();
 }
 
+void Film::add_encoded(const Stream<Int>& pixels) {
+  if (spp_ != 1) throw std::logic_error("Film::add_encoded: a frame of one sample only");
+  encoded_ = pixels;
+}
+
+Kernel& Film::encoder_for(StreamRef source, int width, int height, bool packed) {
+  if (!now_->encode || now_->encode_source != source.shared()) {
+    now_->encode.emplace(compile_for(
+        packed ? pack_program(Stream<Int>(source)) : encode_program(Stream<Float3>(source)),
+        now_->backend, now_->accuracy));
+    now_->encode_source = source.shared();
+    now_->encode_size = {width, height};
+  }
+  return *now_->encode;
+}
+
 void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r) {
   Stopwatch step;
-  Stream<Float3> color = spp_ == 1 ? *single_ : *now_->mean_color;
+  if (encoded_ && want.color)
+    throw std::logic_error("Film::finish: the colour is wanted but only its encoding was added");
+  // The colour stream (one sample's or the mean), unless the strategy encoded it itself.
+  std::optional<Stream<Float3>> color;
+  if (!encoded_) color = spp_ == 1 ? *single_ : *now_->mean_color;
   if (spp_ > 1) {
     samples_.set(static_cast<float>(spp_));
-    now_->mean.inputs(*now_->sum, *now_->carry).outputs(color);
+    now_->mean.inputs(*now_->sum, *now_->carry).outputs(*color);
     now_->mean.execute();
     accumulate_ms_ += step.lap();
   }
@@ -145,7 +186,8 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     into.resize(static_cast<size_t>(stream.size()));
     stream.download_into(std::span(into));
   };
-  read(color, r.color, want.color);
+  if (color) read(*color, r.color, want.color);
+  if (!color) r.color.clear();
   read(aovs.depth, r.depth, want.depth);
   read(aovs.prim, r.prim, want.prim);
   read(aovs.normal, r.normal, want.normal);
@@ -153,16 +195,15 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
   if (want.rgb8) {
     static_assert(std::endian::native == std::endian::little,
                   "the 8-bit image is read back as little-endian Ints");
-    const int64_t n = color.size(), groups = (n + 3) / 4;
+    const StreamRef source = encoded_ ? StreamRef(*encoded_) : StreamRef(*color);
+    const int64_t n = encoded_ ? encoded_->size() : color->size(), groups = (n + 3) / 4;
+    const int width = static_cast<int>(encoded_ ? encoded_->width() : color->width());
+    const int height = static_cast<int>(encoded_ ? encoded_->height() : color->height());
     if (!now_->packed || now_->packed->size() != groups) now_->packed.emplace(groups, "film_rgb8");
-    if (!now_->encode || now_->encode_source != StreamRef(color).shared()) {
-      now_->encode.emplace(compile_for(encode_program(color), now_->backend, now_->accuracy));
-      now_->encode_source = StreamRef(color).shared();
-      now_->encode_size = {static_cast<int>(color.width()), static_cast<int>(color.height())};
-    }
-    width_.set(static_cast<int32_t>(color.width()));
-    now_->encode->outputs(*now_->packed);
-    now_->encode->execute();
+    Kernel& encode = encoder_for(source, width, height, encoded_.has_value());
+    width_.set(static_cast<int32_t>(width));
+    encode.outputs(*now_->packed);
+    encode.execute();
     // Read straight into the image's memory (a frame of the last one's size keeps it and
     // does not clear it), with room for the last group's padding, then cut to 3 n bytes.
     r.rgb8.resize(static_cast<size_t>(groups) * 12);

@@ -6,7 +6,9 @@
 // sum and the rounding error it dropped, so many samples lose almost nothing). At the end,
 // the film makes the mean and reads back only what FrameOutputs asks for: the 8-bit image
 // is encoded on the device (Srgb8.h) into the very bytes of RenderResult::rgb8, so a PNG
-// costs 3 bytes per pixel to read back and nothing to unpack.
+// costs 3 bytes per pixel to read back and nothing to unpack. A strategy may encode a frame
+// of one sample itself, where the colour is made (add_encoded): the film then only packs
+// its pixels' bytes.
 //
 // Its buffers and kernels are kept per backend and accuracy and reused by later frames of
 // the same size: a frame allocates nothing and uploads nothing. They are never shared
@@ -43,6 +45,10 @@ class Film {
   void begin(const std::string& backend, rill::Accuracy a, int width, int height, int spp);
   // Sample s's colour, just written by the strategy on the frame's backend.
   void add_sample(const rill::Stream<rill::Float3>& color, int s);
+  // Instead, for a frame of one sample whose linear colour is not read back: the 8-bit image
+  // that the strategy encoded itself, one Int per pixel (R + 256 G + 65536 B, each byte as
+  // Srgb8Encoder gives it). The film packs it into RenderResult::rgb8's bytes.
+  void add_encoded(const rill::Stream<rill::Int>& pixels);
   // The mean, encoded and read back as `want` asks, with the first sample's AOVs; adds the
   // time it took to r.times.
   void finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r);
@@ -51,6 +57,11 @@ class Film {
   struct Buffers;
   // The 8-bit encoder, gathering from one colour stream (the strategy's, or the mean).
   rill::Program encode_program(const rill::Stream<rill::Float3>& color) const;
+  // The same bytes from pixels encoded by add_encoded's strategy.
+  rill::Program pack_program(const rill::Stream<rill::Int>& pixels) const;
+  // The program that makes the 8-bit image from one of the two, compiled again when the
+  // stream it gathers from is another.
+  rill::Kernel& encoder_for(rill::StreamRef source, int width, int height, bool packed);
 
   rill::Uniform<rill::Int> first_{0, "first_sample"};
   rill::Uniform<rill::Float> samples_{1.0f, "samples"};
@@ -61,6 +72,7 @@ class Film {
   Buffers* now_ = nullptr;                                   // the frame's
   int spp_ = 1;
   std::optional<rill::Stream<rill::Float3>> single_;  // spp == 1: the sample itself
+  std::optional<rill::Stream<rill::Int>> encoded_;    // or its 8-bit encoding (add_encoded)
   double accumulate_ms_ = 0;
 };
 

@@ -13,6 +13,7 @@ DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions&
   if (F.shadows) light_buffer.upload(build_light_buffer(scene, g, light_buffer_res(scene)));
   shading.upload(scene);
   light_count = static_cast<int>(scene.lights.size());
+  background = scene.background;
 }
 
 }  // namespace rt

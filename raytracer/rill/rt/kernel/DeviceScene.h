@@ -33,7 +33,8 @@ struct DeviceScene {
   CameraRays camera;
   Intersector intersector{grid, bvh, light_buffer, lights.position, tris, K, F};
   Shading shading{tris, materials, lights, K, F};
-  int light_count = 0;  // host
+  int light_count = 0;         // host
+  glm::vec3 background{0.0f};  // host (Shading::background's value)
 };
 
 }  // namespace rt

@@ -7,6 +7,8 @@
 #include "rill/Reduce.h"
 #include "rill/Stopwatch.h"
 
+#include "rill/rt/scene/Image.h"
+
 namespace rt {
 
 using namespace rill;
@@ -42,17 +44,31 @@ MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backe
 // One loop is captured now, so that a shader's misuse of its parameters is an error of the
 // Tracer's constructor (the other loop runs the same shader code); the other at its first use.
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
-  (void)program(MegakernelLoop::Segment, true);
+  // What a skipped pixel's colour is (miss(): 0 + 1 * background, in float) encodes to;
+  // to_srgb8 gives the device encoder's bytes (Srgb8.h).
+  const glm::vec3 bg = glm::vec3(0.0f) + 1.0f * S_.background;
+  background_rgb8_.set(to_srgb8(bg.x) + to_srgb8(bg.y) * 256 + to_srgb8(bg.z) * 65536);
+  (void)program(MegakernelLoop::Segment);
 }
 
 Megakernel::~Megakernel() = default;
 
-const Program& Megakernel::program(MegakernelLoop loop, bool aovs) const {
+MegakernelOutputs MegakernelOutputs::for_frame(const FrameOutputs& want, int spp) {
+  MegakernelOutputs o;
+  // The AOVs are a third of the kernel's writes: only for a render that reads one back.
+  o.aovs = want.depth || want.prim || want.normal;
+  // Encoded in the kernel: 4 bytes a pixel written instead of 12, and no encoding pass
+  // reading them again. Samples are added up as linear colours.
+  o.encoded = spp == 1 && want.rgb8 && !want.color;
+  return o;
+}
+
+const Program& Megakernel::program(MegakernelLoop loop, MegakernelOutputs outputs) const {
   if (loop == MegakernelLoop::Auto)
     throw std::invalid_argument("Megakernel::program: resolve Auto first (megakernel_loop_for)");
-  auto it = programs_.find({loop, aovs});
+  auto it = programs_.find({loop, outputs});
   if (it == programs_.end())
-    it = programs_.emplace(std::pair{loop, aovs}, capture(loop, aovs)).first;
+    it = programs_.emplace(std::pair{loop, outputs}, capture(loop, outputs)).first;
   return it->second;
 }
 
@@ -97,19 +113,21 @@ struct Megakernel::Aovs {
   Float3 normal{0.0f};
 };
 
-Program Megakernel::capture(MegakernelLoop loop, bool aov_outputs) const {
+Program Megakernel::capture(MegakernelLoop loop, MegakernelOutputs outputs) const {
   return rill::program("rill_trace", [&] {
     Aovs aovs;
 
     PathLoop L(S_.F.stack);
     L.ray.o = S_.camera.eye;
     const Int2 pix = element_coord();
+    Bool skipped = false;
     // max_iter = 0 skips all tracing: render() uses that for a warm-up launch.
     RILL_IF(max_iter_ > 0 && !S_.camera.may_see_scene(pix)) {
       // A camera ray outside the scene's box on screen: the miss its first segment would
       // give (the same operations), without making the ray or walking it.
       L.rays += 1;
       miss(L);
+      skipped = true;
     }
     RILL_ELSE_IF(max_iter_ > 0) {
       L.ray.d = S_.camera.direction(pix);
@@ -147,11 +165,24 @@ Program Megakernel::capture(MegakernelLoop loop, bool aov_outputs) const {
       RILL_UNTIL(L.finished);
     }
     RILL_ENDIF;
-    Output<Float3> out_color("color");
-    out_color = L.color;
+    if (outputs.encoded) {
+      // A skipped pixel's colour is the background's: its encoding, made once on the host,
+      // saves the three table lookups where most of a sparse scene's pixels are skipped.
+      Int pixel = background_rgb8_;
+      RILL_IF(!skipped) {
+        pixel = srgb8_.encode(L.color.x()) + srgb8_.encode(L.color.y()) * 256 +
+                srgb8_.encode(L.color.z()) * 65536;
+      }
+      RILL_ENDIF;
+      Output<Int> out_pixel("rgb8_pixel");
+      out_pixel = pixel;
+    } else {
+      Output<Float3> out_color("color");
+      out_color = L.color;
+    }
     Output<Int> out_rays("rays");
     out_rays = L.rays;
-    if (aov_outputs) {
+    if (outputs.aovs) {
       Output<Float> depth("depth");
       Output<Int> prim("prim");
       Output<Float3> normal("normal");
@@ -368,18 +399,18 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
 
 // "backend/accuracy/loop": a compiled kernel's key, and its warm-up's.
 std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a, MegakernelLoop loop,
-                                   bool aovs) {
+                                   MegakernelOutputs outputs) {
   return backend_key(backend_name, a) + "/" + megakernel_loop_name(loop) +
-         (aovs ? "/aovs" : "/color");
+         (outputs.encoded ? "/rgb8" : "/color") + (outputs.aovs ? "+aovs" : "");
 }
 
 Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a, MegakernelLoop loop,
-                           bool aovs) {
+                           MegakernelOutputs outputs) {
   loop = megakernel_loop_for(loop, backend_name);
-  const std::string key = kernel_key(backend_name, a, loop, aovs);
+  const std::string key = kernel_key(backend_name, a, loop, outputs);
   auto it = kernels_.find(key);
   if (it != kernels_.end()) return it->second;
-  return kernels_.emplace(key, compile_for(program(loop, aovs), backend_name, a)).first->second;
+  return kernels_.emplace(key, compile_for(program(loop, outputs), backend_name, a)).first->second;
 }
 
 // One backend's output streams, kept for its next frame of the same size (Film.h says why
@@ -397,6 +428,7 @@ struct Megakernel::Frame {
   Stream<Float3> color, normal;
   Stream<Float> dist;
   Stream<Int> prim, rays;
+  std::optional<Stream<Int>> pixels;  // the encoded variant's, made at its first use
 };
 
 void Megakernel::render(const RenderSettings& rs, Film& film, int width, int height, int depth,
@@ -407,10 +439,8 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   const MegakernelLoop loop = megakernel_loop_for(rs.loop, rs.backend);
   r.loop = megakernel_loop_name(loop);
   Stopwatch since_start;
-  // The AOVs cost a third of the kernel's writes (about 3% of a cpu frame of thesis A):
-  // written only for a render that reads one of them back.
-  const bool aovs = rs.outputs.depth || rs.outputs.prim || rs.outputs.normal;
-  Kernel& k = kernel(rs.backend, rs.accuracy, loop, aovs);
+  const MegakernelOutputs outputs = MegakernelOutputs::for_frame(rs.outputs, spp);
+  Kernel& k = kernel(rs.backend, rs.accuracy, loop, outputs);
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
   add_stages(r, k.info());
 
@@ -430,15 +460,21 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   const std::string key = backend_key(rs.backend, rs.accuracy);
   Stopwatch setup;
   Frame& out = buffers_for(frames_, key, width, height);
-  k.bind("color", out.color).bind("rays", out.rays);
-  if (aovs) k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
+  k.bind("rays", out.rays);
+  if (outputs.encoded) {
+    if (!out.pixels) out.pixels.emplace(width, height, "rgb8_pixel");
+    k.bind("rgb8_pixel", *out.pixels);
+  } else {
+    k.bind("color", out.color);
+  }
+  if (outputs.aovs) k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
   film.begin(rs.backend, rs.accuracy, width, height, spp);
   r.times.setup = setup.ms();
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
   // below is tracing alone. The ray count's reduction kernels compile here too.
   const auto warm_key =
-      std::make_pair(kernel_key(rs.backend, rs.accuracy, loop, aovs), int64_t{width} * height);
+      std::make_pair(kernel_key(rs.backend, rs.accuracy, loop, outputs), int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
     max_iter_.set(0);
     k.execute();
@@ -458,7 +494,10 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
     r.times.add_kernel(k.last_launch().device_ms);
     r.rays += rill::sum(out.rays);  // on the device: only the total comes back
     r.times.reduce += step.lap();
-    film.add_sample(out.color, s);
+    if (outputs.encoded)
+      film.add_encoded(*out.pixels);
+    else
+      film.add_sample(out.color, s);
   }
   film.finish(AovStreams{out.dist, out.prim, out.normal}, rs.outputs, r);
   r.trace_ms = trace.ms();

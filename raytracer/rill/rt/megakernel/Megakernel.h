@@ -7,8 +7,10 @@
 // finishes. A camera ray whose pixel lies outside the scene's box on screen
 // (CameraRays::may_see_scene) is a miss without being made or walked.
 //
-// The kernel writes the colour and the ray count, and the camera ray's AOVs (depth,
-// primitive, normal) only in the variant compiled for renders that ask for one of them.
+// The kernel writes the ray count and what the render reads back, each variant compiled at
+// its first use (MegakernelOutputs): the linear colour, or, for a frame of one sample that
+// only wants the 8-bit image, the pixel's encoding (Srgb8Encoder, the film's bytes); and the
+// camera ray's AOVs (depth, primitive, normal) only when one of them is asked for.
 //
 // The loop has two shapes (MegakernelLoop, Tracer.h), with the same operations in the same
 // order and so the same bits:
@@ -32,23 +34,33 @@
 
 #include "rill/rt/Tracer.h"
 #include "rill/rt/film/Film.h"
+#include "rill/rt/film/Srgb8.h"
 #include "rill/rt/kernel/Compile.h"
 #include "rill/rt/kernel/DeviceScene.h"
 #include "rill/rt/kernel/PerBackend.h"
 
 namespace rt {
 
+// What a megakernel variant writes besides the ray count.
+struct MegakernelOutputs {
+  bool aovs = true;      // depth, prim and normal
+  bool encoded = false;  // rgb8_pixel (the 8-bit encoding) instead of color
+  // The variant a render with these settings and samples per pixel runs.
+  static MegakernelOutputs for_frame(const FrameOutputs& want, int spp);
+  auto operator<=>(const MegakernelOutputs&) const = default;
+};
+
 class Megakernel {
  public:
   explicit Megakernel(DeviceScene& scene);
   ~Megakernel();
-  // The program with loop Ray or Segment, with the AOV outputs or without (Segment's with
-  // them captured by the constructor, the others at their first use).
-  const rill::Program& program(MegakernelLoop loop, bool aovs = true) const;
+  // The program with loop Ray or Segment and the given outputs (Segment's with colour and
+  // AOVs captured by the constructor, the others at their first use).
+  const rill::Program& program(MegakernelLoop loop, MegakernelOutputs outputs = {}) const;
   // Compiled once per backend, accuracy, loop (Auto: the backend's, megakernel_loop_for) and
-  // AOVs or not.
+  // outputs.
   rill::Kernel& kernel(const std::string& backend, rill::Accuracy a,
-                       MegakernelLoop loop = MegakernelLoop::Auto, bool aovs = true);
+                       MegakernelLoop loop = MegakernelLoop::Auto, MegakernelOutputs outputs = {});
   // Renders spp samples through the camera set in the scene's CameraRays; the samples meet
   // on `film`.
   void render(const RenderSettings& rs, Film& film, int width, int height, int depth, int spp,
@@ -58,9 +70,9 @@ class Megakernel {
   struct PathLoop;
   struct Aovs;
   struct Frame;  // a backend's output streams (PerBackend.h: buffers_for)
-  rill::Program capture(MegakernelLoop loop, bool aovs) const;
+  rill::Program capture(MegakernelLoop loop, MegakernelOutputs outputs) const;
   static std::string kernel_key(const std::string& backend, rill::Accuracy a, MegakernelLoop loop,
-                                bool aovs);
+                                MegakernelOutputs outputs);
   // The loop body's steps (Megakernel.cpp). Ray: trace, camera_or_secondary_ray or
   // shadow_ray_back, next_ray once the lights are done, pop_or_finish.
   Hit trace(PathLoop& L) const;
@@ -80,7 +92,9 @@ class Megakernel {
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
   // Captured on demand, from const accessors (Tracer::program is const): a GPU never needs
   // Segment's program beyond the constructor's, a CPU backend never Ray's.
-  mutable std::map<std::pair<MegakernelLoop, bool>, rill::Program> programs_;
+  mutable std::map<std::pair<MegakernelLoop, MegakernelOutputs>, rill::Program> programs_;
+  Srgb8Encoder srgb8_;  // the encoded variant's, with the film's bytes
+  rill::Uniform<Int> background_rgb8_{0, "background_rgb8"};  // a skipped pixel's encoding
   std::map<std::string, rill::Kernel> kernels_;
   std::map<std::string, std::unique_ptr<Frame>> frames_;  // per backend and accuracy
   std::set<std::pair<std::string, int64_t>> warmed_;      // kernels launched at a size before
