@@ -41,6 +41,7 @@
 #include <memory>
 #include <new>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 #include "AccuracyBench.h"
@@ -83,6 +84,29 @@ CLI::Validator number_in(double lo, double hi, bool integer) {
         return {};
       },
       std::string(integer ? "INT" : "NUMBER") + " in [" + text(lo) + " - " + text(hi) + "]");
+}
+
+// A file option's check: an empty name would otherwise read as the option not given.
+CLI::Validator file_name() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string { return s.empty() ? "an empty file name" : ""; }, "FILE");
+}
+
+// Where a frame's interpolated camera comes from, for its errors: the scene file and the
+// camera keys around the frame's time (keys that are each fine can still interpolate to a
+// degenerate view, eye on look_at).
+std::string frame_camera_where(const std::string& scene_path, const rt::Scene& s, int frame) {
+  const double t = s.animation.time.time_of(frame);
+  const auto& keys = s.animation.camera.keys;
+  size_t i = 0;
+  while (i + 1 < keys.size() && keys[i + 1].time <= t) ++i;
+  std::string from = "camera.keys[" + std::to_string(i) + "]";
+  if (i + 1 < keys.size() && keys[i].time < t)
+    from = "between camera.keys[" + std::to_string(i) + "] and [" + std::to_string(i + 1) + "]";
+  char time[32];
+  std::snprintf(time, sizeof time, "%g", t);
+  return scene_path + ": the camera at frame " + std::to_string(frame) + " (time " + time + ", " +
+         from + ")";
 }
 
 double ms_since(Clock::time_point t) {
@@ -532,7 +556,7 @@ int render(RenderOptions o) {
   if (animated) frame_stats[0].update = tracer.set_time(first_time, bvh_update);
   const rt::Camera first_camera = rt::camera_at(scene, first_time);
   // Keys that are each fine can still interpolate to a degenerate view (eye on look_at).
-  if (animated) rt::check_camera(first_camera, "the camera at frame " + std::to_string(span.first));
+  if (animated) rt::check_camera(first_camera, frame_camera_where(o.scene, scene, span.first));
   rt::RenderResult r = tracer.render(rs, first_camera);
   const double render_ms = ms_since(t_render);
   const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
@@ -585,7 +609,7 @@ int render(RenderOptions o) {
     const int64_t misses = rill::kernel_cache_stats().misses;
     if (animated) fs.update = tracer.set_time(fs.time, bvh_update);
     const rt::Camera camera = rt::camera_at(scene, fs.time);
-    rt::check_camera(camera, "the camera at frame " + std::to_string(k));
+    rt::check_camera(camera, frame_camera_where(o.scene, scene, k));
     tracer.render(rs, camera, frame);
     fs.trace_ms = frame.trace_ms;
     fs.compile_ms = frame.compile_ms;
@@ -818,7 +842,7 @@ int render_distributed(const RenderOptions& o) {
           const rt::Scene& scene = prepared->scene;
           for (int k = plan.span.first; plan.animated && k <= plan.span.last; ++k)
             rt::check_camera(rt::camera_at(scene, scene.animation.time.time_of(k)),
-                             "the camera at frame " + std::to_string(k));
+                             frame_camera_where(o.scene, scene, k));
           return dist::scene_hash(scene, pixel_settings(o, *prepared));
         },
         o.backend);
@@ -1141,11 +1165,11 @@ int main(int argc, char** argv) {
       ->default_str("cpu");
   r->add_option("--accuracy", ro.accuracy, "strict, fast or double")->default_str("strict");
   r->add_option("--size", ro.size, "image size WxH (default: the scene's)");
-  r->add_option("--out", ro.out, "PNG output (sRGB)");
-  r->add_option("--pfm", ro.pfm, "linear colour as PFM");
-  r->add_option("--depth", ro.depth, "hit distance AOV as PFM (+inf: miss)");
-  r->add_option("--prim", ro.prim, "primitive id AOV as PFM (-1: miss)");
-  r->add_option("--normal", ro.normal, "shading normal AOV as PFM");
+  r->add_option("--out", ro.out, "PNG output (sRGB)")->check(file_name());
+  r->add_option("--pfm", ro.pfm, "linear colour as PFM")->check(file_name());
+  r->add_option("--depth", ro.depth, "hit distance AOV as PFM (+inf: miss)")->check(file_name());
+  r->add_option("--prim", ro.prim, "primitive id AOV as PFM (-1: miss)")->check(file_name());
+  r->add_option("--normal", ro.normal, "shading normal AOV as PFM")->check(file_name());
   r->add_option("--max-depth", ro.max_depth, "reflection/refraction bounces")
       ->check(number_in(0, 64, true));
   r->add_option("--spp", ro.spp, "samples per pixel")->check(number_in(1, 4096, true));
@@ -1167,8 +1191,9 @@ int main(int argc, char** argv) {
                 "its shadow rays (segment), or auto (default: segment on cpu and simd, ray on "
                 "opencl, glsl and glsl-compute). Images do not depend on it")
       ->default_str("auto");
-  r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON");
-  r->add_option("--source", ro.source, "write the generated kernel source");
+  r->add_option("--stats-json", ro.stats_json, "write timings and counts as JSON")
+      ->check(file_name());
+  r->add_option("--source", ro.source, "write the generated kernel source")->check(file_name());
   r->add_flag("--quiet", ro.quiet, "print only the stats line");
   r->add_option("--threads", ro.threads,
                 "worker threads of the CPU backends (cpu, simd); default: one per core. Images "
@@ -1222,7 +1247,8 @@ int main(int argc, char** argv) {
                 "dynamic scenes: the moving objects' BVH each frame: rebuild or refit")
       ->default_str("rebuild");
   r->add_option("--video", ro.video,
-                "with --frames: a preview video of the PNGs (ffmpeg), .mp4 or .gif");
+                "with --frames: a preview video of the PNGs (ffmpeg), .mp4 or .gif")
+      ->check(file_name());
   r->add_option("--triangle", ro.triangle, "triangle test: moller or watertight")
       ->default_str("moller");
   r->add_option("--offset", ro.offset, "self-intersection: scaled (Wachter-Binder) or epsilon")
@@ -1271,6 +1297,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // An unknown first word: CLI11 only says that a subcommand is required.
     std::string what = e.what();
+    // An option given twice: CLI11 says "--size: At Most 1 required but received 2".
+    static const std::regex twice("^(-[-\\w]+): At Most 1 required but received (\\d+)$");
+    if (std::smatch m; std::regex_match(what, m, twice))
+      what = m[1].str() + " is given " + m[2].str() + " times: give it once";
     if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty())
       what = std::string("unknown command '") + argv[1] + "' (render, accuracy, demo, info)";
     std::fprintf(stderr, "rill-trace: %s (see --help)\n", what.c_str());

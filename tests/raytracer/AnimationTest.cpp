@@ -251,6 +251,12 @@ TEST(Animation, ObjSequencesDeformAndKeepTheirTopology) {
   const std::string missing =
       dir.file("m.json", R"({"meshes": [{"file": "wave-%02d.obj", "sequence": {"last": 5}}]})");
   dir.file("wave-02.obj", wave_obj(1.0f));
+  // The missing file names the scene, the mesh and which file of the sequence it is.
+  EXPECT_NE(error_of([&] {
+              load_json(missing);
+            }).find(missing + ": meshes[0].sequence: file 3 of 0..5: "),
+            std::string::npos)
+      << error_of([&] { load_json(missing); });
   EXPECT_NE(error_of([&] { load_json(missing); }).find("wave-03.obj"), std::string::npos);
 }
 

@@ -655,7 +655,8 @@ TEST(BadInput, MalformedJson) {
   EXPECT_NE(err("{\"options\": {\"grid_density\": \"dense\"}}").find("options.grid_density"),
             std::string::npos);
   EXPECT_NE(err("{\"options\": {\"max_depth\": 65}}").find("max_depth"), std::string::npos);
-  EXPECT_NE(err("{\"builtin\": \"nope\"}").find("unknown built-in"), std::string::npos);
+  EXPECT_NE(err("{\"builtin\": \"nope\"}").find(": builtin: unknown built-in scene 'nope'"),
+            std::string::npos);
   // Deep nesting: an error, not a stack overflow.
   std::string deep(100000, '[');
   EXPECT_FALSE(err(deep).empty());

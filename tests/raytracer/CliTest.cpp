@@ -70,10 +70,18 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --size banana", "--size");
   expect_clean_failure("render builtin:thesis-a --grid 0", "--grid");
   expect_clean_failure("render builtin:thesis-a --grid 99999", "--grid");
-  expect_clean_failure("render builtin:thesis-a --subgrids 0", "subgrids");
-  expect_clean_failure("render builtin:thesis-a --subgrids some", "subgrids");
-  expect_clean_failure("render builtin:thesis-a --grid-density 0", "grid density");
-  expect_clean_failure("render builtin:thesis-a --grid-density lots", "grid density");
+  expect_clean_failure("render builtin:thesis-a --subgrids 0", "--subgrids expects auto, off");
+  expect_clean_failure("render builtin:thesis-a --subgrids some", "(got 'some')");
+  expect_clean_failure("render builtin:thesis-a --grid-density 0",
+                       "--grid-density expects a number of voxels per triangle in 0.125..256 "
+                       "(got '0')");
+  expect_clean_failure("render builtin:thesis-a --grid-density lots", "--grid-density");
+  // An empty file name would read as the option not given; an option given twice names it.
+  expect_clean_failure("render builtin:thesis-a --size 4x4 --out ''", "--out: an empty file name");
+  expect_clean_failure("render builtin:thesis-a --size 4x4 --stats-json ''",
+                       "--stats-json: an empty");
+  expect_clean_failure("render builtin:thesis-a --size 4x4 --size 8x8",
+                       "--size is given 2 times: give it once");
   expect_clean_failure("render builtin:thesis-a --spp 0", "0 is out of range (1 to 4096)");
   expect_clean_failure("render builtin:thesis-a --max-depth -3", "out of range (0 to 64)");
   expect_clean_failure("render builtin:thesis-a --max-depth x", "'x' is not an integer");
@@ -419,6 +427,17 @@ TEST(Cli, FramesWriteNumberedImagesOfADynamicScene) {
             std::string::npos)
       << v.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path("v-0.png")));
+  // Keys that are each fine but interpolate to eye on look_at: the error names the scene, the
+  // frame and the keys.
+  dir.file("cam.json", R"({"builtin": "thesis-a", "animation": {"end": 2, "fps": 2},
+    "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "keys": [{"time": 0},
+               {"time": 2, "eye": [0, 0, -5]}]}})");
+  auto c = run("render cam.json --size 8x8 --frames 0:4 --out c-%d.png", dir);
+  EXPECT_EQ(c.status, 1) << c.err;
+  EXPECT_NE(c.err.find("cam.json: the camera at frame 2 (time 1, between camera.keys[0] and [1]): "
+                       "eye and look_at are the same point"),
+            std::string::npos)
+      << c.err;
   // A static scene has one frame.
   auto s = run("render builtin:thesis-a --size 8x8 --frames 0:2 --out s-%d.png", dir);
   EXPECT_NE(s.err.find("the scene has 1 frame (0..0); it has no animation"), std::string::npos)

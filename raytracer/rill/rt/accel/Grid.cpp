@@ -191,8 +191,8 @@ int32_t parse_subgrid_min(const std::string& s) {
   char* end = nullptr;
   const long v = std::strtol(s.c_str(), &end, 10);
   if (s.empty() || end == s.c_str() || *end != '\0' || v < 1 || v > (1 << 20))
-    throw SceneError("subgrids: expected 'auto', 'off' or a triangle count in 1..1048576 (got '" +
-                     s + "')");
+    throw SceneError("--subgrids expects auto, off or a triangle count in 1..1048576 (got '" + s +
+                     "')");
   return static_cast<int32_t>(v);
 }
 
@@ -209,10 +209,11 @@ double checked_grid_density(double d) {
 double parse_grid_density(const std::string& s) {
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end == s.c_str() || *end != '\0')
-    throw SceneError("grid density: expected a number of voxels per triangle in 0.125..256 (got '" +
+  if (s.empty() || end == s.c_str() || *end != '\0' ||
+      !(v >= kGridDensityMin && v <= kGridDensityMax))
+    throw SceneError("--grid-density expects a number of voxels per triangle in 0.125..256 (got '" +
                      s + "')");
-  return checked_grid_density(v);
+  return v;
 }
 
 static_assert(kGridDensity == SceneOptions{}.grid_density,

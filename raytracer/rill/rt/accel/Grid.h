@@ -98,11 +98,11 @@ void build_subgrids(Grid& g, const Scene& s, int32_t min_count = kSubgridMin);
 void compute_empty_distances(Grid& g);
 constexpr int32_t kMaxSkip = 1 << 16;
 
-// The --subgrids / "subgrids" value: "auto" (kSubgridsAuto), "off" (kNoSubgrids) or a
-// triangle count in 1..2^20; throws SceneError naming the bad value.
+// The --subgrids value: "auto" (kSubgridsAuto), "off" (kNoSubgrids) or a triangle count in
+// 1..2^20; throws SceneError naming the option and the bad value.
 int32_t parse_subgrid_min(const std::string& s);
-// The --grid-density / "grid_density" value: voxels per triangle in kGridDensityMin..Max;
-// throws SceneError naming the bad value.
+// The --grid-density value: voxels per triangle in kGridDensityMin..Max; throws SceneError
+// naming the option and the bad value.
 double parse_grid_density(const std::string& s);
 double checked_grid_density(double d);  // the same range check on a number
 

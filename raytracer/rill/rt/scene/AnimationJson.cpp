@@ -304,7 +304,13 @@ void load_sequence(const Ctx& c, const json& mesh, const std::string& where, Ani
     if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
     corners.clear();
     opt.corners = k == q.first ? &first_corners : &corners;
-    const Scene f = load_obj(p.string(), opt);
+    Scene f;
+    try {
+      f = load_obj(p.string(), opt);
+    } catch (const SceneError& e) {  // a file missing or malformed: which sequence, which frame
+      fail(c, where + ".sequence: file " + std::to_string(k) + " of " + std::to_string(q.first) +
+                  ".." + std::to_string(q.last) + ": " + e.what());
+    }
     if (f.triangle_count() != o.count)
       fail(c, where + ".sequence: " + p.filename().string() + " has " +
                   std::to_string(f.triangle_count()) + " triangles where " +

@@ -378,7 +378,11 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     Scene s;
     if (j.contains("builtin")) {
       if (!j["builtin"].is_string()) fail(c, "builtin must be a scene name");
-      s = builtin_scene(j["builtin"].get<std::string>());
+      try {
+        s = builtin_scene(j["builtin"].get<std::string>());
+      } catch (const SceneError& e) {
+        fail(c, std::string("builtin: ") + e.what());
+      }
     }
     s.name = std::filesystem::path(name).stem().string();
 
