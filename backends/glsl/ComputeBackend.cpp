@@ -249,6 +249,7 @@ class ComputeBackend : public Backend, public SessionOwner {
     return c.gl();
   }
   const Limits& limits() const { return limits_; }
+  const Driver& driver() const { return driver_; }
   GLuint counter() const { return counter_; }
   const KernelTimer& timer() const { return timer_; }
   // Whether the timer covers dispatches: Mesa's software renderers time the draw pipeline
@@ -534,7 +535,7 @@ LaunchResult ComputeKernel::run(const LaunchArgs& a) {
   }
   words_.clear();
   for (auto* u : a.uniforms) words_.insert(words_.end(), u->bits.begin(), u->bits.end());
-  const GLuint zero[2] = {0, 0};
+  const GLuint zero[3] = {0, 0, 0};
   gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, be_.counter());
   gl.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
   // The outputs' buffers made current first (dispatch() binds them): the timer covers the
@@ -543,13 +544,14 @@ LaunchResult ComputeKernel::run(const LaunchArgs& a) {
   for (auto* s : a.outputs) be_.to_device(gl, *s);
   KernelTimer::Running timed = be_.timer().start(gl);
   for (Pass& p : passes_) dispatch(gl, p, a, in_buf_, mask);
-  GLuint counts[2] = {0, 0};
+  GLuint counts[3] = {0, 0, 0};  // written, selected, loops cut (DriverRules::loop_guard)
   gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, be_.counter());
   gl.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counts,
                         counts);  // waits for the dispatches
   double device_ms = timed.end_ms();
   if (!be_.times_dispatches()) device_ms = -1;
   check(gl, "running a kernel", kWho);
+  if (counts[2] != 0) throw Error(loop_cut_message(kWho, fn_.name, be_.driver().renderer));
   for (auto* s : a.outputs) s->mark_device_written(&be_);
   return {counts[0], a.mask ? static_cast<int64_t>(counts[1]) : a.count, device_ms};
 }

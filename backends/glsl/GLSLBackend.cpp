@@ -356,6 +356,16 @@ class GLSLBackend : public Backend, public SessionOwner {
   GLuint fbo() const { return fbo_; }
   GLuint vao() const { return vao_; }
   GLuint query() const { return query_; }
+  const Driver& driver() const { return driver_; }
+  // DriverRules::loop_guard's word (kGuardBinding), made on the first launch that needs it.
+  GLuint guard(const GL& gl) {
+    if (!guard_) {
+      gl.glGenBuffers(1, &guard_);
+      gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, guard_);
+      gl.glBufferData(GL_SHADER_STORAGE_BUFFER, 16, nullptr, GL_DYNAMIC_READ);
+    }
+    return guard_;
+  }
   const KernelTimer& timer() const { return timer_; }
   int max_texture_units() const { return max_units_; }
 
@@ -377,13 +387,14 @@ class GLSLBackend : public Backend, public SessionOwner {
         if (!pool.empty()) gl->glDeleteTextures(static_cast<GLsizei>(pool.size()), pool.data());
       if (mask_program_) gl->glDeleteProgram(mask_program_);
       gl->glDeleteQueries(1, &query_);
+      if (guard_) gl->glDeleteBuffers(1, &guard_);
       timer_.destroy(*gl);
       gl->glDeleteVertexArrays(1, &vao_);
       gl->glDeleteFramebuffers(1, &fbo_);
     }
     stencils_.clear();
     copy_pool_.clear();
-    fbo_ = vao_ = query_ = mask_program_ = 0;
+    fbo_ = vao_ = query_ = mask_program_ = guard_ = 0;
     session_->context.reset();  // destroys the GL context (GLContext.cpp)
   }
 
@@ -432,7 +443,7 @@ class GLSLBackend : public Backend, public SessionOwner {
   std::string init_error_;
   int max_draw_buffers_ = 1, max_units_ = 16;
   Driver driver_;
-  GLuint fbo_ = 0, vao_ = 0, query_ = 0;
+  GLuint fbo_ = 0, vao_ = 0, query_ = 0, guard_ = 0;
   KernelTimer timer_;  // how long a launch's draws ran
   GLuint mask_program_ = 0;
   std::map<std::pair<int, int>, GLuint> stencils_;
@@ -609,6 +620,13 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
       gl.glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
   } stencil_off{gl, be_.fbo(), a.mask != nullptr};
+  const bool guarded = be_.driver().rules.loop_guard;
+  if (guarded) {  // cleared, then set by any lane that saw a loop cut short
+    const GLuint zero = 0;
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, be_.guard(gl));
+    gl.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, &zero);
+    gl.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGuardBinding, be_.guard(gl));
+  }
   KernelTimer::Running timed = be_.timer().start(gl);
   const int64_t selected = a.mask ? draw_mask(gl, a, shape) : a.count;
   for (size_t pi = 0; pi < passes_.size(); ++pi) {
@@ -666,6 +684,13 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
   be_.check(gl, "running a kernel");
   // The draws wrote the outputs' textures: their host copies are stale until read back.
   for (auto* s : a.outputs) s->mark_device_written(&be_);
+  if (guarded) {
+    GLuint cut = 0;
+    gl.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, be_.guard(gl));
+    gl.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof cut, &cut);
+    if (cut != 0) throw Error(loop_cut_message("GLSL backend", fn_.name, be_.driver().renderer));
+  }
   return {written, selected, device_ms};
 }
 

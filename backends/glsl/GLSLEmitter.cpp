@@ -158,8 +158,11 @@ const char kComp[] = "xyzw";
 
 class GLSLDialect : public codegen::Dialect {
  public:
-  GLSLDialect(Accuracy a, Stage stage, const std::vector<int>& pass_outputs)
-      : strict_(a != Accuracy::Fast), stage_(stage), pass_outputs_(pass_outputs) {}
+  GLSLDialect(Accuracy a, Stage stage, const std::vector<int>& pass_outputs, bool loop_guard)
+      : strict_(a != Accuracy::Fast),
+        stage_(stage),
+        pass_outputs_(pass_outputs),
+        loop_guard_(loop_guard) {}
 
   // Strict: through rill_div_f, correctly rounded on every driver (DivSqrt.h).
   std::string float_div(const std::string& a, const std::string& b) const override {
@@ -215,8 +218,10 @@ class GLSLDialect : public codegen::Dialect {
   }
   std::string loop_header() const override { return "while (true)"; }
   // Compute: returning before the stores at the end of main leaves the outputs as they were.
+  // With DriverRules::loop_guard, an element that ends here checks the loops first.
   std::string discard() const override {
-    return stage_ == Stage::Fragment ? "discard;" : "return;";
+    const std::string end = stage_ == Stage::Fragment ? "discard;" : "return;";
+    return loop_guard_ ? "{ RILL_CHECK_LOOPS(); " + end + " }" : end;
   }
   std::string float_qualifier() const override { return strict_ ? "precise " : ""; }
 
@@ -301,6 +306,7 @@ class GLSLDialect : public codegen::Dialect {
   bool strict_;
   Stage stage_;
   std::vector<int> pass_outputs_;
+  bool loop_guard_;
 };
 
 std::string sampler(ScalarKind k) {
@@ -336,6 +342,20 @@ std::string header(const Function& f, Accuracy accuracy, const char* stage,
              : "#define RILL_PRECISE precise\n#define RILL_ONE uintBitsToFloat(rill_one)\n"
                "#define RILL_ZERO_I int(rill_one ^ 0x3f800000u)\nuniform uint rill_one;\n";
   return src;
+}
+
+// DriverRules::loop_guard's check, RILL_CHECK_LOOPS(), run where an element ends: llvmpipe
+// counts the loop iterations of a batch of lanes against one limit, and once it is spent,
+// ends every loop after its first pass through the loop's end (Mesa 22.3 measured: a loop
+// that should run on then ran twice, its first iteration peeled off by the compiler). So a
+// loop that must run four times (its trip count from a uniform, which the compiler cannot
+// see through) falls short only where the kernel's loops were cut, and then sets `flag` to
+// 1. (A kernel that leaves the limit fewer than four iterations is reported too.)
+std::string loop_check(const std::string& flag) {
+  return "#define RILL_CHECK_LOOPS() { int rill_laps = 0; int rill_want = min(rill_count, 1) + "
+         "3; while (true) { rill_laps += 1; if (rill_laps == rill_want) break; } if (rill_laps < "
+         "rill_want) " +
+         flag + " = 1u; }\n";
 }
 
 // The launch's uniforms: strict constants, the kernel's uniform words, array shapes.
@@ -392,7 +412,7 @@ std::string output_components(const Function& f, const codegen::CFamilyPrinter& 
 
 GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs,
                      const DriverRules& rules) {
-  GLSLDialect d(accuracy, Stage::Fragment, outputs);
+  GLSLDialect d(accuracy, Stage::Fragment, outputs, rules.loop_guard);
   codegen::CFamilyPrinter p(f, d);
   // The body first: printing it collects the constants that the declarations need; printed
   // again once they are in their own order.
@@ -416,6 +436,10 @@ GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int
            vec4_of(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) + " rill_out" +
            std::to_string(o) + ";\n";
   }
+  if (rules.loop_guard)
+    src += "layout(std430, binding = " + std::to_string(kGuardBinding) +
+           ") buffer rill_guard_b { uint loops_cut; } rill_guard;\n" +
+           loop_check("rill_guard.loops_cut");
   // Every driver's fragment stage that Rill has met flushes (NVIDIA, llvmpipe).
   src += helper_definitions(accuracy, rules, true);
   src += "\nvoid main() {\n";
@@ -435,6 +459,7 @@ GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int
     src += "  rill_out" + std::to_string(o) + " = " +
            vec4_of(f.var(f.outputs[static_cast<size_t>(o)]).type.kind) + "(" +
            output_components(f, p, o) + ");\n";
+  if (rules.loop_guard) src += "  RILL_CHECK_LOOPS();\n";
   src += "}\n";
   return GLSLShader{src, d.constants};
 }
@@ -451,7 +476,7 @@ ComputeBindings compute_bindings(const Function& f, size_t pass_outputs) {
 GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::vector<int>& outputs,
                              bool counts, const DriverRules& rules, bool flushes_denormals,
                              int local_size) {
-  GLSLDialect d(accuracy, Stage::Compute, outputs);
+  GLSLDialect d(accuracy, Stage::Compute, outputs, rules.loop_guard);
   codegen::CFamilyPrinter p(f, d);
   std::string body = p.declarations(1) + p.body(1);
   d.sort_constants();  // as in emit_glsl
@@ -475,7 +500,8 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
     src += block("rill_out" + std::to_string(outputs[k]), bind.outputs + static_cast<int>(k),
                  f.var(f.outputs[static_cast<size_t>(outputs[k])]).type.kind, false);
   src += "layout(std430, binding = " + std::to_string(bind.counts) +
-         ") buffer rill_counts_b { uint written; uint selected; } rill_counts;\n";
+         ") buffer rill_counts_b { uint written; uint selected; uint loops_cut; } rill_counts;\n";
+  if (rules.loop_guard) src += loop_check("rill_counts.loops_cut");
   src += block("rill_mask", bind.mask, ScalarKind::Int, true);
   for (size_t i = 0; i < f.arrays.size(); ++i)
     src += "layout(binding = " + std::to_string(i) + ") uniform " +
@@ -538,6 +564,7 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
       src += "  rill_out" + std::to_string(o) + ".d[rill_i * " + std::to_string(t.width) + " + " +
              std::to_string(c) + "] = " + v + "." + kComp[c] + ";\n";
   }
+  if (rules.loop_guard) src += "  RILL_CHECK_LOOPS();\n";
   src += "  RILL_COUNT(written);\n";
   src += "}\n";
   return GLSLShader{src, d.constants};

@@ -27,7 +27,15 @@ constexpr int kMaskValues = 8;
 struct DriverRules {
   DivSqrt divsqrt = DivSqrt::Native;  // strict / and sqrt (DivSqrt.h)
   bool native_compare = false;        // strict float comparisons: the driver's, or on bits
+  // Mesa's llvmpipe ends every loop of a shader once a batch of lanes has run 65535 loop
+  // iterations in all (LP_MAX_TGSI_LOOP_ITERATIONS), silently. With the guard an element
+  // checks, where it ends, whether that limit was spent (GLSLEmitter.cpp, loop_check), and
+  // sets a word the backend reads after the launch (the fragment stage's rill_guard buffer,
+  // binding kGuardBinding; the compute stage's counters) and reports as an error.
+  bool loop_guard = false;
 };
+// The fragment stage's storage buffer for DriverRules::loop_guard.
+constexpr int kGuardBinding = 0;
 
 struct GLSLShader {
   std::string source;

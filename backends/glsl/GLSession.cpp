@@ -37,6 +37,7 @@ Driver describe_driver(const GL& gl, const std::string& renderer_line) {
   gl.glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &d.binary_formats);
   d.rules.divsqrt = divsqrt_mode(renderer_line);
   d.rules.native_compare = native_compare_mode(renderer_line);
+  d.rules.loop_guard = loop_guard_mode(renderer_line);
   return d;
 }
 
@@ -47,6 +48,19 @@ bool native_compare_mode(const std::string& renderer) {
   if (v == "native") return true;
   if (v == "bits") return false;
   throw Error("RILL_GLSL_COMPARE='" + v + "' is not one of auto, native, bits");
+}
+
+bool loop_guard_mode(const std::string& renderer) {
+  return renderer.find("llvmpipe") != std::string::npos;
+}
+
+std::string loop_cut_message(const std::string& backend, const std::string& kernel,
+                             const std::string& renderer) {
+  return backend + ": kernel '" + kernel + "' ran longer loops than the driver (" + renderer +
+         ") runs: Mesa's llvmpipe ends every loop of a shader once a batch of lanes has run " +
+         "65535 loop iterations in all (LP_MAX_TGSI_LOOP_ITERATIONS), so this launch's results " +
+         "are cut short. Run the kernel on cpu, simd or opencl, or on a GPU's GL driver, or " +
+         "split its work into launches of fewer iterations per element";
 }
 
 bool is_software_renderer(const std::string& renderer) {

@@ -66,6 +66,13 @@ Driver describe_driver(const GL& gl, const std::string& renderer_line);
 // (Mesa may rewrite comparisons as if there were no NaN). Throws on an unknown value.
 bool native_compare_mode(const std::string& renderer);
 const char* compare_name(bool native);  // "native", "bits"
+// DriverRules::loop_guard: on for Mesa's llvmpipe, whose loop limit it catches, off elsewhere
+// (a GPU's driver has no such limit, and the guard's read-back would cost each launch).
+bool loop_guard_mode(const std::string& renderer);
+// The error of a launch in which the guard saw a loop cut short: names the backend, the
+// kernel, the driver and the limit, and where the kernel can run instead.
+std::string loop_cut_message(const std::string& backend, const std::string& kernel,
+                             const std::string& renderer);
 // Whether GL_RENDERER names a software rasterizer on the CPU (llvmpipe, softpipe, swrast,
 // SwiftShader) rather than a GPU.
 bool is_software_renderer(const std::string& renderer);

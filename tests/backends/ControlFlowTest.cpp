@@ -501,6 +501,48 @@ TEST_P(ControlFlowTest, BinarySearchGathers) {
   EXPECT_TRUE(bits_equal(steps, want_steps, dx));
 }
 
+// Long loops: an element that runs 70,000 loop iterations (1000 x 70, nested) gets the exact
+// count, or, on Mesa's llvmpipe, which ends a shader's loops after 65,535 iterations in all
+// (GLSL backends: DriverRules::loop_guard), an error naming the limit instead of a wrong
+// count. 61,000 iterations (1000 x 60 and the outer loop's 1000) stay within the limit
+// everywhere: the guard raises no false alarm.
+TEST_P(ControlFlowTest, LoopsBeyondADriversIterationLimitAreExactOrAnError) {
+  auto nested = [](int inner) {
+    return program("nested_" + std::to_string(inner), [inner] {
+      Input<Int> seed("seed");
+      Output<Int> count("count");
+      Int c = seed;
+      RILL_FOR(Int i = 0, i < 1000, i += 1) {
+        RILL_FOR(Int j = 0, j < inner, j += 1) {
+          c += 1;
+        }
+        RILL_ENDFOR;
+      }
+      RILL_ENDFOR;
+      count = c;
+    });
+  };
+  const std::vector<int32_t> seeds{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
+  const std::vector<int32_t> within = run<Int>(nested(60), seeds);
+  for (size_t i = 0; i < seeds.size(); ++i) EXPECT_EQ(within[i], seeds[i] + 60000) << i;
+  const bool llvmpipe =
+      rill::backend(backend_name()).description().find("llvmpipe") != std::string::npos;
+  if (!llvmpipe) {
+    const std::vector<int32_t> beyond = run<Int>(nested(70), seeds);
+    for (size_t i = 0; i < seeds.size(); ++i) EXPECT_EQ(beyond[i], seeds[i] + 70000) << i;
+    return;
+  }
+  try {
+    (void)run<Int>(nested(70), seeds);
+    ADD_FAILURE() << "llvmpipe cut the loops short and no error was raised";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("kernel 'nested_70' ran longer loops than the driver"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("65535 loop iterations"), std::string::npos) << what;
+  }
+}
+
 RILL_BACKEND_TEST_SUITE(ControlFlowTest);
 
 }  // namespace

@@ -291,14 +291,14 @@ TEST(Grid, DensitySetsVoxelsPerTriangle) {
   const Grid g32 = build_grid_for(s);
   EXPECT_GT(g32.voxel_count(), 6 * g4.voxel_count());
   EXPECT_EQ(g32.voxel_count(), build_grid(s, 0, kNoSubgrids, 32.0).voxel_count());
-  // Out of range or not a number: a SceneError that names the setting.
+  // Out of range or not a number: a SceneError that names the option.
   for (const char* bad : {"0", "-4", "0.1", "300", "nan", "inf", "4x", ""})
     EXPECT_THROW(
         {
           try {
             parse_grid_density(bad);
           } catch (const SceneError& e) {
-            EXPECT_NE(std::string(e.what()).find("grid density"), std::string::npos) << bad;
+            EXPECT_NE(std::string(e.what()).find("--grid-density"), std::string::npos) << bad;
             throw;
           }
         },
