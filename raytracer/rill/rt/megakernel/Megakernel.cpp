@@ -397,7 +397,7 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
   RILL_ENDIF;
 }
 
-// "backend/accuracy/loop": a compiled kernel's key, and its warm-up's.
+// "backend/accuracy/loop/outputs": a compiled kernel's key, and its warm-up's.
 std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a, MegakernelLoop loop,
                                    MegakernelOutputs outputs) {
   return backend_key(backend_name, a) + "/" + megakernel_loop_name(loop) +
