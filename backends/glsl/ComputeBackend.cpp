@@ -551,8 +551,8 @@ LaunchResult ComputeKernel::run(const LaunchArgs& a) {
   double device_ms = timed.end_ms();
   if (!be_.times_dispatches()) device_ms = -1;
   check(gl, "running a kernel", kWho);
+  for (auto* s : a.outputs) s->mark_device_written(&be_);  // written, if cut short (below)
   if (counts[2] != 0) throw Error(loop_cut_message(kWho, fn_.name, be_.driver().renderer));
-  for (auto* s : a.outputs) s->mark_device_written(&be_);
   return {counts[0], a.mask ? static_cast<int64_t>(counts[1]) : a.count, device_ms};
 }
 

@@ -65,7 +65,10 @@ PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm
     sy_max = std::max(sy_max, sy);
   }
   // sx = ((i + ox) / W * 2 - 1) t a and sy = (1 - (j + oy) / H * 2) t, solved for i and j;
-  // ox, oy in [0, 1) widen each range by one pixel, and two more cover rounding.
+  // ox, oy in [0, 1) widen each range by one pixel, and two more cover rounding. A float ray
+  // is off its exact direction by a few 1e-7 radians whatever the field of view (the frame
+  // is orthonormal to rounding): in pixels that grows as the pixels shrink, so a narrow view
+  // gets that much more (1e-6 (1 + s^2) in screen units, s the box's largest coordinate).
   const double t = f.tan_half, a = f.aspect;
   if (!(t > 0) || !(a > 0)) return all;
   auto column = [&](double sx) { return (sx / (t * a) + 1.0) * 0.5 * f.width; };
@@ -73,11 +76,16 @@ PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm
   auto clamp_to = [](double v, int n) {
     return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(n)));
   };
+  const double sx_far = std::max(std::fabs(sx_min), std::fabs(sx_max));
+  const double sy_far = std::max(std::fabs(sy_min), std::fabs(sy_max));
+  const double s2 = sx_far * sx_far + sy_far * sy_far;
+  const double mx = 3.0 + 1e-6 * (1.0 + s2) * f.width / (2.0 * t * a);
+  const double my = 3.0 + 1e-6 * (1.0 + s2) * f.height / (2.0 * t);
   PixelRect r;
-  r.first.x = clamp_to(std::floor(column(sx_min)) - 3.0, w);
-  r.end.x = clamp_to(std::ceil(column(sx_max)) + 3.0, w);
-  r.first.y = clamp_to(std::floor(row(sy_max)) - 3.0, h);
-  r.end.y = clamp_to(std::ceil(row(sy_min)) + 3.0, h);
+  r.first.x = clamp_to(std::floor(column(sx_min)) - mx, w);
+  r.end.x = clamp_to(std::ceil(column(sx_max)) + mx, w);
+  r.first.y = clamp_to(std::floor(row(sy_max)) - my, h);
+  r.end.y = clamp_to(std::ceil(row(sy_min)) + my, h);
   return r;
 }
 

@@ -35,11 +35,11 @@ CameraFrame camera_frame(const Camera& c, int width, int height);
 glm::vec3 camera_ray(const CameraFrame& f, int i, int j, float ox = 0.5f, float oy = 0.5f);
 
 // The pixels whose camera rays may meet the box [lo, hi], at any sample offset in [0, 1)^2:
-// columns [first.x, end.x) and rows [first.y, end.y), within the image. Conservative by two
-// pixels on every side, far more than the rays' rounding moves them. The whole image when the
-// box is not finite or reaches to within a thousandth of its size from the eye's plane (the
-// projection of a box that surrounds the eye or lies beside it is unbounded), and an empty
-// rectangle for an empty box (lo > hi).
+// columns [first.x, end.x) and rows [first.y, end.y), within the image. Conservative by three
+// pixels on every side, more on a view so narrow that the rays' rounding moves them further. The
+// whole image when the box is not finite or reaches to within a thousandth of its size from the
+// eye's plane (the projection of a box that surrounds the eye or lies beside it is unbounded), and
+// an empty rectangle for an empty box (lo > hi).
 struct PixelRect {
   glm::ivec2 first{0}, end{0};
   bool empty() const { return first.x >= end.x || first.y >= end.y; }
