@@ -240,6 +240,38 @@ TEST(LightBuffer, RaysGrazingTrianglesNearTheLightFindThemListed) {
   EXPECT_EQ(unlisted, 0u) << "of " << blocked << " blocked rays";
 }
 
+// Tightening each entry to its cell keeps, per cell, a subset of the untightened entries,
+// each no nearer than before, and drops the many listed only for the box of cells around
+// their triangle. (That every reachable point stays listed below its distance is
+// EveryPointOfATriangleIsListedInItsCell's, which builds tightened buffers.)
+TEST(LightBuffer, TighteningKeepsFewerEntriesNoNearer) {
+  for (const char* name : {"thesis-a", "cornell"}) {
+    const Scene s = builtin_scene(name);
+    const Grid g = build_grid(s, 0);
+    const LightBuffer loose = build_light_buffer(s, g, 64, kLightBufferMaxList,
+                                                 kLightBufferMaxVisits, /*max_tightened=*/0);
+    const LightBuffer tight = build_light_buffer(s, g, 64);
+    ASSERT_EQ(loose.cells.size(), tight.cells.size());
+    EXPECT_LT(tight.tris.size(), loose.tris.size() * 3 / 4) << name;
+    for (size_t c = 0; c < tight.cells.size(); ++c) {
+      const glm::ivec2 t = tight.cells[c], l = loose.cells[c];
+      ASSERT_EQ(t.y < 0, l.y < 0);
+      ASSERT_LE(t.y, l.y);
+      for (int k = 0; k < t.y; ++k) {
+        const size_t i = static_cast<size_t>(t.x + k);
+        bool found = false;
+        for (int m = 0; m < l.y; ++m) {
+          const size_t j = static_cast<size_t>(l.x + m);
+          if (loose.tris[j] != tight.tris[i]) continue;
+          found = true;
+          EXPECT_GE(tight.near[i], loose.near[j]) << name << ", cell " << c;
+        }
+        EXPECT_TRUE(found) << name << ", cell " << c << ": triangle " << tight.tris[i];
+      }
+    }
+  }
+}
+
 TEST(LightBuffer, LongListsSendTheirRaysToTheGrid) {
   const Scene a = builtin_scene("thesis-a");
   const Grid ga = build_grid(a, 0);

@@ -3,6 +3,7 @@
 // bitwise identical to the CPU backend's (strict mode), and scenes with bad geometry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -115,6 +116,69 @@ TEST(Camera, PixelsSeeingABoxHoldEveryRayThatMeetsIt) {
   EXPECT_GT(whole, 0);  // boxes around or beside the eye
 }
 
+// tiles_seeing_boxes: every pixel whose ray, at any sample offset, meets one of the boxes
+// lies in a tile marked seen, and the union of the boxes' rectangles holds them all.
+TEST(Camera, TilesSeeingBoxesHoldEveryRayThatMeetsOne) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const glm::vec2 offsets[] = {{0.0f, 0.0f}, {0.9999f, 0.9999f}, {0.5f, 0.5f}};
+  int unseen_tiles = 0, tiles = 0, hits = 0;
+  for (int c = 0; c < 150; ++c) {
+    const int W = 60 + c % 29, H = 40 + c % 31;
+    Camera cam{{4 * u(rng), 4 * u(rng), 6 + 2 * u(rng)},
+               {u(rng), u(rng), u(rng)},
+               {0.2f * u(rng), 1.0f, 0.2f * u(rng)},
+               c % 3 == 0 ? 90.0f : 40.0f};
+    std::vector<Aabb> boxes;
+    for (int b = 0; b < 1 + c % 6; ++b) {
+      const glm::vec3 centre(3 * u(rng), 3 * u(rng), 3 * u(rng));
+      const glm::vec3 half(0.02f + 0.3f * std::fabs(u(rng)), 0.02f + 0.3f * std::fabs(u(rng)),
+                           0.02f + 0.3f * std::fabs(u(rng)));
+      boxes.push_back(Aabb{centre - half, centre + half});
+    }
+    const CameraFrame f = camera_frame(cam, W, H);
+    const TileMask m = tiles_seeing_boxes(f, boxes);
+    ASSERT_EQ(m.tiles, glm::ivec2((W + 7) / 8, (H + 7) / 8));
+    for (int32_t v : m.seen) unseen_tiles += v == 0;
+    tiles += static_cast<int>(m.seen.size());
+    for (int j = 0; j < H; ++j)
+      for (int i = 0; i < W; ++i)
+        for (const glm::vec2 o : offsets) {
+          const glm::vec3 d = camera_ray(f, i, j, o.x, o.y);
+          bool meets = false;
+          for (const Aabb& b : boxes)
+            meets = meets || ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d), glm::dvec3(b.lo),
+                                           glm::dvec3(b.hi));
+          if (!meets) continue;
+          ++hits;
+          ASSERT_EQ(m.seen[static_cast<size_t>((j >> m.shift) * m.tiles.x + (i >> m.shift))], 1)
+              << "camera " << c << ": pixel (" << i << ", " << j << ") sees a box";
+          ASSERT_TRUE(i >= m.bounds.first.x && i < m.bounds.end.x && j >= m.bounds.first.y &&
+                      j < m.bounds.end.y);
+        }
+  }
+  EXPECT_GT(hits, 10000);                  // rays met the boxes
+  EXPECT_GT(unseen_tiles, tiles * 3 / 4);  // and most tiles were left out
+}
+
+TEST(Camera, TilesSeeingBoxesGrowOnLargeImages) {
+  const Camera cam{{0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 45.0f};
+  const std::vector<Aabb> box{Aabb{glm::vec3(-0.1f), glm::vec3(0.1f)}};
+  const TileMask small = tiles_seeing_boxes(camera_frame(cam, 1920, 1080), box);
+  EXPECT_EQ(small.shift, 3);
+  const TileMask big = tiles_seeing_boxes(camera_frame(cam, 16384, 16384), box);
+  EXPECT_EQ(big.shift, 5);  // 512 x 512 tiles
+  EXPECT_LE(big.seen.size(), size_t{1} << 18);
+  // No boxes, or only boxes behind the eye: nothing is seen.
+  const TileMask none = tiles_seeing_boxes(camera_frame(cam, 64, 48), {});
+  EXPECT_TRUE(none.bounds.empty());
+  EXPECT_EQ(std::count(none.seen.begin(), none.seen.end(), 1), 0);
+  const TileMask behind =
+      tiles_seeing_boxes(camera_frame(cam, 64, 48),
+                         {Aabb{glm::vec3(-1.0f, -1.0f, 6.0f), glm::vec3(1.0f, 1.0f, 7.0f)}});
+  EXPECT_EQ(std::count(behind.seen.begin(), behind.seen.end(), 1), 0);
+}
+
 TEST(Camera, PixelsSeeingABoxSpecialCases) {
   const Camera cam{{0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 45.0f};
   const CameraFrame f = camera_frame(cam, 64, 48);
@@ -127,14 +191,16 @@ TEST(Camera, PixelsSeeingABoxSpecialCases) {
   EXPECT_LT(ahead.end.x - ahead.first.x, 16);
   EXPECT_LE(ahead.first.x, 31);
   EXPECT_GE(ahead.end.x, 33);
-  // Around the eye, behind it, or not finite: the whole image.
+  // Around the eye, beside it, or not finite: the whole image.
   EXPECT_TRUE(
       is_whole(pixels_seeing_box(f, glm::vec3(-1.0f, -1.0f, 4.0f), glm::vec3(1.0f, 1.0f, 6.0f))));
   EXPECT_TRUE(
-      is_whole(pixels_seeing_box(f, glm::vec3(-1.0f, -1.0f, 7.0f), glm::vec3(1.0f, 1.0f, 8.0f))));
+      is_whole(pixels_seeing_box(f, glm::vec3(3.0f, -1.0f, 4.0f), glm::vec3(4.0f, 1.0f, 6.0f))));
   EXPECT_TRUE(is_whole(pixels_seeing_box(f, glm::vec3(-1.0f), glm::vec3(1.0f, 1.0f, INFINITY))));
   EXPECT_TRUE(is_whole(pixels_seeing_box(f, glm::vec3(NAN), glm::vec3(1.0f))));
-  // Beside the image: no pixel. An empty box (lo > hi): none either.
+  // Behind the eye, or beside the image: no pixel. An empty box (lo > hi): none either.
+  EXPECT_TRUE(
+      pixels_seeing_box(f, glm::vec3(-1.0f, -1.0f, 7.0f), glm::vec3(1.0f, 1.0f, 8.0f)).empty());
   EXPECT_TRUE(
       pixels_seeing_box(f, glm::vec3(40.0f, -0.1f, -0.1f), glm::vec3(41.0f, 0.1f, 0.1f)).empty());
   EXPECT_TRUE(pixels_seeing_box(f, glm::vec3(1.0f), glm::vec3(0.0f)).empty());

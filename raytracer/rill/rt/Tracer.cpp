@@ -8,6 +8,7 @@
 #include <string>
 
 #include "rill/rt/accel/Bvh.h"
+#include "rill/rt/accel/OccupiedBoxes.h"
 #include "rill/rt/kernel/DeviceScene.h"
 #include "rill/rt/megakernel/Megakernel.h"
 #include "rill/rt/multipass/Multipass.h"
@@ -88,8 +89,7 @@ struct Tracer::Impl {
         posed(posed_at_start(scene, features)),
         device(posed ? *posed : scene, grid, options, features),
         megakernel(device),
-        static_lo(grid.usable > 0 ? grid.lo : glm::vec3(1.0f)),
-        static_hi(grid.usable > 0 ? grid.hi : glm::vec3(0.0f)) {
+        static_boxes(occupied_boxes(scene, grid)) {
     if (posed) {
       bvh = build_bvh(*posed, moving_triangles(*posed));
       device.bvh.upload(bvh);
@@ -105,8 +105,9 @@ struct Tracer::Impl {
   DeviceScene device;
   Megakernel megakernel;
   std::unique_ptr<Multipass> multipass;
-  // The grid's box: every static triangle that can be hit lies inside (empty: lo > hi).
-  glm::vec3 static_lo, static_hi;
+  // Boxes that hold every static triangle that can be hit (accel/OccupiedBoxes.h).
+  std::vector<Aabb> static_boxes;
+  std::vector<Aabb> boxes;  // the frame's: static_boxes and the moving triangles' BVH box
   Film film;  // both strategies' samples meet here  // built at its first render
   Program intersect_program, camera_program;
 };
@@ -208,17 +209,11 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
                              std::to_string(win.height) + " at (" + std::to_string(win.x) + ", " +
                              std::to_string(win.y) + ") is not inside the " +
                              std::to_string(width) + "x" + std::to_string(height) + " image");
-  // The camera spans the whole image; the launches cover the window.
-  I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y));
-  // What a camera ray can hit: the grid's triangles and the moving ones' BVH, as they are now.
-  glm::vec3 lo = I.static_lo, hi = I.static_hi;
-  if (!I.bvh.nodes.empty()) {
-    const BvhNode& root = I.bvh.nodes.front();
-    const bool none = lo.x > hi.x;
-    lo = none ? root.lo : glm::min(lo, root.lo);
-    hi = none ? root.hi : glm::max(hi, root.hi);
-  }
-  I.device.camera.set_bounds(lo, hi);
+  // The camera spans the whole image; the launches cover the window. What a camera ray can
+  // hit: the grid's triangles and the moving ones' BVH, as they are now.
+  I.boxes = I.static_boxes;
+  if (!I.bvh.nodes.empty()) I.boxes.push_back(Aabb{I.bvh.nodes.front().lo, I.bvh.nodes.front().hi});
+  I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y), &I.boxes);
   if (rs.strategy == Strategy::Multipass) {
     if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);
     return I.multipass->render(rs, I.film, win.width, win.height, depth, spp, r);

@@ -70,11 +70,63 @@ glm::ivec2 cell_span(double a, double b, int res) {
   return {cell(std::max(a, -1.0)), cell(std::min(b, 1.0))};
 }
 
+// A float at or below the distance from the light of any point the triangle test may report
+// on a triangle whose exact distance is d: its rounding is a few ulps of the scene's scale,
+// and slack (1e-5 of it) is far above.
+float near_bound(double d, double slack) {
+  const double nd = (d - slack) * (1.0 - 1e-6);
+  float near = nd > 0 ? std::nextafter(static_cast<float>(nd), 0.0f) : 0.0f;
+  if (static_cast<double>(near) > nd) near = 0.0f;
+  return near;
+}
+
+// The angular margin of a triangle dmin from the light, in a face's (u, v) coordinates: the
+// float lookup (about 1e-7), the test's rounding seen from the light (slack / dmin), and the
+// shadow ray's own direction, rounded to about 1.5e-7 and seen from the light at a hit dmin
+// away: 1.5e-7 |q| / dmin, within 4 slack / dmin for origins up to `reach` from the light
+// (the kernels send rays from farther to the grid).
+double triangle_margin(double dmin, double slack) {
+  return 2e-5 + (dmin > 0 ? 4.0 * slack / dmin : 4.0);
+}
+
+// Added to the margin where a cell's planes clip a triangle in double precision: far above
+// that arithmetic's rounding, far below the margin.
+constexpr double kClipSlack = 1e-9;
+
 struct Entry {
   float near;
   int32_t tri;
+  bool refine;  // near may be tightened to the cell (cell_near)
   bool operator<(const Entry& o) const { return near < o.near || (near == o.near && tri < o.tri); }
 };
+
+// The smallest distance from the light (the origin) of the triangle's points whose
+// directions lie in cell (i, j) of face (axis, sign), widened by `margin` in the face's
+// (u, v) coordinates as the cells' lists are (build_light_buffer): the triangle clipped by
+// the four planes through the light that bound those directions (together they keep the
+// face's side, w > 0). Negative when no point of the triangle lies there.
+double cell_near(const Polygon& tri, int axis, int sign, int i, int j, int res, double margin) {
+  const double sg = sign ? -1.0 : 1.0;
+  const int U = kU[axis], V = kV[axis];
+  const double step = 2.0 / res;
+  Polygon poly = tri;
+  for (int c : {U, V}) {
+    const int k = c == U ? i : j;
+    const double lo = -1.0 + step * k - margin, hi = -1.0 + step * (k + 1) + margin;
+    glm::dvec3 n(0.0);
+    n[c] = 1.0;  // q[c] - lo w >= 0, w = sg q[axis]
+    n[axis] = -lo * sg;
+    poly = clip(poly, n);
+    n[c] = -1.0;  // hi w - q[c] >= 0
+    n[axis] = hi * sg;
+    poly = clip(poly, n);
+  }
+  if (poly.n == 0) return -1.0;
+  double d = HUGE_VAL;
+  for (int k = 1; k + 1 < poly.n; ++k)
+    d = std::min(d, origin_triangle_distance(poly.v[0], poly.v[k], poly.v[k + 1]));
+  return poly.n < 3 ? 0.0 : d;  // (clipping a triangle leaves none or at least three)
+}
 
 }  // namespace
 
@@ -98,7 +150,7 @@ glm::ivec3 light_buffer_cell(const glm::vec3& q, int res) {
 }
 
 LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int max_list,
-                               uint64_t max_visits) {
+                               uint64_t max_visits, size_t max_tightened) {
   const auto t0 = std::chrono::steady_clock::now();
   LightBuffer lb;
   if (res <= 0 || s.lights.empty() || grid.empty()) return lb;
@@ -163,15 +215,8 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
         const double dmin = origin_triangle_distance(tri.v[0], tri.v[1], tri.v[2]);
         // A lower bound of the distance from the light of any point the triangle test may
         // report (its rounding is a few ulps of the scene's scale; 1e-5 of it is far above).
-        const double nd = (dmin - slack) * (1.0 - 1e-6);
-        float near = nd > 0 ? std::nextafter(static_cast<float>(nd), 0.0f) : 0.0f;
-        if (static_cast<double>(near) > nd) near = 0.0f;
-        // The angular margin: the float lookup (about 1e-7), the test's rounding seen from
-        // the light (slack / dmin), and the shadow ray's own direction, rounded to about
-        // 1.5e-7 and seen from the light at a hit dmin away: 1.5e-7 |q| / dmin, within
-        // 4 slack / dmin for origins up to `reach` from the light (the kernels send rays
-        // from farther to the grid).
-        const double margin = 2e-5 + (dmin > 0 ? 4.0 * slack / dmin : 4.0);
+        const float near = near_bound(dmin, slack);
+        const double margin = triangle_margin(dmin, slack);
         for (int axis = 0; axis < 3; ++axis)
           for (int sign = 0; sign < 2; ++sign) {
             const double sg = sign ? -1.0 : 1.0;
@@ -235,7 +280,7 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
                                                          static_cast<size_t>(i));
                 if (listed[c].fetch_add(1, std::memory_order_relaxed) <=
                     static_cast<uint32_t>(max_list))
-                  out.push_back({c, Entry{near, t}});
+                  out.push_back({c, Entry{near, t, !whole}});
               }
           }
       }
@@ -252,20 +297,46 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
         for (const auto& ce : part) sorted[at[ce.first]++] = ce.second;
     }
     parts.clear();
+    // Each entry's distance tightened to the part of its triangle that the cell's rays can
+    // reach (cell_near), where the cells hold few entries in all: a shadow ray then stops
+    // before the triangles whose nearest point lies outside its cell, and skips those whose
+    // box of cells touched its cell but not the triangle itself.
+    const bool tighten = sorted.size() <= max_tightened;
+    std::vector<uint32_t> kept(per_light, 0);
     tbb::parallel_for(size_t(0), per_light, [&](size_t c) {
-      if (listed[c] <= static_cast<uint32_t>(max_list))
-        std::sort(sorted.begin() + count[c], sorted.begin() + count[c + 1]);
+      if (listed[c] > static_cast<uint32_t>(max_list)) return;
+      const auto first = sorted.begin() + count[c], last = sorted.begin() + count[c + 1];
+      auto end = last;
+      if (tighten) {
+        const int face = static_cast<int>(c / per_face);
+        const int j = static_cast<int>(c % per_face) / res,
+                  i = static_cast<int>(c % per_face) % res;
+        end = std::remove_if(first, last, [&](Entry& e) {
+          if (!e.refine) return false;
+          Polygon tri;
+          tri.n = 3;
+          for (int k = 0; k < 3; ++k)
+            tri.v[k] = glm::dvec3(s.positions[static_cast<size_t>(e.tri) * 3 + k]) - L;
+          const double dmin = origin_triangle_distance(tri.v[0], tri.v[1], tri.v[2]);
+          const double d = cell_near(tri, face / 2, face % 2, i, j, res,
+                                     triangle_margin(dmin, slack) + kClipSlack);
+          if (d < 0) return true;  // the triangle misses the cell's (widened) directions
+          e.near = std::max(e.near, near_bound(d, slack));
+          return false;
+        });
+      }
+      std::sort(first, end);
+      kept[c] = static_cast<uint32_t>(end - first);
     });
     for (size_t c = 0; c < per_light; ++c) {
-      const uint32_t n = count[c + 1] - count[c];
       glm::ivec2& cell = lb.cells[li * per_light + c];
       if (listed[c] > static_cast<uint32_t>(max_list)) {
         cell = {static_cast<int32_t>(lb.tris.size()), -1};
         ++lb.fallback_cells;
         continue;
       }
-      cell = {static_cast<int32_t>(lb.tris.size()), static_cast<int32_t>(n)};
-      for (uint32_t k = count[c]; k < count[c + 1]; ++k) {
+      cell = {static_cast<int32_t>(lb.tris.size()), static_cast<int32_t>(kept[c])};
+      for (uint32_t k = count[c]; k < count[c] + kept[c]; ++k) {
         lb.tris.push_back(sorted[k].tri);
         lb.near.push_back(sorted[k].near);
       }

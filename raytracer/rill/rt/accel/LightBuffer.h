@@ -14,9 +14,10 @@
 // face's pyramid and widened by a margin, touches the cell; the margin covers the float
 // lookup of the cell and the triangle test's own rounding (both far below it), and a
 // triangle that reaches the light itself is listed in every cell of the faces it touches.
-// An entry's distance is a lower bound of the triangle's distance from the light. So the
-// list holds every triangle the shadow ray could hit, and "is something in the way" has
-// the grid walk's answer: shadows are the same bits with or without the light buffer.
+// An entry's distance is a lower bound of the distance from the light of the triangle's part
+// that the cell's rays can reach. So the list holds every triangle the shadow ray could hit, and
+// "is something in the way" has the grid walk's answer: shadows are the same bits with or without
+// the light buffer.
 //
 // Cells whose list would be longer than max_list (a dense mesh seen from far away) are
 // marked (start, -1): their shadow rays walk the grid as before. Face f = 2 * axis + (the
@@ -44,6 +45,8 @@ constexpr int kLightBufferRes = 64;
 constexpr int kLightBufferMaxRes = 1024;
 constexpr int kLightBufferMaxList = 48;
 constexpr uint64_t kLightBufferMaxVisits = uint64_t{1} << 27;
+// Up to this many entries per light, each is tightened to its cell (LightBuffer.cpp).
+constexpr size_t kLightBufferMaxTightened = size_t{1} << 22;
 
 // What a light buffer holds, for --stats-json and warnings.
 struct LightBufferStats {
@@ -72,9 +75,16 @@ struct LightBuffer {
 // than max_visits (huge triangles close to a light, at a high resolution), it gives up and
 // returns none, saying why in `skipped` (the shadow rays then walk the grid); the entries
 // it keeps are at most max_list + 1 per cell while it builds.
+//
+// Each entry's distance is then tightened to the part of its triangle that the cell's rays
+// can reach, and entries whose triangle misses the cell's directions (they were listed for
+// the box of cells around the triangle) are dropped, where a light's entries number at most
+// max_tightened: a lit point's shadow ray then tests about half as many triangles (thesis A:
+// 3566 entries instead of 6116).
 LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res,
                                int max_list = kLightBufferMaxList,
-                               uint64_t max_visits = kLightBufferMaxVisits);
+                               uint64_t max_visits = kLightBufferMaxVisits,
+                               size_t max_tightened = kLightBufferMaxTightened);
 
 // The resolution SceneOptions::light_buffer asks for (auto: kLightBufferRes, fewer where
 // many lights would make more than 2^22 cells, and 0, none, where even 8 would or lights times

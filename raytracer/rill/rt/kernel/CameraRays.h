@@ -4,6 +4,9 @@
 
 #include <rill/rill.h>
 
+#include <optional>
+#include <vector>
+
 #include "rill/rt/kernel/Records.h"
 #include "rill/rt/scene/Camera.h"
 
@@ -18,26 +21,33 @@ struct CameraRays {
   // (RenderSettings::window) launches over the window alone. Added to the launch coordinate
   // as integers before anything else, so a pixel's ray has the same bits in every window.
   rill::Uniform<Int2> origin{glm::ivec2(0), "pixel_origin"};
-  // The image's pixels whose rays may meet the scene, [first, end) (pixels_seeing_box): the
-  // whole image until set_bounds() says otherwise.
+  // The image's pixels whose rays may meet the scene, [first, end), and within it the tiles
+  // that may (TileMask, scene/Camera.h): tile (x >> tile_shift, y >> tile_shift) at
+  // seeing_tiles[row * tile_columns + column]. The whole image until set() is given boxes.
   rill::Uniform<Int2> seeing_first{glm::ivec2(0), "seeing_first"},
       seeing_end{glm::ivec2(1 << 30), "seeing_end"};
+  rill::Uniform<Int> tile_shift{30, "tile_shift"}, tile_columns{1, "tile_columns"};
+  rill::Array<Int> seeing_tiles{1, "seeing_tiles"};
 
-  // The camera for an image of width x height pixels, launched from pixel origin on.
-  // Sees the whole image: set_bounds() narrows that.
-  void set(const Camera& camera, int width, int height, glm::ivec2 origin = glm::ivec2(0));
-  // The box that holds everything a ray can hit (an empty one: lo > hi), for the camera of
-  // the last set().
-  void set_bounds(const glm::vec3& lo, const glm::vec3& hi);
+  CameraRays();
+  // The camera for an image of width x height pixels, launched from pixel origin on. With
+  // boxes, the pixels that see none of them are marked (may_see_scene), else every pixel
+  // sees.
+  void set(const Camera& camera, int width, int height, glm::ivec2 origin = glm::ivec2(0),
+           const std::vector<Aabb>* boxes = nullptr);
   // The unit direction through the launch's pixel pix (the image's pixel pix + origin) at the
   // sample offset.
   Float3 direction(const Int2& pix) const;
   // Whether the launch's pixel pix may see anything: false only where its camera rays, at
-  // every sample offset, miss the box of set_bounds().
+  // every sample offset, miss every box given to set().
   Bool may_see_scene(const Int2& pix) const;
 
  private:
-  CameraFrame frame_;
+  void use(TileMask mask);
+  TileMask mask_;  // what the uniforms and seeing_tiles hold now
+  // The view and boxes mask_ was made for, if it was made from boxes.
+  std::optional<CameraFrame> seen_from_;
+  std::vector<Aabb> seen_boxes_;
 };
 
 }  // namespace rt

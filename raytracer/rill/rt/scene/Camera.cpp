@@ -53,6 +53,16 @@ PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm
   const glm::dvec3 fw(f.forward), rt(f.right), up(f.up), eye(f.eye);
   const double size = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
   double sx_min = HUGE_VAL, sx_max = -HUGE_VAL, sy_min = HUGE_VAL, sy_max = -HUGE_VAL;
+  // Every camera ray heads forward (its direction's forward part is 1 against at most
+  // tan(fov / 2) sideways, far above the rounding): a box wholly behind the eye's plane is
+  // never hit.
+  int behind = 0;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+    const glm::dvec3 v = p - eye;
+    behind += glm::dot(v, fw) < -1e-3 * std::max(size, glm::length(v));
+  }
+  if (behind == 8) return PixelRect{};
   for (int c = 0; c < 8; ++c) {
     const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
     const glm::dvec3 v = p - eye;
@@ -87,6 +97,48 @@ PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm
   r.first.y = clamp_to(std::floor(row(sy_max)) - my, h);
   r.end.y = clamp_to(std::ceil(row(sy_min)) + my, h);
   return r;
+}
+
+TileMask tiles_seeing_boxes(const CameraFrame& f, const std::vector<Aabb>& boxes) {
+  const int w = static_cast<int>(f.width), h = static_cast<int>(f.height);
+  TileMask m;
+  m.shift = 3;
+  auto tiles_for = [&](int shift) {
+    const int t = 1 << shift;
+    return glm::ivec2((w + t - 1) / t, (h + t - 1) / t);
+  };
+  while (int64_t{tiles_for(m.shift).x} * tiles_for(m.shift).y > (int64_t{1} << 18)) ++m.shift;
+  m.tiles = tiles_for(m.shift);
+  // Each box's rectangle of tiles as +1 and -1 at its corners, then running sums along both
+  // axes: a tile's sum counts the rectangles over it, in time linear in boxes and tiles.
+  const int cols = m.tiles.x + 1;
+  std::vector<int32_t> count(static_cast<size_t>(cols) * (m.tiles.y + 1), 0);
+  auto at = [&](int x, int y) -> int32_t& { return count[static_cast<size_t>(y) * cols + x]; };
+  m.bounds = PixelRect{};
+  for (const Aabb& b : boxes) {
+    const PixelRect r = pixels_seeing_box(f, b.lo, b.hi);
+    if (r.empty()) continue;
+    if (m.bounds.empty()) {
+      m.bounds = r;
+    } else {
+      m.bounds.first = glm::min(m.bounds.first, r.first);
+      m.bounds.end = glm::max(m.bounds.end, r.end);
+    }
+    const glm::ivec2 t0 = r.first >> m.shift, t1 = ((r.end - 1) >> m.shift) + 1;
+    at(t0.x, t0.y) += 1;
+    at(t1.x, t0.y) -= 1;
+    at(t0.x, t1.y) -= 1;
+    at(t1.x, t1.y) += 1;
+  }
+  for (int y = 0; y <= m.tiles.y; ++y)
+    for (int x = 1; x <= m.tiles.x; ++x) at(x, y) += at(x - 1, y);
+  for (int y = 1; y <= m.tiles.y; ++y)
+    for (int x = 0; x <= m.tiles.x; ++x) at(x, y) += at(x, y - 1);
+  m.seen.resize(static_cast<size_t>(m.tiles.x) * m.tiles.y);
+  for (int y = 0; y < m.tiles.y; ++y)
+    for (int x = 0; x < m.tiles.x; ++x)
+      m.seen[static_cast<size_t>(y) * m.tiles.x + x] = at(x, y) > 0 ? 1 : 0;
+  return m;
 }
 
 }  // namespace rt

@@ -14,6 +14,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
 #include "rill/rt/scene/Scene.h"
 
 namespace rt {
@@ -39,11 +41,30 @@ glm::vec3 camera_ray(const CameraFrame& f, int i, int j, float ox = 0.5f, float 
 // pixels on every side, more on a view so narrow that the rays' rounding moves them further. The
 // whole image when the box is not finite or reaches to within a thousandth of its size from the
 // eye's plane (the projection of a box that surrounds the eye or lies beside it is unbounded), and
-// an empty rectangle for an empty box (lo > hi).
+// an empty rectangle for an empty box (lo > hi) or one wholly behind the eye's plane.
 struct PixelRect {
   glm::ivec2 first{0}, end{0};
   bool empty() const { return first.x >= end.x || first.y >= end.y; }
 };
 PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm::vec3& hi);
+
+// An axis-aligned box; empty where lo > hi.
+struct Aabb {
+  glm::vec3 lo{0.0f}, hi{-1.0f};
+};
+
+// The image cut into tiles of tile x tile pixels (a power of two), and per tile whether one of
+// its pixels may see one of a list of boxes (pixels_seeing_box): where the scene's objects lie
+// on screen, more closely than their common box's rectangle. The kernels look a pixel's tile
+// up (kernel/CameraRays.h); a pixel in a tile marked 0 sees none of the boxes.
+struct TileMask {
+  int shift = 0;  // tile = 1 << shift
+  glm::ivec2 tiles{0};
+  std::vector<int32_t> seen;  // tiles.x * tiles.y, row by row: 1 or 0
+  PixelRect bounds;           // the union of the boxes' rectangles
+  bool operator==(const TileMask&) const = default;
+};
+// Tiles of 8 pixels, or larger where the image would have more than 2^18 of them.
+TileMask tiles_seeing_boxes(const CameraFrame& f, const std::vector<Aabb>& boxes);
 
 }  // namespace rt
