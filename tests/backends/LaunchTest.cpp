@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "BackendTest.h"
 
@@ -818,6 +819,48 @@ TEST_P(LaunchTest, PowOfZeroIsPowAtBothZeros) {
           << "pow(" << xs[i] << ", " << yy[i] << ")";
     }
   }
+}
+
+// strict::pow_term_is_lost: wherever it says c + s * pow(x, y) is c, the sum computed with
+// pow is c, bit for bit, over bases from tiny to above 1, exponents from 1 to 3e7 and sums
+// from 1e-30 to 1e30; and it says so for most small terms (it is not vacuous).
+TEST_P(LaunchTest, PowTermIsLostOnlyWhereTheSumIsUnchanged) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const float ys[] = {1.0f, 2.0f, 5.0f, 20.0f, 40.0f, 60.0f, 1000.0f, 1e6f, 3e7f};
+  std::vector<float> cs, ss, xs, yv;
+  for (int i = 0; i < 20000; ++i) {
+    // Bases spread evenly in log2 over [2^-8, 2) and linearly near 1, where the bound is
+    // closest to the truth.
+    const float x = i % 2 ? std::exp2(-8.0f + 9.0f * unit(rng)) : 0.5f + unit(rng);
+    cs.push_back(std::exp2(-100.0f + 200.0f * unit(rng)) * (i % 7 == 0 ? 1.0f : unit(rng)));
+    ss.push_back(i % 11 == 0 ? 0.0f : unit(rng));
+    xs.push_back(x);
+    yv.push_back(ys[i % 9]);
+  }
+  Program p = program("pow_term", [] {
+    Input<Float> c("c"), s("s"), x("x"), y("y");
+    Output<Float2> r("r");
+    r = Float2(c + s * strict::pow(x, y),
+               select(strict::pow_term_is_lost(c, s, x, y), Float(1.0f), Float(0.0f)));
+  });
+  Kernel k = compile(p);
+  const std::vector<glm::vec2> r =
+      run_kernel<Float2>(k, static_cast<int64_t>(xs.size()), cs, ss, xs, yv);
+  int lost = 0, small = 0;
+  for (size_t i = 0; i < xs.size(); ++i) {
+    const bool says_lost = r[i].y == 1.0f;
+    lost += says_lost;
+    if (says_lost) {
+      ASSERT_EQ(std::bit_cast<uint32_t>(r[i].x), std::bit_cast<uint32_t>(cs[i]))
+          << cs[i] << " + " << ss[i] << " * pow(" << xs[i] << ", " << yv[i] << ")";
+    }
+    // A term below 2^-40 of the sum (in double) is lost by any measure.
+    const double term = double(ss[i]) * std::pow(double(xs[i]), double(yv[i]));
+    small += term < std::ldexp(double(cs[i]), -40);
+  }
+  EXPECT_GT(lost, small * 9 / 10) << "of " << small << " terms below 2^-40 of their sum";
+  EXPECT_GT(small, 5000);
 }
 
 // ---- launch errors --------------------------------------------------------------------------

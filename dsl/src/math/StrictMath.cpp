@@ -290,6 +290,28 @@ Float pow_of_zero(const Float& x, const Float& y) {
   return select(y == 0.0f, Float(1.0f), r);
 }
 
+Bool pow_term_is_lost(const Float& c, const Float& s, const Float& x, const Float& y) {
+  // log2(x) from above, for x = m 2^e normal: log2 lies below its tangents, here those at
+  // m = 1, 1.25, 1.5 and 1.75 (within 0.02 of log2(m) on [1, 2)), each a m + b with a and
+  // b rounded up (m > 0). The rounding of the operations (a few 2^-24 of the result) is far
+  // inside the margin of 1 taken below.
+  const Int bits = as_int(x);
+  const Int field = (bits >> 23) & 255;
+  const Float m = as_float((bits & 0x7fffff) | 0x3f800000);
+  const Float log2_m = min(min(1.4427f * m - 1.4426f, 1.15416f * m - 1.1207f),
+                           min(0.9618f * m - 0.8577f, 0.8244f * m - 0.6353f));
+  const Float log2_up = to_float(field - 127) + log2_m;
+  // pow(x, y) <= 2^(y log2_up) for y > 0, and u = 2^k with k >= y log2_up + 1 (truncation
+  // moves a negative value up). Below, k is raised to -120, where 2^k is still a normal
+  // float: a larger bound is still a bound. Above 2^100 there is no bound: pow may be
+  // infinite, and s = 0 times infinity is NaN, not 0.
+  const Float log2_pow_up = y * log2_up;
+  const Int k = max(to_int(log2_pow_up), -122) + 2;
+  const Float u = as_float((min(k, 120) + 127) << 23);
+  return y > 0.0f && !sign_bit(x) && field >= 1 && field <= 254 && log2_pow_up <= 100.0f &&
+         s >= 0.0f && c + s * u == c;
+}
+
 Float sin(const Float& x) {
   Float ax = abs(x);
   Reduced red = reduce_pi_over_4(ax);

@@ -41,16 +41,24 @@ Float3 phong_reflected(const ShadingPoint& sp, const LightSample& light) {
     Float3 R = reflect(-light.L, sp.s.nf);
     Float rv = max(dot(R, sp.s.V), 0.0f);
     const Float n = sp.number("shininess");
+    const Float3 ks = sp.color("specular");
     // pow is the light's costliest step (in strict mode Rill's own routine, about a hundred
-    // operations), and rv is 0 wherever the mirror direction faces away from the eye, where
-    // pow_of_zero gives pow's bits in a few selects. Zero is told as pow tells it (is_zero:
-    // by the bits), so a backend that flushes denormals in comparisons still sends one to pow.
+    // operations), so it runs only where its term can change the colour. rv is 0 wherever
+    // the mirror direction faces away from the eye, where pow_of_zero gives pow's bits in a
+    // few selects (zero is told as pow tells it, by the bits, so a backend that flushes
+    // denormals in comparisons still sends one to pow). Away from the highlight's peak, ks
+    // times pow is below half an ulp of the diffuse term it is added to (pow_term_is_lost),
+    // and the sum is the diffuse term with or without it; there, too, pow_of_zero's 0 takes
+    // its place. Only the bits that cannot change are left out: the images stay the same.
+    Bool lost = true;
+    for (int k = 0; k < 3; ++k) lost = lost && rill::strict::pow_term_is_lost(c[k], ks[k], rv, n);
+    lost = lost || !(ndl > 0.0f);  // the select below drops the term
     Float highlight = rill::strict::pow_of_zero(rv, n);
-    RILL_IF(!rill::strict::is_zero(rv)) {
+    RILL_IF(!rill::strict::is_zero(rv) && !lost) {
       highlight = pow(rv, n);
     }
     RILL_ENDIF;
-    c = c + select(ndl > 0.0f, sp.color("specular") * highlight, Float3(0.0f));
+    c = c + select(ndl > 0.0f, ks * highlight, Float3(0.0f));
   }
   return Float3(c * light.color);
 }
