@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -107,7 +108,6 @@ struct Tracer::Impl {
   std::unique_ptr<Multipass> multipass;
   // Boxes that hold every static triangle that can be hit (accel/OccupiedBoxes.h).
   std::vector<Aabb> static_boxes;
-  std::vector<Aabb> boxes;  // the frame's: static_boxes and the moving triangles' BVH box
   Film film;  // both strategies' samples meet here  // built at its first render
   Program intersect_program, camera_program;
 };
@@ -211,9 +211,10 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
                              std::to_string(width) + "x" + std::to_string(height) + " image");
   // The camera spans the whole image; the launches cover the window. What a camera ray can
   // hit: the grid's triangles and the moving ones' BVH, as they are now.
-  I.boxes = I.static_boxes;
-  if (!I.bvh.nodes.empty()) I.boxes.push_back(Aabb{I.bvh.nodes.front().lo, I.bvh.nodes.front().hi});
-  I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y), &I.boxes);
+  std::optional<Aabb> moving;
+  if (!I.bvh.nodes.empty()) moving = Aabb{I.bvh.nodes.front().lo, I.bvh.nodes.front().hi};
+  I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y), &I.static_boxes,
+                      moving ? &*moving : nullptr);
   if (rs.strategy == Strategy::Multipass) {
     if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);
     return I.multipass->render(rs, I.film, win.width, win.height, depth, spp, r);

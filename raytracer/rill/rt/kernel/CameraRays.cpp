@@ -26,7 +26,7 @@ CameraRays::CameraRays() {
 }
 
 void CameraRays::set(const Camera& camera, int width, int height, glm::ivec2 launch_origin,
-                     const std::vector<Aabb>* boxes) {
+                     const std::vector<Aabb>* boxes, const Aabb* moving) {
   const CameraFrame f = camera_frame(camera, width, height);
   eye.set(f.eye);
   forward.set(f.forward);
@@ -36,6 +36,9 @@ void CameraRays::set(const Camera& camera, int width, int height, glm::ivec2 lau
   aspect.set(f.aspect);
   size.set(glm::vec2(f.width, f.height));
   origin.set(launch_origin);
+  const PixelRect m = moving ? pixels_seeing_box(f, moving->lo, moving->hi) : PixelRect{};
+  moving_first.set(m.first);
+  moving_end.set(m.empty() ? m.first : m.end);
   // Frame after frame of one view and scene (rill-trace --bench-frames), the mask is the
   // last one: projecting a thousand boxes costs about 0.1 ms, a tenth of a GPU's frame.
   const bool same =
@@ -65,12 +68,15 @@ void CameraRays::use(TileMask m) {
   mask_ = std::move(m);
 }
 
-Bool CameraRays::may_see_scene(const Int2& launch_pix) const {
+Bool CameraRays::may_see_scene(const Int2& launch_pix, bool moving) const {
   const Int2 pix = launch_pix + origin;
-  const Bool in_bounds = pix.x() >= seeing_first.x() && pix.y() >= seeing_first.y() &&
-                         pix.x() < seeing_end.x() && pix.y() < seeing_end.y();
+  auto inside = [&](const Int2& first, const Int2& end) {
+    return pix.x() >= first.x() && pix.y() >= first.y() && pix.x() < end.x() && pix.y() < end.y();
+  };
   const Int tile = (pix.y() >> tile_shift) * tile_columns + (pix.x() >> tile_shift);
-  return in_bounds && seeing_tiles[tile] != 0;
+  Bool sees = inside(seeing_first, seeing_end) && seeing_tiles[tile] != 0;
+  if (moving) sees = sees || inside(moving_first, moving_end);
+  return sees;
 }
 
 // docs/camera.md: float32, in this order.

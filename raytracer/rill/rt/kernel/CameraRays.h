@@ -28,19 +28,25 @@ struct CameraRays {
       seeing_end{glm::ivec2(1 << 30), "seeing_end"};
   rill::Uniform<Int> tile_shift{30, "tile_shift"}, tile_columns{1, "tile_columns"};
   rill::Array<Int> seeing_tiles{1, "seeing_tiles"};
+  // The pixels that may see the moving triangles' box (a dynamic scene's BVH), apart from the
+  // tiles: that box changes from frame to frame, the tiles only with the view.
+  rill::Uniform<Int2> moving_first{glm::ivec2(0), "moving_first"},
+      moving_end{glm::ivec2(0), "moving_end"};
 
   CameraRays();
   // The camera for an image of width x height pixels, launched from pixel origin on. With
   // boxes, the pixels that see none of them are marked (may_see_scene), else every pixel
   // sees.
+  // A moving box adds the rectangle of pixels that may see it.
   void set(const Camera& camera, int width, int height, glm::ivec2 origin = glm::ivec2(0),
-           const std::vector<Aabb>* boxes = nullptr);
+           const std::vector<Aabb>* boxes = nullptr, const Aabb* moving = nullptr);
   // The unit direction through the launch's pixel pix (the image's pixel pix + origin) at the
   // sample offset.
   Float3 direction(const Int2& pix) const;
   // Whether the launch's pixel pix may see anything: false only where its camera rays, at
-  // every sample offset, miss every box given to set().
-  Bool may_see_scene(const Int2& pix) const;
+  // every sample offset, miss every box given to set(). The moving box's rectangle is tested
+  // only with `moving` (the kernel of a dynamic scene).
+  Bool may_see_scene(const Int2& pix, bool moving) const;
 
  private:
   void use(TileMask mask);

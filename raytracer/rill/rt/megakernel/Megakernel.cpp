@@ -123,7 +123,7 @@ Program Megakernel::capture(MegakernelLoop loop, MegakernelOutputs outputs) cons
     Bool skipped = false;
     // max_iter = 0 skips all tracing: render() uses that for a warm-up launch.
     // (An empty scene's rays all miss anyway: its kernel reads no array.)
-    const Bool sees = S_.F.geometry ? S_.camera.may_see_scene(pix) : Bool(true);
+    const Bool sees = S_.F.geometry ? S_.camera.may_see_scene(pix, S_.F.dynamic) : Bool(true);
     RILL_IF(max_iter_ > 0 && !sees) {
       // A camera ray outside the scene's box on screen: the miss its first segment would
       // give (the same operations), without making the ray or walking it.
