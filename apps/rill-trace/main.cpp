@@ -92,6 +92,12 @@ CLI::Validator file_name() {
       [](std::string& s) -> std::string { return s.empty() ? "an empty file name" : ""; }, "FILE");
 }
 
+// A setting's check where an empty value would otherwise read as the option not given.
+CLI::Validator non_empty() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string { return s.empty() ? "an empty value" : ""; }, "");
+}
+
 // Where a frame's interpolated camera comes from, for its errors: the scene file and the
 // camera keys around the frame's time (keys that are each fine can still interpolate to a
 // degenerate view, eye on look_at).
@@ -1164,7 +1170,7 @@ int main(int argc, char** argv) {
   r->add_option("--backend", ro.backend, "cpu, simd, opencl, glsl or glsl-compute")
       ->default_str("cpu");
   r->add_option("--accuracy", ro.accuracy, "strict, fast or double")->default_str("strict");
-  r->add_option("--size", ro.size, "image size WxH (default: the scene's)");
+  r->add_option("--size", ro.size, "image size WxH (default: the scene's)")->check(non_empty());
   r->add_option("--out", ro.out, "PNG output (sRGB)")->check(file_name());
   r->add_option("--pfm", ro.pfm, "linear colour as PFM")->check(file_name());
   r->add_option("--depth", ro.depth, "hit distance AOV as PFM (+inf: miss)")->check(file_name());
@@ -1173,16 +1179,19 @@ int main(int argc, char** argv) {
   r->add_option("--max-depth", ro.max_depth, "reflection/refraction bounces")
       ->check(number_in(0, 64, true));
   r->add_option("--spp", ro.spp, "samples per pixel")->check(number_in(1, 4096, true));
-  r->add_option("--grid", ro.grid, "voxels per axis, or auto");
+  r->add_option("--grid", ro.grid, "voxels per axis, or auto")->check(non_empty());
   r->add_option("--grid-density", ro.grid_density,
                 "voxels per triangle of the auto grid, 0.125..256 (default 4; 16 is faster on "
-                "the CPU backends for large meshes, at 3.5x the memory)");
+                "the CPU backends for large meshes, at 3.5x the memory)")
+      ->check(non_empty());
   r->add_option("--subgrids", ro.subgrids,
                 "voxels listing more triangles than this get a subgrid (1..1048576), off, or auto "
-                "(default: 12 when the backend runs on the CPU, off on a GPU)");
+                "(default: 12 when the backend runs on the CPU, off on a GPU)")
+      ->check(non_empty());
   r->add_option("--light-buffer", ro.light_buffer,
                 "shadow rays: cells per edge of each light's direction cube (1..1024), off (walk "
-                "the grid), or auto (default: 64 where the scene has shadows)");
+                "the grid), or auto (default: 64 where the scene has shadows)")
+      ->check(non_empty());
   r->add_option("--strategy", ro.strategy,
                 "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
       ->default_str("megakernel");

@@ -80,6 +80,10 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --size 4x4 --out ''", "--out: an empty file name");
   expect_clean_failure("render builtin:thesis-a --size 4x4 --stats-json ''",
                        "--stats-json: an empty");
+  // So would an empty setting.
+  for (const char* opt : {"--size", "--grid", "--grid-density", "--subgrids", "--light-buffer"})
+    expect_clean_failure(std::string("render builtin:thesis-a ") + opt + " ''",
+                         std::string(opt) + ": an empty value");
   expect_clean_failure("render builtin:thesis-a --size 4x4 --size 8x8",
                        "--size is given 2 times: give it once");
   expect_clean_failure("render builtin:thesis-a --spp 0", "0 is out of range (1 to 4096)");
