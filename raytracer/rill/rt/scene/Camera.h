@@ -62,7 +62,6 @@ struct TileMask {
   glm::ivec2 tiles{0};
   std::vector<int32_t> seen;  // tiles.x * tiles.y, row by row: 1 or 0
   PixelRect bounds;           // the union of the boxes' rectangles
-  bool operator==(const TileMask&) const = default;
 };
 // Tiles of 8 pixels, or larger where the image would have more than 2^18 of them.
 TileMask tiles_seeing_boxes(const CameraFrame& f, const std::vector<Aabb>& boxes);
