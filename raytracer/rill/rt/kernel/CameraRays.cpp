@@ -1,6 +1,7 @@
 // Camera rays (CameraRays.h).
 #include "rill/rt/kernel/CameraRays.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace rt {
@@ -41,10 +42,11 @@ void CameraRays::set(const Camera& camera, int width, int height, glm::ivec2 lau
   moving_end.set(m.empty() ? m.first : m.end);
   // Frame after frame of one view and scene (rill-trace --bench-frames), the mask is the
   // last one: projecting a thousand boxes costs about 0.1 ms, a tenth of a GPU's frame.
-  const bool same =
-      boxes && seen_from_ && std::memcmp(&*seen_from_, &f, sizeof f) == 0 &&
-      boxes->size() == seen_boxes_.size() &&
-      std::memcmp(boxes->data(), seen_boxes_.data(), sizeof(Aabb) * boxes->size()) == 0;
+  // (By their bits: memcmp, which an empty list must not reach with its null data.)
+  auto same_bits = [](const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  const bool same = boxes && seen_from_ && same_bits(*seen_from_, f) &&
+                    std::equal(boxes->begin(), boxes->end(), seen_boxes_.begin(),
+                               seen_boxes_.end(), same_bits);
   if (same) return;
   use(boxes ? tiles_seeing_boxes(f, *boxes) : whole_image(width, height));
   seen_from_.reset();
