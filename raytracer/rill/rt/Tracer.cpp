@@ -108,6 +108,7 @@ struct Tracer::Impl {
   std::unique_ptr<Multipass> multipass;
   // Boxes that hold every static triangle that can be hit (accel/OccupiedBoxes.h).
   std::vector<Aabb> static_boxes;
+  std::vector<Aabb> frame_boxes;  // static_boxes widened for the frame's eye
   Film film;  // both strategies' samples meet here  // built at its first render
   Program intersect_program, camera_program;
 };
@@ -213,7 +214,14 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   // hit: the grid's triangles and the moving ones' BVH, as they are now.
   std::optional<Aabb> moving;
   if (!I.bvh.nodes.empty()) moving = Aabb{I.bvh.nodes.front().lo, I.bvh.nodes.front().hi};
-  I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y), &I.static_boxes,
+  // Widened by the triangle test's rounding as seen from this eye (hit_margin).
+  I.frame_boxes = I.static_boxes;
+  if (moving) I.frame_boxes.push_back(*moving);
+  const float margin = hit_margin(I.frame_boxes, camera.eye);
+  if (moving) I.frame_boxes.pop_back();
+  for (Aabb& b : I.frame_boxes) b = widened(b, margin);
+  if (moving) moving = widened(*moving, margin);
+  I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y), &I.frame_boxes,
                       moving ? &*moving : nullptr);
   if (rs.strategy == Strategy::Multipass) {
     if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);

@@ -26,12 +26,36 @@ glm::ivec3 block_counts(const glm::vec3& extent, int max_boxes) {
 
 }  // namespace
 
+float hit_margin(const std::vector<Aabb>& boxes, const glm::vec3& eye) {
+  double mag = 0;
+  for (const Aabb& b : boxes)
+    for (int a = 0; a < 3; ++a)
+      mag = std::max({mag, std::fabs(double(b.lo[a])), std::fabs(double(b.hi[a]))});
+  const double eye_mag = glm::length(glm::dvec3(eye));
+  const double m = 1e-4 * (eye_mag + mag);
+  return std::isfinite(m) ? static_cast<float>(m) * 1.0001f
+                          : std::numeric_limits<float>::infinity();
+}
+
+Aabb widened(const Aabb& b, float margin) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  Aabb w;
+  for (int a = 0; a < 3; ++a) {
+    w.lo[a] = std::nextafter(b.lo[a] - margin, -kInf);
+    w.hi[a] = std::nextafter(b.hi[a] + margin, kInf);
+  }
+  return w;
+}
+
 std::vector<Aabb> occupied_boxes(const Scene& s, const Grid& grid, int max_boxes,
                                  uint64_t max_visits) {
   if (grid.empty()) return {};
   const Aabb whole{grid.lo, grid.hi};
   if (max_boxes < 1) return {whole};
-  const glm::ivec3 blocks = block_counts(grid.hi - grid.lo, max_boxes);
+  const glm::vec3 extent = grid.hi - grid.lo;
+  if (!std::isfinite(extent.x) || !std::isfinite(extent.y) || !std::isfinite(extent.z))
+    return {whole};  // (a box too large for float: one box, the grid's)
+  const glm::ivec3 blocks = block_counts(extent, max_boxes);
   // The block faces per axis: face i of axis a is where block i - 1 ends and block i begins,
   // one float for both; the outer two at infinity, so that no part of a triangle is lost.
   constexpr float kInf = std::numeric_limits<float>::infinity();
