@@ -29,12 +29,12 @@ Float pow(const Float& x, const Float& y);
 // pow's work where its base is zero (and still must give pow's result there). Undefined
 // for any other x.
 Float pow_of_zero(const Float& x, const Float& y);
-// Whether c + s * pow(x, y) is sure to equal c, whatever pow's rounding: a test of a few
-// operations for a caller that adds a pow term (a Phong highlight) and may leave pow out
-// where the term is too small to change the sum. True only for s >= 0, a positive normal x
-// and y > 0, where an upper bound of pow(x, y) from x's bits, added in the caller's own
-// arithmetic, leaves c as it is (rounding is monotonic, so the smaller true term does too).
-// Valid in every accuracy mode.
+// Whether c + s * pow(x, y) is sure to have the bits of c + s * 0 (c's own, but for c = -0),
+// whatever pow's rounding: a test of a few operations for a caller that adds a pow term (a
+// Phong highlight) and may leave pow out where the term is too small to change the sum. True
+// only for a finite s >= 0, a positive normal x and y > 0, where an upper bound of pow(x, y)
+// from x's bits, added in the caller's own arithmetic, leaves c as it is (rounding is
+// monotonic, so the smaller true term does too). Valid in every accuracy mode.
 Bool pow_term_is_lost(const Float& c, const Float& s, const Float& x, const Float& y);
 Float sin(const Float& x);
 Float cos(const Float& x);

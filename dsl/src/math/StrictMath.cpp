@@ -309,7 +309,7 @@ Bool pow_term_is_lost(const Float& c, const Float& s, const Float& x, const Floa
   const Int k = max(to_int(log2_pow_up), -122) + 2;
   const Float u = as_float((min(k, 120) + 127) << 23);
   return y > 0.0f && !sign_bit(x) && field >= 1 && field <= 254 && log2_pow_up <= 100.0f &&
-         s >= 0.0f && c + s * u == c;
+         s >= 0.0f && !is_inf(s) && c + s * u == c;
 }
 
 Float sin(const Float& x) {

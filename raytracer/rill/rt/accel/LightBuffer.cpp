@@ -44,8 +44,10 @@ double origin_triangle_distance(const glm::dvec3& a, const glm::dvec3& b, const 
 }
 
 // A convex polygon of at most 7 vertices: a triangle clipped by four planes.
+// Room for four clips of a triangle even where rounding makes a clipped polygon slightly
+// non-convex (a clip then adds up to one vertex per edge, not one in all): 3 x 2^4.
 struct Polygon {
-  glm::dvec3 v[7];
+  glm::dvec3 v[48];
   int n = 0;
 };
 
@@ -125,7 +127,9 @@ double cell_near(const Polygon& tri, int axis, int sign, int i, int j, int res, 
   double d = HUGE_VAL;
   for (int k = 1; k + 1 < poly.n; ++k)
     d = std::min(d, origin_triangle_distance(poly.v[0], poly.v[k], poly.v[k + 1]));
-  return poly.n < 3 ? 0.0 : d;  // (clipping a triangle leaves none or at least three)
+  // (Clipping a triangle leaves none or at least three vertices; a degenerate piece, whose
+  // distance is 0/0, tightens nothing.)
+  return poly.n < 3 || !(d < HUGE_VAL) ? 0.0 : d;
 }
 
 }  // namespace
