@@ -215,11 +215,10 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   std::optional<Aabb> moving;
   if (!I.bvh.nodes.empty()) moving = Aabb{I.bvh.nodes.front().lo, I.bvh.nodes.front().hi};
   // Widened by the triangle test's rounding as seen from this eye (hit_margin).
-  I.frame_boxes = I.static_boxes;
-  if (moving) I.frame_boxes.push_back(*moving);
-  const float margin = hit_margin(I.frame_boxes, camera.eye);
-  if (moving) I.frame_boxes.pop_back();
-  for (Aabb& b : I.frame_boxes) b = widened(b, margin);
+  const float margin = hit_margin(I.static_boxes, moving ? &*moving : nullptr, camera.eye);
+  I.frame_boxes.resize(I.static_boxes.size());
+  std::transform(I.static_boxes.begin(), I.static_boxes.end(), I.frame_boxes.begin(),
+                 [&](const Aabb& b) { return widened(b, margin); });
   if (moving) moving = widened(*moving, margin);
   I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y), &I.frame_boxes,
                       moving ? &*moving : nullptr);

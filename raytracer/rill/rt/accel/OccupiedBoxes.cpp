@@ -26,11 +26,14 @@ glm::ivec3 block_counts(const glm::vec3& extent, int max_boxes) {
 
 }  // namespace
 
-float hit_margin(const std::vector<Aabb>& boxes, const glm::vec3& eye) {
+float hit_margin(const std::vector<Aabb>& boxes, const Aabb* moving, const glm::vec3& eye) {
   double mag = 0;
-  for (const Aabb& b : boxes)
+  auto grow = [&](const Aabb& b) {
     for (int a = 0; a < 3; ++a)
       mag = std::max({mag, std::fabs(double(b.lo[a])), std::fabs(double(b.hi[a]))});
+  };
+  for (const Aabb& b : boxes) grow(b);
+  if (moving) grow(*moving);
   const double eye_mag = glm::length(glm::dvec3(eye));
   const double m = 1e-4 * (eye_mag + mag);
   return std::isfinite(m) ? static_cast<float>(m) * 1.0001f

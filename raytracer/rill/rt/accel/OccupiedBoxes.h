@@ -34,8 +34,8 @@ constexpr uint64_t kOccupiedBoxesMaxVisits = uint64_t{1} << 24;
 // vertices, more for rays that graze it (measured: 4e-5 beyond an edge for vertices 1400 from
 // the eye). Each box grows by 1e-4 of (|eye| + the largest coordinate of any box), which is
 // over 800 such ulps, rounded outwards. So that is the margin for any box of any list passed
-// together (the static ones and a dynamic scene's moving box).
-float hit_margin(const std::vector<Aabb>& boxes, const glm::vec3& eye);
+// together (the static ones and a dynamic scene's moving box, if any).
+float hit_margin(const std::vector<Aabb>& boxes, const Aabb* moving, const glm::vec3& eye);
 Aabb widened(const Aabb& b, float margin);
 
 // The boxes of the triangles the grid holds (the static, usable ones); none for an empty

@@ -56,24 +56,30 @@ PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm
   // Every camera ray heads forward (its direction's forward part is 1 against at most
   // tan(fov / 2) sideways, far above the rounding): a box wholly behind the eye's plane is
   // never hit.
+  // One pass over the corners: their projections, and whether each is clearly in front or
+  // clearly behind; a corner on neither side makes the whole image.
   int behind = 0;
+  bool near_plane = false;
   for (int c = 0; c < 8; ++c) {
     const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
     const glm::dvec3 v = p - eye;
-    behind += glm::dot(v, fw) < -1e-3 * std::max(size, glm::length(v));
-  }
-  if (behind == 8) return PixelRect{};
-  for (int c = 0; c < 8; ++c) {
-    const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
-    const glm::dvec3 v = p - eye;
-    const double z = glm::dot(v, fw);
-    if (!(z > 1e-3 * std::max(size, glm::length(v)))) return all;
+    const double z = glm::dot(v, fw), clear = 1e-3 * std::max(size, glm::length(v));
+    if (z < -clear) {
+      ++behind;
+      continue;
+    }
+    if (!(z > clear)) {
+      near_plane = true;
+      continue;
+    }
     const double sx = glm::dot(v, rt) / z, sy = glm::dot(v, up) / z;
     sx_min = std::min(sx_min, sx);
     sx_max = std::max(sx_max, sx);
     sy_min = std::min(sy_min, sy);
     sy_max = std::max(sy_max, sy);
   }
+  if (behind == 8) return PixelRect{};
+  if (behind > 0 || near_plane) return all;
   // sx = ((i + ox) / W * 2 - 1) t a and sy = (1 - (j + oy) / H * 2) t, solved for i and j;
   // ox, oy in [0, 1) widen each range by one pixel, and two more cover rounding. A float ray
   // is off its exact direction by a few 1e-7 radians whatever the field of view (the frame
