@@ -74,8 +74,15 @@ rill_check_cmake() {
 # RILL_BUILD_TARGETS (space-separated) limits the build to those targets; default: all.
 rill_build() {
   rill_check_cmake
+  # Ninja when it is there (scripts/packages.txt installs it): it keeps both cores busy across
+  # targets, and its .ninja_log times every step for scripts/test-times. A build directory
+  # configured earlier keeps its generator (CMake refuses to change it).
+  local generator=()
+  if [[ ! -f $RILL_BUILD_DIR/CMakeCache.txt ]] && command -v ninja >/dev/null 2>&1; then
+    generator=(-G Ninja)
+  fi
   rill_say "configuring $RILL_BUILD_DIR ($RILL_BUILD_TYPE)"
-  cmake -S "$RILL_ROOT" -B "$RILL_BUILD_DIR" -DCMAKE_BUILD_TYPE="$RILL_BUILD_TYPE" "$@" ||
+  cmake -S "$RILL_ROOT" -B "$RILL_BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE="$RILL_BUILD_TYPE" "$@" ||
     rill_die "CMake configure failed"
   local targets=()
   if [[ -n ${RILL_BUILD_TARGETS:-} ]]; then
@@ -83,5 +90,7 @@ rill_build() {
     targets=(--target "${targets[@]}")
   fi
   rill_say "building ${RILL_BUILD_TARGETS:-everything} with $RILL_JOBS jobs"
+  local began=$SECONDS
   cmake --build "$RILL_BUILD_DIR" --parallel "$RILL_JOBS" "${targets[@]}" || rill_die "build failed"
+  rill_say "built in $((SECONDS - began)) s (per target: scripts/test-times --build $RILL_BUILD_DIR)"
 }

@@ -315,6 +315,35 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
   }
 }
 
+// The triangles a sphere or teapot of valid size will make (0 for anything else: other
+// shapes are small, files are counted as they load, bad fields are reported by mesh()).
+size_t shape_triangles(const json& m) {
+  if (!m.is_object() || !m.contains("shape") || !m["shape"].is_string()) return 0;
+  auto field = [&](const char* key, int fallback, int lo, int hi) -> size_t {
+    if (!m.contains(key)) return static_cast<size_t>(fallback);
+    if (!m[key].is_number_integer()) return 0;
+    const int64_t v = m[key].get<int64_t>();
+    return v >= lo && v <= hi ? static_cast<size_t>(v) : 0;
+  };
+  const std::string shape = m["shape"].get<std::string>();
+  if (shape == "sphere") return 2 * field("slices", 48, 3, 4096) * field("stacks", 24, 2, 4096);
+  if (shape == "teapot") {
+    const size_t n = field("subdivisions", 8, 1, 256);
+    return 64 * n * n;  // 32 patches
+  }
+  return 0;
+}
+
+// The scene's large shapes, added up before any is made: meshes whose sum is over the limit
+// fail at once, naming the first mesh past it, instead of after tessellating the ones before.
+void check_room_for_shapes(const Ctx& c, const Scene& s, const json& meshes) {
+  size_t total = 0;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    total += shape_triangles(meshes[i]);
+    check_room(c, s, total, "meshes[" + std::to_string(i) + "]");
+  }
+}
+
 // A parser callback that rejects a key given twice in one object (JSON parsers keep the
 // last, so a repeated "builtin" silently replaced the first), naming the key and its path.
 json::parser_callback_t duplicate_key_check() {
@@ -330,6 +359,12 @@ json::parser_callback_t duplicate_key_check() {
     auto child_name = [&] {
       if (stack->empty()) return std::string("scene");
       const Frame& top = stack->back();
+      // A path past a few hundred characters stops growing ("...": no scene nests that
+      // deep), so that a hostile file nested 100,000 deep costs linear time and memory, not
+      // a path per level as long as its depth (gigabytes, 18 s).
+      constexpr size_t kLongestPath = 256;
+      if (top.name.size() >= kLongestPath)
+        return top.name.ends_with("...") ? top.name : top.name + "...";
       return top.object ? (top.name == "scene" ? *pending : top.name + "." + *pending)
                         : top.name + "[]";
     };
@@ -406,6 +441,7 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     MeshNames mesh_names;
     if (j.contains("meshes")) {
       if (!j["meshes"].is_array()) fail(c, "meshes must be an array");
+      check_room_for_shapes(c, s, j["meshes"]);
       for (size_t i = 0; i < j["meshes"].size(); ++i) {
         // "name" and "animate" apply to any mesh; the rest is the shape's or file's.
         json m = j["meshes"][i];
