@@ -333,7 +333,7 @@ Case uniforms_case() {
   return c;
 }
 
-Case swizzle_case() {
+Case swizzle_and_mask_case() {
   return control("swizzle_mask",
                  [] {
                    return program("control_swizzle", [] {
@@ -377,8 +377,10 @@ Case coords_case() {
 }  // namespace
 
 std::vector<Case> control_cases() {
-  return {if_case(),      while_case(),  do_until_case(), for_case(),     nested_case(),
-          discard_case(), arrays_case(), uniforms_case(), swizzle_case(), coords_case()};
+  return {if_case(),     while_case(),    do_until_case(),
+          for_case(),    nested_case(),   discard_case(),
+          arrays_case(), uniforms_case(), swizzle_and_mask_case(),
+          coords_case()};
 }
 
 }  // namespace rill::conformance

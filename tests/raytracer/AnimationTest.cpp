@@ -79,7 +79,7 @@ TEST(Animation, TimeRangeFrames) {
   EXPECT_EQ((TimeRange{1.0, 1.0, 24.0}).frame_count(), 1);
 }
 
-const char* kScene = R"({
+const char* kAnimatedScene = R"({
   "animation": {"start": 0, "end": 2, "fps": 10},
   "meshes": [
     {"shape": "box", "min": [-4, -1, -4], "max": [4, -0.5, 4]},
@@ -98,7 +98,7 @@ const char* kScene = R"({
 })";
 
 TEST(Animation, JsonSceneReadsObjectsInstancesAndCameraKeys) {
-  const Scene s = parse_json_scene(kScene, ".", "anim.json");
+  const Scene s = parse_json_scene(kAnimatedScene, ".", "anim.json");
   ASSERT_EQ(s.animation.objects.size(), 2u);
   EXPECT_EQ(s.triangle_count(), 48u);  // floor, cube, two instances: 12 each
   EXPECT_EQ(s.animation.objects[0].name, "cube");
@@ -128,7 +128,7 @@ TEST(Animation, JsonSceneReadsObjectsInstancesAndCameraKeys) {
 }
 
 TEST(Animation, PosingIsDeterministicAndLeavesTheRestAlone) {
-  const Scene s = parse_json_scene(kScene, ".", "anim.json");
+  const Scene s = parse_json_scene(kAnimatedScene, ".", "anim.json");
   Scene a = s, b = s;
   pose_objects(s, 0.73, a);
   pose_objects(s, 1.9, b);

@@ -22,7 +22,7 @@ class DynamicRender : public ::testing::TestWithParam<std::string> {};
 // Moving objects in front of, behind and inside static ones: a mirror that slides (reflected
 // rays through both accelerators), a cube that spins through the static boxes (shadows
 // blocked by either), an instanced sphere that falls and shrinks, and a moving camera.
-const char* kScene = R"({
+const char* kDynamicScene = R"({
   "builtin": "thesis-a",
   "animation": {"start": 0, "end": 2, "fps": 12},
   "materials": {
@@ -69,7 +69,7 @@ RenderResult baked(const Scene& s, double time, const RenderSettings& rs) {
 
 TEST_P(DynamicRender, FramesEqualTheSceneBakedAtThatTime) {
   RT_REQUIRE_BACKEND(GetParam());
-  const Scene s = parse_json_scene(kScene, ".", "dynamic.json");
+  const Scene s = parse_json_scene(kDynamicScene, ".", "dynamic.json");
   ASSERT_TRUE(s.animation.animated());
   const Grid g = build_grid(s, 0, kNoSubgrids);
   for (Strategy strategy : {Strategy::Megakernel, Strategy::Multipass}) {
@@ -96,7 +96,7 @@ TEST_P(DynamicRender, FramesEqualTheSceneBakedAtThatTime) {
 // With subgrids in the static grid, and a scene whose triangles all move (an empty grid).
 TEST_P(DynamicRender, SubgridsAndScenesWithoutStaticTriangles) {
   RT_REQUIRE_BACKEND(GetParam());
-  const Scene s = parse_json_scene(kScene, ".", "dynamic.json");
+  const Scene s = parse_json_scene(kDynamicScene, ".", "dynamic.json");
   const RenderSettings rs = settings(GetParam(), Strategy::Megakernel);
   const Grid sub = build_grid(s, 6, 1);
   ASSERT_GT(sub.subgrids, 0);
@@ -251,7 +251,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, DynamicRender, ::testing::ValuesIn(testing::b
 
 // Only what the scene calls for is generated: no BVH code without moving objects.
 TEST(DynamicFeatures, BvhCodeOnlyForScenesThatMove) {
-  const Scene s = parse_json_scene(kScene, ".", "dynamic.json");
+  const Scene s = parse_json_scene(kDynamicScene, ".", "dynamic.json");
   Tracer moving(s, build_grid(s));
   EXPECT_TRUE(moving.features().dynamic);
   EXPECT_NE(moving.source("cpu").find("bvh_"), std::string::npos);

@@ -14,9 +14,9 @@ using namespace ir;
 
 namespace {
 
-class Lowering : public Mutator {
+class ContinueLowering : public Mutator {
  public:
-  explicit Lowering(Function& f) : f_(f) {}
+  explicit ContinueLowering(Function& f) : f_(f) {}
   using Mutator::mutate;
   bool changed = false;
 
@@ -36,7 +36,8 @@ class Lowering : public Mutator {
     changed = true;
     VarId skip = f_.add_var(bool_type(1), VarRole::Local, "skip");
     Block body;
-    body.push_back(Stmt::assign(skip, Op::Copy, {Operand::of_const(Constant::of_bool(false))}, loop.loc));
+    body.push_back(
+        Stmt::assign(skip, Op::Copy, {Operand::of_const(Constant::of_bool(false))}, loop.loc));
     Block rest = std::move(loop.body);
     guard(rest, skip);
     for (Stmt& s : rest) body.push_back(std::move(s));
@@ -50,10 +51,12 @@ class Lowering : public Mutator {
       if (s.kind == StmtKind::Continue) {
         SourceLoc loc = s.loc;
         b.resize(i);  // the rest of the block is unreachable
-        b.push_back(Stmt::assign(skip, Op::Copy, {Operand::of_const(Constant::of_bool(true))}, loc));
+        b.push_back(
+            Stmt::assign(skip, Op::Copy, {Operand::of_const(Constant::of_bool(true))}, loc));
         return;
       }
-      if (s.kind != StmtKind::If || !(has_continue(s.then_body) || has_continue(s.else_body))) continue;
+      if (s.kind != StmtKind::If || !(has_continue(s.then_body) || has_continue(s.else_body)))
+        continue;
       guard(s.then_body, skip);
       guard(s.else_body, skip);
       if (i + 1 == b.size()) return;
@@ -77,7 +80,7 @@ class Lowering : public Mutator {
 }  // namespace
 
 bool lower_continue(Function& f) {
-  Lowering l(f);
+  ContinueLowering l(f);
   l.mutate(f.body);
   return l.changed;
 }

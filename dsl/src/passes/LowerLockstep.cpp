@@ -97,9 +97,9 @@ bool exits(const Stmt& s) {
   return false;
 }
 
-class Lowering {
+class LockstepLowering {
  public:
-  explicit Lowering(Function& f) : f_(f), unblended_(unblended_vars(f)) {}
+  explicit LockstepLowering(Function& f) : f_(f), unblended_(unblended_vars(f)) {}
 
   LockstepFunction run() {
     Block body;
@@ -304,7 +304,7 @@ class Lowering {
 
 LockstepFunction lower_lockstep(const Function& optimized) {
   Function f = optimized;
-  return Lowering(f).run();
+  return LockstepLowering(f).run();
 }
 
 }  // namespace rill::passes
