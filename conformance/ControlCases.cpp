@@ -377,10 +377,8 @@ Case coords_case() {
 }  // namespace
 
 std::vector<Case> control_cases() {
-  return {if_case(),     while_case(),    do_until_case(),
-          for_case(),    nested_case(),   discard_case(),
-          arrays_case(), uniforms_case(), swizzle_and_mask_case(),
-          coords_case()};
+  return {if_case(),      while_case(),  do_until_case(), for_case(),     nested_case(),
+          discard_case(), arrays_case(), uniforms_case(), swizzle_and_mask_case(), coords_case()};
 }
 
 }  // namespace rill::conformance

@@ -36,8 +36,7 @@ class ContinueLowering : public Mutator {
     changed = true;
     VarId skip = f_.add_var(bool_type(1), VarRole::Local, "skip");
     Block body;
-    body.push_back(
-        Stmt::assign(skip, Op::Copy, {Operand::of_const(Constant::of_bool(false))}, loop.loc));
+    body.push_back(Stmt::assign(skip, Op::Copy, {Operand::of_const(Constant::of_bool(false))}, loop.loc));
     Block rest = std::move(loop.body);
     guard(rest, skip);
     for (Stmt& s : rest) body.push_back(std::move(s));
@@ -51,12 +50,10 @@ class ContinueLowering : public Mutator {
       if (s.kind == StmtKind::Continue) {
         SourceLoc loc = s.loc;
         b.resize(i);  // the rest of the block is unreachable
-        b.push_back(
-            Stmt::assign(skip, Op::Copy, {Operand::of_const(Constant::of_bool(true))}, loc));
+        b.push_back(Stmt::assign(skip, Op::Copy, {Operand::of_const(Constant::of_bool(true))}, loc));
         return;
       }
-      if (s.kind != StmtKind::If || !(has_continue(s.then_body) || has_continue(s.else_body)))
-        continue;
+      if (s.kind != StmtKind::If || !(has_continue(s.then_body) || has_continue(s.else_body))) continue;
       guard(s.then_body, skip);
       guard(s.else_body, skip);
       if (i + 1 == b.size()) return;

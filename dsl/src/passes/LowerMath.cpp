@@ -25,28 +25,17 @@ Float scalar_operand(const Operand& o, int c) {
 // Rill's routine for each transcendental op (the ops Ops.def marks TRANSCENDENTAL).
 Float routine(Op op, const Float& a, const Float& b) {
   switch (op) {
-    case Op::Exp:
-      return strict::exp(a);
-    case Op::Exp2:
-      return strict::exp2(a);
-    case Op::Log:
-      return strict::log(a);
-    case Op::Log2:
-      return strict::log2(a);
-    case Op::Pow:
-      return strict::pow(a, b);
-    case Op::Sin:
-      return strict::sin(a);
-    case Op::Cos:
-      return strict::cos(a);
-    case Op::Tan:
-      return strict::tan(a);
-    case Op::Atan:
-      return strict::atan(a);
-    case Op::Atan2:
-      return strict::atan2(a, b);
-    default:
-      throw Error("internal: lower_math on a non-transcendental op");
+    case Op::Exp: return strict::exp(a);
+    case Op::Exp2: return strict::exp2(a);
+    case Op::Log: return strict::log(a);
+    case Op::Log2: return strict::log2(a);
+    case Op::Pow: return strict::pow(a, b);
+    case Op::Sin: return strict::sin(a);
+    case Op::Cos: return strict::cos(a);
+    case Op::Tan: return strict::tan(a);
+    case Op::Atan: return strict::atan(a);
+    case Op::Atan2: return strict::atan2(a, b);
+    default: throw Error("internal: lower_math on a non-transcendental op");
   }
 }
 
@@ -57,8 +46,7 @@ class MathLowering : public Mutator {
   bool changed = false;
 
   void mutate(Stmt&& s, Block& out) override {
-    if (s.kind != StmtKind::Assign || !is_transcendental(s.op))
-      return Mutator::mutate(std::move(s), out);
+    if (s.kind != StmtKind::Assign || !is_transcendental(s.op)) return Mutator::mutate(std::move(s), out);
     for (Stmt& t : expand(s)) out.push_back(std::move(t));
     changed = true;
   }

@@ -218,6 +218,41 @@ std::vector<glm::vec3> points(const Ctx& c, const json& j, const std::string& wh
   return p;
 }
 
+// The size fields of the shapes that can be large: key, default and range. mesh() reads them
+// with errors; shape_triangles() reads them leniently to add a scene's shapes up first.
+struct SizeField {
+  const char* key;
+  int fallback, lo, hi;
+};
+constexpr SizeField kSlices{"slices", 48, 3, 4096}, kStacks{"stacks", 24, 2, 4096},
+    kSubdivisions{"subdivisions", 8, 1, 256};
+size_t sphere_triangles(size_t slices, size_t stacks) {
+  return 2 * slices * stacks;
+}
+size_t teapot_triangles(size_t subdivisions) {
+  return 64 * subdivisions * subdivisions;  // 32 patches
+}
+
+int size_field(const Ctx& c, const json& j, const std::string& where, const SizeField& f) {
+  return j.contains(f.key) ? integer(c, j[f.key], where + "." + f.key, f.lo, f.hi) : f.fallback;
+}
+
+// The triangles a sphere or teapot of valid size will make (0 for anything else: other
+// shapes are small, files are counted as they load, bad fields are reported by mesh()).
+size_t shape_triangles(const json& m) {
+  if (!m.is_object() || !m.contains("shape") || !m["shape"].is_string()) return 0;
+  auto field = [&](const SizeField& f) -> size_t {
+    if (!m.contains(f.key)) return static_cast<size_t>(f.fallback);
+    if (!m[f.key].is_number_integer()) return 0;
+    const int64_t v = m[f.key].get<int64_t>();
+    return v >= f.lo && v <= f.hi ? static_cast<size_t>(v) : 0;
+  };
+  const std::string shape = m["shape"].get<std::string>();
+  if (shape == "sphere") return sphere_triangles(field(kSlices), field(kStacks));
+  if (shape == "teapot") return teapot_triangles(field(kSubdivisions));
+  return 0;
+}
+
 void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
           const std::map<std::string, Material>& materials) {
   const std::string where = "meshes[" + std::to_string(index) + "]";
@@ -276,10 +311,10 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
         j.contains("center") ? vec3(c, j["center"], where + ".center") : glm::vec3(0.0f);
     float r = j.contains("radius") ? num(c, j["radius"], where + ".radius") : 1.0f;
     if (!(r > 0)) fail(c, where + ".radius must be positive");
-    int sl = j.contains("slices") ? integer(c, j["slices"], where + ".slices", 3, 4096) : 48;
-    int st = j.contains("stacks") ? integer(c, j["stacks"], where + ".stacks", 2, 4096) : 24;
+    int sl = size_field(c, j, where, kSlices);
+    int st = size_field(c, j, where, kStacks);
     bool smooth = !j.contains("smooth") || boolean(c, j["smooth"], where + ".smooth");
-    check_room(c, s, 2 * static_cast<size_t>(sl) * static_cast<size_t>(st), where);
+    check_room(c, s, sphere_triangles(sl, st), where);
     Scene tmp;
     tmp.add_material(Material{});
     add_sphere(tmp, ctr, r, sl, st, 0, smooth);
@@ -304,34 +339,13 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     s.add_triangle(tp(v[0]), tp(v[1]), tp(v[2]), m, nullptr, nullptr, uv);
   } else if (shape == "teapot") {
     check_keys(c, j, where, {"shape", "subdivisions", "material", "transform", "smooth"});
-    int n = j.contains("subdivisions")
-                ? integer(c, j["subdivisions"], where + ".subdivisions", 1, 256)
-                : 8;
+    int n = size_field(c, j, where, kSubdivisions);
     bool smooth = !j.contains("smooth") || boolean(c, j["smooth"], where + ".smooth");
-    check_room(c, s, 64 * static_cast<size_t>(n) * static_cast<size_t>(n), where);  // 32 patches
+    check_room(c, s, teapot_triangles(n), where);
     add_teapot(s, n, m, t, smooth);
   } else {
     fail(c, where + ".shape '" + shape + "' is unknown (box, sphere, quad, triangle, teapot)");
   }
-}
-
-// The triangles a sphere or teapot of valid size will make (0 for anything else: other
-// shapes are small, files are counted as they load, bad fields are reported by mesh()).
-size_t shape_triangles(const json& m) {
-  if (!m.is_object() || !m.contains("shape") || !m["shape"].is_string()) return 0;
-  auto field = [&](const char* key, int fallback, int lo, int hi) -> size_t {
-    if (!m.contains(key)) return static_cast<size_t>(fallback);
-    if (!m[key].is_number_integer()) return 0;
-    const int64_t v = m[key].get<int64_t>();
-    return v >= lo && v <= hi ? static_cast<size_t>(v) : 0;
-  };
-  const std::string shape = m["shape"].get<std::string>();
-  if (shape == "sphere") return 2 * field("slices", 48, 3, 4096) * field("stacks", 24, 2, 4096);
-  if (shape == "teapot") {
-    const size_t n = field("subdivisions", 8, 1, 256);
-    return 64 * n * n;  // 32 patches
-  }
-  return 0;
 }
 
 // The scene's large shapes, added up before any is made: meshes whose sum is over the limit
