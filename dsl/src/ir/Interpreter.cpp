@@ -116,9 +116,11 @@ class Machine : public Visitor {
       r.bits[0] = static_cast<uint32_t>(static_cast<int32_t>(i_ % l_.width));
       r.bits[1] = static_cast<uint32_t>(static_cast<int32_t>(i_ / l_.width));
     } else {
-      std::vector<Constant> args;
-      for (const Operand& a : s.args) args.push_back(read(a));
-      auto folded = passes::fold(s.op, r.type, args);
+      // One vector for every statement's arguments: a fresh one per statement was most of
+      // the interpreter's time under AddressSanitizer (each allocation records a stack).
+      args_.clear();
+      for (const Operand& a : s.args) args_.push_back(read(a));
+      auto folded = passes::fold(s.op, r.type, args_);
       if (!folded)
         throw Error(std::string("interpreter: cannot evaluate '") + op_name(s.op) +
                     "' exactly (lower transcendental operations first)");
@@ -133,6 +135,7 @@ class Machine : public Visitor {
   const Function& f_;
   const InterpreterLaunch& l_;
   std::vector<Constant> vals_;
+  std::vector<Constant> args_;  // the arguments of the statement being evaluated
   int64_t i_ = 0;
   Flow flow_ = Flow::Normal;
 };
