@@ -7,13 +7,13 @@
 #include <chrono>
 #include <vector>
 
+#include "rill/Stopwatch.h"
+
 namespace rill::bench {
 
 using Clock = std::chrono::steady_clock;
 
-inline double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
+using rill::ms_since;
 
 inline double median(std::vector<double> v) {
   if (v.empty()) return 0;

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "CommaList.h"
+#include "Timing.h"
 #include "UsableBackends.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Bvh.h"
@@ -42,17 +43,9 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using rill::bench::Clock;
+using rill::bench::median;
+using rill::bench::ms_since;
 
 // Every triangle of `base`, `copies` times side by side, as one moving object that turns and
 // slides over a second.

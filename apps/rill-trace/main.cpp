@@ -52,6 +52,7 @@
 #include "distributed/Farm.h"
 #include "distributed/MpiSession.h"
 #endif
+#include "rill/Stopwatch.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/accel/LightBuffer.h"
@@ -115,9 +116,7 @@ std::string frame_camera_where(const std::string& scene_path, const rt::Scene& s
          from + ")";
 }
 
-double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
+using rill::ms_since;
 
 struct RenderOptions {
   std::string scene;

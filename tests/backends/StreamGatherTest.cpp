@@ -213,8 +213,6 @@ TEST_P(StreamGatherTest, GathersAcrossBackends) {
     EXPECT_EQ(got[static_cast<size_t>(i)], static_cast<float>(std::min(i + 2, n - 1)) * 0.25f);
 }
 
-}  // namespace
-
 // Arrays and streams longer than a texture row (4096 texels on the fragment stage, where
 // element g is texel (g % 4096, g / 4096)): gathers reach every row, the last one partial.
 TEST_P(StreamGatherTest, GathersReachEveryRowOfLongArraysAndStreams) {
@@ -249,6 +247,8 @@ TEST_P(StreamGatherTest, GathersReachEveryRowOfLongArraysAndStreams) {
         << "element " << i << " reads " << j;
   }
 }
+
+}  // namespace
 
 RILL_BACKEND_TEST_SUITE(StreamGatherTest);
 

@@ -13,7 +13,7 @@
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/accel/LightBuffer.h"
-#include "rill/rt/accel/LightBufferView.h"
+#include "rill/rt/kernel/LightBufferView.h"
 
 namespace rt {
 namespace {

@@ -1,11 +1,18 @@
-// Stopwatch: wall time since a point, in milliseconds, for the stage timings that
+// Stopwatch and ms_since: wall time since a point, in milliseconds, for the stage timings that
 // Kernel::info() reports (capture, optimization, code generation, backend compile, driver
-// finishing). Steady clock: the figures must not jump when the system clock is set.
+// finishing) and the renderer's and tools' own. Steady clock: the figures must not jump when
+// the system clock is set.
 #pragma once
 
 #include <chrono>
 
 namespace rill {
+
+// Milliseconds from t until now: for timings that start from a stored time point (a frame's
+// start, a job's) rather than from a Stopwatch.
+inline double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
 
 class Stopwatch {
  public:

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "rill/Stopwatch.h"
 #include "rill/rt/accel/Bvh.h"
 #include "rill/rt/accel/OccupiedBoxes.h"
 #include "rill/rt/kernel/DeviceScene.h"
@@ -70,9 +71,7 @@ std::unique_ptr<Scene> posed_at_start(const Scene& scene, const Features& f) {
   return posed;
 }
 
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
+using rill::ms_since;
 
 }  // namespace
 

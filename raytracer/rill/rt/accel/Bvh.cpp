@@ -21,6 +21,7 @@
 #include <new>
 #include <type_traits>
 
+#include "rill/Stopwatch.h"
 #include "rill/rt/accel/Grid.h"
 
 namespace rt {
@@ -456,9 +457,7 @@ Box refit(Bvh& b, const Scene& s, int32_t i) {
   return box;
 }
 
-double ms_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-}
+using rill::ms_since;
 
 // The builder's memory for n triangles: the triangles, the partition scratch and the node
 // array (2n nodes: Builder's regions).

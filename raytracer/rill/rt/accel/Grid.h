@@ -52,16 +52,12 @@
 
 namespace rt {
 
-constexpr double kGridDensity = 4.0;
-constexpr double kGridDensityMin = 0.125, kGridDensityMax = 256.0;
 // The threshold when subgrids are on: more triangles than this in a voxel, a subgrid.
 // Measured (docs/raytracer.md, Performance settings), they help backends that run on the CPU
 // (thesis C 1.4-1.5x) but cost NVIDIA's OpenCL 16-35%, and take 2.5x the memory and 2-3x the
 // build time. So by default (kSubgridsAuto) a grid gets them for a backend on the CPU and not
 // for one on a GPU (subgrid_min_for).
 constexpr int32_t kSubgridMin = 12;
-constexpr int32_t kNoSubgrids = 0;
-constexpr int32_t kSubgridsAuto = -1;
 constexpr double kSubgridDensity = 4.0;  // sub-voxels per triangle of the voxel
 constexpr int32_t kSubgridMaxRes = 8;
 

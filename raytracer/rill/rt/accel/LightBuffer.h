@@ -37,12 +37,9 @@
 
 namespace rt {
 
-// SceneOptions::light_buffer and --light-buffer: -1 auto (kLightBufferRes cells per face
-// edge where the scene has shadows), 0 off, or the resolution.
-constexpr int kLightBufferAuto = -1;
-constexpr int kLightBufferOff = 0;
+// SceneOptions::light_buffer and --light-buffer (scene/Scene.h): kLightBufferAuto gives
+// kLightBufferRes cells per face edge where the scene has shadows.
 constexpr int kLightBufferRes = 64;
-constexpr int kLightBufferMaxRes = 1024;
 constexpr int kLightBufferMaxList = 48;
 constexpr uint64_t kLightBufferMaxVisits = uint64_t{1} << 27;
 // Up to this many entries per light, each is tightened to its cell (LightBuffer.cpp).

@@ -1,5 +1,5 @@
 // Uploads the BVH for the kernels (BvhView.h).
-#include "rill/rt/accel/BvhView.h"
+#include "rill/rt/kernel/BvhView.h"
 
 #include "rill/rt/kernel/DeviceArrays.h"
 

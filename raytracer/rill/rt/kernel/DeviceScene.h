@@ -4,9 +4,9 @@
 // Shading). Both strategies (megakernel/, multipass/) build their programs from this.
 #pragma once
 
-#include "rill/rt/accel/BvhView.h"
-#include "rill/rt/accel/GridView.h"
-#include "rill/rt/accel/LightBufferView.h"
+#include "rill/rt/kernel/BvhView.h"
+#include "rill/rt/kernel/GridView.h"
+#include "rill/rt/kernel/LightBufferView.h"
 #include "rill/rt/kernel/CameraRays.h"
 #include "rill/rt/kernel/Intersector.h"
 #include "rill/rt/kernel/MaterialTable.h"

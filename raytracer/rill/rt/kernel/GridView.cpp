@@ -1,5 +1,5 @@
 // Uploads the grid for the kernels (GridView.h).
-#include "rill/rt/accel/GridView.h"
+#include "rill/rt/kernel/GridView.h"
 
 #include "rill/rt/kernel/DeviceArrays.h"
 

@@ -1,4 +1,4 @@
-// The closest-hit (and any-hit) search, as DSL functions over the grid (accel/GridView.h)
+// The closest-hit (and any-hit) search, as DSL functions over the grid (kernel/GridView.h)
 // and the triangles (Triangles.h): the ray against the grid's box, then a 3D-DDA from voxel
 // to voxel (Amanatides & Woo; thesis 5.1.2), a second one inside voxels with a subgrid, and
 // the knob's triangle test on the triangles each voxel lists. The closest hit wins (ties:
@@ -12,9 +12,9 @@
 
 #include <rill/rill.h>
 
-#include "rill/rt/accel/BvhView.h"
-#include "rill/rt/accel/GridView.h"
-#include "rill/rt/accel/LightBufferView.h"
+#include "rill/rt/kernel/BvhView.h"
+#include "rill/rt/kernel/GridView.h"
+#include "rill/rt/kernel/LightBufferView.h"
 #include "rill/rt/kernel/Features.h"
 #include "rill/rt/kernel/Options.h"
 #include "rill/rt/kernel/Records.h"

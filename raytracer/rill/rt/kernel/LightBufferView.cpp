@@ -1,5 +1,5 @@
 // Uploads the light buffer for the kernels, and its lookup (LightBufferView.h).
-#include "rill/rt/accel/LightBufferView.h"
+#include "rill/rt/kernel/LightBufferView.h"
 
 #include "rill/rt/kernel/DeviceArrays.h"
 

@@ -76,6 +76,16 @@ struct Camera {
   float fov_y = 45.0f;
 };
 
+// The values of SceneOptions' accelerator settings, which the scene formats and the command
+// line accept and accel/ acts on (Grid.h, LightBuffer.h).
+constexpr double kGridDensity = 4.0;  // voxels per triangle of the automatic resolution
+constexpr double kGridDensityMin = 0.125, kGridDensityMax = 256.0;
+constexpr int32_t kNoSubgrids = 0;     // a one-level grid
+constexpr int32_t kSubgridsAuto = -1;  // subgrids where the backend runs on the CPU
+constexpr int kLightBufferAuto = -1;   // a light buffer where the scene has shadows
+constexpr int kLightBufferOff = 0;
+constexpr int kLightBufferMaxRes = 1024;  // cells per cube face edge
+
 struct SceneOptions {
   bool shadows = true;   // hard shadows from every light
   float ambient = 0.1f;  // ambient term: ambient * Kd
@@ -83,11 +93,11 @@ struct SceneOptions {
   int grid = 0;          // grid cells per axis; 0 = automatic (see Grid.h)
   // Voxels listing more triangles get a subgrid; 0 = none; -1 (kSubgridsAuto, the default):
   // chosen for the backend that renders (Grid.h, subgrid_min_for).
-  int subgrid_min = -1;
-  double grid_density = 4.0;  // voxels per triangle of the automatic resolution (Grid.h)
+  int subgrid_min = kSubgridsAuto;
+  double grid_density = kGridDensity;  // voxels per triangle of the automatic resolution
   // The shadow rays' light buffer (accel/LightBuffer.h): -1 (kLightBufferAuto) chosen from
   // the scene, 0 off (shadow rays walk the grid), or cells per cube face edge.
-  int light_buffer = -1;
+  int light_buffer = kLightBufferAuto;
   int spp = 1;                 // samples per pixel
   bool smooth_normals = true;  // interpolate vertex normals where the mesh has them
 };

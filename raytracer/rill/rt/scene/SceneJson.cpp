@@ -12,8 +12,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "rill/rt/accel/Grid.h"
-#include "rill/rt/accel/LightBuffer.h"
 #include "rill/rt/kernel/Shader.h"
 #include "rill/rt/scene/AnimationJson.h"
 #include "rill/rt/scene/InputFile.h"
