@@ -58,8 +58,8 @@ int64_t default_programs(const std::string& test) {
 // Programs per kernel: compile times grow faster than linearly with kernel size on llvmpipe,
 // while PoCL has a large fixed cost per compile. The cross-check's kernels run on glsl too, so
 // they take glsl's size: at 32, its third kernel (programs 64-95, compiled with the passes
-// off) took llvmpipe 160 s to compile and 156 s more at its first draw, while 32 programs of
-// other seeds take 17-22 s (docs/testing.md, "Where the time goes").
+// off) took llvmpipe 163 s to compile and 157 s more at its first draw, while 32 programs of
+// other seeds take 17-22 s (docs/testing.md, "Batching").
 int64_t default_batch(const std::string& test) {
   return test == "cpu" ? 48 : test == "opencl" ? 96 : test == "glsl" || test == "cross" ? 24 : 32;
 }

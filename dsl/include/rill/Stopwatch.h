@@ -18,10 +18,7 @@ class Stopwatch {
  public:
   Stopwatch() : start_(std::chrono::steady_clock::now()) {}
   // Milliseconds since construction (or the last restart()).
-  double ms() const {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
-        .count();
-  }
+  double ms() const { return ms_since(start_); }
   // Returns ms() and starts counting again from now: times consecutive stages.
   double lap() {
     auto now = std::chrono::steady_clock::now();
