@@ -1,0 +1,25 @@
+// rill-trace's checks of option values: number and file-name validators for CLI11 that name
+// the problem in words, and the parsers of --size and --grid, whose errors name the option.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace trace_cli {
+
+// A number option's check: "'x' is not an integer", else whether it is out of [lo, hi].
+CLI::Validator number_in(double lo, double hi, bool integer);
+// A file option's check: an empty name would otherwise read as the option not given.
+CLI::Validator file_name();
+// A setting's check where an empty value would otherwise read as the option not given.
+CLI::Validator non_empty();
+
+// "WxH" (1..16384 per side, at most 2^25 pixels) into w and h; throws rt::SceneError.
+void parse_size(const std::string& s, int& w, int& h);
+// --grid: "auto" (or empty) is 0, else voxels per axis in 1..512; throws rt::SceneError.
+int parse_grid(const std::string& s);
+// "a,b,,c" -> {a, b, c}.
+std::vector<std::string> split_list(const std::string& s);
+
+}  // namespace trace_cli

@@ -1,0 +1,37 @@
+// The report of a sequence's frames (rill-trace render --frames, --bench-frames): each
+// frame's times for --stats-json, and the summary line.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "rill/rt/Tracer.h"
+
+namespace trace_cli {
+
+// One frame of a sequence (--frames): where it is in time, what moving its objects cost
+// (Tracer::set_time) and its trace time.
+struct FrameStats {
+  int frame = 0;
+  double time = 0;
+  rt::FrameUpdate update;
+  double trace_ms = 0, compile_ms = 0;
+  int64_t compiles = 0;  // kernels compiled for it (misses of Rill's in-process kernel cache)
+};
+
+// The frames as --stats-json's "frames" array (with each frame's update when the scene is
+// dynamic).
+nlohmann::json frames_json(const std::vector<FrameStats>& frames, const rt::Features& f);
+
+// A frame's trace time step by step (Tracer.h, FrameTimes) as JSON.
+nlohmann::json split_json(const rt::FrameTimes& t);
+
+// The middle element of v (the upper one of an even count); 0 for none.
+double median(std::vector<double> v);
+
+// "48 frames (0..47): trace median 12.3 ms; BVH rebuilt, median 0.4 ms (600 moving
+// triangles); upload 0.2 ms; compiled once".
+void print_frames_summary(const std::vector<FrameStats>& frames);
+
+}  // namespace trace_cli

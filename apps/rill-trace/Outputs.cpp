@@ -1,0 +1,103 @@
+#include "Outputs.h"
+
+#include <cstdio>
+#include <fstream>
+
+#include "Doing.h"
+#include "rill/rt/accel/LightBuffer.h"
+#include "rill/rt/scene/Image.h"
+
+namespace trace_cli {
+
+namespace {
+
+std::vector<float> to_float(const std::vector<int32_t>& v) {
+  std::vector<float> f(v.size());
+  for (size_t i = 0; i < v.size(); ++i) f[i] = static_cast<float>(v[i]);
+  return f;
+}
+
+}  // namespace
+
+std::vector<std::string> write_outputs(const RenderOptions& o, const Prepared& p,
+                                       const rt::RenderResult& r, const NameOf& name) {
+  g_doing = "writing the outputs";
+  std::vector<std::string> written;
+  auto pfm = [&](const std::string& path, const auto& data) {
+    if (path.empty()) return;
+    rt::write_pfm(name(path), r.width, r.height, data);
+    written.push_back(name(path));
+  };
+  if (!p.out.empty()) {
+    rt::write_png_rgb8(name(p.out), r.width, r.height, r.rgb8);
+    written.push_back(name(p.out));
+  }
+  pfm(o.pfm, r.color);
+  pfm(o.depth, r.depth);
+  if (!o.prim.empty()) pfm(o.prim, to_float(r.prim));
+  pfm(o.normal, r.normal);
+  return written;
+}
+
+nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, int height,
+                          int64_t rays) {
+  const rt::Scene& scene = p.scene;
+  const rt::Grid& grid = p.grid;
+  nlohmann::json j;
+  j["scene"] = o.scene;
+  j["triangles"] = scene.triangle_count();
+  j["width"] = width;
+  j["height"] = height;
+  j["backend"] = o.backend;
+  j["accuracy"] = o.accuracy;
+  j["strategy"] = o.strategy;
+  if (o.strategy == "megakernel")
+    j["megakernel_loop"] = rt::megakernel_loop_name(rt::megakernel_loop_for(p.rs.loop, o.backend));
+  j["knobs"] = p.knobs.str();
+  j["spp"] = scene.options.spp;
+  j["max_depth"] = scene.options.max_depth;
+  j["features"] = p.tracer->features().str();
+  j["grid"] = {{"resolution", {grid.res.x, grid.res.y, grid.res.z}},
+               {"density", scene.options.grid_density},
+               {"subgrids", grid.subgrids},
+               {"references", grid.elements.size()},
+               {"triangles", grid.usable},
+               {"degenerate", grid.degenerate},
+               {"non_finite", grid.non_finite}};
+  const rt::LightBufferStats& lb = p.tracer->light_buffer();
+  j["light_buffer"] = {{"resolution", lb.res},
+                       {"entries", lb.entries},
+                       {"fallback_cells", lb.fallback_cells},
+                       {"build_ms", lb.build_ms},
+                       {"skipped", lb.skipped}};
+  j["warnings"] = scene.warnings;
+  j["rays"] = rays;
+  return j;
+}
+
+void write_json(const std::string& path, const nlohmann::json& j) {
+  std::ofstream f(path);
+  f << j.dump(2) << "\n";
+  if (!f) throw rt::SceneError("cannot write " + path);
+}
+
+void print_notes(const RenderOptions& o, const Prepared& p,
+                 const std::vector<std::string>& written) {
+  if (o.quiet) return;
+  for (const auto& w : written) std::printf("wrote %s\n", w.c_str());
+  glm::vec3 lo, hi;
+  if (rt::scene_bounds(p.scene, lo, hi)) {
+    // In double: the float length of a 1e20-unit box overflows.
+    const double size = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
+    if (size < 1e-10f || size > 1e10f)
+      std::printf(
+          "note: the scene is %g units across; the intersection test's cubic terms underflow "
+          "(GLSL flushes them) or overflow outside about 1e-10..1e10\n",
+          static_cast<double>(size));
+  }
+  if (p.grid.degenerate + p.grid.non_finite > 0)
+    std::printf("note: %zu degenerate and %zu non-finite triangles are never hit\n",
+                p.grid.degenerate, p.grid.non_finite);
+}
+
+}  // namespace trace_cli

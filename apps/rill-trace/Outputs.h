@@ -1,0 +1,37 @@
+// What a render writes and reports (rill-trace render): the images asked for, the
+// --stats-json fields every render shares, and the notes after the outputs.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "Prepare.h"
+#include "RenderOptions.h"
+
+namespace trace_cli {
+
+// An output's name for one frame, or for a partial render ("x.png" -> "x.partial.png").
+using NameOf = std::function<std::string(const std::string&)>;
+
+// Writes the outputs asked for from a render, each under name(its path) (a partial render
+// writes beside the names asked for); returns what it wrote.
+std::vector<std::string> write_outputs(
+    const RenderOptions& o, const Prepared& p, const rt::RenderResult& r,
+    const NameOf& name = [](const std::string& s) { return s; });
+
+// The --stats-json fields a distributed render shares with a single-process one: width x
+// height images, rays traced over all of them.
+nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, int height,
+                          int64_t rays);
+
+// Writes j to path, indented; throws rt::SceneError when it cannot.
+void write_json(const std::string& path, const nlohmann::json& j);
+
+// The notes after the outputs (unless --quiet): what was written, and scene trouble.
+void print_notes(const RenderOptions& o, const Prepared& p,
+                 const std::vector<std::string>& written);
+
+}  // namespace trace_cli

@@ -1,0 +1,91 @@
+#include "Prepare.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "CliChecks.h"
+#include "Doing.h"
+#include "rill/Stopwatch.h"
+#include "rill/rt/accel/LightBuffer.h"
+#include "rill/rt/scene/Pose.h"
+
+namespace trace_cli {
+
+using Clock = std::chrono::steady_clock;
+using rill::ms_since;
+
+std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
+  auto p = std::make_unique<Prepared>();
+  g_doing = "loading " + rt::clipped(o.scene);
+  if (o.strategy != "megakernel" && o.strategy != "multipass")
+    throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
+  const rt::MegakernelLoop loop = rt::parse_megakernel_loop(o.loop);  // before the slow steps
+  p->acc = rill::parse_accuracy(o.accuracy);
+  const auto t_load = Clock::now();
+  rt::InputOptions input;
+  input.strict = o.strict_input;
+  input.allow_empty = o.allow_empty;
+  p->scene = rt::load_scene(o.scene, input);
+  rt::Scene& scene = p->scene;
+  if (!o.size.empty()) parse_size(o.size, scene.width, scene.height);
+  if (o.max_depth >= 0) scene.options.max_depth = o.max_depth;
+  if (o.spp > 0) scene.options.spp = o.spp;
+  if (!o.grid.empty()) scene.options.grid = parse_grid(o.grid);
+  if (!o.subgrids.empty()) scene.options.subgrid_min = rt::parse_subgrid_min(o.subgrids);
+  if (!o.light_buffer.empty()) scene.options.light_buffer = rt::parse_light_buffer(o.light_buffer);
+  if (!o.grid_density.empty()) scene.options.grid_density = rt::parse_grid_density(o.grid_density);
+  if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
+  if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
+  scene.validate();
+  // An animated scene's camera as it is at the start (Pose.h): frame 0, for every path that
+  // renders one frame; --frames moves it per frame.
+  if (scene.animation.animated()) scene.camera = rt::camera_at(scene, scene.animation.time.start);
+  p->load_ms = ms_since(t_load);
+  for (const std::string& w : scene.warnings)
+    if (say) std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
+
+  g_doing = "building the grid of " + std::to_string(scene.triangle_count()) + " triangles";
+  p->grid = rt::build_grid_for(scene, o.backend);  // settings left open: for the backend
+  for (const std::string& w : p->grid.warnings) {
+    if (say) std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
+    scene.warnings.push_back(w);  // for --stats-json
+  }
+
+  const auto t_setup = Clock::now();
+  p->knobs.triangle = rt::parse_triangle_test(o.triangle);
+  p->knobs.offset = rt::parse_self_intersection(o.offset);
+  p->knobs.traversal = rt::parse_traversal(o.traversal);
+  g_doing = "uploading the scene and grid (" + std::to_string(p->grid.voxel_count()) +
+            " voxels) and building the light buffer";
+  p->tracer = std::make_unique<rt::Tracer>(scene, p->grid, p->knobs);
+  p->setup_ms = ms_since(t_setup);
+  if (const std::string& why = p->tracer->light_buffer().skipped; !why.empty()) {
+    const std::string w = "no light buffer (" + why + "): shadow rays walk the grid";
+    if (say) std::fprintf(stderr, "rill-trace: warning: %s\n", w.c_str());
+    scene.warnings.push_back(w);
+  }
+
+  rt::RenderSettings& rs = p->rs;
+  rs.backend = o.backend;
+  rs.accuracy = p->acc;
+  rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
+  rs.loop = loop;
+  rs.width = scene.width;
+  rs.height = scene.height;
+  if (o.masking != "on" && o.masking != "off")
+    throw rt::SceneError("--masking expects on or off (got '" + o.masking + "')");
+  rs.wait_threshold = o.wait_threshold;
+  rs.masking = o.masking == "on";
+  // Only what is written comes back from the device (the PNG: 8-bit, encoded there).
+  p->out = o.out;
+  if (p->out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
+    p->out = (scene.name.empty() ? std::string("render") : scene.name) + ".png";
+  rs.outputs.rgb8 = !p->out.empty();
+  rs.outputs.color = !o.pfm.empty();
+  rs.outputs.depth = !o.depth.empty();
+  rs.outputs.prim = !o.prim.empty();
+  rs.outputs.normal = !o.normal.empty();
+  return p;
+}
+
+}  // namespace trace_cli

@@ -1,0 +1,243 @@
+// rill-trace render in one process: the first frame (which compiles), then --bench-frames
+// more of it or the other frames of --frames, the outputs, --stats-json and the stats line.
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "Commands.h"
+#include "Doing.h"
+#include "FramePlan.h"
+#include "FrameReport.h"
+#include "Outputs.h"
+#include "Prepare.h"
+#include "distributed/Launch.h"
+#include "rill/Stopwatch.h"
+#include "rill/rt/scene/Pose.h"
+
+namespace trace_cli {
+
+using Clock = std::chrono::steady_clock;
+using rill::ms_since;
+
+int render(RenderOptions o) {
+  // --threads: the CPU backends' worker threads (oneTBB), for the whole render.
+  std::optional<tbb::global_control> threads;
+  if (o.threads > 0)
+    threads.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(o.threads));
+  o.backend = rt::distributed::rank_backend(o.backend, o.backend_given);
+  // Started by mpirun as one of several processes: one image over all of them.
+  const int launched = rt::distributed::launcher_world_size();
+  if (launched > 1) {
+#if RILL_HAVE_MPI
+    return render_distributed(o);
+#else
+    throw rt::SceneError("started by an MPI launcher as one of " + std::to_string(launched) +
+                         " processes, but this rill-trace was built without MPI (RILL_MPI=OFF "
+                         "or no libopenmpi-dev at build time): each would render the whole "
+                         "image; rebuild with MPI, or run it without mpirun");
+#endif
+  }
+  if (o.distribute)
+    throw rt::SceneError(
+        "--distribute: not started by an MPI launcher as one of several processes; run "
+        "'mpirun -np N rill-trace render ...' with N >= 2 (docs/distributed.md)");
+  rt::distributed::use_device(o.backend, rt::distributed::rank_device(o.device, 0));
+  std::unique_ptr<Prepared> prepared = prepare(o);
+  Prepared& p = *prepared;
+  const rt::Scene& scene = p.scene;
+  const rt::Grid& grid = p.grid;
+  rt::Tracer& tracer = *p.tracer;
+  const rt::RenderSettings& rs = p.rs;
+  const double load_ms = p.load_ms;
+
+  const FramePlan plan = plan_frames(o, p);
+  const FrameSpan& span = plan.span;
+  const bool animated = plan.animated;
+  const rt::BvhUpdate bvh_update = plan.bvh_update;
+  auto frame_file = [&plan](int frame) { return plan.file(frame); };
+
+  const auto t_render = Clock::now();
+  g_doing = "rendering " + std::to_string(rs.width) + "x" + std::to_string(rs.height) + " on " +
+            o.backend;
+  // A dynamic scene's first frame: its objects and camera where they are then.
+  const double first_time = animated ? scene.animation.time.time_of(span.first) : 0.0;
+  const int64_t misses_before = rill::kernel_cache_stats().misses;
+  std::vector<FrameStats> frame_stats(1);
+  if (animated) frame_stats[0].update = tracer.set_time(first_time, bvh_update);
+  const rt::Camera first_camera = rt::camera_at(scene, first_time);
+  // Keys that are each fine can still interpolate to a degenerate view (eye on look_at).
+  if (animated) rt::check_camera(first_camera, frame_camera_where(o.scene, scene, span.first));
+  rt::RenderResult r = tracer.render(rs, first_camera);
+  const double render_ms = ms_since(t_render);
+  const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
+  // Of that, the compile() calls (about 0 from a kernel cache); the rest is set-up: uploading
+  // the scene and grid, and the warm-up launch (Megakernel::render).
+  const double kernels_ms = std::min(r.stages.compile_ms, compile_ms);
+
+  // --bench-frames: the same frame again, each timed as the user's program would see it
+  // (Tracer::render from call to return: launch, kernel, reductions, read-back, host work).
+  std::vector<double> frame_ms;
+  std::vector<rt::FrameTimes> frame_times;
+  rt::RenderResult frame;  // one result for every frame: its image memory is reused
+  for (int f = 0; f < o.bench_frames; ++f) {
+    const auto t_frame = Clock::now();
+    tracer.render(rs, first_camera, frame);
+    frame_ms.push_back(ms_since(t_frame));
+    frame_times.push_back(frame.times);
+  }
+  std::vector<double> sorted = frame_ms;
+  std::sort(sorted.begin(), sorted.end());
+  const double median_ms = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+  // The median of each step over the frames (they need not add up to the median frame).
+  auto median_of = [&](double rt::FrameTimes::*step) {
+    std::vector<double> v;
+    for (const rt::FrameTimes& t : frame_times) v.push_back(t.*step);
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  rt::FrameTimes median_split;
+  for (auto step :
+       {&rt::FrameTimes::setup, &rt::FrameTimes::launch, &rt::FrameTimes::kernel,
+        &rt::FrameTimes::accumulate, &rt::FrameTimes::reduce, &rt::FrameTimes::read_back})
+    median_split.*step = median_of(step);
+
+  std::vector<std::string> written = write_outputs(o, p, r, frame_file(span.first));
+  frame_stats[0].frame = span.first;
+  frame_stats[0].time = first_time;
+  frame_stats[0].trace_ms = r.trace_ms;
+  frame_stats[0].compile_ms = r.compile_ms;
+  frame_stats[0].compiles = rill::kernel_cache_stats().misses - misses_before;
+  // --frames: the other frames, back to back through the same tracer (compiled kernels, the
+  // grid and the static arrays stay; Tracer::set_time moves the objects and their BVH).
+  Progress progress(span.count(), o.quiet);
+  progress.update(1, r.trace_ms);
+  for (int k = span.first + 1; k <= span.last; ++k) {
+    FrameStats fs;
+    fs.frame = k;
+    fs.time = animated ? scene.animation.time.time_of(k) : 0.0;
+    g_doing = "rendering frame " + std::to_string(k);
+    const int64_t misses = rill::kernel_cache_stats().misses;
+    if (animated) fs.update = tracer.set_time(fs.time, bvh_update);
+    const rt::Camera camera = rt::camera_at(scene, fs.time);
+    rt::check_camera(camera, frame_camera_where(o.scene, scene, k));
+    tracer.render(rs, camera, frame);
+    fs.trace_ms = frame.trace_ms;
+    fs.compile_ms = frame.compile_ms;
+    fs.compiles = rill::kernel_cache_stats().misses - misses;
+    g_doing = "writing frame " + std::to_string(k);
+    for (const std::string& w : write_outputs(o, p, frame, frame_file(k)))
+      if (written.size() < 8) written.push_back(w);
+    frame_stats.push_back(fs);
+    progress.update(k - span.first + 1, fs.trace_ms);
+  }
+  progress.finish();
+  if (!o.video.empty()) {
+    g_doing = "writing the video";
+    write_video(p.out, span.first, scene.animation.time.fps, o.video);
+    written.push_back(o.video);
+  }
+  if (!o.source.empty()) {
+    std::ofstream f(o.source);
+    f << tracer.source(o.backend, p.acc, p.rs.loop, p.rs.outputs, scene.options.spp);
+    if (!f) throw rt::SceneError("cannot write " + o.source);
+  }
+
+  const double rays_per_s =
+      r.trace_ms > 0 ? static_cast<double>(r.rays) / (r.trace_ms * 1e-3) : 0.0;
+  if (!o.stats_json.empty()) {
+    nlohmann::json j = stats_json(o, p, r.width, r.height, r.rays);
+    j["launches"] = r.launches;
+    if (o.strategy == "multipass") {
+      j["wait_threshold"] = rs.wait_threshold;
+      j["masking"] = rs.masking;
+      nlohmann::json passes = nlohmann::json::array();
+      for (const rt::PassStats& ps : r.passes)
+        passes.push_back({{"name", ps.name},
+                          {"calls", ps.calls},
+                          {"processed", ps.processed},
+                          {"written", ps.written},
+                          {"ms", ps.ms}});
+      j["passes"] = passes;
+    }
+    j["rays_per_second"] = rays_per_s;
+    j["compiled_from_cache"] = r.from_cache;
+    // Each kernel's Kernel::info(), summed over the render's kernels (multipass compiles its
+    // nine at once, so the sum exceeds time_ms.compile).
+    j["compile_stages_ms"] = {{"kernels", r.kernels},
+                              {"origin", rill::origin_name(r.stages.origin)},
+                              {"capture", r.stages.capture_ms},
+                              {"optimize", r.stages.optimize_ms},
+                              {"codegen", r.stages.codegen_ms},
+                              {"backend_compile", r.stages.backend_compile_ms},
+                              {"driver_finish", r.stages.driver_finish_ms},
+                              {"compile", r.stages.compile_ms}};
+    if (!frame_ms.empty())
+      j["bench_frames"] = {{"frames", frame_ms.size()},
+                           {"frame_ms", frame_ms},
+                           {"median_ms", median_ms},
+                           {"min_ms", sorted.front()},
+                           {"max_ms", sorted.back()},
+                           {"fps", median_ms > 0 ? 1000.0 / median_ms : 0.0},
+                           {"device", rill::backend(o.backend).description()},
+                           {"median_split_ms", split_json(median_split)}};
+    j["time_ms"] = {
+        {"load", load_ms},       {"grid_build", grid.build_ms},
+        {"compile", kernels_ms}, {"setup", compile_ms - kernels_ms},
+        {"trace", r.trace_ms},   {"total", load_ms + grid.build_ms + compile_ms + r.trace_ms}};
+    // The first frame's trace time, step by step (Tracer.h, FrameTimes).
+    j["trace_split_ms"] = split_json(r.times);
+    if (animated || span.count() > 1) j["frames"] = frames_json(frame_stats, tracer.features());
+    write_json(o.stats_json, j);
+  }
+  print_notes(o, p, written);
+  if (frame_stats.size() > 1 || animated) print_frames_summary(frame_stats);
+  if (!frame_ms.empty())
+    std::printf(
+        "%zu frames of %dx%d after the first: median %.2f ms (%.1f fps), min %.2f ms, max "
+        "%.2f ms; %s\n",
+        frame_ms.size(), r.width, r.height, median_ms, median_ms > 0 ? 1000.0 / median_ms : 0.0,
+        sorted.front(), sorted.back(), rill::backend(o.backend).description().c_str());
+  if (!frame_ms.empty()) {
+    // The kernel's own time within the launch, where the backend can time it.
+    char kernel[64] = "";
+    if (median_split.kernel >= 0)
+      std::snprintf(kernel, sizeof kernel, " (kernel %.3f ms)", median_split.kernel);
+    std::printf(
+        "  median per step: set-up %.3f ms, launch %.3f ms%s, accumulate %.3f ms, reduce %.3f "
+        "ms, read-back %.3f ms\n",
+        median_split.setup, median_split.launch, kernel, median_split.accumulate,
+        median_split.reduce, median_split.read_back);
+  }
+  if (o.stats)
+    std::printf(
+        "compile stages, summed over %d kernel(s) (%s): capture %.1f ms, optimize %.1f ms, "
+        "codegen %.1f ms, backend compile %.1f ms, driver finish %.1f ms; compile() calls %.1f "
+        "ms\n",
+        r.kernels, rill::origin_name(r.stages.origin), r.stages.capture_ms, r.stages.optimize_ms,
+        r.stages.codegen_ms, r.stages.backend_compile_ms, r.stages.driver_finish_ms,
+        r.stages.compile_ms);
+  if (o.stats && o.strategy == "multipass") {
+    std::printf("%-14s %8s %14s %14s %10s   (masking %s, wait threshold %g)\n", "pass", "calls",
+                "processed", "written", "ms", rs.masking ? "on" : "off", rs.wait_threshold);
+    for (const rt::PassStats& ps : r.passes)
+      std::printf("%-14s %8lld %14lld %14lld %10.2f\n", ps.name.c_str(),
+                  static_cast<long long>(ps.calls), static_cast<long long>(ps.processed),
+                  static_cast<long long>(ps.written), ps.ms);
+  }
+  std::printf(
+      "rill-trace: %s, %zu triangles, %dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
+      "load %.1f ms, grid build %.1f ms, compile %.1f ms%s, set-up %.1f ms, trace %.1f ms%s\n",
+      scene.name.c_str(), scene.triangle_count(), r.width, r.height, o.backend.c_str(),
+      o.accuracy.c_str(), o.strategy == "multipass" ? " multipass" : "", grid.res.x, grid.res.y,
+      grid.res.z, rays_per_s * 1e-6, static_cast<long long>(r.rays), load_ms, grid.build_ms,
+      kernels_ms, r.from_cache ? " (cached)" : "", compile_ms - kernels_ms, r.trace_ms,
+      o.strategy == "multipass" ? (" (" + std::to_string(r.launches) + " launches)").c_str() : "");
+  return 0;
+}
+
+}  // namespace trace_cli

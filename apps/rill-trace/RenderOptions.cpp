@@ -1,0 +1,118 @@
+#include "RenderOptions.h"
+
+#include "CliChecks.h"
+
+namespace trace_cli {
+
+CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
+  CLI::App* r = app.add_subcommand("render", "render a scene");
+  r->add_option("scene", o.scene, "JSON scene, OBJ file or builtin:NAME")->required();
+  r->add_option("--backend", o.backend, "cpu, simd, opencl, glsl or glsl-compute")
+      ->default_str("cpu");
+  r->add_option("--accuracy", o.accuracy, "strict, fast or double")->default_str("strict");
+  r->add_option("--size", o.size, "image size WxH (default: the scene's)")->check(non_empty());
+  r->add_option("--out", o.out, "PNG output (sRGB)")->check(file_name());
+  r->add_option("--pfm", o.pfm, "linear colour as PFM")->check(file_name());
+  r->add_option("--depth", o.depth, "hit distance AOV as PFM (+inf: miss)")->check(file_name());
+  r->add_option("--prim", o.prim, "primitive id AOV as PFM (-1: miss)")->check(file_name());
+  r->add_option("--normal", o.normal, "shading normal AOV as PFM")->check(file_name());
+  r->add_option("--max-depth", o.max_depth, "reflection/refraction bounces")
+      ->check(number_in(0, 64, true));
+  r->add_option("--spp", o.spp, "samples per pixel")->check(number_in(1, 4096, true));
+  r->add_option("--grid", o.grid, "voxels per axis, or auto")->check(non_empty());
+  r->add_option("--grid-density", o.grid_density,
+                "voxels per triangle of the auto grid, 0.125..256 (default 4; 16 is faster on "
+                "the CPU backends for large meshes, at 3.5x the memory)")
+      ->check(non_empty());
+  r->add_option("--subgrids", o.subgrids,
+                "voxels listing more triangles than this get a subgrid (1..1048576), off, or auto "
+                "(default: 12 when the backend runs on the CPU, off on a GPU)")
+      ->check(non_empty());
+  r->add_option("--light-buffer", o.light_buffer,
+                "shadow rays: cells per edge of each light's direction cube (1..1024), off (walk "
+                "the grid), or auto (default: 64 where the scene has shadows)")
+      ->check(non_empty());
+  r->add_option("--strategy", o.strategy,
+                "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
+      ->default_str("megakernel");
+  r->add_option("--loop", o.loop,
+                "megakernel: one traced ray per loop iteration (ray), or one path segment with "
+                "its shadow rays (segment), or auto (default: segment on cpu and simd, ray on "
+                "opencl, glsl and glsl-compute). Images do not depend on it")
+      ->default_str("auto");
+  r->add_option("--stats-json", o.stats_json, "write timings and counts as JSON")
+      ->check(file_name());
+  r->add_option("--source", o.source, "write the generated kernel source")->check(file_name());
+  r->add_flag("--quiet", o.quiet, "print only the stats line");
+  r->add_option("--threads", o.threads,
+                "worker threads of the CPU backends (cpu, simd); default: one per core. Images "
+                "do not depend on it")
+      ->check(number_in(1, 4096, true));
+  r->add_flag("--strict-input", o.strict_input,
+              "malformed lines in OBJ and MTL files are errors (default: warnings naming the "
+              "first few lines, then a count)");
+  r->add_flag("--allow-empty", o.allow_empty,
+              "a mesh file without faces loads as no triangles instead of an error");
+  r->add_option("--bench-frames", o.bench_frames,
+                "frame-rate mode: render N more frames back to back after the first and report "
+                "their times and frames per second")
+      ->check(number_in(0, 100000, true));
+  r->add_option("--tile", o.tile,
+                "distributed (mpirun): tile size in pixels, handed out one at a time; images "
+                "do not depend on it")
+      ->default_str("128")
+      ->check(number_in(1, 16384, true));
+  r->add_option("--tail-tile", o.tail_tile,
+                "distributed: the last tiles handed out (twice as many as there are ranks) are "
+                "cut into tiles of N pixels, so that the ranks finish together (0: not cut)")
+      ->default_str("half of --tile")
+      ->check(number_in(0, 16384, true));
+  r->add_option("--rank-timeout", o.rank_timeout,
+                "distributed: seconds a rank may be silent before it is lost")
+      ->default_str("20")
+      ->check(number_in(1, 86400, false));
+  r->add_option("--tile-timeout", o.tile_timeout,
+                "distributed: seconds a rank may take for a tile before it is lost (0: no limit)")
+      ->default_str("0")
+      ->check(number_in(0, 86400, false));
+  r->add_option("--checkpoint", o.checkpoint,
+                "distributed: rank 0 writes the image so far as NAME.partial.EXT this often, in "
+                "seconds, while it renders (0: never); removed when the render completes")
+      ->default_str("2")
+      ->check(number_in(0, 86400, false));
+  r->add_option("--device", o.device,
+                "the device of opencl, glsl or glsl-compute (RILL_OPENCL_DEVICE or "
+                "RILL_EGL_DEVICE); {local_rank} is the rank's index on its host");
+  r->add_flag("--progress", o.progress,
+              "distributed: rank 0 draws a progress bar on stderr, the tiles done per rank "
+              "(mpirun passes stderr through a pipe, so rill-trace cannot tell a terminal)");
+  r->add_flag("--distribute", o.distribute,
+              "require a distributed render: an error unless started by mpirun with 2 or more "
+              "processes");
+  r->add_option("--frames", o.frames,
+                "dynamic scenes: frame N, or frames A:B (both included); outputs need a frame "
+                "number, e.g. --out frame-%04d.png");
+  r->add_option("--bvh", o.bvh,
+                "dynamic scenes: the moving objects' BVH each frame: rebuild or refit")
+      ->default_str("rebuild");
+  r->add_option("--video", o.video,
+                "with --frames: a preview video of the PNGs (ffmpeg), .mp4 or .gif")
+      ->check(file_name());
+  r->add_option("--triangle", o.triangle, "triangle test: moller or watertight")
+      ->default_str("moller");
+  r->add_option("--offset", o.offset, "self-intersection: scaled (Wachter-Binder) or epsilon")
+      ->default_str("scaled");
+  r->add_option("--traversal", o.traversal, "grid traversal: incremental or recompute")
+      ->default_str("incremental");
+  r->add_flag("--stats", o.stats,
+              "print the compile stages; multipass: per-pass calls, elements and time");
+  r->add_option("--wait-threshold", o.wait_threshold,
+                "multipass: rerun the intersector while this fraction of rays waits (0..1]")
+      ->default_str("0.2")
+      ->check(number_in(1e-6, 1.0, false));
+  r->add_option("--masking", o.masking, "multipass: launch each pass masked to its state (on|off)")
+      ->default_str("on");
+  return r;
+}
+
+}  // namespace trace_cli
