@@ -1,5 +1,5 @@
 // rill-trace's subcommands (docs/cli.md), one file each: render (RenderCommand.cpp, with its
-// options in RenderOptions.h and, under mpirun, RenderDistributed.cpp), accuracy
+// options in RenderOptions.h and, under mpirun, distributed/DistributedRender.cpp), accuracy
 // (AccuracyCommand.cpp over AccuracyBench.h), demo (DemoCommand.cpp) and info
 // (InfoCommand.cpp). Each returns the exit status and throws on an error; main() reports it.
 #pragma once

@@ -17,8 +17,7 @@ using rill::ms_since;
 std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   auto p = std::make_unique<Prepared>();
   g_doing = "loading " + rt::clipped(o.scene);
-  if (o.strategy != "megakernel" && o.strategy != "multipass")
-    throw rt::SceneError("--strategy expects megakernel or multipass (got '" + o.strategy + "')");
+  const rt::Strategy strategy = rt::parse_strategy(o.strategy);       // before the slow steps
   const rt::MegakernelLoop loop = rt::parse_megakernel_loop(o.loop);  // before the slow steps
   p->acc = rill::parse_accuracy(o.accuracy);
   const auto t_load = Clock::now();
@@ -68,7 +67,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   rt::RenderSettings& rs = p->rs;
   rs.backend = o.backend;
   rs.accuracy = p->acc;
-  rs.strategy = o.strategy == "multipass" ? rt::Strategy::Multipass : rt::Strategy::Megakernel;
+  rs.strategy = strategy;
   rs.loop = loop;
   rs.width = scene.width;
   rs.height = scene.height;

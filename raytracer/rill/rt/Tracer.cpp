@@ -1,9 +1,11 @@
-// The Tracer facade (Tracer.h): the scene on the device, and the strategies that render it.
+// The Tracer facade (Tracer.h): the scene on the device, the render strategies registered by
+// name (strategy/RenderStrategy.h), and what a frame does before its strategy runs.
 #include "rill/rt/Tracer.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -15,34 +17,51 @@
 #include "rill/rt/megakernel/Megakernel.h"
 #include "rill/rt/multipass/Multipass.h"
 #include "rill/rt/scene/Pose.h"
+#include "rill/rt/strategy/RenderStrategy.h"
 
 namespace rt {
 
 using namespace rill;
 
-glm::vec2 sample_offset(int k) {
-  if (k == 0) return glm::vec2(0.5f);
-  // Halton (2, 3): a low-discrepancy sequence, the same on every machine.
-  auto halton = [](int i, int b) {
-    double f = 1.0, r = 0.0;
-    for (; i > 0; i /= b) {
-      f /= b;
-      r += f * (i % b);
-    }
-    return static_cast<float>(r);
-  };
-  return glm::vec2(halton(k, 2), halton(k, 3));
+namespace {
+
+// The render strategies: each RenderSettings::strategy value, its name and how it is made. A
+// new strategy is its folder and a line here. A strategy is made at its tracer's first frame
+// that asks for it (Multipass throws then for a scene with refraction), the megakernel with
+// the tracer (its first program is captured then, so a shader's errors are the constructor's).
+struct StrategyEntry {
+  Strategy id;
+  const char* name;
+  std::unique_ptr<RenderStrategy> (*make)(DeviceScene& scene);
+};
+template <class S>
+std::unique_ptr<RenderStrategy> make(DeviceScene& scene) {
+  return std::make_unique<S>(scene);
+}
+constexpr StrategyEntry kStrategies[] = {
+    {Strategy::Megakernel, "megakernel", make<Megakernel>},
+    {Strategy::Multipass, "multipass", make<Multipass>},
+};
+
+const StrategyEntry& strategy_entry(Strategy s) {
+  for (const StrategyEntry& e : kStrategies)
+    if (e.id == s) return e;
+  throw std::invalid_argument("unknown render strategy " + std::to_string(static_cast<int>(s)));
 }
 
-void add_stages(RenderResult& r, const rill::CompileInfo& k) {
-  rill::CompileInfo& s = r.stages;
-  if (r.kernels++ == 0) s.origin = k.origin;
-  s.capture_ms += k.capture_ms;
-  s.optimize_ms += k.optimize_ms;
-  s.codegen_ms += k.codegen_ms;
-  s.backend_compile_ms += k.backend_compile_ms;
-  s.driver_finish_ms += k.driver_finish_ms;
-  s.compile_ms += k.compile_ms;
+}  // namespace
+
+const char* strategy_name(Strategy s) {
+  return strategy_entry(s).name;
+}
+
+Strategy parse_strategy(const std::string& s) {
+  std::string names;
+  for (const StrategyEntry& e : kStrategies) {
+    if (s == e.name) return e.id;
+    names += std::string(names.empty() ? "" : " or ") + e.name;
+  }
+  throw std::invalid_argument("--strategy expects " + names + " (got '" + s + "')");
 }
 
 namespace {
@@ -88,8 +107,8 @@ struct Tracer::Impl {
         rest(features.dynamic ? std::make_unique<Scene>(scene) : nullptr),
         posed(posed_at_start(scene, features)),
         device(posed ? *posed : scene, grid, options, features),
-        megakernel(device),
         static_boxes(occupied_boxes(scene, grid)) {
+    strategies[Strategy::Megakernel] = strategy_entry(Strategy::Megakernel).make(device);
     if (posed) {
       bvh = build_bvh(*posed, moving_triangles(*posed));
       device.bvh.upload(bvh);
@@ -103,13 +122,23 @@ struct Tracer::Impl {
   std::unique_ptr<Scene> rest, posed;
   Bvh bvh;
   DeviceScene device;
-  Megakernel megakernel;
-  std::unique_ptr<Multipass> multipass;
+  // The strategies made so far, the megakernel first (StrategyEntry).
+  std::map<Strategy, std::unique_ptr<RenderStrategy>> strategies;
   // Boxes that hold every static triangle that can be hit (accel/OccupiedBoxes.h).
   std::vector<Aabb> static_boxes;
   std::vector<Aabb> frame_boxes;  // static_boxes widened for the frame's eye
-  Film film;  // both strategies' samples meet here  // built at its first render
+  Film film;                      // every strategy's samples meet here
   Program intersect_program, camera_program;
+
+  // The megakernel, whose programs and source the Tracer also gives out.
+  Megakernel& megakernel() {
+    return static_cast<Megakernel&>(*strategies.at(Strategy::Megakernel));
+  }
+  RenderStrategy& strategy(Strategy s) {
+    std::unique_ptr<RenderStrategy>& made = strategies[s];
+    if (!made) made = strategy_entry(s).make(device);
+    return *made;
+  }
 };
 
 Tracer::Tracer(const Scene& scene, const Grid& grid, const TracerOptions& options) {
@@ -127,7 +156,7 @@ Tracer::Tracer(const Scene& scene, const Grid& grid, const TracerOptions& option
 Tracer::~Tracer() = default;
 
 const Program& Tracer::program(MegakernelLoop loop) const {
-  return d_->megakernel.program(loop == MegakernelLoop::Auto ? MegakernelLoop::Ray : loop);
+  return d_->megakernel().program(loop == MegakernelLoop::Auto ? MegakernelLoop::Ray : loop);
 }
 const Features& Tracer::features() const {
   return d_->device.F;
@@ -144,7 +173,7 @@ std::vector<std::string> Tracer::shaders() const {
 
 std::string Tracer::source(const std::string& backend, Accuracy a, MegakernelLoop loop,
                            const FrameOutputs& outputs, int spp) {
-  return d_->megakernel
+  return d_->megakernel()
       .kernel(backend, a, megakernel_loop_for(loop, backend),
               MegakernelOutputs::for_frame(outputs, spp))
       .source();
@@ -221,11 +250,7 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   if (moving) moving = widened(*moving, margin);
   I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y), &I.frame_boxes,
                       moving ? &*moving : nullptr);
-  if (rs.strategy == Strategy::Multipass) {
-    if (!I.multipass) I.multipass = std::make_unique<Multipass>(I.device);
-    return I.multipass->render(rs, I.film, win.width, win.height, depth, spp, r);
-  }
-  I.megakernel.render(rs, I.film, win.width, win.height, depth, spp, r);
+  I.strategy(rs.strategy).render(Frame{rs, win.width, win.height, depth, spp, I.film}, r);
 }
 
 std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Camera& camera,

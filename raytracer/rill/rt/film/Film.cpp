@@ -66,6 +66,20 @@ Film::Film() {
   });
 }
 
+glm::vec2 sample_offset(int k) {
+  if (k == 0) return glm::vec2(0.5f);
+  // Halton (2, 3): a low-discrepancy sequence, the same on every machine.
+  auto halton = [](int i, int b) {
+    double f = 1.0, r = 0.0;
+    for (; i > 0; i /= b) {
+      f /= b;
+      r += f * (i % b);
+    }
+    return static_cast<float>(r);
+  };
+  return glm::vec2(halton(k, 2), halton(k, 3));
+}
+
 namespace {
 
 // Element i makes pixels 4i .. 4i + 3 into 12 bytes, R G B R G B ..., as three little-endian

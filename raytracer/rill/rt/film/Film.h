@@ -22,10 +22,15 @@
 #include <optional>
 #include <string>
 
-#include "rill/rt/Tracer.h"
 #include "rill/rt/film/Srgb8.h"
+#include "rill/rt/render/RenderResult.h"
+#include "rill/rt/render/RenderSettings.h"
 
 namespace rt {
+
+// Where in its pixel sample k of a frame looks (sample 0 is the pixel centre, then the Halton
+// (2, 3) sequence): the same on every machine and strategy.
+glm::vec2 sample_offset(int k);
 
 // The first sample's AOV streams, as a strategy wrote them.
 struct AovStreams {

@@ -13,34 +13,6 @@ namespace rt {
 
 using namespace rill;
 
-MegakernelLoop parse_megakernel_loop(const std::string& s) {
-  if (s == "auto") return MegakernelLoop::Auto;
-  if (s == "ray") return MegakernelLoop::Ray;
-  if (s == "segment") return MegakernelLoop::Segment;
-  throw std::invalid_argument("--loop expects auto, ray or segment (got '" + s + "')");
-}
-
-const char* megakernel_loop_name(MegakernelLoop loop) {
-  switch (loop) {
-    case MegakernelLoop::Auto:
-      return "auto";
-    case MegakernelLoop::Ray:
-      return "ray";
-    case MegakernelLoop::Segment:
-      return "segment";
-  }
-  return "?";
-}
-
-MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backend) {
-  if (loop != MegakernelLoop::Auto) return loop;
-  // Measured (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23"): Segment takes 3-8%
-  // fewer instructions on cpu and simd; on the H200, NVIDIA's OpenCL ran Ray 3-8% faster.
-  // Every other backend keeps Ray on every device, PoCL and llvmpipe included: then CI, which
-  // has no GPU, runs the GPUs' program and checks its images against cpu's.
-  return backend == "cpu" || backend == "simd" ? MegakernelLoop::Segment : MegakernelLoop::Ray;
-}
-
 // One loop is captured now, so that a shader's misuse of its parameters is an error of the
 // Tracer's constructor (the other loop runs the same shader code); the other at its first use.
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
@@ -417,8 +389,8 @@ Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a, Megakern
 
 // One backend's output streams, kept for its next frame of the same size (Film.h says why
 // per backend).
-struct Megakernel::Frame {
-  Frame(int w, int h)
+struct Megakernel::Buffers {
+  Buffers(int w, int h)
       : width(w),
         height(h),
         color(w, h, "color"),
@@ -433,8 +405,10 @@ struct Megakernel::Frame {
   std::optional<Stream<Int>> pixels;  // the encoded variant's, made at its first use
 };
 
-void Megakernel::render(const RenderSettings& rs, Film& film, int width, int height, int depth,
-                        int spp, RenderResult& r) {
+void Megakernel::render(const Frame& frame, RenderResult& r) {
+  const RenderSettings& rs = frame.settings;
+  const int width = frame.width, height = frame.height, depth = frame.depth, spp = frame.spp;
+  Film& film = frame.film;
   r.backend = rs.backend;
   r.width = width;
   r.height = height;
@@ -461,7 +435,7 @@ void Megakernel::render(const RenderSettings& rs, Film& film, int width, int hei
   // Both loops write the same outputs: they share the backend's buffers, and each warms up.
   const std::string key = backend_key(rs.backend, rs.accuracy);
   Stopwatch setup;
-  Frame& out = buffers_for(frames_, key, width, height);
+  Buffers& out = buffers_for(buffers_, key, width, height);
   k.bind("rays", out.rays);
   if (outputs.encoded) {
     if (!out.pixels) out.pixels.emplace(width, height, "rgb8_pixel");

@@ -32,12 +32,12 @@
 #include <set>
 #include <string>
 
-#include "rill/rt/Tracer.h"
 #include "rill/rt/film/Film.h"
 #include "rill/rt/film/Srgb8.h"
 #include "rill/rt/kernel/Compile.h"
 #include "rill/rt/kernel/DeviceScene.h"
 #include "rill/rt/kernel/PerBackend.h"
+#include "rill/rt/strategy/RenderStrategy.h"
 
 namespace rt {
 
@@ -50,10 +50,11 @@ struct MegakernelOutputs {
   auto operator<=>(const MegakernelOutputs&) const = default;
 };
 
-class Megakernel {
+class Megakernel final : public RenderStrategy {
  public:
   explicit Megakernel(DeviceScene& scene);
-  ~Megakernel();
+  ~Megakernel() override;
+  const char* name() const override { return "megakernel"; }
   // The program with loop Ray or Segment and the given outputs (Segment's with colour and
   // AOVs captured by the constructor, the others at their first use).
   const rill::Program& program(MegakernelLoop loop, MegakernelOutputs outputs = {}) const;
@@ -61,15 +62,12 @@ class Megakernel {
   // outputs.
   rill::Kernel& kernel(const std::string& backend, rill::Accuracy a,
                        MegakernelLoop loop = MegakernelLoop::Auto, MegakernelOutputs outputs = {});
-  // Renders spp samples through the camera set in the scene's CameraRays; the samples meet
-  // on `film`.
-  void render(const RenderSettings& rs, Film& film, int width, int height, int depth, int spp,
-              RenderResult& r);
+  void render(const Frame& frame, RenderResult& r) override;
 
  private:
   struct PathLoop;
   struct Aovs;
-  struct Frame;  // a backend's output streams (PerBackend.h: buffers_for)
+  struct Buffers;  // a backend's output streams (PerBackend.h: buffers_for)
   rill::Program capture(MegakernelLoop loop, MegakernelOutputs outputs) const;
   static std::string kernel_key(const std::string& backend, rill::Accuracy a, MegakernelLoop loop,
                                 MegakernelOutputs outputs);
@@ -96,7 +94,7 @@ class Megakernel {
   Srgb8Encoder srgb8_;  // the encoded variant's, with the film's bytes
   rill::Uniform<Int> background_rgb8_{0, "background_rgb8"};  // a skipped pixel's encoding
   std::map<std::string, rill::Kernel> kernels_;
-  std::map<std::string, std::unique_ptr<Frame>> frames_;  // per backend and accuracy
+  std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
   std::set<std::pair<std::string, int64_t>> warmed_;      // kernels launched at a size before
 };
 

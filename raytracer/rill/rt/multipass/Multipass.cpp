@@ -116,8 +116,10 @@ Multipass::Kernels& Multipass::kernels(const std::string& backend, Accuracy a) {
   return compiled_.emplace(key, std::move(k)).first->second;
 }
 
-void Multipass::render(const RenderSettings& rs, Film& film, int width, int height, int depth,
-                       int spp, RenderResult& r) {
+void Multipass::render(const Frame& frame, RenderResult& r) {
+  const RenderSettings& rs = frame.settings;
+  const int width = frame.width, height = frame.height, depth = frame.depth, spp = frame.spp;
+  Film& film = frame.film;
   const Features& F = S_.F;
   r.backend = rs.backend;
   r.width = width;

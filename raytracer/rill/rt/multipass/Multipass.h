@@ -11,21 +11,18 @@
 #include <memory>
 #include <string>
 
-#include "rill/rt/Tracer.h"
-#include "rill/rt/film/Film.h"
 #include "rill/rt/kernel/DeviceScene.h"
+#include "rill/rt/strategy/RenderStrategy.h"
 
 namespace rt {
 
-class Multipass {
+class Multipass final : public RenderStrategy {
  public:
   // Captures the passes' programs; throws std::runtime_error for a scene with refraction.
   explicit Multipass(DeviceScene& scene);
-  ~Multipass();
-  // Renders spp samples through the camera set in the scene's CameraRays; the samples meet
-  // on `film`.
-  void render(const RenderSettings& rs, Film& film, int width, int height, int depth, int spp,
-              RenderResult& r);
+  ~Multipass() override;
+  const char* name() const override { return "multipass"; }
+  void render(const Frame& frame, RenderResult& r) override;
 
  private:
   struct Kernels {

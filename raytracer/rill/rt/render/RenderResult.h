@@ -1,0 +1,68 @@
+// What a render gives back (RenderResult): the image and AOVs asked for, the ray count, and
+// where the time went (compile stages, FrameTimes, and per pass for multipass). Plain data,
+// below the film and the strategies that fill it in.
+#pragma once
+
+#include <rill/rill.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rt {
+
+// A render's time, step by step, in milliseconds (wall clock on the host; they add up to
+// RenderResult::trace_ms, less a little bookkeeping).
+struct FrameTimes {
+  double setup = 0;   // output buffers made or resized (0 when a frame reuses them)
+  double launch = 0;  // the tracing kernels' launches, each until its kernel has run
+  // Of `launch`: how long the tracing kernels ran, as the device timed them
+  // (rill::LaunchStats::device_ms, summed); the rest of `launch` is the cost of launching.
+  // -1 where the backend cannot tell.
+  double kernel = 0;
+  double accumulate = 0;  // samples added up on the device (spp > 1) and their mean
+  double reduce = 0;      // the ray count, reduced on the device
+  double read_back = 0;   // the outputs asked for, encoded (8-bit) and read back
+
+  // Adds one launch's device time to `kernel` (which stays -1 once a launch could not tell).
+  void add_kernel(double device_ms) {
+    kernel = kernel < 0 || device_ms < 0 ? -1 : kernel + device_ms;
+  }
+};
+
+// One multipass pass (kernel) over a render: launches, elements run and written, time.
+struct PassStats {
+  std::string name;
+  int64_t calls = 0, processed = 0, written = 0;
+  double ms = 0;
+};
+
+// The image and AOVs of a render: those RenderSettings::outputs asked for (the others are
+// left empty).
+struct RenderResult {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> color;     // linear, row 0 at the top; the mean over the samples
+  std::vector<unsigned char> rgb8;  // the same as 8-bit sRGB (to_srgb8), 3 bytes per pixel
+  std::vector<float> depth;         // first-sample AOVs: hit distance (+inf: miss)
+  std::vector<int32_t> prim;        // primitive id (-1: miss)
+  std::vector<glm::vec3> normal;    // shading normal as stored (0 on a miss)
+  int64_t rays = 0;                 // rays traced (camera, shadow, secondary), all samples
+  double compile_ms = 0;            // 0 when the compiled kernel came from a cache
+  bool from_cache = false;
+  // The render's kernels' compile stages (Kernel::info()), summed over them: the multipass
+  // strategy compiles its nine at once (compile_all), so the sum exceeds compile_ms. origin
+  // is the first kernel's.
+  rill::CompileInfo stages;
+  int kernels = 0;                // how many kernels `stages` sums
+  double trace_ms = 0;            // the frame: launches, accumulation, reduction, read-back
+  FrameTimes times;               // trace_ms, step by step
+  int64_t launches = 0;           // kernel launches while tracing
+  std::vector<PassStats> passes;  // multipass only: per pass (Multipass.cpp)
+  std::string backend;
+  std::string loop;  // the megakernel's loop as run ("ray" or "segment"); empty for multipass
+};
+
+// Adds one kernel's compile stages to r.stages.
+void add_stages(RenderResult& r, const rill::CompileInfo& k);
+
+}  // namespace rt

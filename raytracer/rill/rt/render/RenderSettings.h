@@ -1,0 +1,67 @@
+// What a render asks for (RenderSettings): the backend and accuracy, the strategy and its
+// knobs, the image size, depth and samples, the window, and what comes back to the host
+// (FrameOutputs). Plain data, below the film and the strategies that read it; the Tracer
+// facade (Tracer.h) takes it per render.
+#pragma once
+
+#include <rill/rill.h>
+
+#include <string>
+
+namespace rt {
+
+// The render strategies (strategy/RenderStrategy.h): Tracer.cpp registers each value's
+// class and name (parse_strategy, strategy_name in Tracer.h).
+enum class Strategy {
+  Megakernel,  // one kernel per pixel with a RILL_DO loop (Sh; megakernel/)
+  Multipass,   // the thesis's kernel sequence with ray states, no refraction (multipass/)
+};
+// The shape of the megakernel's loop (megakernel/Megakernel.h). Images do not depend on it,
+// only speed does (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23").
+enum class MegakernelLoop {
+  Auto,     // Segment on cpu and simd; Ray on every other backend, whatever its device
+  Ray,      // one traced ray per iteration, camera, secondary or shadow: the walk has one call
+            // site, so a GPU's lanes walk together whichever kind of ray each one holds
+  Segment,  // one path segment per iteration, its shadow rays traced in a light loop inside
+            // it: no loop iteration per light, and a walk specialized for each kind of ray
+};
+// "auto", "ray" or "segment"; throws std::invalid_argument naming the bad value.
+MegakernelLoop parse_megakernel_loop(const std::string& s);
+const char* megakernel_loop_name(MegakernelLoop loop);
+// The shape `loop` stands for on `backend`: Auto resolved, the others as they are.
+MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backend);
+
+// What a render reads back to the host (RenderResult): everything else stays on the device.
+// A PNG needs only `rgb8`; a PFM needs `color`; the AOVs only when asked for.
+struct FrameOutputs {
+  bool color = true;   // RenderResult::color: the linear mean colour, 3 floats per pixel
+  bool rgb8 = false;   // RenderResult::rgb8: the 8-bit sRGB encoding, encoded on the device
+  bool depth = true;   // RenderResult::depth
+  bool prim = true;    // RenderResult::prim
+  bool normal = true;  // RenderResult::normal
+};
+
+struct RenderSettings {
+  std::string backend = "cpu";
+  Strategy strategy = Strategy::Megakernel;
+  MegakernelLoop loop = MegakernelLoop::Auto;  // the megakernel strategy's loop
+  rill::Accuracy accuracy = rill::Accuracy::Strict;
+  int width = 0, height = 0;  // 0: the scene's
+  int max_depth = -1;         // -1: the scene's
+  int spp = 0;                // 0: the scene's
+  // Multipass strategy (Multipass.cpp): rerun the intersector while at least this fraction
+  // of the traced rays waits for it (thesis 5.6: 20%); launch each pass masked to its state.
+  double wait_threshold = 0.2;
+  bool masking = true;
+  FrameOutputs outputs;  // what comes back to the host
+  // A window of the image, in its pixels (row 0 at the top): only these are rendered, through
+  // the whole image's camera, bitwise the same as those pixels of the whole render, and the
+  // RenderResult is the window's size. Empty (width or height 0): the whole image. The
+  // distributed renderer's tiles (apps/rill-trace/distributed/).
+  struct Window {
+    int x = 0, y = 0, width = 0, height = 0;
+    bool empty() const { return width <= 0 || height <= 0; }
+  } window;
+};
+
+}  // namespace rt

@@ -1,0 +1,41 @@
+// The render strategy interface (after pbrt's and Mitsuba's integrators): how a frame's
+// pixels are computed on the device. The megakernel (megakernel/) and the thesis's multipass
+// sequence (multipass/) implement it; Tracer.cpp registers each under its RenderSettings
+// value and name, so a new strategy is a folder of its own and one line there.
+//
+// The Tracer facade does what every strategy shares before it calls one: it resolves the
+// image size, depth and samples, checks the window, and sets the camera on the device
+// (DeviceScene::camera) for the frame's eye. A strategy compiles what it needs (cached per
+// backend and accuracy), launches its kernels once per sample, hands each sample's colour to
+// the film, and fills in the RenderResult's counts and times. Every strategy gives the same
+// bits for the same frame where it supports the scene.
+#pragma once
+
+#include "rill/rt/film/Film.h"
+#include "rill/rt/render/RenderResult.h"
+#include "rill/rt/render/RenderSettings.h"
+
+namespace rt {
+
+// One frame as a strategy renders it: the settings as given, and what the Tracer resolved
+// from them and the scene.
+struct Frame {
+  const RenderSettings& settings;  // backend, accuracy, outputs, the strategy's knobs
+  int width = 0, height = 0;       // the pixels to render: the window's (or the image's) size
+  int depth = 0;                   // bounces: the settings' max_depth, else the scene's
+  int spp = 1;                     // samples per pixel: the settings', else the scene's
+  Film& film;                      // where the samples meet (film/Film.h)
+};
+
+class RenderStrategy {
+ public:
+  virtual ~RenderStrategy() = default;
+  // "megakernel", "multipass": as RenderSettings and rill-trace's --strategy name it.
+  virtual const char* name() const = 0;
+  // Renders frame.spp samples of frame.width x frame.height pixels through the camera set in
+  // the scene's CameraRays into r (a fresh result; its image vectors may hold the memory of
+  // an earlier frame). Throws std::runtime_error for a backend that cannot run the frame.
+  virtual void render(const Frame& frame, RenderResult& r) = 0;
+};
+
+}  // namespace rt
