@@ -36,9 +36,8 @@ BenchScene floor_scene(const std::string& name, float translate, float scale) {
   auto P = [&](float x, float y, float z) {
     return glm::vec3(translate) + scale * glm::vec3(x, y, z);
   };
-  Material m;
-  m.diffuse = glm::vec3(0.8f);
-  int mat = s.add_material(m);
+  const glm::vec3 diffuse(0.8f);
+  int mat = s.add_material(Material{}.set("diffuse", diffuse));
   add_quad(s, P(-4, 0, -4), P(4, 0, -4), P(4, 0, 4), P(-4, 0, 4), mat);
   b.floor_end = static_cast<int32_t>(s.triangle_count());
   Transform t;
@@ -50,7 +49,7 @@ BenchScene floor_scene(const std::string& name, float translate, float scale) {
   s.has_camera = true;
   s.background = glm::vec3(0.0f);
   s.options.max_depth = 1;
-  b.dark = s.options.ambient * m.diffuse.x * 1.0001f + 1e-6f;
+  b.dark = s.options.ambient * diffuse.x * 1.0001f + 1e-6f;
   return b;
 }
 
@@ -60,11 +59,8 @@ BenchScene closed_scene() {
   BenchScene b;
   b.name = "closed";
   Scene& s = b.scene;
-  Material wall;
-  wall.diffuse = glm::vec3(0.2f, 0.3f, 0.8f);
-  Material solid;
-  solid.diffuse = glm::vec3(0.9f, 0.6f, 0.2f);
-  int w = s.add_material(wall), m = s.add_material(solid);
+  int w = s.add_material(Material{}.set("diffuse", glm::vec3(0.2f, 0.3f, 0.8f)));
+  int m = s.add_material(Material{}.set("diffuse", glm::vec3(0.9f, 0.6f, 0.2f)));
   add_quad(s, {-6, -4, -3}, {6, -4, -3}, {6, 4, -3}, {-6, 4, -3}, w);
   auto closed = [&](auto add) {
     const int32_t first = static_cast<int32_t>(s.triangle_count());
@@ -88,9 +84,8 @@ BenchScene inside_scene() {
   BenchScene b;
   b.name = "inside";
   Scene& s = b.scene;
-  Material m;
-  m.diffuse = glm::vec3(0.7f, 0.7f, 0.6f);
-  add_box(s, glm::vec3(-1.0f), glm::vec3(1.0f), s.add_material(m));
+  add_box(s, glm::vec3(-1.0f), glm::vec3(1.0f),
+          s.add_material(Material{}.set("diffuse", glm::vec3(0.7f, 0.7f, 0.6f))));
   b.closed.emplace_back(0, static_cast<int32_t>(s.triangle_count()));
   s.lights.push_back(Light{{0.3f, 0.5f, 0.2f}, glm::vec3(1.0f)});
   s.camera = Camera{{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, {0, 1, 0}, 120.0f};

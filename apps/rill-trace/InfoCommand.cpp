@@ -6,6 +6,7 @@
 #include "Commands.h"
 #include "rill/rt/kernel/Shader.h"
 #include "rill/rt/scene/Scene.h"
+#include "rill/rt/shaders/Registry.h"
 
 namespace trace_cli {
 

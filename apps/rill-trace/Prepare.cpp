@@ -7,6 +7,7 @@
 #include "Doing.h"
 #include "rill/Stopwatch.h"
 #include "rill/rt/accel/LightBuffer.h"
+#include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/Pose.h"
 
 namespace trace_cli {

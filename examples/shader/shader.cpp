@@ -7,6 +7,7 @@
 // Exit status 1 when the toon surfaces do not show the shader's few flat colours.
 #include <rill/rt/Tracer.h>
 #include <rill/rt/scene/Image.h>
+#include <rill/rt/shaders/Registry.h>
 
 #include <cstdio>
 #include <exception>

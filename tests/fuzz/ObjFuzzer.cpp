@@ -10,6 +10,7 @@
 #include <string>
 
 #include "FuzzScene.h"
+#include "rill/rt/load/SceneFile.h"
 
 namespace {
 

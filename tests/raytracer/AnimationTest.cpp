@@ -7,6 +7,7 @@
 
 #include "TestUtil.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/Pose.h"
 
 namespace rt {

@@ -10,13 +10,17 @@
 #include <filesystem>
 #include <random>
 
+#include "MaterialValues.h"
 #include "TestUtil.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/Scene.h"
+#include "rill/rt/shaders/Registry.h"
 
 namespace rt {
 namespace {
 
+using testing::color_of;
 using testing::error_of;
 using testing::TempDir;
 
@@ -95,7 +99,8 @@ TEST(BadInput, MtllibResolvesOneWayAndMissingOnesAreWarnings) {
       std::filesystem::current_path(cwd);
       SCOPED_TRACE(obj + " as " + as_given);
       ASSERT_EQ(s.triangle_count(), 1u);
-      EXPECT_EQ(s.materials[static_cast<size_t>(s.material[0])].diffuse, glm::vec3(1, 0, 0));
+      EXPECT_EQ(color_of(s.materials[static_cast<size_t>(s.material[0])], "diffuse"),
+                glm::vec3(1, 0, 0));
       EXPECT_TRUE(s.warnings.empty());
     }
   }
@@ -519,10 +524,35 @@ TEST(BadInput, AbsurdSizesAndOptions) {
   bad([](Scene& c) { c.camera.up = c.camera.look_at - c.camera.eye; }, "up parallel");
   bad([](Scene& c) { c.camera.eye.x = INFINITY; }, "eye inf");
   bad([](Scene& c) { c.lights[0].color.y = std::nanf(""); }, "light NaN");
-  bad([](Scene& c) { c.materials[0].reflect = 0.7f, c.materials[0].transmit = 0.7f; },
-      "reflect+transmit");
-  bad([](Scene& c) { c.materials[0].ior = 0; }, "ior");
+  bad([](Scene& c) { c.materials[0].set("diffuse", glm::vec3(1, -1, 0)); }, "negative colour");
+  bad([](Scene& c) { c.materials[0].set("shininess", std::nanf("")); }, "NaN parameter");
   bad([](Scene& c) { c.background.z = -INFINITY; }, "background");
+  // What a shader asks of its own parameters is its check (SurfaceShader::check), which a
+  // Tracer runs as it resolves the materials' shaders (resolve_shaders).
+  auto bad_for_shader = [&](auto change, const std::string& expected) {
+    Scene c = s;
+    change(c);
+    const std::string err = error_of([&] { resolve_shaders(c); });
+    EXPECT_NE(err.find(expected), std::string::npos) << err;
+  };
+  bad_for_shader(
+      [](Scene& c) {
+        c.materials[0].shader = "glass";
+        c.materials[0].set("reflect", 0.7f).set("transmit", 0.7f);
+      },
+      "reflect and transmit must be >= 0 with reflect + transmit <= 1");
+  bad_for_shader(
+      [](Scene& c) {
+        c.materials[0].shader = "glass";
+        c.materials[0].set("ior", 0.0f);
+      },
+      "ior must be in (0, 100]");
+  bad_for_shader([](Scene& c) { c.materials[0].set("reflect", 1.5f); },
+                 "reflect must be in [0, 1]");
+  bad_for_shader([](Scene& c) { c.materials[0].set("shininess", -1.0f); },
+                 "shininess must be in [0, 10000]");
+  bad_for_shader([](Scene& c) { c.materials[0].shader = "nope"; }, "no shader named 'nope'");
+  EXPECT_NO_THROW(resolve_shaders(s));
 }
 
 // The shapes' triangles are added up before any is made: three 4096 x 4096 spheres (100
@@ -593,7 +623,7 @@ TEST(BadInput, NegativeColoursAreErrors) {
     return error_of([&] { c.validate(); });
   };
   EXPECT_NE(error_for([](Scene& c) {
-              c.materials[0].diffuse = glm::vec3(-1, 0, 0);
+              c.materials[0].set("diffuse", glm::vec3(-1, 0, 0));
             }).find("diffuse [-1, 0, 0] has a negative component"),
             std::string::npos);
   EXPECT_NE(error_for([](Scene& c) { c.lights[0].color.y = -0.5f; }).find("negative component"),

@@ -59,7 +59,7 @@ Scene base() {
 
 TEST(Features, DiffuseSceneHasNoReflectionRefractionOrHighlights) {
   Scene s = base();
-  Features f = scene_features(s);
+  Features f = scene_features(s, resolve_shaders(s));
   EXPECT_TRUE(f.geometry && f.lights && f.shadows);
   EXPECT_FALSE(f.reflection || f.refraction || f.specular || f.vertex_normals || f.vertex_colors);
   EXPECT_EQ(f.stack, 0);
@@ -80,17 +80,18 @@ TEST(Features, DiffuseSceneHasNoReflectionRefractionOrHighlights) {
 
   // A reflective material adds the reflection code (and only that).
   Scene r = base();
-  r.materials[0].reflect = 0.5f;
+  r.materials[0].set("reflect", 0.5f);
   IrStats dr = stats(r);
-  EXPECT_TRUE(scene_features(r).reflection);
-  EXPECT_FALSE(scene_features(r).refraction);
+  EXPECT_TRUE(scene_features(r, resolve_shaders(r)).reflection);
+  EXPECT_FALSE(scene_features(r, resolve_shaders(r)).refraction);
   EXPECT_GT(dr.statements, d.statements);
   EXPECT_EQ(dr.loops, 4);
 
   // Glass adds refraction and the ray stack on top.
   Scene g = base();
-  g.materials[0].transmit = 0.9f;
-  Features fg = scene_features(g);
+  g.materials[0].shader = "glass";
+  g.materials[0].set("transmit", 0.9f).set("reflect", 0.0f);
+  Features fg = scene_features(g, resolve_shaders(g));
   EXPECT_TRUE(fg.refraction && fg.reflection);
   EXPECT_EQ(fg.stack, kRayStack);
   IrStats dg = stats(g);
@@ -100,7 +101,7 @@ TEST(Features, DiffuseSceneHasNoReflectionRefractionOrHighlights) {
   // Highlights: a pow, and reads of the specular colour and shininess from the material
   // table.
   Scene h = base();
-  h.materials[0].specular = glm::vec3(0.5f);
+  h.materials[0].set("specular", glm::vec3(0.5f));
   IrStats dh = stats(h);
   EXPECT_GT(dh.pows, 0);
   EXPECT_GT(dh.gathers, d.gathers);
@@ -110,7 +111,7 @@ TEST(Features, NoLightsNoShadowRays) {
   Scene s = base();
   IrStats with = stats(s);
   s.lights.clear();
-  Features f = scene_features(s);
+  Features f = scene_features(s, resolve_shaders(s));
   EXPECT_FALSE(f.lights || f.shadows || f.specular);
   IrStats without = stats(s);
   EXPECT_EQ(without.arrays.count("light_pos"), 0u);
@@ -118,14 +119,14 @@ TEST(Features, NoLightsNoShadowRays) {
   EXPECT_LT(without.statements, with.statements);
   EXPECT_EQ(without.loops, 3);
   // Specular materials make no highlight code without lights.
-  s.materials[0].specular = glm::vec3(1.0f);
+  s.materials[0].set("specular", glm::vec3(1.0f));
   EXPECT_EQ(stats(s).pows, 0);
 }
 
 TEST(Features, LightsWithoutShadowsLoopOverLights) {
   Scene s = base();
   s.options.shadows = false;
-  Features f = scene_features(s);
+  Features f = scene_features(s, resolve_shaders(s));
   EXPECT_TRUE(f.lights);
   EXPECT_FALSE(f.shadows);
   IrStats d = stats(s);
@@ -150,7 +151,7 @@ TEST(Features, VertexNormalsAndColors) {
   glm::vec3 n[3] = {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}};
   glm::vec3 c[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   s.add_triangle({0, 2, 0}, {1, 2, 0}, {0, 2, 1}, 0, n, c);
-  Features f = scene_features(s);
+  Features f = scene_features(s, resolve_shaders(s));
   EXPECT_TRUE(f.vertex_normals && f.vertex_colors);
   IrStats d = stats(s);
   EXPECT_EQ(d.arrays.count("tri_n0"), 1u);
@@ -163,7 +164,7 @@ TEST(Features, VertexNormalsAndColors) {
 
 TEST(Features, EmptySceneHasNoIntersector) {
   Scene s = builtin_scene("empty");
-  Features f = scene_features(s);
+  Features f = scene_features(s, resolve_shaders(s));
   EXPECT_FALSE(f.geometry);
   IrStats d = stats(s);
   EXPECT_EQ(d.loops, 1);  // the tracer's loop only
@@ -173,7 +174,7 @@ TEST(Features, EmptySceneHasNoIntersector) {
   Scene z = builtin_scene("empty");
   z.add_material(Material{});
   z.add_triangle({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, 0);
-  EXPECT_FALSE(scene_features(z).geometry);
+  EXPECT_FALSE(scene_features(z, resolve_shaders(z)).geometry);
   EXPECT_EQ(stats(z).loops, 1);
 }
 
@@ -181,7 +182,7 @@ TEST(Features, EmptySceneHasNoIntersector) {
 // arrays and highlights as the GPUs' loop, and an empty scene's kernel has no intersector.
 TEST(Features, BothLoopsGenerateWhatTheSceneCallsFor) {
   Scene spec = base();
-  spec.materials[0].specular = glm::vec3(0.5f);
+  spec.materials[0].set("specular", glm::vec3(0.5f));
   for (const Scene& s : {base(), spec, builtin_scene("glass"), builtin_scene("empty")}) {
     SCOPED_TRACE(s.name);
     const IrStats ray = stats(s, kNoSubgrids, MegakernelLoop::Ray);
@@ -198,9 +199,10 @@ TEST(Features, BothLoopsGenerateWhatTheSceneCallsFor) {
 TEST(Features, UnusedMaterialsDoNotCount) {
   Scene s = base();
   Material glass;
-  glass.transmit = 1.0f;
+  glass.shader = "glass";
+  glass.set("transmit", 1.0f);
   s.add_material(glass);  // defined, used by no triangle
-  EXPECT_FALSE(scene_features(s).refraction);
+  EXPECT_FALSE(scene_features(s, resolve_shaders(s)).refraction);
 }
 
 }  // namespace

@@ -590,9 +590,8 @@ ShadowCase shadow_case(float translate, float scale, int W, int H, float light_h
   auto P = [&](float x, float y, float z) {
     return glm::vec3(translate) + scale * glm::vec3(x, y, z);
   };
-  Material floor;
-  floor.diffuse = glm::vec3(0.8f);
-  int m = s.add_material(floor);
+  const glm::vec3 diffuse(0.8f);
+  int m = s.add_material(Material{}.set("diffuse", diffuse));
   add_quad(s, P(-4, 0, -4), P(4, 0, -4), P(4, 0, 4), P(-4, 0, 4), m);
   const size_t floor_tris = s.triangle_count();
   Transform t;
@@ -606,7 +605,7 @@ ShadowCase shadow_case(float translate, float scale, int W, int H, float light_h
   s.height = H;
   s.options.max_depth = 0;
   s.background = glm::vec3(0.0f);
-  c.ambient_color = s.options.ambient * floor.diffuse;
+  c.ambient_color = s.options.ambient * diffuse;
   // The reference, in the scene's unscaled units (exact geometry).
   CameraFrame f = camera_frame(s.camera, W, H);
   const glm::dvec3 L = (glm::dvec3(s.lights[0].position) - glm::dvec3(translate)) / double(scale);
@@ -790,9 +789,8 @@ TEST_P(HardCases, RefractionAtTheCriticalAngleStaysFinite) {
   // meet them on both sides of the critical angle (asin(1 / 1.5) = 41.8 degrees).
   Scene s;
   Material glass;
-  glass.transmit = 0.9f;
-  glass.reflect = 0.05f;
-  glass.ior = 1.5f;
+  glass.shader = "glass";
+  glass.set("transmit", 0.9f).set("reflect", 0.05f).set("ior", 1.5f);
   int g = s.add_material(glass);
   int m = s.add_material(Material{});
   add_box(s, glm::vec3(-1.0f), glm::vec3(1.0f), g);

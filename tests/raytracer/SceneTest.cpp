@@ -5,14 +5,18 @@
 #include <cmath>
 #include <filesystem>
 
+#include "MaterialValues.h"
 #include "TestUtil.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/Camera.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt {
 namespace {
 
+using testing::color_of;
+using testing::number_of;
 using testing::TempDir;
 
 TEST(Scene, BuiltinTriangleCounts) {
@@ -41,8 +45,8 @@ TEST(Scene, GlassSceneHasGlassAndMirrors) {
   Scene s = builtin_scene("glass");
   bool glass = false, mirror = false;
   for (const Material& m : s.materials) {
-    glass = glass || m.transmit > 0.5f;
-    mirror = mirror || m.reflect > 0.5f;
+    glass = glass || (m.shader == "glass" && number_of(m, "transmit") > 0.5f);
+    mirror = mirror || number_of(m, "reflect") > 0.5f;
   }
   EXPECT_TRUE(glass);
   EXPECT_TRUE(mirror);
@@ -136,15 +140,17 @@ TEST(Scene, ObjMaterialsNormalsAndColors) {
   EXPECT_EQ(s.materials[static_cast<size_t>(s.material[0])].name, "default");
   const Material& red = s.materials[static_cast<size_t>(s.material[1])];
   EXPECT_EQ(red.name, "red");
-  EXPECT_EQ(red.diffuse, glm::vec3(0.9f, 0.1f, 0.1f));
-  EXPECT_EQ(red.specular, glm::vec3(0.5f));
-  EXPECT_EQ(red.shininess, 64.0f);
-  EXPECT_EQ(red.reflect, 0.0f);
+  EXPECT_EQ(red.shader, "phong");
+  EXPECT_EQ(color_of(red, "diffuse"), glm::vec3(0.9f, 0.1f, 0.1f));
+  EXPECT_EQ(color_of(red, "specular"), glm::vec3(0.5f));
+  EXPECT_EQ(number_of(red, "shininess"), 64.0f);
+  EXPECT_EQ(number_of(red, "reflect"), 0.0f);
   const Material& mirror = s.materials[static_cast<size_t>(s.material[2])];
-  EXPECT_FLOAT_EQ(mirror.reflect, 0.8f);
+  EXPECT_FLOAT_EQ(number_of(mirror, "reflect"), 0.8f);
   const Material& glass = s.materials[static_cast<size_t>(s.material[3])];
-  EXPECT_FLOAT_EQ(glass.transmit, 0.9f);
-  EXPECT_FLOAT_EQ(glass.ior, 1.33f);
+  EXPECT_EQ(glass.shader, "glass");
+  EXPECT_FLOAT_EQ(number_of(glass, "transmit"), 0.9f);
+  EXPECT_FLOAT_EQ(number_of(glass, "ior"), 1.33f);
   // Normals: the face with vn keeps them, the others get their geometric normal.
   ASSERT_EQ(s.normals.size(), 12u);
   EXPECT_EQ(s.normals[3], glm::vec3(0, 0, 1));
@@ -206,7 +212,7 @@ TEST(Scene, JsonDesignExample) {
   EXPECT_NEAR(s.positions[1].y, 2.0f, 1e-6f);
   EXPECT_NEAR(s.positions[1].z, 1.0f, 1e-6f);
   EXPECT_EQ(s.materials[static_cast<size_t>(s.material[0])].name, "white");
-  EXPECT_EQ(s.materials[static_cast<size_t>(s.material[0])].specular, glm::vec3(0.2f));
+  EXPECT_EQ(color_of(s.materials[static_cast<size_t>(s.material[0])], "specular"), glm::vec3(0.2f));
   ASSERT_EQ(s.lights.size(), 1u);
   EXPECT_EQ(s.lights[0].position, glm::vec3(2, 4, 3));
   EXPECT_EQ(s.background, glm::vec3(0.1f, 0.1f, 0.15f));
@@ -243,7 +249,7 @@ TEST(Scene, JsonShapesOptionsAndBuiltinBase) {
   EXPECT_EQ(s.options.spp, 4);
   EXPECT_FLOAT_EQ(s.options.ambient, 0.2f);
   EXPECT_FALSE(s.options.smooth_normals);
-  EXPECT_EQ(s.materials[static_cast<size_t>(s.material[0])].diffuse, glm::vec3(0.5f));
+  EXPECT_EQ(color_of(s.materials[static_cast<size_t>(s.material[0])], "diffuse"), glm::vec3(0.5f));
   EXPECT_TRUE(s.has_camera);  // no camera given: one framing the geometry
 }
 
@@ -254,7 +260,8 @@ TEST(Scene, JsonMeshWithoutMaterialUsesItsMtl) {
   std::string json = dir.file("s.json", R"({"meshes": [{"file": "c.obj"}]})");
   Scene s = load_json(json);
   ASSERT_EQ(s.triangle_count(), 1u);
-  EXPECT_EQ(s.materials[static_cast<size_t>(s.material[0])].diffuse, glm::vec3(0, 1, 0));
+  EXPECT_EQ(color_of(s.materials[static_cast<size_t>(s.material[0])], "diffuse"),
+            glm::vec3(0, 1, 0));
 }
 
 // The scene files the project ships all load and validate.

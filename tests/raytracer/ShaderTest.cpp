@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
+#include <tuple>
 
 #include "RenderCompare.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/ClassicMaterial.h"
 
 namespace rt {
 namespace {
@@ -170,10 +173,55 @@ TEST(Shaders, BuiltinsAreRegistered) {
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
   }
   EXPECT_EQ(find_shader("no-such-shader"), nullptr);
-  Material plain, glass;
+  // A material is phong unless it names another shader; a classic material (MTL, a JSON one
+  // without "shader") is glass where it transmits.
+  EXPECT_EQ(Material{}.shader, "phong");
+  ClassicMaterial glass;
   glass.transmit = 0.5f;
-  EXPECT_EQ(plain.shader_name(), "phong");
-  EXPECT_EQ(glass.shader_name(), "glass");
+  EXPECT_EQ(glass.material("g").shader, "glass");
+  EXPECT_EQ(ClassicMaterial{}.material("p").shader, "phong");
+  EXPECT_EQ(ClassicMaterial{}.material("p").params.count("transmit"), 0u);
+}
+
+// A shader that shows one flat colour wherever a ray hits: no lights, no rays.
+SurfaceShader flat_shader(const std::string& name, glm::vec3 color) {
+  SurfaceShader s;
+  s.name = name;
+  s.emitted = [color](const ShadingPoint&) { return Float3(color); };
+  return s;
+}
+
+// replace_shader gives the shader of that name to the tracers built after it; a tracer built
+// before keeps the shader it was built with, even for a program it captures only later (the
+// Ray loop's, at its first use on a GPU backend or here).
+TEST(Shaders, ReplaceChangesTheTracersBuiltAfterIt) {
+  const glm::vec3 red(1, 0, 0), green(0, 1, 0);
+  register_shader(flat_shader("test_replaced", red));
+  EXPECT_THROW(register_shader(flat_shader("test_replaced", green)), std::invalid_argument);
+  Scene s = builtin_scene("cornell");
+  for (Material& m : s.materials) m.shader = "test_replaced";
+  const Grid grid = build_grid_for(s);
+  Tracer before(s, grid);
+  replace_shader(flat_shader("test_replaced", green));
+  Tracer after(s, grid);
+  RenderSettings rs;
+  rs.width = rs.height = 16;
+  // The hits' colours of a render: one colour where the shader is flat.
+  auto hit_colors = [&](Tracer& t, MegakernelLoop loop) {
+    rs.loop = loop;
+    const RenderResult r = t.render(rs, s.camera);
+    std::set<std::tuple<float, float, float>> colors;
+    for (size_t p = 0; p < r.color.size(); ++p)
+      if (r.prim[p] >= 0) colors.insert({r.color[p].x, r.color[p].y, r.color[p].z});
+    return colors;
+  };
+  using Colors = std::set<std::tuple<float, float, float>>;
+  for (MegakernelLoop loop : {MegakernelLoop::Ray, MegakernelLoop::Segment}) {
+    EXPECT_EQ(hit_colors(before, loop), (Colors{{1.0f, 0.0f, 0.0f}}));
+    EXPECT_EQ(hit_colors(after, loop), (Colors{{0.0f, 1.0f, 0.0f}}));
+  }
+  // Replacing keeps the first shader alive: find_shader's pointer to it stayed valid.
+  EXPECT_EQ(find_shader("test_replaced")->name, "test_replaced");
 }
 
 TEST(Shaders, RegisterRejectsBadDeclarations) {

@@ -8,15 +8,20 @@
 #include <cmath>
 #include <cstring>
 
+#include "MaterialValues.h"
 #include "TestUtil.h"
 #include "rill/rt/kernel/Shader.h"
+#include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/scene/Texture.h"
+#include "rill/rt/shaders/Registry.h"
 
 namespace rt {
 namespace {
 
+using testing::color_of;
 using testing::error_of;
+using testing::number_of;
 using testing::TempDir;
 
 #define EXPECT_HAS(text, part) EXPECT_NE((text).find(part), std::string::npos) << (text)
@@ -258,8 +263,8 @@ TEST(Texture, ObjTexcoordsAndMapKd) {
     EXPECT_EQ(s.materials[i].params.at("diffuse").kind, ParamValue::Kind::Texture);
     EXPECT_EQ(s.materials[i].params.at("diffuse").texture, 0);
   }
-  EXPECT_TRUE(s.materials[2].params.empty());
-  EXPECT_EQ(s.materials[2].diffuse, glm::vec3(0.2f, 0.3f, 0.4f));
+  EXPECT_EQ(s.materials[2].params.at("diffuse").kind, ParamValue::Kind::Color);
+  EXPECT_EQ(color_of(s.materials[2], "diffuse"), glm::vec3(0.2f, 0.3f, 0.4f));
 
   // Through a JSON scene, after a built-in one with textures: the indices are renumbered.
   std::string json = dir.file("s.json", R"({"builtin": "textured",
@@ -330,29 +335,28 @@ TEST(Texture, JsonTexturesAndShaders) {
 
   std::map<std::string, const Material*> mats;
   for (const Material& m : s.materials) mats[m.name] = &m;
-  // Classic keys still fill the classic fields, as before shaders.
+  // Classic keys (no "shader") make a phong material, or glass where it transmits, with
+  // those parameters (scene/ClassicMaterial.h).
   const Material& classic = *mats.at("classic");
-  EXPECT_TRUE(classic.shader.empty());
-  EXPECT_TRUE(classic.params.empty());
-  EXPECT_EQ(classic.diffuse, glm::vec3(0.5f, 0.6f, 0.7f));
-  EXPECT_EQ(classic.specular, glm::vec3(0.2f));
-  EXPECT_EQ(classic.shininess, 10.0f);
-  EXPECT_EQ(classic.reflect, 0.3f);
-  EXPECT_EQ(classic.shader_name(), "phong");
-  EXPECT_EQ(mats.at("glassy")->shader_name(), "glass");
-  EXPECT_EQ(mats.at("glassy")->ior, 1.3f);
-  // A texture goes to params, the rest to the classic fields.
+  EXPECT_EQ(classic.shader, "phong");
+  EXPECT_EQ(color_of(classic, "diffuse"), glm::vec3(0.5f, 0.6f, 0.7f));
+  EXPECT_EQ(color_of(classic, "specular"), glm::vec3(0.2f));
+  EXPECT_EQ(number_of(classic, "shininess"), 10.0f);
+  EXPECT_EQ(number_of(classic, "reflect"), 0.3f);
+  EXPECT_EQ(mats.at("glassy")->shader, "glass");
+  EXPECT_EQ(number_of(*mats.at("glassy"), "ior"), 1.3f);
+  EXPECT_EQ(number_of(*mats.at("glassy"), "reflect"), 0.0f);  // the classic default
+  // A texture binds to a classic colour too.
   const Material& floor = *mats.at("floor");
-  EXPECT_EQ(floor.params.size(), 1u);
   EXPECT_EQ(floor.params.at("diffuse").texture, tex.at("checks"));
-  EXPECT_EQ(floor.specular, glm::vec3(0.1f));
+  EXPECT_EQ(color_of(floor, "specular"), glm::vec3(0.1f));
   // A built-in shader named explicitly takes its own defaults.
   const Material& chrome = *mats.at("chrome");
   EXPECT_EQ(chrome.shader, "mirror");
-  EXPECT_EQ(chrome.reflect, 0.9f);
+  EXPECT_EQ(number_of(chrome, "reflect"), 0.9f);
   const Material& pane = *mats.at("pane");
   EXPECT_EQ(pane.shader, "glass");
-  EXPECT_EQ(pane.transmit, 0.9f);
+  EXPECT_EQ(number_of(pane, "transmit"), 0.9f);
   EXPECT_EQ(pane.params.at("diffuse").texture, tex.at("photo"));
   // Another shader's parameters are all in params.
   const Material& toon_m = *mats.at("toon");
@@ -412,8 +416,8 @@ TEST(Texture, TexturedBuiltinScene) {
   int mirrors = 0;
   for (size_t i = 0; i < s.materials.size(); ++i) {
     EXPECT_TRUE(used[i]) << s.materials[i].name;
-    EXPECT_NE(find_shader(s.materials[i].shader_name()), nullptr);
-    mirrors += s.materials[i].shader_name() == "mirror";
+    EXPECT_NE(find_shader(s.materials[i].shader), nullptr);
+    mirrors += s.materials[i].shader == "mirror";
     for (const auto& [name, v] : s.materials[i].params)
       if (v.kind == ParamValue::Kind::Texture) {
         EXPECT_EQ(name, "diffuse");

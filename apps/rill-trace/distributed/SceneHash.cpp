@@ -58,8 +58,6 @@ uint64_t scene_hash(const Scene& s, const std::string& settings) {
     for (const auto& [name, p] : m.params) {
       h.add(name), h.add(p.kind), h.add(p.number), h.add(p.color), h.add(p.texture);
     }
-    h.add(m.diffuse), h.add(m.specular), h.add(m.shininess), h.add(m.reflect);
-    h.add(m.transmit), h.add(m.ior);
   }
   h.add(s.lights.size());
   for (const Light& l : s.lights) h.add(l.position), h.add(l.color);

@@ -17,6 +17,7 @@
 #include "rill/rt/megakernel/Megakernel.h"
 #include "rill/rt/multipass/Multipass.h"
 #include "rill/rt/scene/Pose.h"
+#include "rill/rt/shaders/Registry.h"
 #include "rill/rt/strategy/RenderStrategy.h"
 
 namespace rt {
@@ -67,8 +68,9 @@ Strategy parse_strategy(const std::string& s) {
 namespace {
 
 // The scene's features, with options.extra_features forced on (Tracer.h).
-Features tracer_features(const Scene& scene, const TracerOptions& options) {
-  Features f = scene_features(scene);
+Features tracer_features(const Scene& scene, const MaterialShaders& shaders,
+                         const TracerOptions& options) {
+  Features f = scene_features(scene, shaders);
   if (f.geometry) {
     const Features& extra = options.extra_features;
     f.specular = f.specular || (f.lights && extra.specular);
@@ -103,10 +105,11 @@ BvhUpdate parse_bvh_update(const std::string& s) {
 struct Tracer::Impl {
   Impl(const Scene& scene, const Grid& grid, const TracerOptions& options)
       : options(scene.options),
-        features(tracer_features(scene, options)),
+        shaders(resolve_shaders(scene)),
+        features(tracer_features(scene, shaders, options)),
         rest(features.dynamic ? std::make_unique<Scene>(scene) : nullptr),
         posed(posed_at_start(scene, features)),
-        device(posed ? *posed : scene, grid, options, features),
+        device(posed ? *posed : scene, grid, options, features, shaders),
         static_boxes(occupied_boxes(scene, grid)) {
     strategies[Strategy::Megakernel] = strategy_entry(Strategy::Megakernel).make(device);
     if (posed) {
@@ -116,6 +119,9 @@ struct Tracer::Impl {
   }
 
   SceneOptions options;  // depth and samples per pixel by default
+  // The materials' shaders as registered when the tracer was built: its kernels are generated
+  // from these, whatever is registered later (shaders/Registry.h).
+  MaterialShaders shaders;
   Features features;
   // Dynamic scenes: the scene at rest (as given), as posed now, and the BVH of its moving
   // triangles; null / empty for a static scene.

@@ -1,15 +1,16 @@
 // The ray tracer's facade (rill::raytracer): build a Tracer from a scene and its grid, then
 // render through a camera on any backend, with either strategy.
 //
-//   rt::Scene scene = rt::load_scene("scenes/cornell.json");   // scene/Scene.h
+//   rt::Scene scene = rt::load_scene("scenes/cornell.json");   // load/SceneFile.h
 //   rt::Grid grid = rt::build_grid_for(scene);                 // accel/Grid.h
 //   rt::Tracer tracer(scene, grid);
 //   rt::RenderSettings rs;  rs.backend = "opencl";  rs.width = 640;  rs.height = 480;
 //   rt::RenderResult image = tracer.render(rs, scene.camera);
 //
 // Materials name surface shaders (kernel/Shader.h); register your own with
-// rt::register_shader before building the tracer. Inside, the tracer uploads the scene once
-// (kernel/DeviceScene.h) and builds its programs from the DSL building blocks there: the
+// rt::register_shader (shaders/Registry.h) before building the tracer: a tracer generates
+// its kernels from the shaders registered when it is built. Inside, the tracer uploads the scene
+// once (kernel/DeviceScene.h) and builds its programs from the DSL building blocks there: the
 // megakernel (megakernel/), one kernel per pixel with a loop, and the thesis's multipass
 // sequence of small kernels (multipass/). Only what the scene calls for is generated
 // (kernel/Features.h): its shaders, its textures, reflection, refraction and shadow code.
@@ -29,10 +30,12 @@
 #include "rill/rt/kernel/Features.h"
 #include "rill/rt/kernel/Options.h"
 #include "rill/rt/kernel/Shader.h"
+#include "rill/rt/load/SceneFile.h"
 #include "rill/rt/render/RenderResult.h"
 #include "rill/rt/render/RenderSettings.h"
 #include "rill/rt/scene/Camera.h"
 #include "rill/rt/scene/Scene.h"
+#include "rill/rt/shaders/Registry.h"
 
 namespace rt {
 

@@ -2,6 +2,7 @@
 // box's red wall to it, renders a small image on the cpu backend and checks that the wall
 // shows the shader's colour and the rest of the box its usual shading.
 #include <rill/rt/Tracer.h>
+#include <rill/rt/shaders/Registry.h>
 
 #include <algorithm>
 #include <cstdio>

@@ -4,11 +4,11 @@
 namespace rt {
 
 DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions& options,
-                         const Features& features)
+                         const Features& features, const MaterialShaders& shaders)
     : K(options), F(features) {
   grid.upload(g);
   tris.upload(scene, K, F);
-  materials.upload(scene, F);
+  materials.upload(scene, F, shaders);
   lights.upload(scene);
   if (F.shadows) light_buffer.upload(build_light_buffer(scene, g, light_buffer_res(scene)));
   shading.upload(scene);

@@ -18,7 +18,9 @@ namespace rt {
 struct DeviceScene {
   // Uploads the scene (validated) and the grid; F and K select what is uploaded and
   // generated.
-  DeviceScene(const Scene& scene, const Grid& grid, const TracerOptions& K, const Features& F);
+  // shaders: those of the scene's materials (shaders/Registry.h, resolve_shaders).
+  DeviceScene(const Scene& scene, const Grid& grid, const TracerOptions& K, const Features& F,
+              const MaterialShaders& shaders);
   DeviceScene(const DeviceScene&) = delete;
   DeviceScene& operator=(const DeviceScene&) = delete;
 

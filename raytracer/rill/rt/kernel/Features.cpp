@@ -41,7 +41,7 @@ std::vector<bool> used_materials(const Scene& s) {
   return used;
 }
 
-Features scene_features(const Scene& s) {
+Features scene_features(const Scene& s, const MaterialShaders& shaders) {
   Features f;
   const std::vector<bool> used = used_materials(s);
   for (bool u : used) f.geometry = f.geometry || u;
@@ -51,7 +51,7 @@ Features scene_features(const Scene& s) {
   for (size_t m = 0; m < s.materials.size(); ++m) {
     if (!used[m]) continue;
     const Material& mat = s.materials[m];
-    const SurfaceShader& sh = material_shader(mat);
+    const SurfaceShader& sh = *shaders.at(m);
     const MaterialParams params(mat, sh.params);
     const Lobes lobes = sh.lobes ? sh.lobes(params) : Lobes{};
     f.reflection = f.reflection || lobes.reflect;

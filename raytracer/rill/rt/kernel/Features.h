@@ -11,6 +11,8 @@
 namespace rt {
 
 struct Scene;
+struct SurfaceShader;
+using MaterialShaders = std::vector<const SurfaceShader*>;  // per material (kernel/Shader.h)
 
 struct Features {
   bool geometry = false;        // any traceable triangle (else every ray misses)
@@ -29,8 +31,8 @@ struct Features {
 
 constexpr int kRayStack = 3;
 
-// Throws SceneError for a material whose shader is not registered.
-Features scene_features(const Scene& s);
+// shaders: one per material of s, as resolve_shaders gives them (shaders/Registry.h).
+Features scene_features(const Scene& s, const MaterialShaders& shaders);
 // Per material: whether a triangle that can be hit uses it (a usable one, or any that moves:
 // it may be usable at another time). The kernels contain only these materials' shaders.
 std::vector<bool> used_materials(const Scene& s);

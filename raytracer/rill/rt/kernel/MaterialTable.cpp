@@ -10,7 +10,7 @@ namespace rt {
 
 using namespace rill;
 
-void MaterialTable::upload(const Scene& scene, const Features& F) {
+void MaterialTable::upload(const Scene& scene, const Features& F, const MaterialShaders& shaders) {
   shaders_.clear();
   std::vector<bool> used =
       F.geometry ? used_materials(scene) : std::vector<bool>(scene.materials.size(), false);
@@ -18,7 +18,7 @@ void MaterialTable::upload(const Scene& scene, const Features& F) {
   std::vector<int> shader_index(scene.materials.size(), 0);
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     if (!used[m]) continue;
-    const SurfaceShader& sh = material_shader(scene.materials[m]);
+    const SurfaceShader& sh = *shaders.at(m);
     size_t i = 0;
     while (i < shaders_.size() && shaders_[i].shader != &sh) ++i;
     if (i == shaders_.size()) {

@@ -25,7 +25,7 @@ class MaterialTable {
  public:
   // Lays out and uploads the parameters of the materials the scene's usable triangles use,
   // and the scene's textures. Throws SceneError for a material whose shader is unknown.
-  void upload(const Scene& scene, const Features& F);
+  void upload(const Scene& scene, const Features& F, const MaterialShaders& shaders);
 
   // A surface's material parameters, read once (every slot of its row): the functions
   // below take them so that a light loop does not read the table once per light. Slots no

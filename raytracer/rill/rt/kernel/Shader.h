@@ -25,7 +25,7 @@
 //     rill::Float n = sp.number("bands");
 //     return sp.color("color") * floor(max(dot(sp.s.nf, l.L), 0.0f) * n) / n * l.color;
 //   };
-//   rt::register_shader(toon);
+//   rt::register_shader(toon);                                 // shaders/Registry.h
 //
 // Parameters are numbers or colours; a colour parameter also takes a texture (a bitmap or a
 // procedural texture, kernel/Textures.h), sampled at the hit when the shader reads it. Only
@@ -117,8 +117,8 @@ struct Lobes {
 class MaterialParams {
  public:
   MaterialParams(const Material& m, const std::vector<ShaderParam>& decl) : m_(m), decl_(decl) {}
-  // The value of parameter `name` (the material's, else the classic field of that name, else
-  // the declared default); throws std::out_of_range for a name the shader does not declare.
+  // The value of parameter `name` (the material's, else the declared default); throws
+  // std::out_of_range for a name the shader does not declare.
   ParamValue get(const std::string& name) const;
   float number(const std::string& name) const { return get(name).number; }
   // True unless the value is exactly zero (0, or black without a texture).
@@ -137,17 +137,14 @@ struct SurfaceShader {
   std::function<Float3(const ShadingPoint&, const LightSample&)> reflected;
   std::function<Scatter(const ShadingPoint&, const Float& weight)> scatter;
   std::function<Lobes(const MaterialParams&)> lobes;
+  // Host side: what is wrong with a material's values beyond their types (a range, a sum of
+  // two parameters), or empty. The JSON reader and the Tracer's constructor report it as
+  // "material 'NAME': " and the text.
+  std::function<std::string(const MaterialParams&)> check;
 };
 
-// The process's shaders. The built-in ones (phong, mirror, glass: shaders/Builtin.cpp) are
-// always there. register_shader throws std::invalid_argument for an empty or taken name, a
-// parameter declared twice, or a default of the wrong type. Registering does not change
-// tracers built before.
-void register_shader(SurfaceShader shader);
-// Null when there is none of that name.
-const SurfaceShader* find_shader(const std::string& name);
-std::vector<std::string> shader_names();  // sorted
-// The shader a material names; throws SceneError when none is registered under that name.
-const SurfaceShader& material_shader(const Material& m);
+// The shaders of a scene's materials, one per material (shaders/Registry.h, resolve_shaders):
+// what a tracer's kernels are generated from.
+using MaterialShaders = std::vector<const SurfaceShader*>;
 
 }  // namespace rt

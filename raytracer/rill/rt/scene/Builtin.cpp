@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "rill/rt/scene/ClassicMaterial.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/scene/TeapotData.h"
 
@@ -22,17 +23,10 @@ struct Lcg {
   float uniform(double lo, double hi) { return static_cast<float>(lo + (hi - lo) * next()); }
 };
 
+// A classic material (ClassicMaterial.h): phong, or glass where it transmits.
 Material mat(const std::string& name, glm::vec3 kd, glm::vec3 ks = glm::vec3(0.0f),
              float ns = 32.0f, float reflect = 0.0f, float transmit = 0.0f, float ior = 1.5f) {
-  Material m;
-  m.name = name;
-  m.diffuse = kd;
-  m.specular = ks;
-  m.shininess = ns;
-  m.reflect = reflect;
-  m.transmit = transmit;
-  m.ior = ior;
-  return m;
+  return ClassicMaterial{kd, ks, ns, reflect, transmit, ior}.material(name);
 }
 
 double bernstein(int i, double t) {
@@ -389,7 +383,6 @@ Scene scene_textured() {
   auto textured = [&](const std::string& name, const Texture& t, glm::vec3 ks, float ns) {
     s.textures.push_back(t);
     Material m = mat(name, glm::vec3(0.8f), ks, ns);
-    m.shader = "phong";
     m.params["diffuse"] = ParamValue::of_texture(static_cast<int>(s.textures.size()) - 1);
     return s.add_material(m);
   };
@@ -402,9 +395,10 @@ Scene scene_textured() {
   int wood = textured("wood", procedural("wood", {0.75f, 0.5f, 0.25f}, {0.45f, 0.25f, 0.1f}, 2.0f),
                       glm::vec3(0.2f), 20.0f);
   int striped = textured("striped", stripes(), glm::vec3(0.3f), 40.0f);
-  Material chrome = mat("chrome", glm::vec3(0.9f));
+  Material chrome;
+  chrome.name = "chrome";
   chrome.shader = "mirror";
-  chrome.reflect = 0.85f;
+  chrome.set("reflect", 0.85f);
   int mirror = s.add_material(chrome);
 
   add_quad(s, {-6.0f, 0.0f, 6.0f}, {6.0f, 0.0f, 6.0f}, {6.0f, 0.0f, -6.0f}, {-6.0f, 0.0f, -6.0f},

@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "rill/rt/scene/ClassicMaterial.h"
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/ObjSyntax.h"
 #include "rill/rt/scene/Scene.h"
@@ -97,9 +98,9 @@ std::string first_line(const std::string& s) {
   return t;
 }
 
+// An MTL material as a classic one (ClassicMaterial.h): phong, or glass where d < 1.
 Material from_mtl(const tinyobj::material_t& m) {
-  Material r;
-  r.name = m.name;
+  ClassicMaterial r;
   r.diffuse = glm::vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
   r.specular = glm::vec3(m.specular[0], m.specular[1], m.specular[2]);
   r.shininess = std::clamp(m.shininess, 0.0f, 10000.0f);
@@ -114,7 +115,7 @@ Material from_mtl(const tinyobj::material_t& m) {
   r.transmit = transmit;
   if (r.reflect + r.transmit > 1.0f) r.reflect = 1.0f - r.transmit;
   if (!std::isfinite(r.reflect)) r.reflect = 0;
-  return r;
+  return r.material(m.name);
 }
 
 // The line number (1-based) of the face-th face (0-based, over all shapes) that

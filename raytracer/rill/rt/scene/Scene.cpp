@@ -1,6 +1,5 @@
-// Scene basics (materials, triangles, validation, bounds, the default camera, transforms)
-// and the SCENE argument of rill-trace. The loaders are ObjLoader.cpp, SceneJson.cpp and
-// Builtin.cpp.
+// Scene basics (materials, triangles, validation, bounds, the default camera, transforms).
+// The loaders are ObjLoader.cpp, Builtin.cpp and load/SceneJson.cpp.
 #include "rill/rt/scene/Scene.h"
 
 #include "rill/rt/scene/InputFile.h"
@@ -13,21 +12,16 @@
 
 namespace rt {
 
-namespace {
-
-bool finite3(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 std::string vec_str(const glm::vec3& v) {
   std::ostringstream o;
   o << "[" << v.x << ", " << v.y << ", " << v.z << "]";
   return o.str();
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
+namespace {
+
+bool finite3(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 glm::vec3 rotate(const glm::vec3& p, const glm::vec3& deg) {
@@ -266,34 +260,23 @@ void check_camera(const Camera& camera, const std::string& where) {
 }
 
 // One material's values (Scene::validate; the JSON reader checks every material it defines
-// with it, used by a mesh or not). texture_count: the scene's textures, which a parameter may
-// refer to.
+// with it, used by a mesh or not): every parameter finite, colours not negative, textures
+// that exist. What a shader asks of its own parameters (a range, a sum) is its check
+// (SurfaceShader::check), run where the shader is known: the JSON reader and the Tracer.
+// texture_count: the scene's textures, which a parameter may refer to.
 void validate_material(const Material& m, size_t texture_count) {
   const std::string where = "material '" + m.name + "': ";
-  if (!finite3(m.diffuse) || !finite3(m.specular) || !std::isfinite(m.shininess) ||
-      !std::isfinite(m.reflect) || !std::isfinite(m.transmit) || !std::isfinite(m.ior))
-    throw SceneError(where + "values must be finite numbers");
-  // Colours are reflectances and light: a negative one would render negative radiance.
-  auto negative = [](const glm::vec3& c) { return c.x < 0.0f || c.y < 0.0f || c.z < 0.0f; };
-  if (negative(m.diffuse) || negative(m.specular))
-    throw SceneError(where +
-                     (negative(m.diffuse) ? "diffuse " + vec_str(m.diffuse)
-                                          : "specular " + vec_str(m.specular)) +
-                     " has a negative component; colours must be >= 0");
-  for (const auto& [name, v] : m.params)
-    if (v.kind == ParamValue::Kind::Color && negative(v.color))
-      throw SceneError(where + name + " " + vec_str(v.color) +
-                       " has a negative component; colours must be >= 0");
-  if (m.reflect < 0 || m.transmit < 0 || m.reflect + m.transmit > 1.0f)
-    throw SceneError(where + "reflect and transmit must be >= 0 with reflect + transmit <= 1");
-  if (m.shininess < 0 || m.shininess > 1e4f)
-    throw SceneError(where + "shininess must be in [0, 10000]");
-  if (!(m.ior > 0.0f) || m.ior > 100.0f) throw SceneError(where + "ior must be in (0, 100]");
+  if (m.shader.empty()) throw SceneError(where + "no shader named");
   for (const auto& [name, v] : m.params) {
     const bool finite = v.kind == ParamValue::Kind::Number  ? std::isfinite(v.number)
                         : v.kind == ParamValue::Kind::Color ? finite3(v.color)
                                                             : true;
     if (!finite) throw SceneError(where + name + " must be finite");
+    // Colours are reflectances and light: a negative one would render negative radiance.
+    if (v.kind == ParamValue::Kind::Color &&
+        (v.color.x < 0.0f || v.color.y < 0.0f || v.color.z < 0.0f))
+      throw SceneError(where + name + " " + vec_str(v.color) +
+                       " has a negative component; colours must be >= 0");
     if (v.kind == ParamValue::Kind::Texture &&
         (v.texture < 0 || static_cast<size_t>(v.texture) >= texture_count))
       throw SceneError(where + name + " refers to texture " + std::to_string(v.texture) +
@@ -427,33 +410,6 @@ glm::vec3 Transform::apply_normal(const glm::vec3& n) const {
 
 bool Transform::identity() const {
   return scale == glm::vec3(1.0f) && rotate_deg == glm::vec3(0.0f) && translate == glm::vec3(0.0f);
-}
-
-// ---- SCENE argument ------------------------------------------------------------------------
-
-Scene load_scene(const std::string& spec, const InputOptions& input) {
-  namespace fs = std::filesystem;
-  if (spec.rfind("builtin:", 0) == 0) return builtin_scene(spec.substr(8));
-  const std::string ext = lower(fs::path(spec).extension().string());
-  std::error_code ec;
-  if (!fs::exists(spec, ec)) {
-    for (const std::string& n : builtin_scene_names())
-      if (n == spec) return builtin_scene(spec);
-    throw SceneError(spec + ": no such file (built-in scenes are named builtin:NAME)");
-  }
-  // A folder or a device: say so, rather than that its (empty) extension is unknown.
-  if (ext != ".json" && ext != ".obj") check_input_file(spec, "a scene (.json or .obj)");
-  if (ext == ".json") return load_json(spec, input);
-  if (ext == ".obj") {
-    ObjLoadOptions o;
-    o.input = input;
-    Scene s = load_obj(spec, o);
-    s.camera = default_camera(s);
-    s.has_camera = true;
-    s.lights.push_back(Light{s.camera.eye, glm::vec3(1.0f)});
-    return s;
-  }
-  throw SceneError(spec + ": unknown scene type '" + ext + "' (expected .json or .obj)");
 }
 
 }  // namespace rt

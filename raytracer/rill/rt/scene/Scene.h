@@ -4,8 +4,9 @@
 // order: shape by shape, face by face, polygons fanned as (v0, vk, vk+1)); that index is the
 // primitive id of the AOV outputs (docs/primitive-ids.md).
 //
-// Scenes come from OBJ + MTL files (load_obj), JSON scene files (load_json, format in
-// docs/scene-format.md), or the built-in generators (builtin_scene).
+// Scenes come from OBJ + MTL files (load_obj), the built-in generators (builtin_scene), or
+// JSON scene files (load/SceneFile.h: load_json, and load_scene for any of the three), whose
+// reader checks materials against the registered shaders and so sits above them.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -30,6 +31,8 @@ struct SceneError : std::runtime_error {
 // in bytes (a 100 KB shape name must not make a 100 KB error line); control bytes and bytes
 // that are not UTF-8 written as \xNN.
 std::string clipped(const std::string& s, size_t max = 80);
+// A vector for a message: "[1, 0.5, 0]".
+std::string vec_str(const glm::vec3& v);
 
 // A value of a shader parameter (kernel/Shader.h): a number, a colour, or a texture (an
 // index into Scene::textures) bound to a colour parameter.
@@ -44,23 +47,29 @@ struct ParamValue {
   static ParamValue of_texture(int t) { return {Kind::Texture, 0.0f, glm::vec3(0.0f), t}; }
 };
 
-// A material: a surface shader (kernel/Shader.h) and the values of its parameters. The
-// classic fields below are the parameters of the built-in shaders (phong, mirror, glass) of
-// the same names; `params` holds any other shader's parameters and textures bound to colour
-// parameters, and wins over a classic field of the same name.
+// A material: a surface shader, by name, and the values of its parameters. Every shader is a
+// plugin registered by name (shaders/Registry.h): the built-in ones (phong, mirror, glass) as
+// much as a user's, so a material holds nothing shader-specific. A parameter the material
+// does not give takes the shader's declared default. The classic keys of MTL files and of
+// JSON materials without a shader map onto the built-in shaders' parameters
+// (scene/ClassicMaterial.h).
 struct Material {
   std::string name = "default";
-  // The shader's name; empty: "glass" when transmit > 0, else "phong" (shader_name()).
-  std::string shader;
+  std::string shader = "phong";
+  // Parameters by name. One the shader does not declare is left alone (it may be another
+  // shader's, from before the material changed shader); a JSON file's is an error.
   std::map<std::string, ParamValue> params;
-  glm::vec3 diffuse{0.8f};   // Kd
-  glm::vec3 specular{0.0f};  // Ks (Phong highlight)
-  float shininess = 32.0f;   // Ns (Phong exponent)
-  float reflect = 0.0f;      // mirror reflection coefficient r of thesis eq. 5.1
-  float transmit = 0.0f;     // fraction refracted (glass); split by Fresnel (Schlick)
-  float ior = 1.5f;          // index of refraction (Ni)
 
-  const std::string& shader_name() const;
+  // Sets a parameter; returns the material, so that one reads as an expression:
+  // Material{"red"}.set("diffuse", glm::vec3(0.8f, 0.1f, 0.1f)).
+  Material& set(const std::string& param, float v) {
+    params[param] = ParamValue::of(v);
+    return *this;
+  }
+  Material& set(const std::string& param, const glm::vec3& c) {
+    params[param] = ParamValue::of(c);
+    return *this;
+  }
 };
 
 struct Light {
@@ -200,15 +209,6 @@ struct ObjLoadOptions {
   std::vector<int32_t>* corners = nullptr;
 };
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
-
-// A JSON scene file (format: docs/scene-format.md). The OBJ files it names are read with
-// `input`.
-Scene load_json(const std::string& path, const InputOptions& input = {});
-Scene parse_json_scene(const std::string& text, const std::string& base_dir,
-                       const std::string& name = "scene", const InputOptions& input = {});
-
-// SCENE argument of rill-trace: "builtin:NAME", a .json file or a .obj file.
-Scene load_scene(const std::string& spec, const InputOptions& input = {});
 
 // Built-in scenes: "thesis-a" (3 boxes, 36 triangles), "thesis-b" (cubes in a room, 2064),
 // "thesis-c" (high- and low-polygon objects with a tessellated Utah teapot, 61562),

@@ -7,8 +7,4 @@ std::vector<SurfaceShader> builtin_shaders() {
   return {phong_shader(), mirror_shader(), glass_shader()};
 }
 
-bool is_builtin_shader(const std::string& name) {
-  return name == "phong" || name == "mirror" || name == "glass";
-}
-
 }  // namespace rt

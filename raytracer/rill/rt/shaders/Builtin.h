@@ -6,7 +6,9 @@
 //   glass   phong's local light, plus refraction with Schlick's Fresnel term and total
 //           internal reflection (a share `transmit` of the light goes through).
 //
-// A material with no shader named gets glass when it transmits, else phong (Material).
+// They are plugins like any user's shader: the registry (Registry.h) registers these through
+// register_shader, and replace_shader replaces one by name. A classic material (MTL, a JSON
+// material without "shader") is phong, or glass where it transmits (scene/ClassicMaterial.h).
 #pragma once
 
 #include <string>
@@ -20,6 +22,5 @@ SurfaceShader phong_shader();
 SurfaceShader mirror_shader();
 SurfaceShader glass_shader();
 std::vector<SurfaceShader> builtin_shaders();
-bool is_builtin_shader(const std::string& name);
 
 }  // namespace rt

@@ -39,6 +39,14 @@ SurfaceShader glass_shader() {
     return out;
   };
   s.lobes = [](const MaterialParams& p) { return Lobes{true, p.nonzero("transmit")}; };
+  s.check = [](const MaterialParams& p) -> std::string {
+    const float reflect = p.number("reflect"), transmit = p.number("transmit");
+    if (!(reflect >= 0 && transmit >= 0 && reflect + transmit <= 1.0f))
+      return "reflect and transmit must be >= 0 with reflect + transmit <= 1";
+    if (std::string why = shininess_problem(p.number("shininess")); !why.empty()) return why;
+    const float ior = p.number("ior");
+    return ior > 0.0f && ior <= 100.0f ? "" : "ior must be in (0, 100]";
+  };
   return s;
 }
 

@@ -14,6 +14,7 @@ SurfaceShader mirror_shader() {
     return mirror_scatter(sp, weight, sp.number("reflect"));
   };
   s.lobes = [](const MaterialParams& p) { return Lobes{p.nonzero("reflect"), false}; };
+  s.check = [](const MaterialParams& p) { return reflect_problem(p.number("reflect")); };
   return s;
 }
 

@@ -17,6 +17,14 @@ std::vector<ShaderParam> phong_params() {
   };
 }
 
+std::string reflect_problem(float reflect) {
+  return reflect >= 0.0f && reflect <= 1.0f ? "" : "reflect must be in [0, 1]";
+}
+
+std::string shininess_problem(float shininess) {
+  return shininess >= 0.0f && shininess <= 1e4f ? "" : "shininess must be in [0, 10000]";
+}
+
 Scatter mirror_scatter(const ShadingPoint& sp, const Float& weight, const Float& r) {
   Scatter out;
   out.local_weight = weight * (1.0f - r);
@@ -79,6 +87,10 @@ SurfaceShader phong_shader() {
     return mirror_scatter(sp, weight, sp.number("reflect"));
   };
   s.lobes = [](const MaterialParams& p) { return Lobes{p.nonzero("reflect"), false}; };
+  s.check = [](const MaterialParams& p) {
+    std::string why = reflect_problem(p.number("reflect"));
+    return why.empty() ? shininess_problem(p.number("shininess")) : why;
+  };
   return s;
 }
 

@@ -17,5 +17,9 @@ std::vector<ShaderParam> phong_params();
 // Mirror reflection of strength r (eq. 5.1): the surface keeps 1 - r of the path weight, the
 // reflected ray carries r. Phong's and the mirror shader's scatter.
 Scatter mirror_scatter(const ShadingPoint& sp, const Float& weight, const Float& r);
+// The checks of the parameters they share (SurfaceShader::check): reflect in [0, 1], and
+// shininess in [0, 10000]; empty when the value is fine.
+std::string reflect_problem(float reflect);
+std::string shininess_problem(float shininess);
 
 }  // namespace rt

@@ -13,11 +13,13 @@
 #include <stdexcept>
 
 #include "rill/rt/kernel/Shader.h"
+#include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/AnimationJson.h"
+#include "rill/rt/scene/ClassicMaterial.h"
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/JsonFields.h"
 #include "rill/rt/scene/Scene.h"
-#include "rill/rt/shaders/Builtin.h"
+#include "rill/rt/shaders/Registry.h"
 
 namespace rt {
 
@@ -116,95 +118,73 @@ ParamValue colour(const Ctx& c, const json& j, const std::string& where,
   fail(c, where + ": expected a colour [r, g, b], a number or {\"texture\": NAME}");
 }
 
-// The classic Material fields, which hold the built-in shaders' parameters of those names
-// (as MaterialParams reads them), so that scenes without "shader" parse as they always did.
-const char* const kClassicKeys[] = {"diffuse", "specular", "shininess",
-                                    "reflect", "transmit", "ior"};
-
-bool classic_key(const std::string& k) {
-  for (const char* a : kClassicKeys)
-    if (k == a) return true;
-  return false;
+// A parameter's value from the file: a colour (a number is grey) or a texture for a colour
+// parameter, a number for a number parameter.
+ParamValue param_value(const Ctx& c, const json& j, ParamType type, const std::string& at,
+                       const TextureNames& names) {
+  if (type == ParamType::Color) return colour(c, j, at, names);
+  if (!j.is_number())
+    fail(c, at + ": expected a number" +
+                (j.is_object() ? " (textures bind only to colour parameters)" : ""));
+  return ParamValue::of(num(c, j, at));
 }
 
-void set_classic(Material& m, const std::string& k, const ParamValue& v) {
-  if (k == "diffuse") m.diffuse = v.color;
-  if (k == "specular") m.specular = v.color;
-  if (k == "shininess") m.shininess = v.number;
-  if (k == "reflect") m.reflect = v.number;
-  if (k == "transmit") m.transmit = v.number;
-  if (k == "ior") m.ior = v.number;
+// A material without "shader": the classic keys (scene/ClassicMaterial.h), which make a
+// phong material, or a glass one where it transmits. Textures bind to its colours.
+Material classic_material(const Ctx& c, const std::string& name, const json& j,
+                          const TextureNames& names) {
+  const std::string where = "materials." + name;
+  ClassicMaterial classic;
+  std::map<std::string, ParamValue> textures;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& key = it.key();
+    if (!is_classic_key(key)) {
+      std::vector<std::string> allowed{"shader"};
+      for (const char* k : kClassicKeys) allowed.push_back(k);
+      fail(c, where + ": unknown key '" + key + "' (" + join(allowed) + ")");
+    }
+    const ParamType type = is_classic_color(key) ? ParamType::Color : ParamType::Number;
+    const ParamValue v = param_value(c, it.value(), type, where + "." + key, names);
+    if (v.kind == ParamValue::Kind::Texture)
+      textures[key] = v;
+    else
+      set_classic(classic, key, v);
+  }
+  if (std::string why = classic.problem(); !why.empty()) fail(c, "material '" + name + "': " + why);
+  Material m = classic.material(name);
+  for (const auto& [key, v] : textures) m.params[key] = v;
+  return m;
 }
 
+// A material: a shader, by name, and its parameters; or, without "shader", a classic one.
 Material material(const Ctx& c, const std::string& name, const json& j, const TextureNames& names) {
   const std::string where = "materials." + name;
   if (!j.is_object()) fail(c, where + " must be an object");
+  if (!j.contains("shader")) return classic_material(c, name, j, names);
+  if (!j["shader"].is_string()) fail(c, where + ".shader must be a shader name");
   Material m;
   m.name = name;
-  m.specular = glm::vec3(0.0f);
-  const SurfaceShader* shader = nullptr;
-  if (j.contains("shader")) {
-    if (!j["shader"].is_string()) fail(c, where + ".shader must be a shader name");
-    m.shader = j["shader"].get<std::string>();
-    shader = find_shader(m.shader);
-    if (shader == nullptr)
-      fail(c, where + ".shader: unknown shader '" + m.shader + "' (known: " + join(shader_names()) +
-                  ")");
-  }
-  // Without "shader" the material is phong or glass (Material::shader_name), which between
-  // them take the classic keys.
-  const bool builtin = shader == nullptr || is_builtin_shader(shader->name);
-  auto declared = [&](const std::string& key, ParamType& type) {
-    if (shader != nullptr)
-      for (const ShaderParam& p : shader->params)
-        if (p.name == key) {
-          type = p.type;
-          return true;
-        }
-    if (builtin && classic_key(key)) {
-      type = key == "diffuse" || key == "specular" ? ParamType::Color : ParamType::Number;
-      return true;
-    }
-    return false;
-  };
+  m.shader = j["shader"].get<std::string>();
+  const SurfaceShader* shader = find_shader(m.shader);
+  if (shader == nullptr)
+    fail(c, where + ".shader: unknown shader '" + m.shader + "' (known: " + join(shader_names()) +
+                ")");
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& key = it.key();
     if (key == "shader") continue;
-    const std::string at = where + "." + key;
-    ParamType type;
-    if (!declared(key, type)) {
+    auto decl = std::find_if(shader->params.begin(), shader->params.end(),
+                             [&](const ShaderParam& p) { return p.name == key; });
+    if (decl == shader->params.end()) {
       std::vector<std::string> allowed{"shader"};
-      if (shader != nullptr)
-        for (const ShaderParam& p : shader->params) allowed.push_back(p.name);
-      if (builtin)
-        for (const char* k : kClassicKeys)
-          if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) allowed.push_back(k);
+      for (const ShaderParam& p : shader->params) allowed.push_back(p.name);
       fail(c, where + ": unknown key '" + key + "' (" + join(allowed) + ")");
     }
-    ParamValue v;
-    if (type == ParamType::Color) {
-      v = colour(c, it.value(), at, names);
-    } else {
-      if (!it.value().is_number())
-        fail(c, at + ": expected a number" +
-                    (it.value().is_object() ? " (textures bind only to colour parameters)" : ""));
-      v = ParamValue::of(num(c, it.value(), at));
-    }
-    if (builtin && classic_key(key) && v.kind != ParamValue::Kind::Texture)
-      set_classic(m, key, v);
-    else
-      m.params[key] = v;
+    m.params[key] = param_value(c, it.value(), decl->type, where + "." + key, names);
   }
-  if (shader != nullptr)
-    for (const ShaderParam& p : shader->params) {
-      if (j.contains(p.name)) continue;
-      if (p.required)
-        fail(c, where + ": shader '" + shader->name + "' needs parameter '" + p.name + "' (a " +
-                    param_type_name(p.type) + ")");
-      // A built-in shader named explicitly gets its own defaults (mirror: reflect 0.9), not
-      // the classic fields' (reflect 0).
-      if (builtin && classic_key(p.name)) set_classic(m, p.name, p.default_value);
-    }
+  for (const ShaderParam& p : shader->params)
+    if (p.required && !j.contains(p.name))
+      fail(c, where + ": shader '" + shader->name + "' needs parameter '" + p.name + "' (a " +
+                  param_type_name(p.type) + ")");
   return m;
 }
 
@@ -448,6 +428,8 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
         } catch (const SceneError& e) {
           fail(c, e.what());
         }
+        if (std::string why = material_problem(m, material_shader(m)); !why.empty())
+          fail(c, "material '" + name + "': " + why);
       }
     }
     MeshNames mesh_names;

@@ -1,0 +1,36 @@
+// rill-trace's SCENE argument (SceneFile.h): a built-in scene, a JSON file or an OBJ file.
+#include <cctype>
+#include <filesystem>
+
+#include "rill/rt/load/SceneFile.h"
+#include "rill/rt/scene/InputFile.h"
+
+namespace rt {
+
+Scene load_scene(const std::string& spec, const InputOptions& input) {
+  namespace fs = std::filesystem;
+  if (spec.rfind("builtin:", 0) == 0) return builtin_scene(spec.substr(8));
+  std::string ext = fs::path(spec).extension().string();
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  std::error_code ec;
+  if (!fs::exists(spec, ec)) {
+    for (const std::string& n : builtin_scene_names())
+      if (n == spec) return builtin_scene(spec);
+    throw SceneError(spec + ": no such file (built-in scenes are named builtin:NAME)");
+  }
+  // A folder or a device: say so, rather than that its (empty) extension is unknown.
+  if (ext != ".json" && ext != ".obj") check_input_file(spec, "a scene (.json or .obj)");
+  if (ext == ".json") return load_json(spec, input);
+  if (ext == ".obj") {
+    ObjLoadOptions o;
+    o.input = input;
+    Scene s = load_obj(spec, o);
+    s.camera = default_camera(s);
+    s.has_camera = true;
+    s.lights.push_back(Light{s.camera.eye, glm::vec3(1.0f)});
+    return s;
+  }
+  throw SceneError(spec + ": unknown scene type '" + ext + "' (expected .json or .obj)");
+}
+
+}  // namespace rt

@@ -1,0 +1,23 @@
+// Loading a scene from a file or a name: JSON scene files (format: docs/scene-format.md) and
+// rill-trace's SCENE argument. The JSON reader checks each material against the shader it
+// names (shaders/Registry.h: its parameters, their types, the shader's own checks), so this
+// layer sits above the shaders, as a scene parser sits above the plugins it makes in pbrt and
+// Mitsuba; OBJ files and the built-in scenes (scene/Scene.h) need no shader to load.
+#pragma once
+
+#include <string>
+
+#include "rill/rt/scene/Scene.h"
+
+namespace rt {
+
+// A JSON scene file. The OBJ files it names are read with `input`.
+Scene load_json(const std::string& path, const InputOptions& input = {});
+Scene parse_json_scene(const std::string& text, const std::string& base_dir,
+                       const std::string& name = "scene", const InputOptions& input = {});
+
+// SCENE argument of rill-trace: "builtin:NAME", a .json file or a .obj file (framed by the
+// default camera, lit from the eye).
+Scene load_scene(const std::string& spec, const InputOptions& input = {});
+
+}  // namespace rt
