@@ -22,4 +22,24 @@ int parse_grid(const std::string& s);
 // "a,b,,c" -> {a, b, c}.
 std::vector<std::string> split_list(const std::string& s);
 
+// An option whose text `parse` turns into out's type (an enum, a size, a number or a word)
+// while CLI11 reads the command line: the parse function's error (std::invalid_argument,
+// rt::SceneError) becomes the command line's, with its message.
+template <class T, class Parse>
+CLI::Option* add_parsed_option(CLI::App* app, const std::string& name, T& out, Parse parse,
+                               const std::string& description) {
+  return app->add_option_function<std::string>(
+      name,
+      [&out, parse](const std::string& text) {
+        try {
+          out = parse(text);
+        } catch (const CLI::Error&) {
+          throw;
+        } catch (const std::exception& e) {
+          throw CLI::ValidationError(e.what());
+        }
+      },
+      description);
+}
+
 }  // namespace trace_cli

@@ -10,18 +10,6 @@
 
 namespace trace_cli {
 
-namespace {
-
-rt::BvhUpdate parse_bvh_update_option(const std::string& s) {
-  try {
-    return rt::parse_bvh_update(s);
-  } catch (const std::invalid_argument& e) {
-    throw rt::SceneError(std::string("--bvh: ") + e.what());
-  }
-}
-
-}  // namespace
-
 FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
   const rt::Scene& scene = p.scene;
   FramePlan plan;
@@ -29,7 +17,7 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
   plan.sequence = !o.frames.empty();
   plan.span =
       plan.sequence ? parse_frames(o.frames, scene.animation.time, plan.animated) : FrameSpan{};
-  plan.bvh_update = parse_bvh_update_option(o.bvh);
+  plan.bvh_update = o.bvh;
   const FrameSpan& span = plan.span;
   if (o.out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty() &&
       span.count() > 1)

@@ -49,9 +49,9 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
   j["width"] = width;
   j["height"] = height;
   j["backend"] = o.backend;
-  j["accuracy"] = o.accuracy;
-  j["strategy"] = o.strategy;
-  if (o.strategy == "megakernel")
+  j["accuracy"] = rill::accuracy_name(o.accuracy);
+  j["strategy"] = rt::strategy_name(o.strategy);
+  if (o.strategy == rt::Strategy::Megakernel)
     j["megakernel_loop"] = rt::megakernel_loop_name(rt::megakernel_loop_for(p.rs.loop, o.backend));
   j["knobs"] = p.knobs.str();
   j["spp"] = scene.options.spp;

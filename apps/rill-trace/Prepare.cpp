@@ -18,22 +18,20 @@ using rill::ms_since;
 std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   auto p = std::make_unique<Prepared>();
   g_doing = "loading " + rt::clipped(o.scene);
-  const rt::Strategy strategy = rt::parse_strategy(o.strategy);       // before the slow steps
-  const rt::MegakernelLoop loop = rt::parse_megakernel_loop(o.loop);  // before the slow steps
-  p->acc = rill::parse_accuracy(o.accuracy);
+  p->acc = o.accuracy;
   const auto t_load = Clock::now();
   rt::InputOptions input;
   input.strict = o.strict_input;
   input.allow_empty = o.allow_empty;
   p->scene = rt::load_scene(o.scene, input);
   rt::Scene& scene = p->scene;
-  if (!o.size.empty()) parse_size(o.size, scene.width, scene.height);
+  if (o.width > 0) scene.width = o.width, scene.height = o.height;
   if (o.max_depth >= 0) scene.options.max_depth = o.max_depth;
   if (o.spp > 0) scene.options.spp = o.spp;
-  if (!o.grid.empty()) scene.options.grid = parse_grid(o.grid);
-  if (!o.subgrids.empty()) scene.options.subgrid_min = rt::parse_subgrid_min(o.subgrids);
-  if (!o.light_buffer.empty()) scene.options.light_buffer = rt::parse_light_buffer(o.light_buffer);
-  if (!o.grid_density.empty()) scene.options.grid_density = rt::parse_grid_density(o.grid_density);
+  if (o.grid) scene.options.grid = *o.grid;
+  if (o.subgrid_min) scene.options.subgrid_min = *o.subgrid_min;
+  if (o.light_buffer) scene.options.light_buffer = *o.light_buffer;
+  if (o.grid_density) scene.options.grid_density = *o.grid_density;
   if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
   if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
   scene.validate();
@@ -52,9 +50,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   }
 
   const auto t_setup = Clock::now();
-  p->knobs.triangle = rt::parse_triangle_test(o.triangle);
-  p->knobs.offset = rt::parse_self_intersection(o.offset);
-  p->knobs.traversal = rt::parse_traversal(o.traversal);
+  p->knobs = o.knobs;
   g_doing = "uploading the scene and grid (" + std::to_string(p->grid.voxel_count()) +
             " voxels) and building the light buffer";
   p->tracer = std::make_unique<rt::Tracer>(scene, p->grid, p->knobs);
@@ -68,14 +64,12 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   rt::RenderSettings& rs = p->rs;
   rs.backend = o.backend;
   rs.accuracy = p->acc;
-  rs.strategy = strategy;
-  rs.loop = loop;
+  rs.strategy = o.strategy;
+  rs.loop = o.loop;
   rs.width = scene.width;
   rs.height = scene.height;
-  if (o.masking != "on" && o.masking != "off")
-    throw rt::SceneError("--masking expects on or off (got '" + o.masking + "')");
   rs.wait_threshold = o.wait_threshold;
-  rs.masking = o.masking == "on";
+  rs.masking = o.masking;
   // Only what is written comes back from the device (the PNG: 8-bit, encoded there).
   p->out = o.out;
   if (p->out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())

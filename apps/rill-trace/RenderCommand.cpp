@@ -152,7 +152,7 @@ int render(RenderOptions o) {
   if (!o.stats_json.empty()) {
     nlohmann::json j = stats_json(o, p, r.width, r.height, r.rays);
     j["launches"] = r.launches;
-    if (o.strategy == "multipass") {
+    if (o.strategy == rt::Strategy::Multipass) {
       j["wait_threshold"] = rs.wait_threshold;
       j["masking"] = rs.masking;
       nlohmann::json passes = nlohmann::json::array();
@@ -221,7 +221,7 @@ int render(RenderOptions o) {
         r.kernels, rill::origin_name(r.stages.origin), r.stages.capture_ms, r.stages.optimize_ms,
         r.stages.codegen_ms, r.stages.backend_compile_ms, r.stages.driver_finish_ms,
         r.stages.compile_ms);
-  if (o.stats && o.strategy == "multipass") {
+  if (o.stats && o.strategy == rt::Strategy::Multipass) {
     std::printf("%-14s %8s %14s %14s %10s   (masking %s, wait threshold %g)\n", "pass", "calls",
                 "processed", "written", "ms", rs.masking ? "on" : "off", rs.wait_threshold);
     for (const rt::PassStats& ps : r.passes)
@@ -233,10 +233,13 @@ int render(RenderOptions o) {
       "rill-trace: %s, %zu triangles, %dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
       "load %.1f ms, grid build %.1f ms, compile %.1f ms%s, set-up %.1f ms, trace %.1f ms%s\n",
       scene.name.c_str(), scene.triangle_count(), r.width, r.height, o.backend.c_str(),
-      o.accuracy.c_str(), o.strategy == "multipass" ? " multipass" : "", grid.res.x, grid.res.y,
-      grid.res.z, rays_per_s * 1e-6, static_cast<long long>(r.rays), load_ms, grid.build_ms,
-      kernels_ms, r.from_cache ? " (cached)" : "", compile_ms - kernels_ms, r.trace_ms,
-      o.strategy == "multipass" ? (" (" + std::to_string(r.launches) + " launches)").c_str() : "");
+      rill::accuracy_name(o.accuracy), o.strategy == rt::Strategy::Multipass ? " multipass" : "",
+      grid.res.x, grid.res.y, grid.res.z, rays_per_s * 1e-6, static_cast<long long>(r.rays),
+      load_ms, grid.build_ms, kernels_ms, r.from_cache ? " (cached)" : "", compile_ms - kernels_ms,
+      r.trace_ms,
+      o.strategy == rt::Strategy::Multipass
+          ? (" (" + std::to_string(r.launches) + " launches)").c_str()
+          : "");
   return 0;
 }
 

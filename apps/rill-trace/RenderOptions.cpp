@@ -1,6 +1,8 @@
 #include "RenderOptions.h"
 
 #include "CliChecks.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/accel/LightBuffer.h"
 
 namespace trace_cli {
 
@@ -9,8 +11,16 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   r->add_option("scene", o.scene, "JSON scene, OBJ file or builtin:NAME")->required();
   r->add_option("--backend", o.backend, "cpu, simd, opencl, glsl or glsl-compute")
       ->default_str("cpu");
-  r->add_option("--accuracy", o.accuracy, "strict, fast or double")->default_str("strict");
-  r->add_option("--size", o.size, "image size WxH (default: the scene's)")->check(non_empty());
+  add_parsed_option(r, "--accuracy", o.accuracy, rill::parse_accuracy, "strict, fast or double")
+      ->default_str("strict");
+  add_parsed_option(
+      r, "--size", o.width,
+      [&o](const std::string& s) {
+        parse_size(s, o.width, o.height);
+        return o.width;
+      },
+      "image size WxH (default: the scene's)")
+      ->check(non_empty());
   r->add_option("--out", o.out, "PNG output (sRGB)")->check(file_name());
   r->add_option("--pfm", o.pfm, "linear colour as PFM")->check(file_name());
   r->add_option("--depth", o.depth, "hit distance AOV as PFM (+inf: miss)")->check(file_name());
@@ -19,26 +29,29 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   r->add_option("--max-depth", o.max_depth, "reflection/refraction bounces")
       ->check(number_in(0, 64, true));
   r->add_option("--spp", o.spp, "samples per pixel")->check(number_in(1, 4096, true));
-  r->add_option("--grid", o.grid, "voxels per axis, or auto")->check(non_empty());
-  r->add_option("--grid-density", o.grid_density,
-                "voxels per triangle of the auto grid, 0.125..256 (default 4; 16 is faster on "
-                "the CPU backends for large meshes, at 3.5x the memory)")
+  add_parsed_option(r, "--grid", o.grid, parse_grid, "voxels per axis, or auto")
       ->check(non_empty());
-  r->add_option("--subgrids", o.subgrids,
-                "voxels listing more triangles than this get a subgrid (1..1048576), off, or auto "
-                "(default: 12 when the backend runs on the CPU, off on a GPU)")
+  add_parsed_option(r, "--grid-density", o.grid_density, rt::parse_grid_density,
+                    "voxels per triangle of the auto grid, 0.125..256 (default 4; 16 is faster on "
+                    "the CPU backends for large meshes, at 3.5x the memory)")
       ->check(non_empty());
-  r->add_option("--light-buffer", o.light_buffer,
-                "shadow rays: cells per edge of each light's direction cube (1..1024), off (walk "
-                "the grid), or auto (default: 64 where the scene has shadows)")
+  add_parsed_option(
+      r, "--subgrids", o.subgrid_min, rt::parse_subgrid_min,
+      "voxels listing more triangles than this get a subgrid (1..1048576), off, or auto "
+      "(default: 12 when the backend runs on the CPU, off on a GPU)")
       ->check(non_empty());
-  r->add_option("--strategy", o.strategy,
-                "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
+  add_parsed_option(
+      r, "--light-buffer", o.light_buffer, rt::parse_light_buffer,
+      "shadow rays: cells per edge of each light's direction cube (1..1024), off (walk "
+      "the grid), or auto (default: 64 where the scene has shadows)")
+      ->check(non_empty());
+  add_parsed_option(r, "--strategy", o.strategy, rt::parse_strategy,
+                    "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
       ->default_str("megakernel");
-  r->add_option("--loop", o.loop,
-                "megakernel: one traced ray per loop iteration (ray), or one path segment with "
-                "its shadow rays (segment), or auto (default: segment on cpu and simd, ray on "
-                "opencl, glsl and glsl-compute). Images do not depend on it")
+  add_parsed_option(r, "--loop", o.loop, rt::parse_megakernel_loop,
+                    "megakernel: one traced ray per loop iteration (ray), or one path segment with "
+                    "its shadow rays (segment), or auto (default: segment on cpu and simd, ray on "
+                    "opencl, glsl and glsl-compute). Images do not depend on it")
       ->default_str("auto");
   r->add_option("--stats-json", o.stats_json, "write timings and counts as JSON")
       ->check(file_name());
@@ -92,17 +105,28 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   r->add_option("--frames", o.frames,
                 "dynamic scenes: frame N, or frames A:B (both included); outputs need a frame "
                 "number, e.g. --out frame-%04d.png");
-  r->add_option("--bvh", o.bvh,
-                "dynamic scenes: the moving objects' BVH each frame: rebuild or refit")
+  add_parsed_option(
+      r, "--bvh", o.bvh,
+      [](const std::string& s) {
+        try {
+          return rt::parse_bvh_update(s);
+        } catch (const std::invalid_argument& e) {
+          throw rt::SceneError(std::string("--bvh: ") + e.what());
+        }
+      },
+      "dynamic scenes: the moving objects' BVH each frame: rebuild or refit")
       ->default_str("rebuild");
   r->add_option("--video", o.video,
                 "with --frames: a preview video of the PNGs (ffmpeg), .mp4 or .gif")
       ->check(file_name());
-  r->add_option("--triangle", o.triangle, "triangle test: moller or watertight")
+  add_parsed_option(r, "--triangle", o.knobs.triangle, rt::parse_triangle_test,
+                    "triangle test: moller or watertight")
       ->default_str("moller");
-  r->add_option("--offset", o.offset, "self-intersection: scaled (Wachter-Binder) or epsilon")
+  add_parsed_option(r, "--offset", o.knobs.offset, rt::parse_self_intersection,
+                    "self-intersection: scaled (Wachter-Binder) or epsilon")
       ->default_str("scaled");
-  r->add_option("--traversal", o.traversal, "grid traversal: incremental or recompute")
+  add_parsed_option(r, "--traversal", o.knobs.traversal, rt::parse_traversal,
+                    "grid traversal: incremental or recompute")
       ->default_str("incremental");
   r->add_flag("--stats", o.stats,
               "print the compile stages; multipass: per-pass calls, elements and time");
@@ -110,7 +134,14 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
                 "multipass: rerun the intersector while this fraction of rays waits (0..1]")
       ->default_str("0.2")
       ->check(number_in(1e-6, 1.0, false));
-  r->add_option("--masking", o.masking, "multipass: launch each pass masked to its state (on|off)")
+  add_parsed_option(
+      r, "--masking", o.masking,
+      [](const std::string& s) {
+        if (s != "on" && s != "off")
+          throw rt::SceneError("--masking expects on or off (got '" + s + "')");
+        return s == "on";
+      },
+      "multipass: launch each pass masked to its state (on|off)")
       ->default_str("on");
   return r;
 }

@@ -3,34 +3,39 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
+
+#include "rill/rt/Tracer.h"
 
 namespace trace_cli {
 
+// Each value is typed as the command line is parsed: a bad one is an error of the command
+// line (exit status 2) naming the option, before any scene is loaded.
 struct RenderOptions {
   std::string scene;
-  std::string backend = "cpu";
-  std::string accuracy = "strict";
-  std::string size;
+  std::string backend = "cpu";  // a backend's name; checked when it is looked up
+  rill::Accuracy accuracy = rill::Accuracy::Strict;
+  int width = 0, height = 0;  // --size; 0: the scene's
   std::string out, pfm, depth, prim, normal, stats_json, source;
   int max_depth = -1;
   int spp = 0;
-  std::string grid = "";
-  std::string subgrids = "";
-  std::string light_buffer = "";
-  std::string grid_density = "";
-  std::string strategy = "megakernel";
-  std::string loop = "auto";
+  // The scene's accelerator options where the command line gives them (Scene.h,
+  // SceneOptions: grid 0 is auto, the others' special values as parse_* give them).
+  std::optional<int> grid, subgrid_min, light_buffer;
+  std::optional<double> grid_density;
+  rt::Strategy strategy = rt::Strategy::Megakernel;
+  rt::MegakernelLoop loop = rt::MegakernelLoop::Auto;
   bool quiet = false;
   // Input files (Scene.h, InputOptions): malformed lines as errors; mesh files without faces.
   bool strict_input = false, allow_empty = false;
   int threads = 0;  // CPU backends' worker threads; 0: all cores
-  // Accuracy knobs (Tracer.h, TracerOptions).
-  std::string triangle = "moller", offset = "scaled", traversal = "incremental";
+  // Accuracy knobs (--triangle, --offset, --traversal; kernel/Options.h).
+  rt::TracerOptions knobs;
   // Multipass: per-pass statistics, the intersector's rerun threshold, masked launches.
   bool stats = false;
   double wait_threshold = 0.2;
-  std::string masking = "on";
+  bool masking = true;
   // Frame-rate mode: after the first render (which compiles), render this many more frames
   // of the same scene back to back and report their times.
   int bench_frames = 0;
@@ -46,7 +51,7 @@ struct RenderOptions {
   // Dynamic scenes (docs/dynamic-scenes.md): the frames to render ("N" or "A:B"), how the
   // BVH follows the moving objects, and a preview video of the frames.
   std::string frames;
-  std::string bvh = "rebuild";
+  rt::BvhUpdate bvh = rt::BvhUpdate::Rebuild;
   std::string video;
 };
 

@@ -34,7 +34,7 @@ namespace {
 
 // and depth are in the scene by now.
 std::string pixel_settings(const RenderOptions& o, const Prepared& p) {
-  return "accuracy " + o.accuracy + "; knobs " + p.knobs.str();
+  return std::string("accuracy ") + rill::accuracy_name(o.accuracy) + "; knobs " + p.knobs.str();
 }
 
 // The outputs asked for, in the order write_outputs writes them.
@@ -353,7 +353,7 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
       "rill-trace: %s, %zu triangles, %s%dx%d, %s %s, %zu ranks, %d tiles of %d: %lld rays; load "
       "%.1f ms, grid build %.1f ms, render %.1f ms, imbalance %.1f%%\n",
       p.scene.name.c_str(), p.scene.triangle_count(), what.c_str(), frames.width, frames.height,
-      o.backend.c_str(), o.accuracy.c_str(), R.ranks.size(), R.tiles, o.tile,
+      o.backend.c_str(), rill::accuracy_name(o.accuracy), R.ranks.size(), R.tiles, o.tile,
       static_cast<long long>(frames.rays), p.load_ms, p.grid.build_ms, wall_ms,
       R.imbalance * 100.0);
   std::fflush(stdout);

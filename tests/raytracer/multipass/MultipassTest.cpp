@@ -8,9 +8,9 @@
 #include <cstring>
 #include <map>
 
-#include "rill/rt/accel/Grid.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
 
 namespace rt {
 namespace {

@@ -16,10 +16,10 @@
 #include <random>
 #include <set>
 
-#include "rill/rt/scene/Camera.h"
-#include "rill/rt/accel/Grid.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/Camera.h"
 
 namespace rt {
 namespace {

@@ -1,6 +1,6 @@
 // Bad input: every malformed, truncated or absurd input gives a clear SceneError or a
 // documented behaviour, never a crash or a hang. (Rendering such scenes is checked per
-// backend in RenderTest.cpp.)
+// backend in tracer/RenderTest.cpp.)
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
