@@ -101,6 +101,11 @@ int main(int argc, char** argv) {
       std::string why = b->unavailable_reason();
       std::printf("%-12s %-4s %s\n", b->name().c_str(), why.empty() ? "ok" : "--",
                   why.empty() ? b->description().c_str() : why.c_str());
+      if (why.empty())
+        for (rill::Accuracy a :
+             {rill::Accuracy::Strict, rill::Accuracy::Fast, rill::Accuracy::Double})
+          if (std::string note = b->accuracy_note(a); !note.empty() && b->supports(a))
+            std::printf("%-12s      %s: %s\n", "", rill::accuracy_name(a), note.c_str());
     }
 #ifdef RILL_HAVE_OPENCL
     auto devices = rill::opencl::list_devices();

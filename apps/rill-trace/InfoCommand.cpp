@@ -23,6 +23,9 @@ int info() {
     if (why.empty())
       std::printf("          accuracy: strict fast%s\n",
                   b->supports(rill::Accuracy::Double) ? " double" : "");
+    if (std::string note = b->accuracy_note(rill::Accuracy::Double);
+        why.empty() && !note.empty() && b->supports(rill::Accuracy::Double))
+      std::printf("          double: %s\n", note.c_str());
   }
   std::printf("built-in scenes (builtin:NAME):");
   for (const auto& n : rt::builtin_scene_names()) std::printf(" %s", n.c_str());

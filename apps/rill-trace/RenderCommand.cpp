@@ -175,7 +175,8 @@ int render(RenderOptions o) {
                               {"codegen", r.stages.codegen_ms},
                               {"backend_compile", r.stages.backend_compile_ms},
                               {"driver_finish", r.stages.driver_finish_ms},
-                              {"compile", r.stages.compile_ms}};
+                              {"compile", r.stages.compile_ms},
+                              {"execution", r.stages.execution}};
     if (!frame_ms.empty())
       j["bench_frames"] = {{"frames", frame_ms.size()},
                            {"frame_ms", frame_ms},
@@ -194,6 +195,10 @@ int render(RenderOptions o) {
     if (animated || span.count() > 1) j["frames"] = frames_json(frame_stats, tracer.features());
     write_json(o.stats_json, j);
   }
+  // A mode that runs otherwise than the backend's name says (simd's double: scalar C).
+  if (!o.quiet && !r.stages.execution.empty())
+    std::printf("note: %s %s: %s\n", o.backend.c_str(), rill::accuracy_name(o.accuracy),
+                r.stages.execution.c_str());
   print_notes(o, p, written);
   if (frame_stats.size() > 1 || animated) print_frames_summary(frame_stats);
   if (!frame_ms.empty())

@@ -202,6 +202,9 @@ class CpuBackend : public Backend {
                 : "profiling: kernels with debug information in " + profile_directory());
   }
   bool supports(Accuracy) const override { return true; }
+  std::string accuracy_note(Accuracy a) const override {
+    return lockstep_ && a == Accuracy::Double ? kScalarDouble : "";
+  }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
     // The double mode is the accuracy reference, not a speed mode: it runs as scalar C.
@@ -218,10 +221,15 @@ class CpuBackend : public Backend {
     SharedObject so = compile_shared_object(name(), f.name, source, flags, "rill_run");
     auto k = std::make_unique<CpuKernel>(std::move(source), std::move(so), lockstep);
     k->set_build_times(codegen_ms, stage.lap());
+    if (lockstep_ && !lockstep) k->set_execution(kScalarDouble);
     return k;
   }
 
  private:
+  // What simd's double mode is, until the lockstep code has binary64 lanes: the accuracy
+  // reference, not a speed mode.
+  static constexpr const char* kScalarDouble =
+      "runs as scalar C, one element at a time, not in lanes (cpu's code)";
   // The widest vector instructions the lockstep code may use on this CPU. Only AVX2 is
   // asked for explicitly (8 binary32 lanes in one register); without it GCC splits each
   // vector into SSE2 halves. FMA is never enabled: contraction is off in strict mode anyway.

@@ -66,6 +66,7 @@ std::shared_ptr<Kernel::Shared> build(const Program& p, Backend& be,
   info.backend_compile_ms = report.compile_ms;
   info.origin = report.origin;
   info.from_disk_cache = shared->compiled->from_disk_cache();
+  info.execution = report.execution;
   info.compile_ms = total.ms();
   return shared;
 }

@@ -725,6 +725,12 @@ TEST_P(LaunchTest, AccuracyDoubleIsCloseAndUsesBinary64) {
   EXPECT_TRUE(within_ulps(arith, wa, 1, d));
   EXPECT_TRUE(within_ulps(trans, wt, 2, d));
   EXPECT_TRUE(bits_equal(cancel, wc, d)) << "double mode must not fold or compute in binary32";
+  // simd runs its double kernels as scalar C (not in lanes) and says so, in the kernel's
+  // compile information and in the backend's listing; no other mode or backend has a note.
+  const std::string note = rill::backend(backend_name()).accuracy_note(Accuracy::Double);
+  EXPECT_EQ(k.info().execution, note);
+  EXPECT_EQ(note.find("scalar") != std::string::npos, backend_name() == "simd") << note;
+  EXPECT_EQ(compile(accuracy_program()).info().execution, "");
 }
 
 TEST_P(LaunchTest, AccuracyStrictMatchesBinary32) {

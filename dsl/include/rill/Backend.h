@@ -65,6 +65,9 @@ struct BuildReport {
   double compile_ms = 0;  // the backend compile (C compiler, clBuildProgram, glLinkProgram),
                           // or loading a cached binary
   KernelOrigin origin = KernelOrigin::Built;
+  // How the kernel runs where that is not what its backend's name says (simd's double
+  // kernels: scalar C, one element at a time); empty otherwise.
+  std::string execution;
 };
 
 class CompiledKernel {
@@ -86,6 +89,7 @@ class CompiledKernel {
     report_.compile_ms = compile_ms;
   }
   void set_origin(KernelOrigin origin) { report_.origin = origin; }
+  void set_execution(std::string how) { report_.execution = std::move(how); }
   // Whether the backend reused a binary compiled earlier (a disk cache) instead of compiling.
   bool from_disk_cache() const { return report_.origin == KernelOrigin::DiskCache; }
 
@@ -106,6 +110,9 @@ class Backend {
   // Device and driver in one line, for `info` listings.
   virtual std::string description() const { return name(); }
   virtual bool supports(Accuracy a) const { return a != Accuracy::Double; }
+  // How a supported accuracy mode runs where it differs from the backend's other modes (simd's
+  // double: scalar C, not in lanes), for `info` listings; empty when it does not.
+  virtual std::string accuracy_note(Accuracy) const { return {}; }
   // Whether kernels run on a GPU rather than on the host's CPU cores (cpu, simd, PoCL,
   // llvmpipe): programs that tune for the device, like the ray tracer's grid settings, ask.
   // False when the backend cannot run here.

@@ -52,6 +52,9 @@ struct CompileInfo {
   bool cache_hit = false;        // served from the in-process kernel cache (origin ProcessCache)
   bool from_disk_cache = false;  // the backend loaded a binary from Rill's disk cache (cpu
                                  // and simd with RILL_PROFILE_DIR: an earlier run's file)
+  // How the kernel runs where that is not what its backend's name says: simd's double
+  // kernels run as scalar C, one element at a time (Backend::accuracy_note); else empty.
+  std::string execution;
 };
 
 class Kernel {

@@ -11,6 +11,7 @@ void add_stages(RenderResult& r, const rill::CompileInfo& k) {
   s.backend_compile_ms += k.backend_compile_ms;
   s.driver_finish_ms += k.driver_finish_ms;
   s.compile_ms += k.compile_ms;
+  if (s.execution.empty()) s.execution = k.execution;
 }
 
 }  // namespace rt
