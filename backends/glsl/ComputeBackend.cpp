@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "../codegen/Tiles.h"
+#include "GLBackend.h"
 #include "GLContext.h"
 #include "GLSLEmitter.h"
 #include "GLSession.h"
@@ -140,8 +141,9 @@ class ComputeKernel : public CompiledKernel {
   std::vector<GLuint> in_buf_;
 };
 
-class ComputeBackend : public Backend, public SessionOwner {
+class ComputeBackend : public GLBackend {
  public:
+  ComputeBackend() : GLBackend(kWho) {}
   ~ComputeBackend() override {
     forget_at_exit(this);
     shutdown();
@@ -149,14 +151,6 @@ class ComputeBackend : public Backend, public SessionOwner {
 
   std::string name() const override { return kName; }
 
-  std::string unavailable_reason() const override {
-    try {
-      const_cast<ComputeBackend*>(this)->context();
-      return {};
-    } catch (const Error& e) {
-      return e.what();
-    }
-  }
   std::string description() const override {
     std::string why = unavailable_reason();
     if (!why.empty()) return std::string(kName) + ": unavailable: " + why;
@@ -171,12 +165,6 @@ class ComputeBackend : public Backend, public SessionOwner {
            (driver_.binary_formats > 0 ? "program binaries"
                                        : "none (the driver offers no program binary format)");
   }
-  bool supports(Accuracy a) const override { return a != Accuracy::Double; }
-  bool runs_on_gpu() const override {
-    return unavailable_reason().empty() &&
-           !is_software_renderer(const_cast<ComputeBackend*>(this)->context().renderer);
-  }
-  bool single_threaded() const override { return true; }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
     std::lock_guard<std::recursive_mutex> lock(mutex());
@@ -242,16 +230,8 @@ class ComputeBackend : public Backend, public SessionOwner {
 
   // --- used by ComputeKernel::run, under the lock ----------------------------------------
 
-  std::recursive_mutex& mutex() { return session_->mutex; }
-  const GL& current() {
-    GLContext& c = context_locked();
-    c.make_current();
-    return c.gl();
-  }
   const Limits& limits() const { return limits_; }
-  const Driver& driver() const { return driver_; }
   GLuint counter() const { return counter_; }
-  const KernelTimer& timer() const { return timer_; }
   // Whether the timer covers dispatches: Mesa's software renderers time the draw pipeline
   // only (a 25 ms dispatch on llvmpipe measured 0.02 ms), so launches there report -1.
   bool times_dispatches() const { return times_dispatches_; }
@@ -317,57 +297,31 @@ class ComputeBackend : public Backend, public SessionOwner {
   }
 
  private:
-  GLContext& context() {
-    std::lock_guard<std::recursive_mutex> lock(mutex());
-    return context_locked();
-  }
-
-  GLContext& context_locked() {
-    Session& ss = *session_;
-    if (ss.context) return *ss.context;
-    if (!init_error_.empty()) throw Error(init_error_);
-    if (started_)
-      throw Error(std::string(kWho) +
-                  ": the OpenGL context was shut down (the process is exiting)");
-    try {
-      auto c = create_context();
-      const GL& gl = c->gl();
-      driver_ = describe_driver(gl, c->renderer);
-      times_dispatches_ = !is_software_renderer(c->renderer);
-      if (driver_.major < 4 || (driver_.major == 4 && driver_.minor < 3))
-        throw Error(std::string(kWho) + ": compute shaders need OpenGL 4.3; the context (" +
-                    c->kind() + ", " + driver_.renderer + ") has OpenGL " + driver_.version_text());
-      gl.glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &limits_.storage_blocks);
-      gl.glGetIntegerv(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, &limits_.texture_units);
-      gl.glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &limits_.groups_x);
-      gl.glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limits_.block_bytes);
-      GLint texels = 0;
-      gl.glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
-      limits_.texels = texels;
-      GLint invocations = 128;
-      gl.glGetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &invocations);
-      if (const char* size = std::getenv("RILL_GLSL_LOCAL_SIZE"))  // for measuring
-        local_size_ = std::clamp(std::atoi(size), 1, invocations);
-      if (const char* t = std::getenv("RILL_GLSL_TILES"); t && *t) {
-        const std::string v = t;
-        if (v != "on" && v != "off")
-          throw Error("RILL_GLSL_TILES='" + v + "' is not one of on, off");
-        tiles_ = v == "on";
-      }
-      timer_.create(gl);
-      gl.glGenBuffers(1, &counter_);
-      gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, counter_);
-      gl.glBufferData(GL_SHADER_STORAGE_BUFFER, 16, nullptr, GL_DYNAMIC_READ);
-      flushes_denormals_ = probe_flushes_denormals(gl);
-      check(gl, "setting up the context", kWho);
-      ss.context = std::move(c);
-      started_ = true;
-      shut_down_at_exit(this);  // the GL library is loaded now (see GLSession.h)
-    } catch (const Error& e) {
-      init_error_ = e.what();
-      throw;
+  void set_up(const GL& gl, GLContext& c) override {
+    times_dispatches_ = !is_software_renderer(c.renderer);
+    if (driver_.major < 4 || (driver_.major == 4 && driver_.minor < 3))
+      throw Error(std::string(kWho) + ": compute shaders need OpenGL 4.3; the context (" +
+                  c.kind() + ", " + driver_.renderer + ") has OpenGL " + driver_.version_text());
+    gl.glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &limits_.storage_blocks);
+    gl.glGetIntegerv(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, &limits_.texture_units);
+    gl.glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &limits_.groups_x);
+    gl.glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limits_.block_bytes);
+    GLint texels = 0;
+    gl.glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
+    limits_.texels = texels;
+    GLint invocations = 128;
+    gl.glGetIntegerv(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS, &invocations);
+    if (const char* size = std::getenv("RILL_GLSL_LOCAL_SIZE"))  // for measuring
+      local_size_ = std::clamp(std::atoi(size), 1, invocations);
+    if (const char* t = std::getenv("RILL_GLSL_TILES"); t && *t) {
+      const std::string v = t;
+      if (v != "on" && v != "off") throw Error("RILL_GLSL_TILES='" + v + "' is not one of on, off");
+      tiles_ = v == "on";
     }
-    return *ss.context;
+    gl.glGenBuffers(1, &counter_);
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, counter_);
+    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, 16, nullptr, GL_DYNAMIC_READ);
+    flushes_denormals_ = probe_flushes_denormals(gl);
   }
 
   // Whether the driver's compute arithmetic flushes denormals: 2 * the smallest denormal,
@@ -398,16 +352,11 @@ class ComputeBackend : public Backend, public SessionOwner {
     return out[1] == 0.0f;
   }
 
-  std::shared_ptr<Session> session_ = std::make_shared<Session>();
   bool flushes_denormals_ = true;
-  bool started_ = false;
-  std::string init_error_;
-  Driver driver_;
   Limits limits_;
   int local_size_ = 64;
   bool tiles_ = true;   // 2D launches in 8 x 4 tiles (RILL_GLSL_TILES)
   GLuint counter_ = 0;  // the launch's counts: elements written, selected
-  KernelTimer timer_;   // how long a launch's dispatches ran
   bool times_dispatches_ = false;
 };
 
@@ -460,16 +409,7 @@ void ComputeKernel::dispatch(const GL& gl, Pass& p, const LaunchArgs& a,
   gl.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(bind.counts), be_.counter());
   gl.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(bind.mask), mask);
   gl.glUseProgram(p.program);
-  if (loc.count >= 0) gl.glUniform1i(loc.count, static_cast<GLint>(a.count));
-  if (loc.width >= 0) gl.glUniform1i(loc.width, static_cast<GLint>(a.width));
-  if (!words_.empty() && loc.u >= 0)
-    gl.glUniform1uiv(loc.u, static_cast<GLsizei>(words_.size()), words_.data());
-  if (!p.constants.empty() && loc.k >= 0)
-    gl.glUniform1uiv(loc.k, static_cast<GLsizei>(p.constants.size()), p.constants.data());
-  const GLuint one = 0x3f800000u;  // 1.0f, for the helpers (see GLSLEmitter.cpp)
-  if (loc.one >= 0) gl.glUniform1uiv(loc.one, 1, &one);
-  if (!shapes_.empty() && loc.shapes >= 0)
-    gl.glUniform1iv(loc.shapes, static_cast<GLsizei>(shapes_.size()), shapes_.data());
+  set_kernel_uniforms(gl, loc, a.count, a.width, words_, p.constants, shapes_);
   if (loc.nvalues >= 0)
     gl.glUniform1i(loc.nvalues, a.mask ? static_cast<GLint>(a.mask_values.size()) : 0);
   if (a.mask && loc.values >= 0)

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "../codegen/SourceText.h"
+#include "GLBackend.h"
 #include "GLContext.h"
 #include "GLSLEmitter.h"
 #include "GLSession.h"
@@ -142,22 +143,15 @@ class GLSLKernel : public CompiledKernel {
   std::vector<GLint> shapes_;
 };
 
-class GLSLBackend : public Backend, public SessionOwner {
+class GLSLBackend : public GLBackend {
  public:
+  GLSLBackend() : GLBackend("GLSL backend") {}
   // Backends live in the registry until exit; the exit handler has normally shut this one
   // down by then.
   ~GLSLBackend() override;
 
   std::string name() const override { return "glsl"; }
 
-  std::string unavailable_reason() const override {
-    try {
-      const_cast<GLSLBackend*>(this)->context();
-      return {};
-    } catch (const Error& e) {
-      return e.what();
-    }
-  }
   std::string description() const override {
     std::string why = unavailable_reason();
     if (!why.empty()) return "glsl: unavailable: " + why;
@@ -169,12 +163,6 @@ class GLSLBackend : public Backend, public SessionOwner {
                 ? std::string("program binaries")
                 : std::string("none (the driver offers no program binary format)"));
   }
-  bool supports(Accuracy a) const override { return a != Accuracy::Double; }
-  bool runs_on_gpu() const override {
-    return unavailable_reason().empty() &&
-           !is_software_renderer(const_cast<GLSLBackend*>(this)->context().renderer);
-  }
-  bool single_threaded() const override { return true; }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
     std::lock_guard<std::recursive_mutex> lock(mutex());
@@ -230,14 +218,6 @@ class GLSLBackend : public Backend, public SessionOwner {
   }
 
   // --- used by GLSLKernel::run, under the lock --------------------------------------------
-
-  std::recursive_mutex& mutex() { return session_->mutex; }
-
-  const GL& current() {
-    GLContext& c = context_locked();
-    c.make_current();
-    return c.gl();
-  }
 
   static void check(const GL& gl, const char* what) { glsl::check(gl, what); }
 
@@ -356,7 +336,6 @@ class GLSLBackend : public Backend, public SessionOwner {
   GLuint fbo() const { return fbo_; }
   GLuint vao() const { return vao_; }
   GLuint query() const { return query_; }
-  const Driver& driver() const { return driver_; }
   // DriverRules::loop_guard's word (kGuardBinding), made on the first launch that needs it.
   GLuint guard(const GL& gl) {
     if (!guard_) {
@@ -366,14 +345,7 @@ class GLSLBackend : public Backend, public SessionOwner {
     }
     return guard_;
   }
-  const KernelTimer& timer() const { return timer_; }
   int max_texture_units() const { return max_units_; }
-
- private:
-  GLContext& context() {
-    std::lock_guard<std::recursive_mutex> lock(mutex());
-    return context_locked();
-  }
 
  public:
   // Deletes the backend's GL objects and destroys the context (see GLSession.h): called by the
@@ -399,52 +371,25 @@ class GLSLBackend : public Backend, public SessionOwner {
   }
 
  private:
-  GLContext& context_locked() {
-    Session& ss = *session_;
-    if (ss.context) return *ss.context;
-    if (!init_error_.empty()) throw Error(init_error_);
-    if (started_)
-      throw Error("GLSL backend: the OpenGL context was shut down (the process is exiting)");
-    try {
-      auto c = create_context();
-      const GL& gl = c->gl();
-      GLint draw = 1, attach = 1, units = 16;
-      gl.glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw);
-      gl.glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &attach);
-      gl.glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
-      max_draw_buffers_ = std::min(draw, attach);
-      if (const char* force = std::getenv("RILL_GL_MAX_DRAW_BUFFERS"))  // to test pass splitting
-        max_draw_buffers_ = std::clamp(std::atoi(force), 1, max_draw_buffers_);
-      max_units_ = units;
-      driver_ = describe_driver(gl, c->renderer);
-      gl.glGenFramebuffers(1, &fbo_);
-      gl.glGenVertexArrays(1, &vao_);
-      gl.glGenQueries(1, &query_);
-      timer_.create(gl);
-      gl.glDisable(GL_DITHER);
-      gl.glDisable(GL_BLEND);
-      gl.glDisable(GL_DEPTH_TEST);
-      check(gl, "setting up the context");
-      ss.context = std::move(c);
-      started_ = true;
-      // The GL library is loaded now: an exit handler registered after it runs before the
-      // library's own (see GLSession.h).
-      shut_down_at_exit(this);
-    } catch (const Error& e) {
-      init_error_ = e.what();
-      throw;
-    }
-    return *ss.context;
+  void set_up(const GL& gl, GLContext&) override {
+    GLint draw = 1, attach = 1, units = 16;
+    gl.glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw);
+    gl.glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &attach);
+    gl.glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+    max_draw_buffers_ = std::min(draw, attach);
+    if (const char* force = std::getenv("RILL_GL_MAX_DRAW_BUFFERS"))  // to test pass splitting
+      max_draw_buffers_ = std::clamp(std::atoi(force), 1, max_draw_buffers_);
+    max_units_ = units;
+    gl.glGenFramebuffers(1, &fbo_);
+    gl.glGenVertexArrays(1, &vao_);
+    gl.glGenQueries(1, &query_);
+    gl.glDisable(GL_DITHER);
+    gl.glDisable(GL_BLEND);
+    gl.glDisable(GL_DEPTH_TEST);
   }
 
-  // The context and its lock, shared with kernels and textures (see Session).
-  std::shared_ptr<Session> session_ = std::make_shared<Session>();
-  bool started_ = false;  // a context was made (and, if session_ has none now, shut down)
-  std::string init_error_;
   int max_draw_buffers_ = 1, max_units_ = 16;
-  Driver driver_;
   GLuint fbo_ = 0, vao_ = 0, query_ = 0, guard_ = 0;
-  KernelTimer timer_;  // how long a launch's draws ran
   GLuint mask_program_ = 0;
   std::map<std::pair<int, int>, GLuint> stencils_;
   // Textures for copies of outputs, by (internal format, row, rows), for reuse (see
@@ -658,17 +603,8 @@ LaunchResult GLSLKernel::run(const LaunchArgs& a) {
     for (size_t k = 0; k < p.outputs.size(); ++k)
       bind(l.prev[k], prev_[static_cast<size_t>(p.outputs[k])]);
     for (size_t i = 0; i < arr_tex_.size(); ++i) bind(l.arr[i], arr_tex_[i]);
-    if (l.count >= 0) gl.glUniform1i(l.count, static_cast<GLint>(a.count));
+    set_kernel_uniforms(gl, l, a.count, a.width, words_, p.constants, shapes_);
     if (l.row >= 0) gl.glUniform1i(l.row, shape.row);
-    if (l.width >= 0) gl.glUniform1i(l.width, static_cast<GLint>(a.width));
-    if (!words_.empty() && l.u >= 0)
-      gl.glUniform1uiv(l.u, static_cast<GLsizei>(words_.size()), words_.data());
-    if (!p.constants.empty() && l.k >= 0)
-      gl.glUniform1uiv(l.k, static_cast<GLsizei>(p.constants.size()), p.constants.data());
-    const GLuint one = 0x3f800000u;  // 1.0f, for the helpers (see GLSLEmitter.cpp)
-    if (l.one >= 0) gl.glUniform1uiv(l.one, 1, &one);
-    if (!shapes_.empty() && l.shapes >= 0)
-      gl.glUniform1iv(l.shapes, static_cast<GLsizei>(shapes_.size()), shapes_.data());
     if (pi == 0) gl.glBeginQuery(GL_SAMPLES_PASSED, be_.query());
     gl.glDrawArrays(GL_TRIANGLES, 0, 3);
     if (pi == 0) {
