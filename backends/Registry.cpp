@@ -1,5 +1,6 @@
 // Registers the backends this build includes (see CMakeLists.txt: RILL_WITH_*).
 #include "cpu/CpuBackend.h"
+#include "simd/SimdBackend.h"
 #ifdef RILL_HAVE_OPENCL
 #include "opencl/OpenCLBackend.h"
 #endif
@@ -13,7 +14,7 @@ namespace rill::detail {
 
 void register_builtin_backends() {
   register_backend(cpu::make_backend());
-  register_backend(cpu::make_lockstep_backend());
+  register_backend(simd::make_backend());
 #ifdef RILL_HAVE_OPENCL
   register_backend(opencl::make_backend());
 #endif

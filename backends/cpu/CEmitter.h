@@ -15,7 +15,7 @@ namespace rill::cpu {
 std::string emit_c(const ir::Function& optimized, Accuracy accuracy);
 
 // Pieces every C translation unit of the CPU backends shares (the scalar one above and the
-// lockstep one in LockstepEmitter.h):
+// lockstep one in simd/LockstepEmitter.h):
 // the header comment, rill_real, the launch struct and the rill_* helpers;
 std::string c_head(const ir::Function& f, Accuracy accuracy);
 // the entry point's locals: in<k>/out<k> pointers, u<k>_<c> uniforms, arr<k> and shapes.

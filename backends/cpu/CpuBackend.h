@@ -1,12 +1,11 @@
 // The CPU backend: kernels as C compiled by the system compiler, run on every core.
 //
 // compile() emits C (CEmitter), compiles it to a shared object once (SharedObjectCache) and
-// loads it; run() splits the elements into ranges and calls the kernel's rill_run on oneTBB
-// worker threads, summing the written counts. Streams are used in place in host memory.
+// loads it; the host launcher (HostKernel.h) splits the elements into ranges and calls the
+// kernel's rill_run on oneTBB worker threads. Streams are used in place in host memory.
 //
-// The same backend also registers as `simd`, which compiles the lockstep form of the
-// kernel (LockstepEmitter): groups of 8 elements in vector registers, with masks for
-// divergent control flow. Its results are bit for bit those of `cpu`.
+// The `simd` backend (backends/simd/) runs the lockstep form of the kernel on the same
+// launcher: groups of 8 elements in vector registers, bit for bit `cpu`'s results.
 //
 // Accuracy modes map to compiler flags: strict is ISO C float arithmetic with FMA
 // contraction off; fast adds -ffast-math's relaxations (without flushing denormals process-
@@ -14,14 +13,21 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "rill/Backend.h"
 
 namespace rill::cpu {
 
-std::unique_ptr<Backend> make_backend();           // "cpu"
-std::unique_ptr<Backend> make_lockstep_backend();  // "simd"
+std::unique_ptr<Backend> make_backend();  // "cpu"
 // The compiler flags used for an accuracy mode (shown by tools and docs).
 std::vector<std::string> compiler_flags(Accuracy a);
+// Whether this CPU has SSE4.1 (scalar kernels get -msse4.1 then).
+bool has_sse41();
+// A kernel as cpu compiles it (scalar C), for `backend`'s cache entries: simd's double mode
+// runs this too.
+std::unique_ptr<CompiledKernel> compile_scalar_c(const std::string& backend, const ir::Function& f,
+                                                 Accuracy a);
 
 }  // namespace rill::cpu

@@ -20,7 +20,7 @@
 // With one lane, "some lane has it" is just "it", so the lowered kernel is also a scalar
 // kernel that computes what the original computes (with `if (!alive) discard` appended):
 // tests check exactly that with the interpreter (tests/dsl/passes/LowerLockstepTest.cpp).
-// The simd backend prints it through the lockstep dialect (backends/cpu/VectorDialect.h),
+// The simd backend prints it through the lockstep dialect (backends/simd/VectorDialect.h),
 // whose branch conditions test rill_any().
 #include "rill/ir/Visitor.h"
 #include "rill/passes/Passes.h"

@@ -6,7 +6,7 @@
 #include "rill/Backend.h"
 #include "rill/ir/IR.h"
 
-namespace rill::cpu {
+namespace rill::simd {
 
 // Lanes per group: 8 binary32 values fill one AVX register.
 constexpr int kLockstepLanes = 8;
@@ -17,4 +17,4 @@ constexpr int kLockstepLanes = 8;
 std::string emit_c_lockstep(const ir::Function& optimized, Accuracy accuracy,
                             int lanes = kLockstepLanes);
 
-}  // namespace rill::cpu
+}  // namespace rill::simd

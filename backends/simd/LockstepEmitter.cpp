@@ -23,12 +23,15 @@
 #include <string_view>
 
 #include "../codegen/CFamilyPrinter.h"
-#include "CEmitter.h"
+#include "../cpu/CEmitter.h"
 #include "VectorDialect.h"
 #include "rill/ir/Visitor.h"
 #include "rill/passes/Passes.h"
 
-namespace rill::cpu {
+namespace rill::simd {
+
+using cpu::c_entry_locals;
+using cpu::c_head;
 
 using namespace ir;
 
@@ -349,4 +352,4 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   return src;
 }
 
-}  // namespace rill::cpu
+}  // namespace rill::simd

@@ -12,7 +12,7 @@
 
 #include "../codegen/CDialect.h"
 
-namespace rill::cpu {
+namespace rill::simd {
 
 class VectorDialect : public codegen::CDialect {
  public:
@@ -145,4 +145,4 @@ class VectorDialect : public codegen::CDialect {
   int lanes_;
 };
 
-}  // namespace rill::cpu
+}  // namespace rill::simd
