@@ -570,4 +570,8 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   return GLSLShader{src, d.constants};
 }
 
+std::string glsl_helpers(Accuracy accuracy, const DriverRules& rules, bool flushes_denormals) {
+  return helper_definitions(accuracy, rules, flushes_denormals);
+}
+
 }  // namespace rill::glsl

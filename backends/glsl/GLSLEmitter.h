@@ -69,4 +69,8 @@ ComputeBindings compute_bindings(const ir::Function& f, size_t pass_outputs);
 // The vertex shader every kernel is drawn with.
 std::string vertex_shader();
 
+// The rill_* helpers every generated GLSL kernel starts with (the division and square root
+// of the driver's rules, then the op table's HELPER forms), for the completeness test.
+std::string glsl_helpers(Accuracy accuracy, const DriverRules& rules, bool flushes_denormals);
+
 }  // namespace rill::glsl

@@ -1,0 +1,117 @@
+// Every HELPER form of the op table (dsl/include/rill/ir/Ops.def) has a body in each dialect's
+// kernels: C and OpenCL C (backends/codegen/Helpers.cpp, and each emitter's frame for the bit
+// casts), GLSL (backends/glsl/GLSLEmitter.cpp, under every division and square-root rule) and
+// lockstep C (backends/simd/LockstepEmitter.cpp: vector code, or the lane-wise wrapper
+// generated from the table). Each dialect's check reads the source its emitter generates for a
+// small kernel, in every accuracy mode it has. A row added without its bodies fails here,
+// naming the op and the dialect, rather than in a driver's compiler on some backend.
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "cpu/CEmitter.h"
+#include "rill/ir/Ops.h"
+#include "rill/rill.h"
+#include "simd/LockstepEmitter.h"
+#ifdef RILL_HAVE_OPENCL
+#include "opencl/OpenCLEmitter.h"
+#endif
+#ifdef RILL_HAVE_GLSL
+#include "glsl/GLSLEmitter.h"
+#endif
+
+namespace rill {
+namespace {
+
+// Whether text defines function `name`: a line "[RILL_FN] TYPE name(" (a call has no type
+// before it, or follows '=' or 'return').
+bool defines(const std::string& text, const std::string& name) {
+  const std::regex def("(^|\\n)[ \\t]*(RILL_FN[ \\t]+)?(?!return\\b)[A-Za-z_][A-Za-z_0-9]*[ \\t]+" +
+                       name + "[ \\t]*\\(");
+  return std::regex_search(text, def);
+}
+
+// A kernel for the emitters to print: its source carries the dialect's whole prelude.
+const ir::Function& probe() {
+  static const Program p = program("helpers_probe", [] {
+    Output<Float> o("o");
+    o = 1.0f;
+  });
+  return p.ir();
+}
+
+// The rill_NAME of every HELPER form, with the op it belongs to.
+struct Helper {
+  std::string name, op;
+};
+std::vector<Helper> table_helpers() {
+  std::vector<Helper> out;
+  for (int o = 0; o < ir::kOpCount; ++o) {
+    const ir::OpInfo& info = ir::op_info(static_cast<ir::Op>(o));
+    for (ir::ScalarKind k : {ir::ScalarKind::Float, ir::ScalarKind::Int, ir::ScalarKind::Bool}) {
+      const ir::OpForm& f = info.form(k);
+      if (f.kind == ir::FormKind::Helper) out.push_back({f.text, info.spelling});
+    }
+  }
+  return out;
+}
+
+TEST(Helpers, TheTableHasHelpers) {
+  EXPECT_GT(table_helpers().size(), 20u);
+  EXPECT_TRUE(defines("RILL_FN int32_t rill_x(int32_t a) {", "rill_x"));
+  EXPECT_TRUE(defines("float rill_x(float a) {", "rill_x"));
+  EXPECT_FALSE(defines("  return rill_x(a);", "rill_x"));
+  EXPECT_FALSE(defines("  int y = rill_x(a);", "rill_x"));
+}
+
+TEST(Helpers, EveryHelperHasACBody) {
+  for (Accuracy a : {Accuracy::Strict, Accuracy::Fast, Accuracy::Double}) {
+    const std::string text = cpu::emit_c(probe(), a);
+    for (const Helper& h : table_helpers())
+      EXPECT_TRUE(defines(text, "rill_" + h.name))
+          << "op '" << h.op << "': no rill_" << h.name << " in C (" << accuracy_name(a) << ")";
+  }
+}
+
+#ifdef RILL_HAVE_OPENCL
+TEST(Helpers, EveryHelperHasAnOpenCLBody) {
+  for (Accuracy a : {Accuracy::Strict, Accuracy::Fast, Accuracy::Double}) {
+    const std::string text = opencl::emit_opencl(probe(), a);
+    for (const Helper& h : table_helpers())
+      EXPECT_TRUE(defines(text, "rill_" + h.name)) << "op '" << h.op << "': no rill_" << h.name
+                                                   << " in OpenCL C (" << accuracy_name(a) << ")";
+  }
+}
+#endif
+
+TEST(Helpers, EveryHelperHasALockstepBody) {
+  for (Accuracy a : {Accuracy::Strict, Accuracy::Fast}) {
+    const std::string text = simd::emit_c_lockstep(probe(), a);
+    for (const Helper& h : table_helpers()) {
+      const std::string v = "rill_v_" + h.name;
+      EXPECT_TRUE(defines(text, v) || text.find("(" + v + ",") != std::string::npos)
+          << "op '" << h.op << "': no " << v << " in lockstep C (" << accuracy_name(a) << ")";
+    }
+  }
+}
+
+#ifdef RILL_HAVE_GLSL
+TEST(Helpers, EveryHelperHasAGlslBodyUnderEveryDriverRule) {
+  for (Accuracy a : {Accuracy::Strict, Accuracy::Fast})
+    for (glsl::DivSqrt ds : {glsl::DivSqrt::Native, glsl::DivSqrt::Corrected})
+      for (bool flushes : {false, true}) {
+        glsl::DriverRules rules;
+        rules.divsqrt = ds;
+        const std::string text = glsl::glsl_helpers(a, rules, flushes);
+        for (const Helper& h : table_helpers())
+          EXPECT_TRUE(defines(text, "rill_" + h.name))
+              << "op '" << h.op << "': no rill_" << h.name << " in the GLSL prelude ("
+              << accuracy_name(a) << ")";
+      }
+}
+#endif
+
+}  // namespace
+}  // namespace rill
