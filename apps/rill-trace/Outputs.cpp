@@ -50,7 +50,7 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
   j["height"] = height;
   j["backend"] = o.backend;
   j["accuracy"] = rill::accuracy_name(o.accuracy);
-  j["strategy"] = rt::strategy_name(o.strategy);
+  j["strategy"] = o.strategy.name;
   if (o.strategy == rt::Strategy::Megakernel)
     j["megakernel_loop"] = rt::megakernel_loop_name(rt::megakernel_loop_for(p.rs.loop, o.backend));
   j["knobs"] = p.knobs.str();

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -26,43 +27,63 @@ using namespace rill;
 
 namespace {
 
-// The render strategies: each RenderSettings::strategy value, its name and how it is made. A
-// new strategy is its folder and a line here. A strategy is made at its tracer's first frame
-// that asks for it (Multipass throws then for a scene with refraction), the megakernel with
-// the tracer (its first program is captured then, so a shader's errors are the constructor's).
-struct StrategyEntry {
-  Strategy id;
-  const char* name;
-  std::unique_ptr<RenderStrategy> (*make)(DeviceScene& scene);
-};
-template <class S>
-std::unique_ptr<RenderStrategy> make(DeviceScene& scene) {
-  return std::make_unique<S>(scene);
-}
-constexpr StrategyEntry kStrategies[] = {
-    {Strategy::Megakernel, "megakernel", make<Megakernel>},
-    {Strategy::Multipass, "multipass", make<Multipass>},
+// The render strategies by name, in the order they were registered: the built-in ones first.
+// A new strategy of the library is its folder and a line here; a program's, a call of
+// register_strategy.
+struct StrategyRegistry {
+  std::mutex mutex;
+  std::vector<std::pair<std::string, StrategyFactory>> entries;
+  StrategyRegistry() {
+    entries.emplace_back("megakernel",
+                         [](DeviceScene& s) { return std::make_unique<Megakernel>(s); });
+    entries.emplace_back("multipass",
+                         [](DeviceScene& s) { return std::make_unique<Multipass>(s); });
+  }
 };
 
-const StrategyEntry& strategy_entry(Strategy s) {
-  for (const StrategyEntry& e : kStrategies)
-    if (e.id == s) return e;
-  throw std::invalid_argument("unknown render strategy " + std::to_string(static_cast<int>(s)));
+StrategyRegistry& strategy_registry() {
+  static StrategyRegistry* r = new StrategyRegistry;  // never destroyed: tracers may outlive main
+  return *r;
+}
+
+// The factory registered under name; throws std::invalid_argument naming the strategies.
+StrategyFactory strategy_factory(const std::string& name) {
+  StrategyRegistry& r = strategy_registry();
+  std::lock_guard lock(r.mutex);
+  std::string names;
+  for (const auto& [n, make] : r.entries) {
+    if (n == name) return make;
+    names += std::string(names.empty() ? "" : " or ") + n;
+  }
+  throw std::invalid_argument("--strategy expects " + names + " (got '" + name + "')");
 }
 
 }  // namespace
 
-const char* strategy_name(Strategy s) {
-  return strategy_entry(s).name;
+void register_strategy(const std::string& name, StrategyFactory make) {
+  if (name.empty()) throw std::invalid_argument("register_strategy: the strategy has no name");
+  if (!make)
+    throw std::invalid_argument("register_strategy: strategy '" + name + "' has no factory");
+  StrategyRegistry& r = strategy_registry();
+  std::lock_guard lock(r.mutex);
+  for (const auto& [n, m] : r.entries)
+    if (n == name)
+      throw std::invalid_argument("register_strategy: a strategy named '" + name +
+                                  "' is registered already");
+  r.entries.emplace_back(name, std::move(make));
+}
+
+std::vector<std::string> strategy_names() {
+  StrategyRegistry& r = strategy_registry();
+  std::lock_guard lock(r.mutex);
+  std::vector<std::string> names;
+  for (const auto& [n, m] : r.entries) names.push_back(n);
+  return names;
 }
 
 Strategy parse_strategy(const std::string& s) {
-  std::string names;
-  for (const StrategyEntry& e : kStrategies) {
-    if (s == e.name) return e.id;
-    names += std::string(names.empty() ? "" : " or ") + e.name;
-  }
-  throw std::invalid_argument("--strategy expects " + names + " (got '" + s + "')");
+  (void)strategy_factory(s);  // throws for an unknown name
+  return Strategy{s};
 }
 
 namespace {
@@ -111,7 +132,7 @@ struct Tracer::Impl {
         posed(posed_at_start(scene, features)),
         device(posed ? *posed : scene, grid, options, features, shaders),
         static_boxes(occupied_boxes(scene, grid)) {
-    strategies[Strategy::Megakernel] = strategy_entry(Strategy::Megakernel).make(device);
+    strategies["megakernel"] = std::make_unique<Megakernel>(device);
     if (posed) {
       bvh = build_bvh(*posed, moving_triangles(*posed));
       device.bvh.upload(bvh);
@@ -128,8 +149,8 @@ struct Tracer::Impl {
   std::unique_ptr<Scene> rest, posed;
   Bvh bvh;
   DeviceScene device;
-  // The strategies made so far, the megakernel first (StrategyEntry).
-  std::map<Strategy, std::unique_ptr<RenderStrategy>> strategies;
+  // The strategies made so far, by name, the megakernel first (StrategyRegistry).
+  std::map<std::string, std::unique_ptr<RenderStrategy>> strategies;
   // Boxes that hold every static triangle that can be hit (accel/OccupiedBoxes.h).
   std::vector<Aabb> static_boxes;
   std::vector<Aabb> frame_boxes;  // static_boxes widened for the frame's eye
@@ -137,12 +158,13 @@ struct Tracer::Impl {
   Program intersect_program, camera_program;
 
   // The megakernel, whose programs and source the Tracer also gives out.
-  Megakernel& megakernel() {
-    return static_cast<Megakernel&>(*strategies.at(Strategy::Megakernel));
-  }
-  RenderStrategy& strategy(Strategy s) {
-    std::unique_ptr<RenderStrategy>& made = strategies[s];
-    if (!made) made = strategy_entry(s).make(device);
+  Megakernel& megakernel() { return static_cast<Megakernel&>(*strategies.at("megakernel")); }
+  RenderStrategy& strategy(const Strategy& s) {
+    std::unique_ptr<RenderStrategy>& made = strategies[s.name];
+    if (!made) {
+      made = strategy_factory(s.name)(device);
+      if (!made) throw std::runtime_error("strategy '" + s.name + "': its factory made none");
+    }
     return *made;
   }
 };

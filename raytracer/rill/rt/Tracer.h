@@ -21,6 +21,7 @@
 
 #include <rill/rill.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,9 +40,19 @@
 
 namespace rt {
 
-// A strategy's name, "megakernel" or "multipass" (as rill-trace's --strategy takes it), and
-// back; parse_strategy throws std::invalid_argument naming the bad value and the strategies.
-const char* strategy_name(Strategy s);
+class RenderStrategy;
+struct DeviceScene;
+
+// The render strategies, by name: megakernel and multipass are built in, and a program adds
+// its own (a class implementing strategy/RenderStrategy.h, made for a tracer's DeviceScene)
+// before rendering with it: RenderSettings::strategy = {"name"}. A tracer makes a strategy at
+// its first frame that asks for it. register_strategy throws std::invalid_argument for an
+// empty or taken name.
+using StrategyFactory = std::function<std::unique_ptr<RenderStrategy>(DeviceScene& scene)>;
+void register_strategy(const std::string& name, StrategyFactory make);
+std::vector<std::string> strategy_names();  // in the order they were registered
+// The strategy of that name (as rill-trace's --strategy takes it); throws
+// std::invalid_argument naming the bad value and the strategies there are.
 Strategy parse_strategy(const std::string& s);
 
 // How a dynamic scene's BVH follows its moving triangles from one frame to the next

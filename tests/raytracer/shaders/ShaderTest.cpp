@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <set>
 #include <tuple>
 
@@ -13,6 +14,7 @@
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/ClassicMaterial.h"
+#include "rill/rt/shaders/Builtin.h"
 
 namespace rt {
 namespace {
@@ -222,6 +224,30 @@ TEST(Shaders, ReplaceChangesTheTracersBuiltAfterIt) {
   }
   // Replacing keeps the first shader alive: find_shader's pointer to it stayed valid.
   EXPECT_EQ(find_shader("test_replaced")->name, "test_replaced");
+}
+
+// A built-in shader is a plugin like any other: replaced by name with its own definition (as
+// the library registers it), a scene renders the same bits as before; the tracer built
+// before keeps rendering them too.
+TEST(Shaders, ReplacingABuiltInByNameGivesTheSameImage) {
+  Scene s = builtin_scene("glass");  // phong, mirror reflection and glass
+  const Grid grid = build_grid_for(s);
+  RenderSettings rs;
+  rs.width = 24;
+  rs.height = 18;
+  Tracer before(s, grid);
+  const RenderResult a = before.render(rs, s.camera);
+  const SurfaceShader* old_phong = find_shader("phong");
+  replace_shader(phong_shader());
+  replace_shader(glass_shader());
+  EXPECT_NE(find_shader("phong"), old_phong);
+  Tracer after(s, grid);
+  const RenderResult b = after.render(rs, s.camera);
+  const RenderResult c = before.render(rs, s.camera);
+  ASSERT_EQ(a.color.size(), b.color.size());
+  EXPECT_EQ(0, std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(glm::vec3)));
+  EXPECT_EQ(0, std::memcmp(a.color.data(), c.color.data(), a.color.size() * sizeof(glm::vec3)));
+  EXPECT_EQ(a.prim, b.prim);
 }
 
 TEST(Shaders, RegisterRejectsBadDeclarations) {

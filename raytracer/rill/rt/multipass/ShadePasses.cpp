@@ -39,10 +39,7 @@ Program Multipass::capture_surface() const {
     Output<Float3> color_out("path.color");
     Output<Int> state_out("path.state");
     Output<Aov> aov("aov");
-    RILL_IF(state == kPathEnded) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
+    skip_where(state == kPathEnded);
     Int hid = -1;
     if (F.geometry) hid = hit.id;
     RILL_IF(hid >= 0) {
@@ -76,10 +73,7 @@ Program Multipass::capture_shadow_gen() const {
     Output<Ray> shadow("shadow");
     Output<Int> ts("tr.state");
     Output<Int> rays_out("path.rays");
-    RILL_IF(state != kPathSurface) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
+    skip_where(state != kPathSurface);
     Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
     Bool active = false;
     shadow = sh.shadow_ray(light_, s, active);
@@ -99,10 +93,7 @@ Program Multipass::capture_shadow_acc() const {
     Input<Int> sid("shadow_hit.id");
     Input<Float3> local("local");
     Output<Float3> local_out("local");
-    RILL_IF(state != kPathSurface || ts != kFinished || sid >= 0) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
+    skip_where(state != kPathSurface || ts != kFinished || sid >= 0);
     Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
     local_out = local + sh.light(light_, s);
   });
@@ -121,10 +112,7 @@ Program Multipass::capture_combine() const {
     Output<Float3> o_out("ray.o");
     Output<Float3> d_out("ray.d");
     Output<Int> ts("tr.state");
-    RILL_IF(path.state != kPathSurface) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
+    skip_where(path.state != kPathSurface);
     Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
     Float3 c = path.color;
     Float weight = path.weight;

@@ -26,5 +26,15 @@ RILL_STRUCT(PathState, (Int, state), (Int, depth), (Int, rays), (Float, weight),
 // The camera ray's AOVs.
 RILL_STRUCT(Aov, (Float, depth), (Int, prim), (Float3, normal));
 
+// Every pass's prologue: an element whose state is not one this pass works on (`skip`) is
+// left as it is, its outputs unwritten. With masked launches (Multipass.cpp) such elements
+// are never run; without, they stop here.
+inline void skip_where(const rill::Bool& skip) {
+  RILL_IF(skip) {
+    RILL_DISCARD;
+  }
+  RILL_ENDIF;
+}
+
 }  // namespace mp
 }  // namespace rt

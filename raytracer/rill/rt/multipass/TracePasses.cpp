@@ -35,10 +35,7 @@ Program Multipass::capture_setup() const {
     Output<Float> exit_out("tr.t_exit");
     Output<Int> steps_out("tr.steps");
     Output<Hit> hit("hit");
-    RILL_IF(state != kPending) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
+    skip_where(state != kPending);
     Bool inside = false;
     Float t_enter = 0.0f, t_exit = 0.0f;
     X.ray_box(ray, inside, t_enter, t_exit);
@@ -91,10 +88,7 @@ Program Multipass::capture_traverse() const {
     Output<Float3> tmx_out("tr.t_next");
     Output<Int> steps_out("tr.steps");
     Output<Int2> cur("tr.cursor");
-    RILL_IF(tr.state != kEnter) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
+    skip_where(tr.state != kEnter);
     DdaState st{tr.voxel, tr.t_next, tr.steps, Bool(false)};
     Bool any_hit = any_hit_ != 0;
     const RaySteps rs = X.ray_steps(d);  // once, not per step
@@ -135,10 +129,7 @@ Program Multipass::capture_intersect() const {
     Output<Int> steps_out("tr.steps");
     Output<Int2> cur_out("tr.cursor");
     Output<Hit> hit_out("hit");
-    RILL_IF(tr.state != kWait) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
+    skip_where(tr.state != kWait);
     const RaySteps rs = X.ray_steps(d);
     Hit best = hit;
     Int c = tr.cursor.x();
@@ -180,10 +171,7 @@ Program Multipass::capture_finish() const {
     Output<Int> state_out("tr.state");
     Output<Hit> hit_out("hit");
     Int state = tr.state;
-    RILL_IF(state != kEnter && state != kWait) {
-      RILL_DISCARD;
-    }
-    RILL_ENDIF;
+    skip_where(state != kEnter && state != kWait);
     const RaySteps rs = X.ray_steps(d);
     Hit best = hit;
     Int c = tr.cursor.x();

@@ -10,12 +10,18 @@
 
 namespace rt {
 
-// The render strategies (strategy/RenderStrategy.h): Tracer.cpp registers each value's
-// class and name (parse_strategy, strategy_name in Tracer.h).
-enum class Strategy {
-  Megakernel,  // one kernel per pixel with a RILL_DO loop (Sh; megakernel/)
-  Multipass,   // the thesis's kernel sequence with ray states, no refraction (multipass/)
+// A render strategy (strategy/RenderStrategy.h), by the name it is registered under
+// (Tracer.h: register_strategy, parse_strategy). Two are built in:
+//   Strategy::Megakernel  one kernel per pixel with a RILL_DO loop (Sh; megakernel/)
+//   Strategy::Multipass   the thesis's kernel sequence with ray states, no refraction
+//                         (multipass/)
+struct Strategy {
+  std::string name = "megakernel";
+  static const Strategy Megakernel, Multipass;
+  bool operator==(const Strategy&) const = default;
 };
+inline const Strategy Strategy::Megakernel{"megakernel"};
+inline const Strategy Strategy::Multipass{"multipass"};
 // The shape of the megakernel's loop (megakernel/Megakernel.h). Images do not depend on it,
 // only speed does (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23").
 enum class MegakernelLoop {

@@ -1,7 +1,8 @@
 // The render strategy interface (after pbrt's and Mitsuba's integrators): how a frame's
 // pixels are computed on the device. The megakernel (megakernel/) and the thesis's multipass
-// sequence (multipass/) implement it; Tracer.cpp registers each under its RenderSettings
-// value and name, so a new strategy is a folder of its own and one line there.
+// sequence (multipass/) implement it; Tracer.cpp registers them by name, so a new strategy
+// of the library is a folder of its own and one line there, and a program registers its own
+// with rt::register_strategy (Tracer.h).
 //
 // The Tracer facade does what every strategy shares before it calls one: it resolves the
 // image size, depth and samples, checks the window, and sets the camera on the device
