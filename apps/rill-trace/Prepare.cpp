@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdio>
 
-#include "CliChecks.h"
 #include "Doing.h"
 #include "rill/Stopwatch.h"
 #include "rill/rt/accel/LightBuffer.h"

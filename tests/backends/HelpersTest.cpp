@@ -100,7 +100,8 @@ TEST(Helpers, EveryHelperHasALockstepBody) {
 #ifdef RILL_HAVE_GLSL
 TEST(Helpers, EveryHelperHasAGlslBodyUnderEveryDriverRule) {
   for (Accuracy a : {Accuracy::Strict, Accuracy::Fast})
-    for (glsl::DivSqrt ds : {glsl::DivSqrt::Native, glsl::DivSqrt::Corrected})
+    for (glsl::DivSqrt ds : {glsl::DivSqrt::Native, glsl::DivSqrt::Corrected,
+                             glsl::DivSqrt::Inexact, glsl::DivSqrt::InexactCorrected})
       for (bool flushes : {false, true}) {
         glsl::DriverRules rules;
         rules.divsqrt = ds;

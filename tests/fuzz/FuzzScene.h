@@ -1,12 +1,13 @@
 // What the scene fuzzers do with a scene once a loader accepted it: the checks and the
-// build that `rill-trace render` runs before it compiles a kernel (validate, the default
-// camera, the grid at the scene's own settings). Any exception other than the loaders' own
-// errors (rt::SceneError, and std::runtime_error from the image readers) escapes and is a
-// finding: the fuzzer stops with the input that caused it.
+// build that `rill-trace render` runs before it compiles a kernel (validate, the materials
+// against their shaders as a Tracer resolves them, the grid at the scene's own settings). Any
+// exception other than the loaders' own errors (rt::SceneError, and std::runtime_error from the
+// image readers) escapes and is a finding: the fuzzer stops with the input that caused it.
 #pragma once
 
 #include <rill/rt/accel/Grid.h>
 #include <rill/rt/scene/Scene.h>
+#include <rill/rt/shaders/Registry.h>
 
 #include <stdlib.h>
 #include <unistd.h>
@@ -23,6 +24,7 @@ inline void build_up_to_grid(rt::Scene& s) {
   static const bool budget = (setenv("RILL_MAX_GRID_MB", "16", /*overwrite=*/0), true);
   (void)budget;
   s.validate();
+  (void)rt::resolve_shaders(s);
   // The CPU backends' settings, without starting a backend (subgrid_min_for would ask it).
   const int32_t sub =
       s.options.subgrid_min == rt::kSubgridsAuto ? rt::kSubgridMin : s.options.subgrid_min;

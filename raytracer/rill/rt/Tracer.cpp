@@ -149,7 +149,8 @@ struct Tracer::Impl {
   std::unique_ptr<Scene> rest, posed;
   Bvh bvh;
   DeviceScene device;
-  // The strategies made so far, by name, the megakernel first (StrategyRegistry).
+  // The strategies made so far, by name: the megakernel with the tracer, the others at their
+  // first frame (StrategyRegistry).
   std::map<std::string, std::unique_ptr<RenderStrategy>> strategies;
   // Boxes that hold every static triangle that can be hit (accel/OccupiedBoxes.h).
   std::vector<Aabb> static_boxes;
@@ -160,12 +161,10 @@ struct Tracer::Impl {
   // The megakernel, whose programs and source the Tracer also gives out.
   Megakernel& megakernel() { return static_cast<Megakernel&>(*strategies.at("megakernel")); }
   RenderStrategy& strategy(const Strategy& s) {
-    std::unique_ptr<RenderStrategy>& made = strategies[s.name];
-    if (!made) {
-      made = strategy_factory(s.name)(device);
-      if (!made) throw std::runtime_error("strategy '" + s.name + "': its factory made none");
-    }
-    return *made;
+    if (auto it = strategies.find(s.name); it != strategies.end()) return *it->second;
+    std::unique_ptr<RenderStrategy> made = strategy_factory(s.name)(device);  // throws if unknown
+    if (!made) throw std::runtime_error("strategy '" + s.name + "': its factory made none");
+    return *strategies.emplace(s.name, std::move(made)).first->second;
   }
 };
 

@@ -33,7 +33,6 @@ class FlatStrategy final : public RenderStrategy {
       normal = Float3(0.0f);
     });
   }
-  const char* name() const override { return "test_flat"; }
   void render(const Frame& f, RenderResult& r) override {
     const RenderSettings& rs = f.settings;
     r.backend = rs.backend;

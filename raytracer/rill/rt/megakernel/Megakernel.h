@@ -54,7 +54,6 @@ class Megakernel final : public RenderStrategy {
  public:
   explicit Megakernel(DeviceScene& scene);
   ~Megakernel() override;
-  const char* name() const override { return "megakernel"; }
   // The program with loop Ray or Segment and the given outputs (Segment's with colour and
   // AOVs captured by the constructor, the others at their first use).
   const rill::Program& program(MegakernelLoop loop, MegakernelOutputs outputs = {}) const;

@@ -21,7 +21,6 @@ class Multipass final : public RenderStrategy {
   // Captures the passes' programs; throws std::runtime_error for a scene with refraction.
   explicit Multipass(DeviceScene& scene);
   ~Multipass() override;
-  const char* name() const override { return "multipass"; }
   void render(const Frame& frame, RenderResult& r) override;
 
  private:

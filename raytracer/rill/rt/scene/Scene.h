@@ -167,8 +167,10 @@ struct Scene {
 inline constexpr size_t kMaxTriangles = size_t{1} << 26;
 
 void check_camera(const Camera& camera, const std::string& where);
-// A material's values: finite, colours >= 0, reflect + transmit <= 1, shininess and ior in
-// range, texture parameters within texture_count. Throws SceneError naming the material.
+// A material's values whatever its shader: a shader named, every parameter finite, colours
+// >= 0, texture parameters within texture_count. Throws SceneError naming the material. What
+// a shader asks of its own parameters (reflect + transmit <= 1, the ranges of shininess and
+// ior) is its SurfaceShader::check, which resolve_shaders runs (shaders/Registry.h).
 void validate_material(const Material& m, size_t texture_count);
 
 // Bounding box of the finite triangles; returns false if there are none.

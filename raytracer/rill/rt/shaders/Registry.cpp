@@ -14,7 +14,7 @@ namespace rt {
 namespace {
 
 struct Registry {
-  std::recursive_mutex mutex;  // recursive: the first use registers the built-ins
+  std::mutex mutex;
   std::map<std::string, const SurfaceShader*> by_name;
   // Every shader ever registered, replaced ones too: find_shader's pointers stay valid.
   std::vector<std::unique_ptr<const SurfaceShader>> all;

@@ -31,8 +31,6 @@ struct Frame {
 class RenderStrategy {
  public:
   virtual ~RenderStrategy() = default;
-  // "megakernel", "multipass": as RenderSettings and rill-trace's --strategy name it.
-  virtual const char* name() const = 0;
   // Renders frame.spp samples of frame.width x frame.height pixels through the camera set in
   // the scene's CameraRays into r (a fresh result; its image vectors may hold the memory of
   // an earlier frame). Throws std::runtime_error for a backend that cannot run the frame.
