@@ -53,7 +53,7 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
   j["strategy"] = o.strategy.name;
   if (o.strategy == rt::Strategy::Megakernel)
     j["megakernel_loop"] = rt::megakernel_loop_name(rt::megakernel_loop_for(p.rs.loop, o.backend));
-  j["knobs"] = p.knobs.str();
+  j["knobs"] = o.knobs.str();
   j["spp"] = scene.options.spp;
   j["max_depth"] = scene.options.max_depth;
   j["features"] = p.tracer->features().str();

@@ -17,7 +17,6 @@ using rill::ms_since;
 std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   auto p = std::make_unique<Prepared>();
   g_doing = "loading " + rt::clipped(o.scene);
-  p->acc = o.accuracy;
   const auto t_load = Clock::now();
   rt::InputOptions input;
   input.strict = o.strict_input;
@@ -49,10 +48,9 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   }
 
   const auto t_setup = Clock::now();
-  p->knobs = o.knobs;
   g_doing = "uploading the scene and grid (" + std::to_string(p->grid.voxel_count()) +
             " voxels) and building the light buffer";
-  p->tracer = std::make_unique<rt::Tracer>(scene, p->grid, p->knobs);
+  p->tracer = std::make_unique<rt::Tracer>(scene, p->grid, o.knobs);
   p->setup_ms = ms_since(t_setup);
   if (const std::string& why = p->tracer->light_buffer().skipped; !why.empty()) {
     const std::string w = "no light buffer (" + why + "): shadow rays walk the grid";
@@ -62,7 +60,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
 
   rt::RenderSettings& rs = p->rs;
   rs.backend = o.backend;
-  rs.accuracy = p->acc;
+  rs.accuracy = o.accuracy;
   rs.strategy = o.strategy;
   rs.loop = o.loop;
   rs.width = scene.width;

@@ -18,10 +18,8 @@ namespace trace_cli {
 struct Prepared {
   rt::Scene scene;
   rt::Grid grid;
-  rt::TracerOptions knobs;
   std::unique_ptr<rt::Tracer> tracer;
   rt::RenderSettings rs;
-  rill::Accuracy acc = rill::Accuracy::Strict;
   std::string out;  // the PNG: --out, or a default name when no output is named
   double load_ms = 0, setup_ms = 0;
 };

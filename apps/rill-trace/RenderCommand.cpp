@@ -90,15 +90,14 @@ int render(RenderOptions o) {
     frame_ms.push_back(ms_since(t_frame));
     frame_times.push_back(frame.times);
   }
-  std::vector<double> sorted = frame_ms;
+  std::vector<double> sorted = frame_ms;  // for the min and max
   std::sort(sorted.begin(), sorted.end());
-  const double median_ms = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+  const double median_ms = median(frame_ms);
   // The median of each step over the frames (they need not add up to the median frame).
   auto median_of = [&](double rt::FrameTimes::*step) {
     std::vector<double> v;
     for (const rt::FrameTimes& t : frame_times) v.push_back(t.*step);
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
+    return median(std::move(v));
   };
   rt::FrameTimes median_split;
   for (auto step :
@@ -143,7 +142,7 @@ int render(RenderOptions o) {
   }
   if (!o.source.empty()) {
     std::ofstream f(o.source);
-    f << tracer.source(o.backend, p.acc, p.rs.loop, p.rs.outputs, scene.options.spp);
+    f << tracer.source(o.backend, o.accuracy, p.rs.loop, p.rs.outputs, scene.options.spp);
     if (!f) throw rt::SceneError("cannot write " + o.source);
   }
 

@@ -33,8 +33,8 @@ using rill::ms_since;
 namespace {
 
 // and depth are in the scene by now.
-std::string pixel_settings(const RenderOptions& o, const Prepared& p) {
-  return std::string("accuracy ") + rill::accuracy_name(o.accuracy) + "; knobs " + p.knobs.str();
+std::string pixel_settings(const RenderOptions& o) {
+  return std::string("accuracy ") + rill::accuracy_name(o.accuracy) + "; knobs " + o.knobs.str();
 }
 
 // The outputs asked for, in the order write_outputs writes them.
@@ -150,7 +150,7 @@ int render_distributed(const RenderOptions& o) {
           for (int k = plan.span.first; plan.animated && k <= plan.span.last; ++k)
             rt::check_camera(rt::camera_at(scene, scene.animation.time.time_of(k)),
                              frame_camera_where(o.scene, scene, k));
-          return dist::scene_hash(scene, pixel_settings(o, *prepared));
+          return dist::scene_hash(scene, pixel_settings(o));
         },
         o.backend);
     // A worker that failed to load has no settings: it renders nothing, and waits for rank 0
@@ -297,7 +297,8 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
   }
   if (!o.source.empty()) {
     std::ofstream f(o.source);
-    f << p.tracer->source(o.backend, p.acc, p.rs.loop);
+    // The variant the tiles ran: the outputs asked for and the scene's samples per pixel.
+    f << p.tracer->source(o.backend, o.accuracy, p.rs.loop, p.rs.outputs, p.scene.options.spp);
     if (!f) throw rt::SceneError("cannot write " + o.source);
   }
   const double wall_ms = R.wall_ms;
