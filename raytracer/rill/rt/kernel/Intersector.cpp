@@ -26,15 +26,16 @@ Bool3 Intersector::nearest_axis(const Float3& t) const {
   return Bool3(ax, ay, !ax && !ay);
 }
 
-void Intersector::dda_start(const Float3& o, const Float3& d, const Float& t, const Float3& lo,
-                            const Float3& cell, const Float3& last, Int3& vox, Float3& tmx) const {
+DdaState Intersector::dda_start(const Float3& o, const Float3& d, const Float& t, const Float3& lo,
+                                const Float3& cell, const Float3& last) const {
   Float3 vf = clamp(floor((o + t * d - lo) / cell), Float3(0.0f), last);
-  vox = to_int(vf);
+  Int3 vox = to_int(vf);
   Float3 bound = lo + (vf + select(d > 0.0f, Float3(1.0f), Float3(0.0f))) * cell;
-  tmx = select(flat_axes(d), Float3(kBig), (bound - o) * inverse_dir(d));
+  Float3 tmx = select(flat_axes(d), Float3(kBig), (bound - o) * inverse_dir(d));
+  return DdaState{vox, tmx, Int(0), Bool(false)};
 }
 
-void Intersector::ray_box(const Ray& ray, Bool& inside, Float& t_enter, Float& t_exit) const {
+BoxSpan Intersector::ray_box(const Ray& ray) const {
   const Float3& o = ray.o;
   const Float3& d = ray.d;
   const Float& tmax = ray.tmax;
@@ -45,18 +46,17 @@ void Intersector::ray_box(const Ray& ray, Bool& inside, Float& t_enter, Float& t
   Float3 tn = select(dz, Float3(-kBig), min(t0, t1));
   Float3 tf = select(dz, Float3(kBig), max(t0, t1));
   Bool outside = any(dz && ((o < grid_.lo) || (o > grid_.hi)));
-  t_enter = max(max(tn.x(), tn.y()), max(tn.z(), 0.0f));
-  t_exit = min(min(tf.x(), tf.y()), min(tf.z(), tmax));
+  Float t_enter = max(max(tn.x(), tn.y()), max(tn.z(), 0.0f));
+  Float t_exit = min(min(tf.x(), tf.y()), min(tf.z(), tmax));
   // A ray with a NaN or infinite component misses (the comparisons are false for NaN). In
   // `fast` the compiler may assume there are no NaNs and drop this; the traversal's step
   // limit still ends the loop (upload()).
   Bool finite = all(abs(o) <= 3.40282347e38f) && all(abs(d) <= 3.40282347e38f);
-  inside = finite && !outside && t_enter <= t_exit;
+  return BoxSpan{finite && !outside && t_enter <= t_exit, t_enter, t_exit};
 }
 
 DdaState Intersector::dda_init(const Float3& o, const Float3& d, const Float& t_enter) const {
-  DdaState st;
-  dda_start(o, d, t_enter, grid_.lo, grid_.cell, to_float(grid_.res) - 1.0f, st.vox, st.tmx);
+  DdaState st = dda_start(o, d, t_enter, grid_.lo, grid_.cell, to_float(grid_.res) - 1.0f);
   // Recompute: leave_voxel recomputes the boundaries from this and the cell index.
   if (K_.traversal == Traversal::Recompute) st.tmx = o - grid_.lo;
   return st;
@@ -209,12 +209,12 @@ void Intersector::walk_subgrid(const Float3& o, const RaySteps& r, const Float& 
   Float t_in = max(max(t_in3.x(), t_in3.y()), max(t_in3.z(), 0.0f));
   Float3 tb = voxel_exits(r, vox, tmx);
   Float t_out = min(min(tb.x(), tb.y()), min(tb.z(), t_exit));
-  Int3 sv(0);
-  Float3 smx(0.0f);
-  dda_start(o, d, t_in, corner, sub, Float3(fm - 1.0f), sv, smx);
+  DdaState inner = dda_start(o, d, t_in, corner, sub, Float3(fm - 1.0f));
+  Int3& sv = inner.vox;
+  Float3& smx = inner.tmx;
+  Int& sub_steps = inner.steps;
+  Bool& done = inner.done;
   Float3 sdl = select(dz, Float3(kBig), sub * abs(inv));
-  Int sub_steps = 0;
-  Bool done = false;
   RILL_DO {
     test_list(o, d, grid_.voxels[entry.x() + sv.x() + m * (sv.y() + m * sv.z())], any_hit, best);
     Float s_leave = min(min(smx.x(), smx.y()), smx.z());
@@ -336,11 +336,10 @@ Bool Intersector::occluders(const Ray& ray, const Int& light, Hit& best) const {
 void Intersector::walk_grid(const Ray& ray, const Bool& any, Hit& best) const {
   const Float3& o = ray.o;
   const Float3& d = ray.d;
-  Bool inside = false;
-  Float t_enter = 0.0f, t_exit = 0.0f;
-  ray_box(ray, inside, t_enter, t_exit);
-  RILL_IF(inside) {
-    DdaState st = dda_init(o, d, t_enter);
+  const BoxSpan box = ray_box(ray);
+  const Float& t_exit = box.t_exit;
+  RILL_IF(box.inside) {
+    DdaState st = dda_init(o, d, box.t_enter);
     const RaySteps rs = ray_steps(d);
     RILL_DO {
       Int2 range = grid_.voxel_range(st.vox);

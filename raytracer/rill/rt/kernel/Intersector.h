@@ -22,8 +22,6 @@
 
 namespace rt {
 
-constexpr float kBig = 3.0e38f;  // "no limit" for ray extents (finite on every backend)
-
 // What a 3D-DDA step needs of a ray's direction, computed once per ray (not per step): the
 // flat axes, the reciprocal, the step sign and the distance between voxel boundaries.
 struct RaySteps {
@@ -41,6 +39,13 @@ struct DdaState {
   Float3 tmx{0.0f};
   Int steps = 0;
   Bool done = false;
+};
+
+// The part of a ray inside the grid's box: whether it enters, and the parameter range
+// [t_enter, t_exit] (t_exit at most the ray's tmax).
+struct BoxSpan {
+  Bool inside;
+  Float t_enter, t_exit;
 };
 
 class Intersector {
@@ -76,9 +81,8 @@ class Intersector {
   void walk_grid(const Ray& ray, const Bool& any_hit, Hit& best) const;
 
   // ---- the steps --------------------------------------------------------------------------
-  // The ray against the grid's box: inside, and the parameter range [t_enter, t_exit]
-  // (t_exit at most tmax).
-  void ray_box(const Ray& ray, Bool& inside, Float& t_enter, Float& t_exit) const;
+  // The ray against the grid's box.
+  BoxSpan ray_box(const Ray& ray) const;
   // 3D-DDA initialization (thesis 5.1.2): the voxel at t_enter and the distances to the
   // next voxel boundary on each axis.
   DdaState dda_init(const Float3& o, const Float3& d, const Float& t_enter) const;
@@ -113,8 +117,10 @@ class Intersector {
   Float3 inverse_dir(const Float3& d) const;
   Int3 step_dir(const Float3& d) const;
   Bool3 nearest_axis(const Float3& t) const;
-  void dda_start(const Float3& o, const Float3& d, const Float& t, const Float3& lo,
-                 const Float3& cell, const Float3& last, Int3& vox, Float3& tmx) const;
+  // A 3D-DDA over the cells of size `cell` from lo (the last one `last`), from the point at t:
+  // no steps taken.
+  DdaState dda_start(const Float3& o, const Float3& d, const Float& t, const Float3& lo,
+                     const Float3& cell, const Float3& last) const;
   Float3 voxel_exits(const RaySteps& r, const Int3& vox, const Float3& tmx) const;
 
   const GridView& grid_;

@@ -20,6 +20,8 @@ using rill::Int2;
 using rill::Int3;
 using rill::Int4;
 
+constexpr float kBig = 3.0e38f;  // "no limit" for ray extents (finite on every backend)
+
 // A ray: origin, direction and extent (kBig for camera and reflected rays).
 RILL_STRUCT(Ray, (Float3, o), (Float3, d), (Float, tmax));
 

@@ -108,27 +108,26 @@ Float3 Shading::unshadowed_light(const Surface& s, const MaterialTable::Slots* s
   return sum;
 }
 
-Ray Shading::shadow_ray(const Int& l, const Surface& s, Bool& active) const {
+ShadowRay Shading::shadow_ray(const Int& l, const Surface& s) const {
   Float3 so = offset_origin(s.P, s.ngf);
   Float3 L = lights_.position[l] - so;
   Float dist = length(L);
   Float3 rd = L / dist;
-  active = dist > 0.0f && dot(s.nf, rd) > 0.0f;
+  Bool active = dist > 0.0f && dot(s.nf, rd) > 0.0f;
   // Stop short of the light by the same offset: a light on a surface (as on an area
   // light's quad) is not shadowed by that surface.
-  return Ray{so, rd, dist - eps};
+  return ShadowRay{Ray{so, rd, dist - eps}, active};
 }
 
-void Shading::shade(const Surface& s, const Float3& local, Float3& color, Float& weight, Int& depth,
-                    Ray& next, Bool& go, Branch* second, const MaterialTable::Slots* slots) const {
-  const Scatter sc = materials_.scatter(s, weight, slots);
+Bounce Shading::shade(const Surface& s, const Float3& local, const PathSums& path, bool branches,
+                      const MaterialTable::Slots* slots) const {
+  const Scatter sc = materials_.scatter(s, path.weight, slots);
   // Eq. 5.1: this surface contributes M_j (1 - r_j) times the product of the earlier
   // coefficients (the shader's local_weight).
-  color += sc.local_weight * local;
-  go = false;
-  if (second != nullptr) second->wanted = false;
-  if (!F_.reflection) return;
-  RILL_IF(depth < max_depth) {
+  Bounce b{PathSums{path.color + sc.local_weight * local, path.weight, path.depth}, Bool(false),
+           Ray{Float3(0.0f), Float3(0.0f), Float(kBig)}, Branch{}};
+  if (!F_.reflection) return b;
+  RILL_IF(path.depth < max_depth) {
     Float wr = sc.reflect_weight;
     Float wt = 0.0f;
     Float3 tdir(0.0f);
@@ -138,28 +137,29 @@ void Shading::shade(const Surface& s, const Float3& local, Float3& color, Float&
     }
     Bool go_r = wr > kMinWeight;
     Bool go_t = wt > kMinWeight;
-    if (second != nullptr) {  // both: the reflection is the second branch
-      second->wanted = go_r && go_t;
-      second->ray.o = offset_origin(s.P, s.ngf);
-      second->ray.d = sc.reflect_dir;
-      second->weight = wr;
+    if (branches) {  // both: the reflection is the second branch
+      b.second.wanted = go_r && go_t;
+      b.second.ray.o = offset_origin(s.P, s.ngf);
+      b.second.ray.d = sc.reflect_dir;
+      b.second.weight = wr;
     }
     RILL_IF(go_t) {
-      next.o = offset_origin(s.P, -s.ngf);
-      next.d = tdir;
-      weight = wt;
-      go = true;
+      b.next.o = offset_origin(s.P, -s.ngf);
+      b.next.d = tdir;
+      b.path.weight = wt;
+      b.go = true;
     }
     RILL_ELSE_IF(go_r) {
-      next.o = offset_origin(s.P, s.ngf);
-      next.d = sc.reflect_dir;
-      weight = wr;
-      go = true;
+      b.next.o = offset_origin(s.P, s.ngf);
+      b.next.d = sc.reflect_dir;
+      b.path.weight = wr;
+      b.go = true;
     }
     RILL_ENDIF;
-    depth += 1;
+    b.path.depth += 1;
   }
   RILL_ENDIF;
+  return b;
 }
 
 }  // namespace rt

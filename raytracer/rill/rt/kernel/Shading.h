@@ -30,6 +30,32 @@ struct Branch {
   Bool wanted = false;
 };
 
+// What a path carries from surface to surface, as eq. 5.1 reads it: the colour gathered so
+// far, the weight of what its next ray brings back (the product of the earlier coefficients)
+// and the bounces taken.
+struct PathSums {
+  Float3 color;
+  Float weight;
+  Int depth;
+};
+
+// What shade() makes of a surface: the path with the surface's share of local light added,
+// whether it goes on, with which ray (origin and direction; tmax is kBig), and, where the
+// caller keeps a ray stack, the second branch.
+struct Bounce {
+  PathSums path;
+  Bool go;
+  Ray next;
+  Branch second;
+};
+
+// A shadow ray towards a light, and whether it is traced at all (false when the light is
+// behind the surface).
+struct ShadowRay {
+  Ray ray;
+  Bool active;
+};
+
 class Shading {
  public:
   Shading(const Triangles& tris, const MaterialTable& materials, const Lights& lights,
@@ -54,16 +80,15 @@ class Shading {
   Float3 light(const Int& l, const Surface& s, const MaterialTable::Slots* slots = nullptr) const;
   // Local light when there are no shadow rays: all lights, or the headlight.
   Float3 unshadowed_light(const Surface& s, const MaterialTable::Slots* slots = nullptr) const;
-  // The shadow ray towards light l; active is false when the light is behind the surface.
-  Ray shadow_ray(const Int& l, const Surface& s, Bool& active) const;
-  // Eq. 5.1 and the next ray: adds the surface's share of local light to color, then (if
-  // some material reflects) makes the reflected and refracted rays. Writes the continuing
-  // ray into `next` and the path's weight and depth, and sets go; with `second`, a second
-  // branch (refraction with reflection) is written there. `slots`: the material's
+  // The shadow ray towards light l.
+  ShadowRay shadow_ray(const Int& l, const Surface& s) const;
+  // Eq. 5.1 and the next ray: adds the surface's share of local light to the path's colour,
+  // then (if some material reflects) makes the reflected and refracted rays. With `branches`
+  // (the caller has a ray stack), refraction with reflection makes a second branch, the
+  // reflection; without, the path follows the refraction alone. `slots`: the material's
   // parameters if they were read already (MaterialTable::material).
-  void shade(const Surface& s, const Float3& local, Float3& color, Float& weight, Int& depth,
-             Ray& next, Bool& go, Branch* second,
-             const MaterialTable::Slots* slots = nullptr) const;
+  Bounce shade(const Surface& s, const Float3& local, const PathSums& path, bool branches,
+               const MaterialTable::Slots* slots = nullptr) const;
   // A new ray's origin: p moved off the surface along n (the knob's fixed epsilon or
   // scale-aware offset).
   Float3 offset_origin(const Float3& p, const Float3& n) const;

@@ -227,7 +227,7 @@ void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs
     if (S_.F.shadows) {
       L.mode = 1;
       L.li = 0;
-      L.ray = sh.shadow_ray(L.li, L.surf, L.ray_active);
+      shadow_ray_to_light(L);
     } else {  // the surface is done in this iteration: its parameters serve the next ray too
       L.local += sh.unshadowed_light(L.surf, &slots);
       next_ray(L, &slots);
@@ -237,6 +237,13 @@ void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs
     miss(L);
   }
   RILL_ENDIF;
+}
+
+// Ray: the next ray is the shadow ray towards light L.li.
+void Megakernel::shadow_ray_to_light(PathLoop& L) const {
+  const ShadowRay shadow = S_.shading.shadow_ray(L.li, L.surf);
+  L.ray = shadow.ray;
+  L.ray_active = shadow.active;
 }
 
 // A shadow ray came back: the light's share if it was not blocked, then the next light's
@@ -250,7 +257,7 @@ void Megakernel::shadow_ray_back(PathLoop& L, const Hit& hit) const {
   RILL_ENDIF;
   L.li += 1;
   RILL_IF(L.li < S_.lights.count) {
-    L.ray = sh.shadow_ray(L.li, L.surf, L.ray_active);
+    shadow_ray_to_light(L);
   }
   RILL_ELSE {
     L.mode = 0;
@@ -296,11 +303,10 @@ void Megakernel::path_segment(PathLoop& L, Aovs& aovs) const {
 void Megakernel::shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots) const {
   const Shading& sh = S_.shading;
   RILL_FOR(Int l = 0, l < S_.lights.count, l += 1) {
-    Bool active = false;
-    const Ray shadow = sh.shadow_ray(l, L.surf, active);
-    RILL_IF(active) {
+    const ShadowRay shadow = sh.shadow_ray(l, L.surf);
+    RILL_IF(shadow.active) {
       const Bool any_hit = true;
-      const Hit blocker = S_.intersector.intersect(shadow, &any_hit, &l);
+      const Hit blocker = S_.intersector.intersect(shadow.ray, &any_hit, &l);
       L.rays += 1;
       RILL_IF(blocker.id < 0) {
         L.local += sh.light(l, L.surf, &slots);
@@ -316,16 +322,17 @@ void Megakernel::shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots)
 // stack).
 void Megakernel::next_ray(PathLoop& L, const MaterialTable::Slots* slots) const {
   const int stack = S_.F.stack;
-  Bool go = false;
-  Branch second;
-  S_.shading.shade(L.surf, L.local, L.color, L.weight, L.depth, L.ray, go,
-                   stack > 0 ? &second : nullptr, slots);
+  const Bounce b =
+      S_.shading.shade(L.surf, L.local, PathSums{L.color, L.weight, L.depth}, stack > 0, slots);
+  L.color = b.path.color;
+  L.weight = b.path.weight;
+  L.depth = b.path.depth;
   if (stack > 0) {
-    RILL_IF(second.wanted && L.sp < stack) {  // the reflection waits on the stack
+    RILL_IF(b.second.wanted && L.sp < stack) {  // the reflection waits on the stack
       for (int s = 0; s < stack; ++s) {
         RILL_IF(L.sp == s) {
-          L.stack_ray[static_cast<size_t>(s)] = second.ray;
-          L.stack_weight[static_cast<size_t>(s)] = second.weight;
+          L.stack_ray[static_cast<size_t>(s)] = b.second.ray;
+          L.stack_weight[static_cast<size_t>(s)] = b.second.weight;
           L.stack_depth[static_cast<size_t>(s)] = L.depth;
         }
         RILL_ENDIF;
@@ -334,9 +341,9 @@ void Megakernel::next_ray(PathLoop& L, const MaterialTable::Slots* slots) const 
     }
     RILL_ENDIF;
   }
-  RILL_IF(go) {
+  RILL_IF(b.go) {
+    L.ray = b.next;
     L.ray_active = true;
-    L.ray.tmax = kBig;
   }
   RILL_ELSE {
     L.path_done = true;

@@ -78,6 +78,7 @@ class Megakernel final : public RenderStrategy {
   void miss(PathLoop& L) const;
   void camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs) const;
   void shadow_ray_back(PathLoop& L, const Hit& hit) const;
+  void shadow_ray_to_light(PathLoop& L) const;
   // Segment: path_segment (which ends with next_ray), pop_or_finish.
   void path_segment(PathLoop& L, Aovs& aovs) const;
   void shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots) const;

@@ -75,10 +75,10 @@ Program Multipass::capture_shadow_gen() const {
     Output<Int> rays_out("path.rays");
     skip_where(state != kPathSurface);
     Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
-    Bool active = false;
-    shadow = sh.shadow_ray(light_, s, active);
-    ts = select(active, Int(kPending), Int(kNone));
-    rays_out = rays + select(active, Int(1), Int(0));
+    const ShadowRay ray = sh.shadow_ray(light_, s);
+    shadow = ray.ray;
+    ts = select(ray.active, Int(kPending), Int(kNone));
+    rays_out = rays + select(ray.active, Int(1), Int(0));
   });
 }
 
@@ -114,20 +114,15 @@ Program Multipass::capture_combine() const {
     Output<Int> ts("tr.state");
     skip_where(path.state != kPathSurface);
     Surface s = sh.surface(Ray{o, d, Float(kBig)}, hit);
-    Float3 c = path.color;
-    Float weight = path.weight;
-    Int depth = path.depth;
-    Ray next{Float3(0.0f), Float3(0.0f), Float(kBig)};
-    Bool go = false;
-    sh.shade(s, local, c, weight, depth, next, go, nullptr);
-    RILL_IF(go) {
-      o_out = next.o;
-      d_out = next.d;
+    const Bounce b = sh.shade(s, local, PathSums{path.color, path.weight, path.depth}, false);
+    RILL_IF(b.go) {
+      o_out = b.next.o;
+      d_out = b.next.d;
       ts = kPending;
     }
     RILL_ENDIF;
-    path_out = PathState{select(go, Int(kPathAlive), Int(kPathEnded)), depth,
-                         path.rays + select(go, Int(1), Int(0)), weight, c};
+    path_out = PathState{select(b.go, Int(kPathAlive), Int(kPathEnded)), b.path.depth,
+                         path.rays + select(b.go, Int(1), Int(0)), b.path.weight, b.path.color};
   });
 }
 

@@ -36,9 +36,8 @@ Program Multipass::capture_setup() const {
     Output<Int> steps_out("tr.steps");
     Output<Hit> hit("hit");
     skip_where(state != kPending);
-    Bool inside = false;
-    Float t_enter = 0.0f, t_exit = 0.0f;
-    X.ray_box(ray, inside, t_enter, t_exit);
+    const BoxSpan box = X.ray_box(ray);
+    Bool inside = box.inside;
     Hit best{ray.tmax, Float2(0.0f), Int(-1)};
     if (S_.F.dynamic) {
       // The moving triangles' BVH in one go; the grid's passes then go on from its hit, as
@@ -60,11 +59,11 @@ Program Multipass::capture_setup() const {
     hit = best;
     steps_out = 0;
     RILL_IF(inside) {
-      DdaState st = X.dda_init(ray.o, ray.d, t_enter);
+      DdaState st = X.dda_init(ray.o, ray.d, box.t_enter);
       vout = st.vox;
       state_out = kEnter;
       tmx_out = st.tmx;
-      exit_out = t_exit;
+      exit_out = box.t_exit;
     }
     RILL_ELSE {
       vout = Int3(0);
