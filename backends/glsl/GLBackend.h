@@ -59,6 +59,18 @@ class GLBackend : public Backend, public SessionOwner {
   std::string init_error_;
 };
 
+// Asks a program where it takes the uniforms set_kernel_uniforms sets; at(name) gives the
+// location of the uniform `name` (-1: the program does not use it).
+template <class Locations, class At>
+void locate_kernel_uniforms(Locations& loc, const At& at) {
+  loc.count = at("rill_count");
+  loc.width = at("rill_width");
+  loc.u = at("rill_u");
+  loc.k = at("rill_k");
+  loc.one = at("rill_one");
+  loc.shapes = at("rill_shapes");
+}
+
 // Sets the uniforms every generated GLSL kernel declares (GLSLEmitter.cpp), for a program
 // whose locations are `loc` (-1: one the program does not use): the element count and launch
 // width, the kernel's uniform words, its constants, the word of 1.0f the helpers read and

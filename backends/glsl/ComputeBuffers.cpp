@@ -1,0 +1,85 @@
+// The glsl-compute backend's device memory role (ComputeBuffers.h).
+#include "ComputeBuffers.h"
+
+#include <algorithm>
+
+#include "GLSession.h"
+
+namespace rill::glsl {
+
+namespace {
+
+// The buffer texture format of an element type (3-component formats exist for buffer
+// textures since GL 4.0).
+GLenum texel_format(ir::Type t) {
+  const bool f = t.is_float();
+  switch (t.width) {
+    case 1:
+      return f ? GL_R32F : GL_R32I;
+    case 2:
+      return f ? GL_RG32F : GL_RG32I;
+    case 3:
+      return f ? GL_RGB32F : GL_RGB32I;
+    default:
+      return f ? GL_RGBA32F : GL_RGBA32I;
+  }
+}
+
+}  // namespace
+
+Buffer& ComputeBuffers::to_device(const GL& gl, detail::Storage& s) {
+  auto* b = s.device_buffer<Buffer>(&owner_);
+  if (b && s.is_device_current(&owner_)) return *b;
+  // The freshest copy may be another backend's, read back now: with the other GLSL
+  // backend, through its own context, so this one is made current again.
+  const uint32_t* host = s.words() > 0 ? s.host_data_for_read() : nullptr;
+  owner_.current();
+  b = s.device_buffer<Buffer>(&owner_);
+  const int64_t bytes = std::max<int64_t>(16, static_cast<int64_t>(s.words()) * 4);
+  // A buffer that is stale in some words only gets just those (Storage::stale_words).
+  auto [first, end] = s.stale_words();
+  if (!b || b->bytes != bytes) {
+    first = 0;
+    end = s.words();
+    auto fresh = std::make_unique<Buffer>();
+    fresh->session = session_;
+    fresh->bytes = bytes;
+    gl.glGenBuffers(1, &fresh->buf);
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, fresh->buf);
+    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, bytes, nullptr, GL_DYNAMIC_COPY);
+    check(gl, "allocating a buffer", kComputeWho);
+    b = fresh.get();
+    s.set_device_buffer(&owner_, std::move(fresh));
+    owner_.current();  // releasing another backend's copy may have made its context current
+  }
+  if (host != nullptr && end > first) {
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, b->buf);
+    gl.glBufferSubData(GL_SHADER_STORAGE_BUFFER, static_cast<GLintptr>(first * 4),
+                       static_cast<GLsizeiptr>((end - first) * 4), host + first);
+    check(gl, "uploading a buffer", kComputeWho);
+  }
+  s.mark_device_current(&owner_);
+  return *b;
+}
+
+GLuint ComputeBuffers::texture_of(const GL& gl, detail::Storage& s) {
+  Buffer& b = to_device(gl, s);
+  if (b.tex == 0) {
+    gl.glGenTextures(1, &b.tex);
+    gl.glBindTexture(GL_TEXTURE_BUFFER, b.tex);
+    gl.glTexBuffer(GL_TEXTURE_BUFFER, texel_format(s.type()), b.buf);
+    check(gl, "making a buffer texture", kComputeWho);
+  }
+  return b.tex;
+}
+
+void ComputeBuffers::read_back(const GL& gl, const detail::Storage& s, uint32_t* host) {
+  auto* b = s.device_buffer<Buffer>(&owner_);
+  if (s.words() == 0) return;
+  gl.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, b->buf);
+  gl.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(s.words() * 4), host);
+  check(gl, "reading a buffer back", kComputeWho);
+}
+
+}  // namespace rill::glsl

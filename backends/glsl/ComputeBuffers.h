@@ -1,0 +1,52 @@
+// The glsl-compute backend's device memory role: every stream and array lives in one GL
+// buffer object holding the host's words as they are (uploads and read-backs are plain copies,
+// of the stale words only), with a buffer texture over it once the data is gathered from.
+#pragma once
+
+#include <memory>
+
+#include "GLBackend.h"
+#include "rill/Stream.h"
+
+namespace rill::glsl {
+
+// The backend in messages, and its name.
+inline constexpr const char* kComputeName = "glsl-compute";
+inline constexpr const char* kComputeWho = "glsl-compute backend";
+
+// A stream's or array's device copy: a buffer object, and a buffer texture over it once the
+// data is gathered from.
+struct Buffer : detail::DeviceBuffer {
+  std::shared_ptr<Session> session;
+  GLuint buf = 0, tex = 0;
+  int64_t bytes = 0;  // allocated
+  ~Buffer() override {
+    if (!buf && !tex) return;
+    std::lock_guard<std::recursive_mutex> lock(session->mutex);
+    if (const GL* gl = session->current_if_alive()) {
+      if (tex) gl->glDeleteTextures(1, &tex);
+      if (buf) gl->glDeleteBuffers(1, &buf);
+    }
+  }
+};
+
+// The memory role itself: the device buffers of one backend, under its lock.
+class ComputeBuffers {
+ public:
+  // owner: the backend whose buffers these are; its context is made current where another
+  // backend's copy had to be read back first.
+  ComputeBuffers(GLBackend& owner, std::shared_ptr<Session> session)
+      : owner_(owner), session_(std::move(session)) {}
+  // The buffer holding s, current with the host copy.
+  Buffer& to_device(const GL& gl, detail::Storage& s);
+  // The buffer texture over s's buffer, for gathers.
+  GLuint texture_of(const GL& gl, detail::Storage& s);
+  // Copies s's buffer to host (s.words() words).
+  void read_back(const GL& gl, const detail::Storage& s, uint32_t* host);
+
+ private:
+  GLBackend& owner_;
+  std::shared_ptr<Session> session_;
+};
+
+}  // namespace rill::glsl
