@@ -45,22 +45,24 @@ void check(cl_int e, const char* what) {
 
 namespace {
 
-std::string platform_string(cl_platform_id p, cl_platform_info what) {
+// A string property of a platform or device: get is clGetPlatformInfo or clGetDeviceInfo,
+// asked for the size first, without the terminating NULs.
+template <class Get, class Id, class Info>
+std::string info_string(Get get, Id id, Info what) {
   size_t n = 0;
-  clGetPlatformInfo(p, what, 0, nullptr, &n);
+  get(id, what, 0, nullptr, &n);
   std::string s(n, '\0');
-  clGetPlatformInfo(p, what, n, s.data(), nullptr);
+  get(id, what, n, s.data(), nullptr);
   while (!s.empty() && s.back() == '\0') s.pop_back();
   return s;
 }
 
+std::string platform_string(cl_platform_id p, cl_platform_info what) {
+  return info_string(clGetPlatformInfo, p, what);
+}
+
 std::string device_string(cl_device_id d, cl_device_info what) {
-  size_t n = 0;
-  clGetDeviceInfo(d, what, 0, nullptr, &n);
-  std::string s(n, '\0');
-  clGetDeviceInfo(d, what, n, s.data(), nullptr);
-  while (!s.empty() && s.back() == '\0') s.pop_back();
-  return s;
+  return info_string(clGetDeviceInfo, d, what);
 }
 
 }  // namespace
