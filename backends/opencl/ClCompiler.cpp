@@ -1,6 +1,8 @@
 // The OpenCL backend's compiler role (ClCompiler.h).
 #include "ClCompiler.h"
 
+#include <cstdlib>
+
 #include "../cache/DiskCache.h"
 #include "../codegen/SourceText.h"
 
@@ -40,6 +42,23 @@ void store_binary(cl_program prog, const std::string& key) {
 
 }  // namespace
 
+// PoCL's kernel cache already keeps each program's bitcode and work-group functions, keyed on
+// the source and the options, for any process; handing out a binary makes PoCL compile one more
+// work-group function per kernel (a generic one, for any group size), a quarter to a third of
+// a cold compile. With its cache on, a second compile of the same source in a new process takes
+// 0.1-0.2 s there, as Rill's cache does.
+bool keeps_binaries(const Device& d) {
+  const char* env = std::getenv("RILL_OPENCL_BINARIES");
+  const std::string v = env ? env : "";
+  if (v == "on") return true;
+  if (v == "off") return false;
+  if (!v.empty() && v != "auto")
+    throw Error("RILL_OPENCL_BINARIES='" + v + "' is not one of auto, on, off");
+  if (d.info.platform_name.find("Portable Computing Language") == std::string::npos) return true;
+  const char* pocl_cache = std::getenv("POCL_KERNEL_CACHE");
+  return pocl_cache && std::string(pocl_cache) == "0";
+}
+
 std::string build_options(Accuracy a) {
   std::string options = "-cl-std=CL1.2";
   if (a == Accuracy::Fast)
@@ -54,7 +73,8 @@ BuiltKernel build_kernel(const Device& d, const std::string& name, const std::st
   const std::string options = build_options(a);
   const std::string key =
       "backend=opencl\n" + d.identity + "options=" + options + "\n" + cache::source_line(source);
-  cl_program prog = program_from_cache(d, key, options);
+  const bool binaries = keeps_binaries(d);
+  cl_program prog = binaries ? program_from_cache(d, key, options) : nullptr;
   const KernelOrigin origin = prog ? KernelOrigin::DiskCache : KernelOrigin::Built;
   cl_int e = CL_SUCCESS;
   if (!prog) {
@@ -73,7 +93,7 @@ BuiltKernel build_kernel(const Device& d, const std::string& name, const std::st
                   name + "' (" + cl_error_name(e) + "):\n" + log + "\ngenerated source:\n" +
                   codegen::numbered(source));
     }
-    store_binary(prog, key);
+    if (binaries) store_binary(prog, key);
   }
   cl_kernel k = clCreateKernel(prog, "rill_run", &e);
   if (e != CL_SUCCESS) clReleaseProgram(prog);

@@ -15,9 +15,11 @@ namespace {
 //   RILL_OPENCL_GROUP=N      work-items per group (default 64; the kernel's and the device's
 //                            limits cap it)
 //   RILL_OPENCL_TILES=on|off 2D launches in 8 x 4 tiles (default on)
+//   RILL_OPENCL_WARM_UP=all|small  the grid classes compile()'s warm-up builds for (default all)
 struct LaunchTuning {
   size_t group = 64;
   bool tiles = true;
+  bool warm_up_large = true;
 };
 
 const LaunchTuning& launch_tuning() {
@@ -36,6 +38,12 @@ const LaunchTuning& launch_tuning() {
         throw Error("RILL_OPENCL_TILES='" + v + "' is not one of on, off");
       t.tiles = v == "on";
     }
+    if (const char* s = std::getenv("RILL_OPENCL_WARM_UP"); s && *s) {
+      const std::string v = s;
+      if (v != "all" && v != "small")
+        throw Error("RILL_OPENCL_WARM_UP='" + v + "' is not one of all, small");
+      t.warm_up_large = v == "all";
+    }
     return t;
   }();
   return t;
@@ -46,6 +54,7 @@ const LaunchTuning& launch_tuning() {
 void ClKernel::warm_up() {
   WarmUpLaunch stand_ins(fn_);
   for (size_t grid : {size_t{1}, size_t{65536}}) {
+    if (grid > 1 && !launch_tuning().warm_up_large) break;
     warm_up_grid_ = grid;
     run(stand_ins.args());
   }

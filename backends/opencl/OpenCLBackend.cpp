@@ -35,7 +35,10 @@ class OpenCLBackend : public Backend {
     if (!why.empty()) return "opencl: unavailable: " + why;
     const Device& d = const_cast<OpenCLBackend*>(this)->device();
     return "opencl: " + d.info.platform_name + " / " + d.info.device_name + " (" + d.info.version +
-           ")";
+           "); disk cache: " +
+           (keeps_binaries(d) ? "program binaries"
+                              : "the driver's own (PoCL's kernel cache; RILL_OPENCL_BINARIES=on "
+                                "for Rill's)");
   }
 
   bool runs_on_gpu() const override {

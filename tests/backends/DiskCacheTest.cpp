@@ -41,12 +41,16 @@ class DiskCacheTest : public BackendTest {
     fs::create_directories(dir_);
     env_.emplace("RILL_CACHE_DIR", dir_.string());
     no_profile_.emplace("RILL_PROFILE_DIR", "");  // profiling would bypass the cache
+    // Rill's own binaries on OpenCL, also on PoCL, where by default its kernel cache serves
+    // instead (PoclKeepsItsOwnCacheByDefault).
+    binaries_.emplace("RILL_OPENCL_BINARIES", "on");
     clear_kernel_cache();
   }
   void TearDown() override {
     clear_kernel_cache();  // no kernel of this test's cache serves a later test
     env_.reset();
     no_profile_.reset();
+    binaries_.reset();
     if (!dir_.empty()) fs::remove_all(dir_);
   }
 
@@ -124,7 +128,7 @@ class DiskCacheTest : public BackendTest {
   }
 
   fs::path dir_;
-  std::optional<ScopedEnv> env_, no_profile_;
+  std::optional<ScopedEnv> env_, no_profile_, binaries_;
 };
 
 #define SKIP_WITHOUT_BINARIES()                                                           \
@@ -141,6 +145,34 @@ TEST_P(DiskCacheTest, SecondCompileInANewProcessLoadsFromDisk) {
   // In-process hits still report the process cache.
   Kernel again = compile(kernel());
   EXPECT_EQ(again.info().origin, KernelOrigin::ProcessCache);
+}
+
+// With the default settings a backend stores entries exactly when its description says it
+// keeps kernels in Rill's disk cache. On PoCL with its kernel cache on, the opencl backend
+// keeps none (asking PoCL for a binary costs a work-group function per kernel) and builds
+// from source every time; a bad RILL_OPENCL_BINARIES is named.
+TEST_P(DiskCacheTest, DefaultsStoreEntriesWhereTheDescriptionSays) {
+  binaries_.reset();
+  ScopedEnv automatic("RILL_OPENCL_BINARIES", "auto");
+  ScopedEnv pocl_cache_on("POCL_KERNEL_CACHE", "1");
+  const std::string description = rill::backend(backend_name()).description();
+  const bool pocl = description.find("Portable Computing Language") != std::string::npos;
+  const bool none = description.find("disk cache: the driver's own") != std::string::npos ||
+                    driver_keeps_no_binaries();
+  if (backend_name() == "opencl") EXPECT_EQ(none, pocl) << description;
+  EXPECT_EQ(compile_fresh_and_check(), KernelOrigin::Built);
+  EXPECT_EQ(entries().empty(), none) << description << "; cache " << dir_;
+  EXPECT_EQ(compile_fresh_and_check(), none ? KernelOrigin::Built : KernelOrigin::DiskCache);
+  if (backend_name() != "opencl") return;
+  ScopedEnv bad("RILL_OPENCL_BINARIES", "yes");
+  clear_kernel_cache();
+  try {
+    compile(kernel());
+    ADD_FAILURE() << "RILL_OPENCL_BINARIES=yes was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("RILL_OPENCL_BINARIES='yes'"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_P(DiskCacheTest, TruncatedEntryIsRebuilt) {
