@@ -72,8 +72,11 @@ class ComputeKernel : public CompiledKernel {
   LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
   // Drivers that finish compiling at the first dispatch do it now (a dispatch of one group
-  // whose invocations all return at once).
-  void warm_up() override { run(WarmUpLaunch(fn_).args()); }
+  // whose invocations all return at once), where that is what real launches use
+  // (warm_up_pays).
+  void warm_up() override {
+    if (warm_up_pays(be_.driver().renderer, fn_)) run(WarmUpLaunch(fn_).args());
+  }
 
  private:
   void check_limits(const LaunchArgs& a) const;

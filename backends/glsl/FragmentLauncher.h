@@ -68,8 +68,11 @@ class GLSLKernel : public CompiledKernel {
   const std::string& source() const override { return source_; }
   // llvmpipe compiles a shader's variant for the bound texture and framebuffer formats at
   // its first draw: one draw over one texel that the shader discards (rill_count 0) does it
-  // now. (A masked launch, with the stencil test on, is another variant, built at the first.)
-  void warm_up() override { run(WarmUpLaunch(fn_).args()); }
+  // now, where that variant is the one real launches use (warm_up_pays). (A masked launch,
+  // with the stencil test on, is another variant, built at the first.)
+  void warm_up() override {
+    if (warm_up_pays(be_.driver().renderer, fn_)) run(WarmUpLaunch(fn_).args());
+  }
 
  private:
   // Masked launches: fills the stencil buffer from a.mask; returns the elements selected.

@@ -50,6 +50,11 @@ bool native_compare_mode(const std::string& renderer) {
   throw Error("RILL_GLSL_COMPARE='" + v + "' is not one of auto, native, bits");
 }
 
+bool warm_up_pays(const std::string& renderer, const ir::Function& f) {
+  const bool reads_textures = !f.inputs.empty() || !f.arrays.empty();
+  return !(reads_textures && renderer.find("llvmpipe") != std::string::npos);
+}
+
 bool loop_guard_mode(const std::string& renderer) {
   return renderer.find("llvmpipe") != std::string::npos;
 }

@@ -55,8 +55,10 @@ bool keeps_binaries(const Device& d) {
   if (!v.empty() && v != "auto")
     throw Error("RILL_OPENCL_BINARIES='" + v + "' is not one of auto, on, off");
   if (d.info.platform_name.find("Portable Computing Language") == std::string::npos) return true;
+  // PoCL reads a boolean setting as on when its value starts with 1 (pocl_get_bool_option),
+  // so 0, off or an empty value turn its cache off.
   const char* pocl_cache = std::getenv("POCL_KERNEL_CACHE");
-  return pocl_cache && std::string(pocl_cache) == "0";
+  return pocl_cache && pocl_cache[0] != '1';
 }
 
 std::string build_options(Accuracy a) {

@@ -25,7 +25,8 @@ std::string build_options(Accuracy a);
 
 // Whether Rill's disk cache keeps this device's program binaries: RILL_OPENCL_BINARIES=on or
 // off, or auto (the default, also when unset): on, except on PoCL with its kernel cache on
-// (POCL_KERNEL_CACHE unset or not 0). Throws rill::Error naming a value that is none of these.
+// (POCL_KERNEL_CACHE unset, or starting with 1 as PoCL reads it). Throws rill::Error naming a
+// value that is none of these.
 bool keeps_binaries(const Device& d);
 
 // Builds `source` (the kernel named `name`, for errors) for device d. Throws rill::Error with

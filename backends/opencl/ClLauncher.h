@@ -16,6 +16,11 @@
 
 namespace rill::opencl {
 
+// Reads the launch settings (RILL_OPENCL_GROUP, RILL_OPENCL_TILES, RILL_OPENCL_WARM_UP) once,
+// and throws rill::Error naming one that is not valid: compile() calls it, so that a bad
+// setting fails there rather than at the first launch (compile() keeps a failed warm-up quiet).
+void check_launch_settings();
+
 class ClKernel : public CompiledKernel {
  public:
   ClKernel(Device& device, ClMemory& memory, const ir::Function& f, std::string source,

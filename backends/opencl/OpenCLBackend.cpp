@@ -34,11 +34,19 @@ class OpenCLBackend : public Backend {
     std::string why = unavailable_reason();
     if (!why.empty()) return "opencl: unavailable: " + why;
     const Device& d = const_cast<OpenCLBackend*>(this)->device();
+    std::string cache;
+    try {
+      const bool pocl =
+          d.info.platform_name.find("Portable Computing Language") != std::string::npos;
+      cache = keeps_binaries(d) ? "program binaries"
+              : pocl            ? "the driver's own (PoCL's kernel cache; RILL_OPENCL_BINARIES=on "
+                                  "for Rill's)"
+                                : "none (RILL_OPENCL_BINARIES=off)";
+    } catch (const Error& e) {
+      cache = e.what();  // a bad setting, named; compiling then fails with the same message
+    }
     return "opencl: " + d.info.platform_name + " / " + d.info.device_name + " (" + d.info.version +
-           "); disk cache: " +
-           (keeps_binaries(d) ? "program binaries"
-                              : "the driver's own (PoCL's kernel cache; RILL_OPENCL_BINARIES=on "
-                                "for Rill's)");
+           "); disk cache: " + cache;
   }
 
   bool runs_on_gpu() const override {
@@ -55,6 +63,7 @@ class OpenCLBackend : public Backend {
     if (o.accuracy == Accuracy::Double && !d.info.fp64)
       throw Error("OpenCL backend: device '" + d.info.device_name +
                   "' has no fp64 support (cl_khr_fp64)");
+    check_launch_settings();
     Stopwatch stage;
     std::string source = emit_opencl(f, o.accuracy);
     const double codegen_ms = stage.lap();

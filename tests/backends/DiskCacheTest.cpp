@@ -42,7 +42,7 @@ class DiskCacheTest : public BackendTest {
     env_.emplace("RILL_CACHE_DIR", dir_.string());
     no_profile_.emplace("RILL_PROFILE_DIR", "");  // profiling would bypass the cache
     // Rill's own binaries on OpenCL, also on PoCL, where by default its kernel cache serves
-    // instead (PoclKeepsItsOwnCacheByDefault).
+    // instead (DefaultsStoreEntriesWhereTheDescriptionSays).
     binaries_.emplace("RILL_OPENCL_BINARIES", "on");
     clear_kernel_cache();
   }
@@ -159,12 +159,30 @@ TEST_P(DiskCacheTest, DefaultsStoreEntriesWhereTheDescriptionSays) {
   const bool pocl = description.find("Portable Computing Language") != std::string::npos;
   const bool none = description.find("disk cache: the driver's own") != std::string::npos ||
                     driver_keeps_no_binaries();
-  if (backend_name() == "opencl") EXPECT_EQ(none, pocl) << description;
+  if (backend_name() == "opencl") {
+    EXPECT_EQ(none, pocl) << description;
+  }
   EXPECT_EQ(compile_fresh_and_check(), KernelOrigin::Built);
   EXPECT_EQ(entries().empty(), none) << description << "; cache " << dir_;
   EXPECT_EQ(compile_fresh_and_check(), none ? KernelOrigin::Built : KernelOrigin::DiskCache);
   if (backend_name() != "opencl") return;
+  // With PoCL's cache off (as PoCL reads the setting: on only when it starts with 1), Rill's
+  // binaries come back, so that a second process still loads instead of compiling.
+  if (pocl)
+    for (const char* off : {"0", "off"}) {
+      SCOPED_TRACE(std::string("POCL_KERNEL_CACHE=") + off);
+      ScopedEnv pocl_cache_off("POCL_KERNEL_CACHE", off);
+      EXPECT_NE(rill::backend(backend_name()).description().find("disk cache: program binaries"),
+                std::string::npos);
+      EXPECT_EQ(compile_fresh_and_check(), KernelOrigin::Built);
+      EXPECT_FALSE(entries().empty()) << "no OpenCL binary was stored in " << dir_;
+      EXPECT_EQ(compile_fresh_and_check(), KernelOrigin::DiskCache);
+      cache::clear();
+    }
   ScopedEnv bad("RILL_OPENCL_BINARIES", "yes");
+  EXPECT_NE(rill::backend(backend_name()).description().find("RILL_OPENCL_BINARIES='yes'"),
+            std::string::npos)
+      << "the description names the bad setting";
   clear_kernel_cache();
   try {
     compile(kernel());

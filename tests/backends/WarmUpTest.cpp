@@ -22,8 +22,11 @@ TEST_P(WarmUpTest, EveryStageThatRanIsTimed) {
   EXPECT_GT(i.codegen_ms, 0.0);
   EXPECT_GT(i.backend_compile_ms, 0.0);
   // cpu and simd defer nothing to the first launch; PoCL and Mesa do, unless the kernel
-  // came from a disk cache of finished binaries.
-  if (backend_name() == "opencl" || backend_name() == "glsl") {
+  // came from a disk cache of finished binaries. On llvmpipe a kernel that reads a stream is
+  // not warmed up (its variant depends on the textures' sizes: glsl::warm_up_pays).
+  const bool llvmpipe =
+      rill::backend(backend_name()).description().find("llvmpipe") != std::string::npos;
+  if (backend_name() == "opencl" || (backend_name() == "glsl" && !llvmpipe)) {
     EXPECT_GT(i.driver_finish_ms, 0.0);
   }
   EXPECT_GE(i.compile_ms, i.optimize_ms + i.codegen_ms + i.backend_compile_ms + i.driver_finish_ms);

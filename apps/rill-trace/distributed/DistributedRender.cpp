@@ -54,14 +54,14 @@ std::string partial_note_path(const RenderOptions& o, const Prepared& p, const N
 
 // Writes a frame's tiles so far as partial outputs (NAME.partial.EXT, each NAME the frame's
 // output name by `file`), and the note: what is in it and what is not, and why. Returns what
-// it wrote.
+// it wrote. The note goes first: when a rank dies, mpirun may end rank 0 at any moment, also
+// between two of these files (a checkpoint's), and a partial image must never be left
+// without its note. Ended between them, the note counts this checkpoint's tiles while the
+// images still hold the previous checkpoint's (each file is replaced whole, never torn).
 std::vector<std::string> write_partial(const RenderOptions& o, const Prepared& p,
                                        const rt::distributed::FarmResult& R,
                                        const rt::distributed::FramePart& part, const NameOf& file,
                                        const std::string& why) {
-  std::vector<std::string> written = write_outputs(o, p, part.image, [&](const std::string& path) {
-    return rt::distributed::partial_name(file(path));
-  });
   const std::string note = partial_note_path(o, p, file);
   std::ostringstream f;
   f << "rill-trace: a partial render of " << o.scene;
@@ -82,6 +82,9 @@ std::vector<std::string> write_partial(const RenderOptions& o, const Prepared& p
     std::ofstream out(tmp);
     out << f.str();
     if (!out) throw rt::SceneError("cannot write " + note);
+  });
+  std::vector<std::string> written = write_outputs(o, p, part.image, [&](const std::string& path) {
+    return rt::distributed::partial_name(file(path));
   });
   written.push_back(note);
   return written;
