@@ -72,6 +72,18 @@ rill_check_cmake() {
   fi
 }
 
+# The environment the tests run in (scripts/test, .ci/run), where a user's setting does not
+# already say otherwise:
+# - RILL_OPENCL_WARM_UP=small: compile()'s warm-up on PoCL builds the work-group function for
+#   the small grid class only (up to 65535 work-items), the one nearly all the tests' launches
+#   use; a larger launch builds its own at its first enqueue. Users' default warms both, so
+#   that a first large launch costs what later ones do: a cost in latency, not in results, and
+#   a quarter of a cold OpenCL compile (docs/testing.md, "Measured, 2026-12-06").
+#   example.mandelbrot.opencl.strict keeps the default.
+rill_test_environment() {
+  export RILL_OPENCL_WARM_UP=${RILL_OPENCL_WARM_UP:-small}
+}
+
 # Configures (first time, or when options change) and builds into $RILL_BUILD_DIR.
 # Extra arguments are passed to cmake's configure step (e.g. -DRILL_SANITIZE=ON).
 # RILL_BUILD_TARGETS (space-separated) limits the build to those targets; default: all.
@@ -84,14 +96,14 @@ rill_build() {
   if [[ ! -f $RILL_BUILD_DIR/CMakeCache.txt ]] && command -v ninja >/dev/null 2>&1; then
     generator=(-G Ninja)
   fi
-  local debug_info=()
+  local g
   case ${RILL_DEBUG_INFO:-lines} in
-    lines) debug_info=(-DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
-      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG") ;;
-    full) debug_info=(-DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g -DNDEBUG"
-      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g -DNDEBUG") ;;
+    lines) g=-g1 ;;
+    full) g=-g ;;  # CMake's own RelWithDebInfo flags
     *) rill_die "RILL_DEBUG_INFO='${RILL_DEBUG_INFO}' is not one of lines, full" ;;
   esac
+  local debug_info=(-DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 $g -DNDEBUG"
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 $g -DNDEBUG")
   rill_say "configuring $RILL_BUILD_DIR ($RILL_BUILD_TYPE)"
   cmake -S "$RILL_ROOT" -B "$RILL_BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE="$RILL_BUILD_TYPE" \
     "${debug_info[@]}" "$@" ||

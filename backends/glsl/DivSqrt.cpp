@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 
+#include "GLSession.h"
 #include "rill/Error.h"
 
 namespace rill::glsl {
@@ -126,8 +127,7 @@ const char* divsqrt_name(DivSqrt m) {
 DivSqrt divsqrt_mode(const std::string& renderer) {
   const char* env = std::getenv("RILL_GLSL_DIVSQRT");
   std::string v = env ? env : "auto";
-  if (v == "auto" || v.empty())
-    return renderer.find("llvmpipe") != std::string::npos ? DivSqrt::Native : DivSqrt::Corrected;
+  if (v == "auto" || v.empty()) return is_llvmpipe(renderer) ? DivSqrt::Native : DivSqrt::Corrected;
   for (DivSqrt m :
        {DivSqrt::Native, DivSqrt::Corrected, DivSqrt::Inexact, DivSqrt::InexactCorrected})
     if (v == divsqrt_name(m)) return m;

@@ -50,13 +50,17 @@ bool native_compare_mode(const std::string& renderer) {
   throw Error("RILL_GLSL_COMPARE='" + v + "' is not one of auto, native, bits");
 }
 
+bool is_llvmpipe(const std::string& renderer) {
+  return renderer.find("llvmpipe") != std::string::npos;
+}
+
 bool warm_up_pays(const std::string& renderer, const ir::Function& f) {
   const bool reads_textures = !f.inputs.empty() || !f.arrays.empty();
-  return !(reads_textures && renderer.find("llvmpipe") != std::string::npos);
+  return !(reads_textures && is_llvmpipe(renderer));
 }
 
 bool loop_guard_mode(const std::string& renderer) {
-  return renderer.find("llvmpipe") != std::string::npos;
+  return is_llvmpipe(renderer);
 }
 
 std::string loop_cut_message(const std::string& backend, const std::string& kernel,

@@ -73,6 +73,9 @@ bool loop_guard_mode(const std::string& renderer);
 // kernel, the driver and the limit, and where the kernel can run instead.
 std::string loop_cut_message(const std::string& backend, const std::string& kernel,
                              const std::string& renderer);
+// Whether GL_RENDERER names Mesa's llvmpipe, whose rules several choices follow (the loop
+// guard, native division, the warm-up).
+bool is_llvmpipe(const std::string& renderer);
 // Whether GL_RENDERER names a software rasterizer on the CPU (llvmpipe, softpipe, swrast,
 // SwiftShader) rather than a GPU.
 bool is_software_renderer(const std::string& renderer);

@@ -54,7 +54,7 @@ bool keeps_binaries(const Device& d) {
   if (v == "off") return false;
   if (!v.empty() && v != "auto")
     throw Error("RILL_OPENCL_BINARIES='" + v + "' is not one of auto, on, off");
-  if (d.info.platform_name.find("Portable Computing Language") == std::string::npos) return true;
+  if (!is_pocl(d)) return true;
   // PoCL reads a boolean setting as on when its value starts with 1 (pocl_get_bool_option),
   // so 0, off or an empty value turn its cache off.
   const char* pocl_cache = std::getenv("POCL_KERNEL_CACHE");

@@ -146,6 +146,10 @@ std::string cache_identity(cl_device_id id) {
 
 }  // namespace
 
+bool is_pocl(const Device& d) {
+  return d.info.platform_name.find("Portable Computing Language") != std::string::npos;
+}
+
 std::unique_ptr<Device> open_device(const std::string& spec) {
   Found found = enumerate_devices();
   if (found.ids.empty()) throw Error(found.error);

@@ -47,6 +47,10 @@ Found enumerate_devices();
 // there are when none matches, or why there is none.
 std::unique_ptr<Device> open_device(const std::string& spec);
 
+// Whether the device is PoCL's (its platform name), whose kernel cache and deferred
+// work-group compiles the backend allows for.
+bool is_pocl(const Device& d);
+
 // A buffer over the device's largest allocation is an error naming both sizes and the device,
 // before the driver is asked (some drivers fail later, at the launch, or not at all).
 void check_allocation(const Device& d, size_t bytes);

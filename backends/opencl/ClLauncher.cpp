@@ -57,9 +57,10 @@ void check_launch_settings() {
 
 void ClKernel::warm_up() {
   WarmUpLaunch stand_ins(fn_);
-  for (size_t grid : {size_t{1}, size_t{65536}}) {
-    if (grid > 1 && !launch_tuning().warm_up_large) break;
-    warm_up_grid_ = grid;
+  const size_t grids[] = {1, 65536};
+  const size_t classes = launch_tuning().warm_up_large ? 2 : 1;  // RILL_OPENCL_WARM_UP
+  for (size_t c = 0; c < classes; ++c) {
+    warm_up_grid_ = grids[c];
     run(stand_ins.args());
   }
 }

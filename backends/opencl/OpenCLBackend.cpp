@@ -36,10 +36,8 @@ class OpenCLBackend : public Backend {
     const Device& d = const_cast<OpenCLBackend*>(this)->device();
     std::string cache;
     try {
-      const bool pocl =
-          d.info.platform_name.find("Portable Computing Language") != std::string::npos;
       cache = keeps_binaries(d) ? "program binaries"
-              : pocl            ? "the driver's own (PoCL's kernel cache; RILL_OPENCL_BINARIES=on "
+              : is_pocl(d)      ? "the driver's own (PoCL's kernel cache; RILL_OPENCL_BINARIES=on "
                                   "for Rill's)"
                                 : "none (RILL_OPENCL_BINARIES=off)";
     } catch (const Error& e) {
