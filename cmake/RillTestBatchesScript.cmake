@@ -1,14 +1,19 @@
 # Run by CTest before it runs the tests (rill_add_test_batches in RillTestBatches.cmake): lists
 # the executable's cases, groups them into batches (a test suite, or a suite and a parameter),
-# writes an add_test() per batch to RILL_BATCH_OUTPUT and includes it. The list is written again
-# only when the executable is newer than it, so a CTest run that changes nothing lists nothing.
+# writes them to RILL_BATCH_OUTPUT and registers an add_test() for each. The list is written again
+# only when the executable (or this script) is newer than it, so a CTest run that changes
+# nothing lists nothing.
 if(NOT EXISTS "${RILL_BATCH_EXECUTABLE}")
   # Not built (yet): like gtest_discover_tests, one test that fails and says so.
   add_test("${RILL_BATCH_EXECUTABLE}_NOT_BUILT" "${RILL_BATCH_EXECUTABLE}_NOT_BUILT")
   return()
 endif()
+cmake_policy(PUSH)
+cmake_policy(VERSION 3.25)  # CTest reads this with no policies set: IN_LIST needs CMP0057
 
-if(NOT EXISTS "${RILL_BATCH_OUTPUT}" OR "${RILL_BATCH_EXECUTABLE}" IS_NEWER_THAN "${RILL_BATCH_OUTPUT}")
+# A function, for a scope of its own: CTest reads every batch script of a directory in one
+# scope, and one call's variables (cases_<batch>) must not leak into the next.
+function(rill_write_test_batches)
   execute_process(
     COMMAND "${RILL_BATCH_EXECUTABLE}" --gtest_list_tests "--gtest_filter=${RILL_BATCH_FILTER}"
     WORKING_DIRECTORY "${RILL_BATCH_WORKING_DIRECTORY}"
@@ -46,21 +51,37 @@ if(NOT EXISTS "${RILL_BATCH_OUTPUT}" OR "${RILL_BATCH_EXECUTABLE}" IS_NEWER_THAN
     endif()
   endforeach()
 
+  # The batches, as CMake source: a name, the filter and the count of its cases each.
   set(script "# Written by RillTestBatchesScript.cmake from ${RILL_BATCH_EXECUTABLE}\n")
   foreach(batch IN LISTS batches)
     string(MAKE_C_IDENTIFIER "${batch}" id)
-    list(LENGTH cases_${id} count)
     list(JOIN cases_${id} ":" filter)
-    set(test "${batch}${RILL_BATCH_SUFFIX}")
-    string(APPEND script
-      "add_test([==[${test}]==] [==[${RILL_BATCH_EXECUTABLE}]==] [==[--gtest_filter=${filter}]==])\n"
-      "set_tests_properties([==[${test}]==] PROPERTIES WORKING_DIRECTORY [==[${RILL_BATCH_WORKING_DIRECTORY}]==]"
-      " SKIP_RETURN_CODE 77")
-    foreach(p IN LISTS RILL_BATCH_PROPERTIES)
-      string(APPEND script " [==[${p}]==]")
-    endforeach()
-    string(APPEND script ")\n")
+    string(APPEND script "list(APPEND rill_batches [==[${batch}${RILL_BATCH_SUFFIX}]==])\n"
+                         "set([==[rill_batch_filter_${batch}${RILL_BATCH_SUFFIX}]==] [==[${filter}]==])\n")
   endforeach()
   file(WRITE "${RILL_BATCH_OUTPUT}" "${script}")
+endfunction()
+
+if(NOT EXISTS "${RILL_BATCH_OUTPUT}" OR "${RILL_BATCH_EXECUTABLE}" IS_NEWER_THAN "${RILL_BATCH_OUTPUT}"
+   OR "${CMAKE_CURRENT_LIST_FILE}" IS_NEWER_THAN "${RILL_BATCH_OUTPUT}")
+  rill_write_test_batches()
 endif()
+
+set(rill_batches "")
 include("${RILL_BATCH_OUTPUT}")
+# Two batches of one name would leave one of them silently unregistered (CTest keeps the
+# first): a second call for the same suites needs a SUFFIX of its own. Such a name gets a test
+# that fails and says so.
+get_property(taken GLOBAL PROPERTY RILL_TEST_BATCH_NAMES)
+foreach(test IN LISTS rill_batches)
+  if(test IN_LIST taken)
+    add_test("${test}_DUPLICATE_BATCH_NAME" "${test}_DUPLICATE_BATCH_NAME_give_rill_add_test_batches_a_SUFFIX")
+    continue()
+  endif()
+  list(APPEND taken "${test}")
+  add_test("${test}" "${RILL_BATCH_EXECUTABLE}" "--gtest_filter=${rill_batch_filter_${test}}")
+  set_tests_properties("${test}" PROPERTIES WORKING_DIRECTORY "${RILL_BATCH_WORKING_DIRECTORY}"
+                       SKIP_RETURN_CODE 77 ${RILL_BATCH_PROPERTIES})
+endforeach()
+set_property(GLOBAL PROPERTY RILL_TEST_BATCH_NAMES "${taken}")
+cmake_policy(POP)
