@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 20 on the GPU machine, session 16: docs/gpu.md's table again, with this session's
+# Issue 20 on the GPU machine, session 16: the H200 table (docs/gpu.md's then; now docs/benchmarks/2026-12-07-gpu-history.md) again, with this session's
 # build (32-bit gather indices, the three-gather sRGB encoding, the kernel time in the frame
 # split): every backend's primary and full throughput (one process per GPU backend, Embree
 # on the 16 host cores beside cpu and simd) and frame time. PART=1: the throughput; PART=2:

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Session 25 (2026-11-28), after h200-s.sh in the same machine session: docs/gpu.md's table
+# Session 25 (2026-11-28), after h200-s.sh in the same machine session: the H200 table (docs/gpu.md's then; now docs/benchmarks/2026-12-07-gpu-history.md)
 # with this session's build, as h200-k.sh PART=1 (primary and full throughput, one process per
 # GPU backend, Embree on the 16 host cores beside cpu and simd); the frame times are
 # h200-s.sh's new-build rows. Set-up as h200-s.sh, with Embree unpacked.

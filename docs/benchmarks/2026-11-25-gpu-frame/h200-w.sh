@@ -1,5 +1,5 @@
 #!/bin/bash
-# Session 26 (2026-11-29), after h200-v.sh: docs/gpu.md's table with this session's build
+# Session 26 (2026-11-29), after h200-v.sh: the H200 table (docs/gpu.md's then; now docs/benchmarks/2026-12-07-gpu-history.md) with this session's build
 # (84e9679), in two machine calls. PART=1: primary and full throughput as h200-t.sh (one
 # process per GPU backend, Embree on the 16 host cores beside cpu and simd). PART=2: the
 # frame times, rill-trace render S --size 1920x1080 --backend B --bench-frames N, two
