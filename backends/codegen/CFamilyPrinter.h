@@ -10,7 +10,8 @@
 // per component, in a fixed evaluation order and fully parenthesized, as the form column of
 // ir/Ops.def says, and every operation whose meaning the languages disagree on (min/max with
 // NaN, integer division by zero, float-to-int overflow, mod, sign, fract) calls a rill_*
-// helper whose definition each dialect family's prelude gives with the same semantics.
+// helper whose definition each dialect's prelude gives with the same semantics (the helper
+// table, Helpers.cpp).
 #pragma once
 
 #include <functional>

@@ -22,8 +22,8 @@ using namespace ir;
 
 namespace {
 
-// Definitions of the rill_* helpers the printer calls (see CFamilyPrinter.h), in C99.
-// rill_real is float, or double in the `double` accuracy mode.
+// The frame of the helpers' definitions (codegen/Helpers.h), in C99. rill_real is float, or
+// double in the `double` accuracy mode.
 const char* kPrelude = R"(#include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -38,11 +38,6 @@ typedef struct rill_launch {
 } rill_launch;
 
 #define RILL_FN static inline
-RILL_FN rill_real rill_ibits(int32_t i) { float f; memcpy(&f, &i, 4); return (rill_real)f; }
-RILL_FN int32_t rill_fbits(rill_real x) { float f = (float)x; int32_t i; memcpy(&i, &f, 4); return i; }
-RILL_FN rill_real rill_word_f(uint32_t w) { float f; memcpy(&f, &w, 4); return (rill_real)f; }
-RILL_FN float rill_store_f(rill_real x) { return (float)x; }
-
 )";
 
 std::string c_elem_type(ScalarKind k) {
@@ -59,7 +54,7 @@ std::string c_head(const Function& f, Accuracy accuracy) {
   else
     src += "typedef float rill_real;\n#define RILL_M(fn) fn##f\n";
   src += kPrelude;
-  src += codegen::c_family_helpers();
+  src += codegen::helper_bodies(codegen::Language::C);
   return src;
 }
 

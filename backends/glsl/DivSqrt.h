@@ -20,10 +20,14 @@
 //
 // The mode comes from RILL_GLSL_DIVSQRT (see divsqrt_mode); two test modes replace the
 // driver's operations with NVIDIA-like inexact ones, so that the correction can be tested
-// on any machine (tests/backends, conformance).
+// on any machine (tests/backends, conformance). The GLSL bodies of rill_div_f, rill_sqrt and
+// their parts are entries of the helper table (codegen/Helpers.cpp), one variant per mode.
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include "../codegen/Helpers.h"
 
 namespace rill::glsl {
 
@@ -42,8 +46,8 @@ const char* divsqrt_name(DivSqrt m);
 // value.
 DivSqrt divsqrt_mode(const std::string& renderer);
 
-// GLSL source defining rill_div_f(a, b) and rill_sqrt(x) for strict kernels in mode m. Uses
-// the RILL_PRECISE and RILL_ONE macros of the generated shader.
-std::string divsqrt_helpers(DivSqrt m);
+// The variants of the helper table's GLSL bodies that define rill_div_f(a, b) and
+// rill_sqrt(x) for strict kernels in mode m.
+std::vector<codegen::Variant> divsqrt_variants(DivSqrt m);
 
 }  // namespace rill::glsl

@@ -18,7 +18,8 @@
 // exists.
 //
 // The body is printed by the shared C-family printer (scalarized, like the C and OpenCL
-// dialects); GLSL gets its own helper definitions because it has no casts or typedefs.
+// dialects); GLSL has its own bodies of the helpers (codegen/Helpers.cpp) because it has no
+// casts or typedefs, and compares and selects floats through helpers in strict mode.
 // In strict mode every float variable is `precise`, which forbids the compiler from fusing
 // or reassociating the operations that compute it.
 #include "GLSLEmitter.h"
@@ -30,6 +31,7 @@
 #include <cstdio>
 
 #include "../codegen/CFamilyPrinter.h"
+#include "../codegen/Helpers.h"
 #include "../codegen/SourceText.h"
 #include "../codegen/Tiles.h"
 #include "DivSqrt.h"
@@ -39,120 +41,6 @@ namespace rill::glsl {
 using namespace ir;
 
 namespace {
-
-const char* kHelpers = R"(
-int rill_add_i(int a, int b) { return int(uint(a) + uint(b)); }
-int rill_sub_i(int a, int b) { return int(uint(a) - uint(b)); }
-int rill_mul_i(int a, int b) { return int(uint(a) * uint(b)); }
-int rill_neg_i(int a) { return int(0u - uint(a)); }
-// Truncating division computed on magnitudes (GLSL leaves negative operands open).
-int rill_div_i(int a, int b) {
-  if (b == 0) return 0;
-  uint q = (a < 0 ? 0u - uint(a) : uint(a)) / (b < 0 ? 0u - uint(b) : uint(b));
-  return ((a < 0) != (b < 0)) ? int(0u - q) : int(q);
-}
-int rill_mod_i(int a, int b) {
-  if (b == 0) return 0;
-  return rill_sub_i(a, rill_mul_i(b, rill_div_i(a, b)));
-}
-int rill_min_i(int a, int b) { return b < a ? b : a; }
-int rill_max_i(int a, int b) { return a < b ? b : a; }
-int rill_abs_i(int a) { return a < 0 ? rill_neg_i(a) : a; }
-int rill_sign_i(int a) { return a > 0 ? 1 : (a < 0 ? -1 : 0); }
-int rill_shl(int a, int b) { return int(uint(a) << uint(b & 31)); }
-int rill_shr(int a, int b) { return a >> (b & 31); }
-
-// Selections are made on bit patterns: shader compilers turn a float `a < b ? b : a` into
-// their own max, whose NaN and signed-zero behaviour differs.
-float rill_sel_f(bool c, float a, float b) { return intBitsToFloat(c ? floatBitsToInt(a) : floatBitsToInt(b)); }
-// Ordered comparisons on bit patterns: shader compilers may assume no NaN and rewrite
-// comparisons (a > b into !(a <= b)). key() orders floats as integers, -0 equal to +0.
-bool rill_isnan(float x) { return (floatBitsToInt(x) & 0x7fffffff) > 0x7f800000; }
-// Where the arithmetic flushes denormals (RILL_FLUSHES_DENORMALS: GPUs, llvmpipe's fragment
-// shaders), they compare as zero too; elsewhere (llvmpipe's compute shaders) they order as
-// IEEE says, as on the CPU.
-int rill_key(float x) {
-  int b = floatBitsToInt(x);
-#if RILL_FLUSHES_DENORMALS
-  if ((b & 0x7f800000) == 0) return 0;
-#endif
-  return b >= 0 ? b : int(0x80000000u) - b;
-}
-// RILL_NATIVE_COMPARE: the driver's own comparisons, on drivers whose comparisons the
-// conformance suite found IEEE-exact in strict kernels (NVIDIA); they cost far less than
-// the bit-pattern ones (the ray tracer's traversal compares a lot).
-#if RILL_NATIVE_COMPARE
-bool rill_lt(float a, float b) { return a < b; }
-bool rill_le(float a, float b) { return a <= b; }
-bool rill_eq(float a, float b) { return a == b; }
-#else
-bool rill_lt(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) < rill_key(b); }
-bool rill_le(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) <= rill_key(b); }
-bool rill_eq(float a, float b) { return !rill_isnan(a) && !rill_isnan(b) && rill_key(a) == rill_key(b); }
-#endif
-float rill_min_f(float a, float b) { return rill_sel_f(rill_lt(b, a), b, a); }
-float rill_max_f(float a, float b) { return rill_sel_f(rill_lt(a, b), b, a); }
-float rill_sign_f(float x) {
-  int b = floatBitsToInt(x);
-  int m = b & 0x7fffffff;
-  return intBitsToFloat((m == 0 || m > 0x7f800000) ? 0 : ((b & int(0x80000000u)) | 0x3f800000));
-}
-float rill_abs_f(float x) { return abs(x); }
-float rill_floor(float x) { return floor(x); }
-float rill_ceil(float x) { return ceil(x); }
-float rill_trunc(float x) { return trunc(x); }
-float rill_fract(float x) { RILL_PRECISE float f = floor(x); RILL_PRECISE float r = x - f; return r; }
-float rill_mod_f(float a, float b) {
-  RILL_PRECISE float q = rill_div_f(a, b);
-  RILL_PRECISE float f = floor(q);
-  RILL_PRECISE float m = b * f;
-  RILL_PRECISE float r = a - m;
-  return r;
-}
-float rill_rsqrt(float x) { RILL_PRECISE float s = rill_sqrt(x); RILL_PRECISE float r = rill_div_f(RILL_ONE, s); return r; }
-float rill_exp(float x) { return exp(x); }
-float rill_log(float x) { return log(x); }
-float rill_exp2(float x) { return exp2(x); }
-float rill_log2(float x) { return log2(x); }
-float rill_sin(float x) { return sin(x); }
-float rill_cos(float x) { return cos(x); }
-float rill_tan(float x) { return tan(x); }
-float rill_atan(float x) { return atan(x); }
-float rill_pow(float x, float y) { return pow(x, y); }
-float rill_atan2(float y, float x) { return atan(y, x); }
-// A float made from an int constant would be a constant the shader compiler folds into the
-// operations that use it (see literal()): strict kernels pass ints through RILL_ZERO_I, an
-// xor with a zero read from a uniform.
-float rill_i2f(int i) { return float(i ^ RILL_ZERO_I); }
-int rill_f2i(float x) {
-  if (rill_isnan(x)) return 0;
-  if (x >= 2147483648.0) return 2147483647;
-  if (x < -2147483648.0) return int(0x80000000u);
-  return int(x);
-}
-int rill_fbits(float x) { return floatBitsToInt(x); }
-float rill_ibits(int i) { return intBitsToFloat(i ^ RILL_ZERO_I); }
-// Array index in [0, n) under each boundary mode (ir::boundary_index is the reference). A
-// negative i is mapped through -1 - i (~i, never negative, never overflowing), since GLSL
-// leaves % of a negative operand undefined.
-int rill_clamp_index(int i, int n) { return i < 0 ? 0 : (i >= n ? n - 1 : i); }
-int rill_wrap_index(int i, int n) {
-  int j = i >= 0 ? i : ~i;
-  return i >= 0 ? j % n : n - 1 - j % n;
-}
-int rill_mirror_index(int i, int n) {
-  int j = i >= 0 ? i : ~i;
-  int r = j % n;
-  return ((j / n) & 1) == 0 ? r : n - 1 - r;
-}
-bool rill_index_inside(int i, int n) { return i >= 0 && i < n; }
-)";
-
-// Fast mode: the driver's operations as they are.
-const char* kFastDivSqrt = R"(
-float rill_div_f(float a, float b) { return a / b; }
-float rill_sqrt(float x) { return sqrt(x); }
-)";
 
 const char kComp[] = "xyzw";
 
@@ -375,8 +263,9 @@ std::string helper_definitions(Accuracy accuracy, const DriverRules& rules,
                                bool flushes_denormals) {
   return std::string("#define RILL_NATIVE_COMPARE ") + (rules.native_compare ? "1" : "0") +
          "\n#define RILL_FLUSHES_DENORMALS " + (flushes_denormals ? "1" : "0") + "\n" +
-         (accuracy == Accuracy::Fast ? std::string(kFastDivSqrt) : divsqrt_helpers(rules.divsqrt)) +
-         kHelpers;
+         codegen::helper_bodies(codegen::Language::Glsl, accuracy == Accuracy::Fast
+                                                             ? std::vector{codegen::Variant::Fast}
+                                                             : divsqrt_variants(rules.divsqrt));
 }
 
 // The kernel's uniforms as named scalars, at the top of main.

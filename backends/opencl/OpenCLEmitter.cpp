@@ -1,12 +1,13 @@
 // Emits a kernel as OpenCL C 1.2.
 //
 // The body is printed by the shared C-family printer with the same dialect as the CPU
-// backend (scalarized, same helpers), so the two compute the same operations in the same
-// order. What differs is the frame: one work-item per element; an element function that
-// returns 1 when it wrote its outputs and 0 when it was discarded; and a work-group count
-// of written elements added to one global counter. A masked launch (StateMask.h) passes the
-// state stream and the set: a work-item whose state is not in it returns at once, and the
-// selected elements are counted in a second counter.
+// backend (scalarized, same helpers: codegen/Helpers.cpp, where OpenCL C has bodies of its
+// own only for the bit casts), so the two compute the same operations in the same order. What
+// differs is the frame: one work-item per element; an element function that returns 1 when it wrote
+// its outputs and 0 when it was discarded; and a work-group count of written elements added to one
+// global counter. A masked launch (StateMask.h) passes the state stream and the set: a work-item
+// whose state is not in it returns at once, and the selected elements are counted in a second
+// counter.
 #include "OpenCLEmitter.h"
 
 #include "../codegen/CDialect.h"
@@ -28,10 +29,6 @@ const char* kFrame = R"(typedef int int32_t;
 typedef uint uint32_t;
 typedef long int64_t;
 #define RILL_FN static inline
-RILL_FN rill_real rill_ibits(int32_t i) { return (rill_real)as_float(i); }
-RILL_FN int32_t rill_fbits(rill_real x) { return as_int((float)x); }
-RILL_FN rill_real rill_word_f(uint32_t w) { return (rill_real)as_float(w); }
-RILL_FN float rill_store_f(rill_real x) { return (float)x; }
 )";
 
 }  // namespace
@@ -50,7 +47,7 @@ std::string emit_opencl(const Function& f, Accuracy accuracy) {
   if (accuracy != Accuracy::Fast) src += "#pragma OPENCL FP_CONTRACT OFF\n";
   src += "#define RILL_M(fn) fn\n";
   src += kFrame;
-  src += codegen::c_family_helpers();
+  src += codegen::helper_bodies(codegen::Language::OpenCL);
 
   // Parameters shared by the element function and the kernel, in one order.
   std::vector<std::string> params, names;

@@ -19,10 +19,10 @@
 // and stores only the real ones.
 #include "LockstepEmitter.h"
 
-#include <algorithm>
 #include <string_view>
 
 #include "../codegen/CFamilyPrinter.h"
+#include "../codegen/Helpers.h"
 #include "../cpu/CEmitter.h"
 #include "VectorDialect.h"
 #include "rill/ir/Visitor.h"
@@ -37,9 +37,9 @@ using namespace ir;
 
 namespace {
 
-// Vector types and the vector forms of the helpers, after c_head() (rill_real is float: the
-// double mode has no lockstep form). rill_vi holds Int values and Bool lane masks (-1 true,
-// 0 false).
+// The vector frame, after c_head() (rill_real is float: the double mode has no lockstep
+// form): vector types, broadcasts, loads, selections and gathers, before the helpers' vector
+// bodies (lockstep_helpers()). rill_vi holds Int values and Bool lane masks (-1 true, 0 false).
 const char* kVectorPrelude = R"(
 typedef rill_real rill_vr __attribute__((vector_size(RILL_W * sizeof(rill_real))));
 typedef int32_t rill_vi __attribute__((vector_size(RILL_W * 4)));
@@ -129,36 +129,7 @@ RILL_FN rill_vr rill_sel_r(rill_vi c, rill_vr a, rill_vr b) {
 }
 RILL_FN rill_vi rill_mask(rill_vi c) { return -(c != 0); }
 #define RILL_CMP(x) __builtin_convertvector((x), rill_vi)
-RILL_FN rill_vi rill_v_add_i(rill_vi a, rill_vi b) { return (rill_vi)((rill_vu)a + (rill_vu)b); }
-RILL_FN rill_vi rill_v_sub_i(rill_vi a, rill_vi b) { return (rill_vi)((rill_vu)a - (rill_vu)b); }
-RILL_FN rill_vi rill_v_mul_i(rill_vi a, rill_vi b) { return (rill_vi)((rill_vu)a * (rill_vu)b); }
-RILL_FN rill_vi rill_v_neg_i(rill_vi a) { return (rill_vi)((rill_vu){} - (rill_vu)a); }
-RILL_FN rill_vi rill_v_shl(rill_vi a, rill_vi b) { return (rill_vi)((rill_vu)a << (rill_vu)(b & 31)); }
-RILL_FN rill_vi rill_v_shr(rill_vi a, rill_vi b) { return a >> (b & 31); }
-RILL_FN rill_vi rill_v_min_i(rill_vi a, rill_vi b) { return rill_sel_i(RILL_CMP(b < a), b, a); }
-RILL_FN rill_vi rill_v_max_i(rill_vi a, rill_vi b) { return rill_sel_i(RILL_CMP(a < b), b, a); }
-RILL_FN rill_vr rill_v_min_f(rill_vr a, rill_vr b) { return rill_sel_r(RILL_CMP(b < a), b, a); }
-RILL_FN rill_vr rill_v_max_f(rill_vr a, rill_vr b) { return rill_sel_r(RILL_CMP(a < b), b, a); }
-RILL_FN rill_vr rill_v_abs_f(rill_vr a) { return (rill_vr)((rill_vi)a & 0x7fffffff); }
-RILL_FN rill_vr rill_v_i2f(rill_vi a) { return __builtin_convertvector(a, rill_vr); }
-RILL_FN rill_vi rill_v_fbits(rill_vr a) { return (rill_vi)a; }
-RILL_FN rill_vr rill_v_ibits(rill_vi a) { return (rill_vr)a; }
 
-/* Array index clamped into [0, n), n < 2^31 (see rill_clamp_index). */
-RILL_FN rill_vi rill_v_clamp_index(rill_vi i, int64_t n) {
-  return rill_v_min_i(rill_v_max_i(i, rill_splat_i(0)), rill_splat_i((int32_t)(n - 1)));
-}
-/* The other boundary modes lane by lane through the scalar helpers (n < 2^31, so each result
-   fits a lane), and the lanes whose index is inside [0, n) as a lane mask. */
-RILL_FN rill_vi rill_v_wrap_index(rill_vi i, int64_t n) {
-  rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = (int32_t)rill_wrap_index(i[l], n); return r;
-}
-RILL_FN rill_vi rill_v_mirror_index(rill_vi i, int64_t n) {
-  rill_vi r; for (int l = 0; l < RILL_W; ++l) r[l] = (int32_t)rill_mirror_index(i[l], n); return r;
-}
-RILL_FN rill_vi rill_v_index_inside(rill_vi i, int64_t n) {
-  return RILL_CMP(i >= rill_splat_i(0)) & RILL_CMP(i < rill_splat_i((int32_t)n));
-}
 /* Gathers: each lane loads base[i]. Built from scalar loads (a vector initializer), which
    measured as fast as AVX2's microcoded gather instructions on the reference machine. */
 #if RILL_W == 8
@@ -223,64 +194,36 @@ RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi*
 #define RILL_HAVE_GATHER34 1
 #endif
 
-/* The other helpers run lane by lane through their scalar definitions (lane_wise_helpers()). */
+/* The helpers without vector code run lane by lane through their scalar definitions. */
 #define RILL_LANES1(name, R, A, fn) \
   RILL_FN R name(A a) { R r; for (int l = 0; l < RILL_W; ++l) r[l] = fn(a[l]); return r; }
 #define RILL_LANES2(name, R, A, fn) \
   RILL_FN R name(A a, A b) { R r; for (int l = 0; l < RILL_W; ++l) r[l] = fn(a[l], b[l]); return r; }
-#ifdef RILL_AVX2
-/* Exact in every mode, so the same bits as the scalar helpers (NaN, infinities, -0 included):
-   rounding to an integer and the square root are correctly rounded instructions. Strict code
-   would otherwise call floorf, ceilf and sqrtf lane by lane. The rounding immediates are
-   _MM_FROUND_TO_NEG_INF, _TO_POS_INF and _TO_ZERO, each with _MM_FROUND_NO_EXC (8). */
-RILL_FN rill_vr rill_v_floor(rill_vr a) { return __builtin_ia32_roundps256(a, 1 | 8); }
-RILL_FN rill_vr rill_v_ceil(rill_vr a) { return __builtin_ia32_roundps256(a, 2 | 8); }
-RILL_FN rill_vr rill_v_trunc(rill_vr a) { return __builtin_ia32_roundps256(a, 3 | 8); }
-RILL_FN rill_vr rill_v_sqrt(rill_vr a) { return __builtin_ia32_sqrtps256(a); }
-#else
-RILL_LANES1(rill_v_trunc, rill_vr, rill_vr, rill_trunc)
-RILL_LANES1(rill_v_floor, rill_vr, rill_vr, rill_floor)
-RILL_LANES1(rill_v_ceil, rill_vr, rill_vr, rill_ceil)
-RILL_LANES1(rill_v_sqrt, rill_vr, rill_vr, rill_sqrt)
-#endif
 )";
 
-// Whether kVectorPrelude defines rill_v_NAME as vector code: a definition's first parameter
-// is a lane vector, "rill_v_NAME(rill_vr a" (a use such as rill_v_min_i(rill_v_max_i(...))
-// does not match). The prelude is then the one place that says which helpers are vector code.
-bool prelude_defines(const std::string& name) {
-  const std::string_view prelude(kVectorPrelude);
-  for (const char* first : {"(rill_vr ", "(rill_vi "})
-    if (prelude.find("rill_v_" + name + first) != std::string_view::npos) return true;
-  return false;
-}
-
-// RILL_LANES1/2(rill_v_NAME, result, operand, rill_NAME) for every HELPER form of the op table
-// that kVectorPrelude does not define as vector code: lane by lane through its scalar
-// definition. The same for every kernel, so made once.
-const std::string& lane_wise_helpers() {
-  static const std::string text = [] {
-    std::string out;
-    std::vector<std::string> done;
-    auto vtype = [](ScalarKind k) { return k == ScalarKind::Float ? "rill_vr" : "rill_vi"; };
-    for (int o = 0; o < kOpCount; ++o) {
-      const Op op = static_cast<Op>(o);
-      const OpInfo& info = op_info(op);
-      for (ScalarKind k : {ScalarKind::Float, ScalarKind::Int}) {
-        const OpForm& form = info.form(k);
-        if (form.kind != FormKind::Helper || prelude_defines(form.text)) continue;
-        if (std::find(done.begin(), done.end(), form.text) != done.end()) continue;
-        done.emplace_back(form.text);
-        std::vector<Type> args(static_cast<size_t>(info.arity), Type{k, 1});
-        std::optional<Type> result = result_type(op, args, nullptr);
-        if (!result || (info.arity != 1 && info.arity != 2))
-          throw Error(std::string("internal: no lane-wise form for helper rill_") + form.text);
-        out += "RILL_LANES" + std::to_string(info.arity) + "(rill_v_" + form.text + ", " +
-               vtype(result->kind) + ", " + vtype(k) + ", rill_" + form.text + ")\n";
-      }
-    }
-    return out;
-  }();
+// The lockstep bodies of the helper table (codegen/Helpers.cpp), and for every HELPER form of
+// the op table that has none, RILL_LANES1/2(rill_v_NAME, result, operand, rill_NAME): lane by
+// lane through its scalar definition. The same for every kernel, so made once.
+const std::string& lockstep_helpers() {
+  static const std::string text = codegen::helper_bodies(
+      codegen::Language::Lockstep, {}, [](const codegen::Helper& h) -> std::string {
+        auto vtype = [](ScalarKind k) { return k == ScalarKind::Float ? "rill_vr" : "rill_vi"; };
+        for (int o = 0; o < kOpCount; ++o) {
+          const Op op = static_cast<Op>(o);
+          const OpInfo& info = op_info(op);
+          for (ScalarKind k : {ScalarKind::Float, ScalarKind::Int}) {
+            const OpForm& form = info.form(k);
+            if (form.kind != FormKind::Helper || form.text != std::string_view(h.name)) continue;
+            std::vector<Type> args(static_cast<size_t>(info.arity), Type{k, 1});
+            std::optional<Type> result = result_type(op, args, nullptr);
+            if (!result || (info.arity != 1 && info.arity != 2))
+              throw Error(std::string("internal: no lane-wise form for helper rill_") + h.name);
+            return "RILL_LANES" + std::to_string(info.arity) + "(rill_v_" + h.name + ", " +
+                   vtype(result->kind) + ", " + vtype(k) + ", rill_" + h.name + ")\n";
+          }
+        }
+        return "";  // not an op's helper (the frame's, or another dialect's)
+      });
   return text;
 }
 
@@ -310,7 +253,7 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   src += "#define RILL_W " + std::to_string(lanes) + "\n#define RILL_SPLAT(x) " + splat + "}\n" +
          c_head(f, accuracy);
   src += kVectorPrelude;
-  src += lane_wise_helpers();
+  src += lockstep_helpers();
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
   src += c_entry_locals(f, codegen::CDialect(accuracy, ""));  // scalar locals
   src += "  int64_t rill_written = 0;\n";

@@ -1,16 +1,20 @@
 // Every HELPER form of the op table (dsl/include/rill/ir/Ops.def) has a body in each dialect's
-// kernels: C and OpenCL C (backends/codegen/Helpers.cpp, and each emitter's frame for the bit
-// casts), GLSL (backends/glsl/GLSLEmitter.cpp, under every division and square-root rule) and
-// lockstep C (backends/simd/LockstepEmitter.cpp: vector code, or the lane-wise wrapper
-// generated from the table). Each dialect's check reads the source its emitter generates for a
-// small kernel, in every accuracy mode it has. A row added without its bodies fails here,
-// naming the op and the dialect, rather than in a driver's compiler on some backend.
+// kernels. The bodies are entries of one table, backends/codegen/Helpers.cpp (C, which OpenCL
+// C shares unless it has its own; GLSL, in variants for each division and square-root rule;
+// lockstep C, whose emitter generates a lane-wise wrapper for an entry without vector code),
+// and each emitter assembles its prelude from it. Each dialect's check reads the source its
+// emitter generates for a small kernel, in every accuracy mode it has (and for GLSL under
+// every driver rule). An op added without its helper's entry, or an entry without a body a
+// dialect needs, fails here, naming the op and the dialect, rather than in a driver's
+// compiler on some backend.
 #include <gtest/gtest.h>
 
 #include <regex>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "codegen/Helpers.h"
 #include "cpu/CEmitter.h"
 #include "rill/ir/Ops.h"
 #include "rill/rill.h"
@@ -64,6 +68,13 @@ TEST(Helpers, TheTableHasHelpers) {
   EXPECT_TRUE(defines("float rill_x(float a) {", "rill_x"));
   EXPECT_FALSE(defines("  return rill_x(a);", "rill_x"));
   EXPECT_FALSE(defines("  int y = rill_x(a);", "rill_x"));
+}
+
+// One home: an entry a helper, so a body is never defined, or changed, in two places.
+TEST(Helpers, EachHelperHasOneEntry) {
+  std::set<std::string> seen;
+  for (const codegen::Helper& h : codegen::helper_table())
+    EXPECT_TRUE(seen.insert(h.name).second) << "rill_" << h.name << ": two entries in the table";
 }
 
 TEST(Helpers, EveryHelperHasACBody) {
