@@ -36,6 +36,7 @@ const std::map<std::string, Bound>& table() {
       {"clamp", {0, 0, 0, 0}},
       {"select", {0, 0, 0, 0}},
       {"as_float", {0, 0, 0, 0}},
+      {"unit_float", {0, 0, 0, 0}},
       {"swizzle", {0, 0, 0, 0}},
       {"write mask", {0, 0, 0, 0}},
       // correctly rounded in IEEE arithmetic (0.5 ulp)

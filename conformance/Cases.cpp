@@ -400,6 +400,17 @@ Case int_binary(const std::string& name, const std::vector<std::string>& which) 
           "int.shl", [](const auto& a, const auto& b) { return a << b; }, ii(i_shl)),
       binary<int32_t, int32_t>(
           "int.shr", [](const auto& a, const auto& b) { return a >> b; }, ii(i_shr)),
+      binary<int32_t, int32_t>(
+          "int.shr_logical", [](const auto& a, const auto& b) { return shr_logical(a, b); },
+          ii([](int32_t a, int32_t b) {
+            return static_cast<int32_t>(static_cast<uint32_t>(a) >> (b & 31));
+          })),
+      binary<int32_t, int32_t>(
+          "int.mul_hi_unsigned", [](const auto& a, const auto& b) { return mul_hi_unsigned(a, b); },
+          ii([](int32_t a, int32_t b) {
+            const uint64_t p = uint64_t{static_cast<uint32_t>(a)} * static_cast<uint32_t>(b);
+            return static_cast<int32_t>(static_cast<uint32_t>(p >> 32));
+          })),
   };
   std::vector<B> picked;
   for (const auto& o : ops)
@@ -578,12 +589,14 @@ Case conversion_case() {
       Output<Float4> tf("to_float_v4"), af("as_float_v4");
       Output<Int> ti1("to_int_s");
       Output<Float> tf1("to_float_s");
+      Output<Float4> uf("unit_float_v4");
       ti = to_int(x);
       ai = as_int(x);
       tf = to_float(i);
       af = as_float(i);
       ti1 = to_int(Float(x.x()));
       tf1 = to_float(Int(i.x()));
+      uf = unit_float(i);
     });
   };
   auto add = [&](const char* op, const char* form, int out,
@@ -608,6 +621,9 @@ Case conversion_case() {
       [](const Elem& e, int c) { return static_cast<double>(float_of(e.w(1, c))); });
   add("to_int", "scalar", 4, [](const Elem& e, int) { return f_to_i(e.d(0, 0)); });
   add("to_float", "scalar", 5, [](const Elem& e, int) { return e.d(1, 0); });
+  // The high 24 bits as unsigned, times 2^-24: exact.
+  add("unit_float", "4-vector", 6,
+      [](const Elem& e, int c) { return static_cast<double>(e.w(1, c) >> 8) * 0x1p-24; });
   return k;
 }
 
@@ -976,7 +992,8 @@ std::vector<Case> operation_cases() {
   v.push_back(int_unary());
   // Two kernels: a GLSL context may not have the texture units for 36 outputs' previous values.
   v.push_back(int_binary("int_arith", {"add", "sub", "mul", "div", "rem", "min", "max"}));
-  v.push_back(int_binary("int_bits", {"and", "or", "xor", "shl", "shr"}));
+  v.push_back(int_binary("int_bits", {"and", "or", "xor", "shl", "shr", "shr_logical"}));
+  v.push_back(int_binary("int_unsigned", {"mul_hi_unsigned"}));
   v.push_back(compare_case<float>("compare_float", "", Domain{-4, 4}));
   v.push_back(compare_case<int32_t>("compare_int", "int.", Domain{-4, 4, true}));
   v.push_back(bool_case());

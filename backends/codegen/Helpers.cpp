@@ -8,6 +8,9 @@
 #include "Helpers.h"
 
 #include <algorithm>
+#include <string_view>
+
+#include "rill/ir/Ops.h"
 
 namespace rill::codegen {
 
@@ -506,12 +509,54 @@ RILL_FN rill_vi rill_v_wrap_index(rill_vi i, int64_t n) {
         {Lockstep, R"(RILL_FN rill_vi rill_v_index_inside(rill_vi i, int64_t n) {
   return RILL_CMP(i >= rill_splat_i(0)) & RILL_CMP(i < rill_splat_i((int32_t)n));
 })"}}},
+
+      // An Int's 32 bits as an unsigned number, for hashes and counter-based random numbers
+      // (rill/Random.h). On demand: only the kernels that call them define them.
+      // The logical right shift: zeros in from the left, by the low 5 bits of the count.
+      {"shr_u",
+       {{C,
+         R"(RILL_FN int32_t rill_shr_u(int32_t a, int32_t b) { return (int32_t)((uint32_t)a >> (b & 31)); })"},
+        {Glsl, R"(int rill_shr_u(int a, int b) { return int(uint(a) >> uint(b & 31)); })"},
+        {Lockstep,
+         R"(RILL_FN rill_vi rill_v_shr_u(rill_vi a, rill_vi b) { return (rill_vi)((rill_vu)a >> (rill_vu)(b & 31)); })"}},
+       true},
+      // The high 32 bits of the 64-bit unsigned product (the low ones are rill_mul_i's).
+      // OpenCL C has it built in. GLSL's umulExtended crashes llvmpipe's code generator (LLVM
+      // 15, Debian 12: SelectionDAG's SimplifyDemandedBits), so GLSL adds the four 16 x 16-bit
+      // partial products, none of which overflows. Lockstep C runs the C body lane by lane.
+      {"mul_hi_u",
+       {{C,
+         R"(RILL_FN int32_t rill_mul_hi_u(int32_t a, int32_t b) { return (int32_t)(uint32_t)(((uint64_t)(uint32_t)a * (uint32_t)b) >> 32); })"},
+        {OpenCL,
+         R"(RILL_FN int32_t rill_mul_hi_u(int32_t a, int32_t b) { return (int32_t)mul_hi((uint32_t)a, (uint32_t)b); })"},
+        {Glsl, R"(int rill_mul_hi_u(int a, int b) {
+  uint x = uint(a), y = uint(b);
+  uint xl = x & 0xffffu, xh = x >> 16u, yl = y & 0xffffu, yh = y >> 16u;
+  uint lh = xl * yh, hl = xh * yl;
+  uint mid = ((xl * yl) >> 16u) + (lh & 0xffffu) + (hl & 0xffffu);
+  return int(xh * yh + (lh >> 16u) + (hl >> 16u) + (mid >> 16u));
+})"}},
+       true},
+      // A float in [0, 1): the high 24 bits, unsigned, times 2^-24. Both steps are exact (a
+      // value below 2^24 converts exactly, and a power of two scales exactly), so a driver that
+      // fuses the product with a later add still rounds once, as the others do.
+      {"unit_f",
+       {{C,
+         R"(RILL_FN rill_real rill_unit_f(int32_t a) { return (rill_real)((uint32_t)a >> 8) * (rill_real)0x1p-24f; })"},
+        {Glsl,
+         R"(float rill_unit_f(int a) { return float(uint(a) >> 8u) * 5.9604644775390625e-8; })"},
+        {Lockstep,
+         R"(RILL_FN rill_vr rill_v_unit_f(rill_vi a) { return __builtin_convertvector((rill_vu)a >> 8, rill_vr) * rill_splat_r((rill_real)0x1p-24f); })"}},
+       true},
   };
   return table;
 }
 
-std::string helper_bodies(Language d, const std::vector<Variant>& variants,
-                          const std::function<std::string(const Helper&)>& missing) {
+namespace {
+
+// Helper h's text in language d for the prelude that takes `variants` (and Any).
+std::string body_text(const Helper& h, Language d, const std::vector<Variant>& variants,
+                      const std::function<std::string(const Helper&)>& missing) {
   auto takes = [&](const Body& b) {
     return b.variant == Variant::Any ||
            std::find(variants.begin(), variants.end(), b.variant) != variants.end();
@@ -520,21 +565,52 @@ std::string helper_bodies(Language d, const std::vector<Variant>& variants,
     std::string s = text;
     return s.empty() || s.back() == '\n' ? s : s + '\n';
   };
+  // OpenCL C takes the C bodies of the helpers that have no OpenCL body.
+  Language want = d;
+  if (d == OpenCL && std::none_of(h.bodies.begin(), h.bodies.end(),
+                                  [](const Body& b) { return b.language == OpenCL; }))
+    want = C;
   std::string out;
-  for (const Helper& h : helper_table()) {
-    // OpenCL C takes the C bodies of the helpers that have no OpenCL body.
-    Language want = d;
-    if (d == OpenCL && std::none_of(h.bodies.begin(), h.bodies.end(),
-                                    [](const Body& b) { return b.language == OpenCL; }))
-      want = C;
-    bool found = false;
-    for (const Body& b : h.bodies)
-      if (b.language == want) {
-        found = true;
-        if (takes(b)) out += line(b.text);
-      }
-    if (!found && missing) out += missing(h);
+  bool found = false;
+  for (const Body& b : h.bodies)
+    if (b.language == want) {
+      found = true;
+      if (takes(b)) out += line(b.text);
+    }
+  if (!found && missing) out += missing(h);
+  return out;
+}
+
+// Whether kernel f contains an op whose HELPER form is h.
+bool calls(const ir::Function& f, const Helper& h) {
+  for (int o = 0; o < ir::kOpCount; ++o) {
+    const ir::Op op = static_cast<ir::Op>(o);
+    const ir::OpInfo& info = ir::op_info(op);
+    for (ir::ScalarKind k : {ir::ScalarKind::Float, ir::ScalarKind::Int, ir::ScalarKind::Bool}) {
+      const ir::OpForm& form = info.form(k);
+      if (form.kind == ir::FormKind::Helper && form.text == std::string_view(h.name) &&
+          ir::contains(f.body, op))
+        return true;
+    }
   }
+  return false;
+}
+
+}  // namespace
+
+std::string helper_bodies(Language d, const std::vector<Variant>& variants,
+                          const std::function<std::string(const Helper&)>& missing) {
+  std::string out;
+  for (const Helper& h : helper_table())
+    if (!h.on_demand) out += body_text(h, d, variants, missing);
+  return out;
+}
+
+std::string on_demand_bodies(Language d, const ir::Function& f,
+                             const std::function<std::string(const Helper&)>& missing) {
+  std::string out;
+  for (const Helper& h : helper_table())
+    if (h.on_demand && calls(f, h)) out += body_text(h, d, {}, missing);
   return out;
 }
 

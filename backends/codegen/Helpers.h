@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "rill/ir/IR.h"
+
 namespace rill::codegen {
 
 // The languages a body is written in. A C body serves OpenCL C too, unless the helper has
@@ -44,6 +46,10 @@ struct Body {
 struct Helper {
   const char* name;  // the function is rill_NAME (lockstep C: rill_v_NAME)
   std::vector<Body> bodies;
+  // Defined only in the kernels that call it (on_demand_bodies), not in every prelude: the
+  // helpers added after the kernel caches and the identity records of today's kernels, so that
+  // a kernel that does not use them keeps its source, and with it its cache entries.
+  bool on_demand = false;
 };
 
 // The table, in the order every prelude defines the helpers (a helper before its users).
@@ -54,6 +60,12 @@ const std::vector<Helper>& helper_table();
 // C's lane-wise wrappers); it may return "".
 std::string helper_bodies(Language d, const std::vector<Variant>& variants = {},
                           const std::function<std::string(const Helper&)>& missing = {});
+
+// The bodies in language d of the on-demand helpers (Helper::on_demand) that kernel f calls
+// through an op's HELPER form, in the table's order; helper_bodies leaves them out. They use
+// no other helper, so a prelude may end with them.
+std::string on_demand_bodies(Language d, const ir::Function& f,
+                             const std::function<std::string(const Helper&)>& missing = {});
 
 // The 32-bit element count of each array (arr<k>_n32, from arr<k>_shape[0]) that 1D clamped
 // gathers index with (CDialect::gather): declarations for an entry point that has set up

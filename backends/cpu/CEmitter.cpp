@@ -55,6 +55,7 @@ std::string c_head(const Function& f, Accuracy accuracy) {
     src += "typedef float rill_real;\n#define RILL_M(fn) fn##f\n";
   src += kPrelude;
   src += codegen::helper_bodies(codegen::Language::C);
+  src += codegen::on_demand_bodies(codegen::Language::C, f);
   return src;
 }
 

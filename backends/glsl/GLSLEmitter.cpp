@@ -267,6 +267,12 @@ std::string helper_definitions(Accuracy accuracy, const DriverRules& rules,
                                                              ? std::vector{codegen::Variant::Fast}
                                                              : divsqrt_variants(rules.divsqrt));
 }
+// The same, and the on-demand helpers kernel f calls.
+std::string helper_definitions(const Function& f, Accuracy accuracy, const DriverRules& rules,
+                               bool flushes_denormals) {
+  return helper_definitions(accuracy, rules, flushes_denormals) +
+         codegen::on_demand_bodies(codegen::Language::Glsl, f);
+}
 
 // The kernel's uniforms as named scalars, at the top of main.
 std::string unpack_uniforms(const Function& f, const GLSLDialect& d) {
@@ -330,7 +336,7 @@ GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int
            ") buffer rill_guard_b { uint loops_cut; } rill_guard;\n" +
            loop_check("rill_guard.loops_cut");
   // Every driver's fragment stage that Rill has met flushes (NVIDIA, llvmpipe).
-  src += helper_definitions(accuracy, rules, true);
+  src += helper_definitions(f, accuracy, rules, true);
   src += "\nvoid main() {\n";
   src += "  ivec2 rill_pos = ivec2(gl_FragCoord.xy);\n";
   src += "  int rill_i = rill_pos.y * rill_row + rill_pos.x;\n";
@@ -407,7 +413,7 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
 )";
   if (!counts)
     src += "#undef RILL_COUNT\n#define RILL_COUNT(field)  // counted by the kernel's first pass\n";
-  src += helper_definitions(accuracy, rules, flushes_denormals);
+  src += helper_definitions(f, accuracy, rules, flushes_denormals);
   src += "uniform int rill_tiled;\n";
   src += "\nvoid main() {\n";
   src +=
@@ -459,8 +465,9 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   return GLSLShader{src, d.constants};
 }
 
-std::string glsl_helpers(Accuracy accuracy, const DriverRules& rules, bool flushes_denormals) {
-  return helper_definitions(accuracy, rules, flushes_denormals);
+std::string glsl_helpers(const Function& f, Accuracy accuracy, const DriverRules& rules,
+                         bool flushes_denormals) {
+  return helper_definitions(f, accuracy, rules, flushes_denormals);
 }
 
 }  // namespace rill::glsl

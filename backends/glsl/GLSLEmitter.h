@@ -71,6 +71,7 @@ std::string vertex_shader();
 
 // The rill_* helpers every generated GLSL kernel starts with (the division and square root
 // of the driver's rules, then the op table's HELPER forms), for the completeness test.
-std::string glsl_helpers(Accuracy accuracy, const DriverRules& rules, bool flushes_denormals);
+std::string glsl_helpers(const ir::Function& f, Accuracy accuracy, const DriverRules& rules,
+                         bool flushes_denormals);
 
 }  // namespace rill::glsl

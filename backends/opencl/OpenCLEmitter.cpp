@@ -48,6 +48,7 @@ std::string emit_opencl(const Function& f, Accuracy accuracy) {
   src += "#define RILL_M(fn) fn\n";
   src += kFrame;
   src += codegen::helper_bodies(codegen::Language::OpenCL);
+  src += codegen::on_demand_bodies(codegen::Language::OpenCL, f);
 
   // Parameters shared by the element function and the kernel, in one order.
   std::vector<std::string> params, names;

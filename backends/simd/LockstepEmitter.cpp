@@ -201,29 +201,33 @@ RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi*
   RILL_FN R name(A a, A b) { R r; for (int l = 0; l < RILL_W; ++l) r[l] = fn(a[l], b[l]); return r; }
 )";
 
-// The lockstep bodies of the helper table (codegen/Helpers.cpp), and for every HELPER form of
-// the op table that has none, RILL_LANES1/2(rill_v_NAME, result, operand, rill_NAME): lane by
-// lane through its scalar definition. The same for every kernel, so made once.
+// For a helper without a lockstep body, RILL_LANES1/2(rill_v_NAME, result, operand,
+// rill_NAME) when an op's HELPER form names it: lane by lane through its scalar definition.
+std::string lane_wise(const codegen::Helper& h) {
+  auto vtype = [](ScalarKind k) { return k == ScalarKind::Float ? "rill_vr" : "rill_vi"; };
+  for (int o = 0; o < kOpCount; ++o) {
+    const Op op = static_cast<Op>(o);
+    const OpInfo& info = op_info(op);
+    for (ScalarKind k : {ScalarKind::Float, ScalarKind::Int}) {
+      const OpForm& form = info.form(k);
+      if (form.kind != FormKind::Helper || form.text != std::string_view(h.name)) continue;
+      std::vector<Type> args(static_cast<size_t>(info.arity), Type{k, 1});
+      std::optional<Type> result = result_type(op, args, nullptr);
+      if (!result || (info.arity != 1 && info.arity != 2))
+        throw Error(std::string("internal: no lane-wise form for helper rill_") + h.name);
+      return "RILL_LANES" + std::to_string(info.arity) + "(rill_v_" + h.name + ", " +
+             vtype(result->kind) + ", " + vtype(k) + ", rill_" + h.name + ")\n";
+    }
+  }
+  return "";  // not an op's helper (the frame's, or another dialect's)
+}
+
+// The lockstep bodies of the helper table (codegen/Helpers.cpp), and the lane-wise wrappers
+// of those without one. The same for every kernel, so made once; the on-demand helpers a
+// kernel calls follow (emit_c_lockstep).
 const std::string& lockstep_helpers() {
-  static const std::string text = codegen::helper_bodies(
-      codegen::Language::Lockstep, {}, [](const codegen::Helper& h) -> std::string {
-        auto vtype = [](ScalarKind k) { return k == ScalarKind::Float ? "rill_vr" : "rill_vi"; };
-        for (int o = 0; o < kOpCount; ++o) {
-          const Op op = static_cast<Op>(o);
-          const OpInfo& info = op_info(op);
-          for (ScalarKind k : {ScalarKind::Float, ScalarKind::Int}) {
-            const OpForm& form = info.form(k);
-            if (form.kind != FormKind::Helper || form.text != std::string_view(h.name)) continue;
-            std::vector<Type> args(static_cast<size_t>(info.arity), Type{k, 1});
-            std::optional<Type> result = result_type(op, args, nullptr);
-            if (!result || (info.arity != 1 && info.arity != 2))
-              throw Error(std::string("internal: no lane-wise form for helper rill_") + h.name);
-            return "RILL_LANES" + std::to_string(info.arity) + "(rill_v_" + h.name + ", " +
-                   vtype(result->kind) + ", " + vtype(k) + ", rill_" + h.name + ")\n";
-          }
-        }
-        return "";  // not an op's helper (the frame's, or another dialect's)
-      });
+  static const std::string text =
+      codegen::helper_bodies(codegen::Language::Lockstep, {}, lane_wise);
   return text;
 }
 
@@ -254,6 +258,7 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
          c_head(f, accuracy);
   src += kVectorPrelude;
   src += lockstep_helpers();
+  src += codegen::on_demand_bodies(codegen::Language::Lockstep, f, lane_wise);
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
   src += c_entry_locals(f, codegen::CDialect(accuracy, ""));  // scalar locals
   src += "  int64_t rill_written = 0;\n";

@@ -9,6 +9,7 @@
 // compiler on some backend.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <regex>
 #include <set>
 #include <string>
@@ -37,9 +38,19 @@ bool defines(const std::string& text, const std::string& name) {
   return std::regex_search(text, def);
 }
 
-// A kernel for the emitters to print: its source carries the dialect's whole prelude.
+// A kernel for the emitters to print: its source carries the dialect's whole prelude, and the
+// on-demand helpers (codegen::Helper::on_demand), since it calls them.
 const ir::Function& probe() {
   static const Program p = program("helpers_probe", [] {
+    Output<Float> o("o");
+    Int i = element_index();
+    o = unit_float(shr_logical(mul_hi_unsigned(i, i), i));
+  });
+  return p.ir();
+}
+// A kernel that calls none of the on-demand helpers.
+const ir::Function& plain() {
+  static const Program p = program("helpers_plain", [] {
     Output<Float> o("o");
     o = 1.0f;
   });
@@ -75,6 +86,36 @@ TEST(Helpers, EachHelperHasOneEntry) {
   std::set<std::string> seen;
   for (const codegen::Helper& h : codegen::helper_table())
     EXPECT_TRUE(seen.insert(h.name).second) << "rill_" << h.name << ": two entries in the table";
+}
+
+// An on-demand helper is defined in the kernels that call it and in no other, so that adding
+// one leaves every other kernel's source, and its cache entries, as they were.
+TEST(Helpers, OnDemandHelpersOnlyWhereCalled) {
+  std::vector<std::pair<std::string, std::function<std::string(const ir::Function&)>>> dialects = {
+      {"C", [](const ir::Function& f) { return cpu::emit_c(f, Accuracy::Strict); }},
+      {"lockstep C",
+       [](const ir::Function& f) { return simd::emit_c_lockstep(f, Accuracy::Strict); }}};
+#ifdef RILL_HAVE_OPENCL
+  dialects.push_back(
+      {"OpenCL C", [](const ir::Function& f) { return opencl::emit_opencl(f, Accuracy::Strict); }});
+#endif
+#ifdef RILL_HAVE_GLSL
+  dialects.push_back({"GLSL", [](const ir::Function& f) {
+                        return glsl::glsl_helpers(f, Accuracy::Strict, glsl::DriverRules{}, true);
+                      }});
+#endif
+  int on_demand = 0;
+  for (const codegen::Helper& h : codegen::helper_table()) {
+    if (!h.on_demand) continue;
+    ++on_demand;
+    for (const auto& [name, emit] : dialects) {
+      EXPECT_TRUE(emit(probe()).find("rill_" + std::string(h.name) + "(") != std::string::npos)
+          << "rill_" << h.name << " missing from a " << name << " kernel that calls it";
+      EXPECT_EQ(emit(plain()).find("rill_" + std::string(h.name) + "("), std::string::npos)
+          << "rill_" << h.name << " in a " << name << " kernel that does not call it";
+    }
+  }
+  EXPECT_EQ(on_demand, 3);  // shr_u, mul_hi_u, unit_f
 }
 
 TEST(Helpers, EveryHelperHasACBody) {
@@ -116,7 +157,7 @@ TEST(Helpers, EveryHelperHasAGlslBodyUnderEveryDriverRule) {
       for (bool flushes : {false, true}) {
         glsl::DriverRules rules;
         rules.divsqrt = ds;
-        const std::string text = glsl::glsl_helpers(a, rules, flushes);
+        const std::string text = glsl::glsl_helpers(probe(), a, rules, flushes);
         for (const Helper& h : table_helpers())
           EXPECT_TRUE(defines(text, "rill_" + h.name))
               << "op '" << h.op << "': no rill_" << h.name << " in the GLSL prelude ("

@@ -69,6 +69,16 @@ int32_t ref_shl(int32_t a, int32_t b) {
 int32_t ref_shr(int32_t a, int32_t b) {
   return a >> (b & 31);
 }
+int32_t ref_shr_logical(int32_t a, int32_t b) {
+  return static_cast<int32_t>(static_cast<uint32_t>(a) >> (b & 31));
+}
+int32_t ref_mul_hi_unsigned(int32_t a, int32_t b) {
+  const uint64_t p = uint64_t{static_cast<uint32_t>(a)} * static_cast<uint32_t>(b);
+  return static_cast<int32_t>(static_cast<uint32_t>(p >> 32));
+}
+float ref_unit_float(int32_t x) {
+  return static_cast<float>(static_cast<uint32_t>(x) >> 8) / 16777216.0f;
+}
 int32_t ref_to_int(float x) {
   if (std::isnan(x)) return 0;
   if (x >= 2147483648.0f) return std::numeric_limits<int32_t>::max();
@@ -117,6 +127,10 @@ constexpr auto op_or = [](const auto& a, const auto& b) { return a | b; };
 constexpr auto op_xor = [](const auto& a, const auto& b) { return a ^ b; };
 constexpr auto op_shl = [](const auto& a, const auto& b) { return a << b; };
 constexpr auto op_shr = [](const auto& a, const auto& b) { return a >> b; };
+constexpr auto op_shr_logical = [](const auto& a, const auto& b) { return shr_logical(a, b); };
+constexpr auto op_mul_hi_unsigned = [](const auto& a, const auto& b) {
+  return mul_hi_unsigned(a, b);
+};
 constexpr auto op_select = [](const auto& a, const auto& b) { return select(a < b, b - a, a * b); };
 // All six comparisons in one result: bit k is comparison k.
 constexpr auto op_compare = [](const auto& a, const auto& b) {
@@ -145,6 +159,7 @@ constexpr auto op_bitnot = [](const auto& x) { return ~x; };
 constexpr auto op_to_int = [](const auto& x) { return to_int(x); };
 constexpr auto op_to_float = [](const auto& x) { return to_float(x); };
 constexpr auto op_as_float = [](const auto& x) { return as_float(x); };
+constexpr auto op_unit_float = [](const auto& x) { return unit_float(x); };
 constexpr auto op_as_int = [](const auto& x) {
   using I = Value<int32_t, std::remove_cvref_t<decltype(x)>::width>;
   return select(x != x, I(0x7fc00000), as_int(x));
@@ -508,6 +523,12 @@ TEST_P(OperationsTest, ShiftLeft) {
 TEST_P(OperationsTest, ShiftRight) {
   int_binary("shr", op_shr, ref_shr, -1024, -1);
 }
+TEST_P(OperationsTest, ShiftRightLogical) {
+  int_binary("shr_logical", op_shr_logical, ref_shr_logical, -1024, -1);
+}
+TEST_P(OperationsTest, MulHiUnsigned) {
+  int_binary("mul_hi_unsigned", op_mul_hi_unsigned, ref_mul_hi_unsigned, -1, -7);
+}
 TEST_P(OperationsTest, IntComparisons) {
   int_binary("icmp", op_compare, ref_compare_bits<int32_t>);
 }
@@ -551,6 +572,9 @@ TEST_P(OperationsTest, ToFloat) {
 TEST_P(OperationsTest, AsFloat) {
   // NaN patterns only need to stay NaN (payloads are not specified).
   int_unary("as_float", op_as_float, [](int32_t x) { return std::bit_cast<float>(x); });
+}
+TEST_P(OperationsTest, UnitFloat) {
+  int_unary("unit_float", op_unit_float, ref_unit_float);
 }
 TEST_P(OperationsTest, AsInt) {
   float_unary("as_int", op_as_int, ref_as_int);
@@ -808,6 +832,8 @@ TEST_P(ConstantsTest, Int) {
       {"xor", op_xor, [](int32_t a, int32_t b) { return a ^ b; }},
       {"shl", op_shl, ref_shl},
       {"shr", op_shr, ref_shr},
+      {"shr_logical", op_shr_logical, ref_shr_logical},
+      {"mul_hi_unsigned", op_mul_hi_unsigned, ref_mul_hi_unsigned},
       {"compare", op_compare, ref_compare_bits<int32_t>},
       {"neg", un(op_neg), [](int32_t a, int32_t) { return wrap(-int64_t{a}); }},
       {"abs", un(op_abs), [](int32_t a, int32_t) { return wrap(a < 0 ? -int64_t{a} : a); }},
@@ -816,7 +842,9 @@ TEST_P(ConstantsTest, Int) {
   ops.floats = {{"to_float", un(op_to_float),
                  [](int32_t a, int32_t) { return double{static_cast<float>(a)}; }, 0},
                 {"as_float", un(op_as_float),
-                 [](int32_t a, int32_t) { return double{std::bit_cast<float>(a)}; }, 0}};
+                 [](int32_t a, int32_t) { return double{std::bit_cast<float>(a)}; }, 0},
+                {"unit_float", un(op_unit_float),
+                 [](int32_t a, int32_t) { return double{ref_unit_float(a)}; }, 0}};
   std::vector<int32_t> v = {0,
                             1,
                             -1,

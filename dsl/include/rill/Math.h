@@ -77,6 +77,12 @@ RILL_BINARY_FN(max, Max, (!std::is_same_v<T, bool>))
 RILL_BINARY_FN(mod, Mod, (std::is_same_v<T, float>))
 RILL_BINARY_FN(pow, Pow, (std::is_same_v<T, float>))
 RILL_BINARY_FN(atan2, Atan2, (std::is_same_v<T, float>))  // atan2(y, x)
+// An Int's 32 bits read as an unsigned number, for hashes and counter-based random numbers
+// (rill/Random.h): shr_logical(x, n) shifts right filling with zeros (by the low 5 bits of n,
+// as >> does), and mul_hi_unsigned(a, b) is the high 32 bits of the 64-bit product of a and b
+// as unsigned numbers (the low half is a * b).
+RILL_BINARY_FN(shr_logical, ShrU, (std::is_same_v<T, int32_t>))
+RILL_BINARY_FN(mul_hi_unsigned, MulHiU, (std::is_same_v<T, int32_t>))
 #undef RILL_BINARY_FN
 
 // Defined as min(max(x, lo), hi).
@@ -182,6 +188,12 @@ Value<int32_t, N> as_int(const Value<float, N>& x) {
 template <int N>
 Value<float, N> as_float(const Value<int32_t, N>& x) {
   return detail::unary<float>(ir::Op::IntBitsToFloat, x);
+}
+// A float in [0, 1) from the high 24 bits of x read as unsigned: (x >>> 8) * 2^-24, exact,
+// so every backend and accuracy mode gives the same value. Uniform when x is.
+template <int N>
+Value<float, N> unit_float(const Value<int32_t, N>& x) {
+  return detail::unary<float>(ir::Op::UnitFloat, x);
 }
 
 // The index of the stream element being computed, 0 .. n-1.

@@ -16,6 +16,7 @@
 #include "rill/Parameters.h"
 #include "rill/Program.h"
 #include "rill/Record.h"
+#include "rill/Random.h"
 #include "rill/Reduce.h"
 #include "rill/Stream.h"
 #include "rill/Value.h"

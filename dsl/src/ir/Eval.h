@@ -146,6 +146,15 @@ inline int32_t shl(int32_t a, int32_t b) {
 inline int32_t shr(int32_t a, int32_t b) {
   return a >> (b & 31);
 }
+// The unsigned views of the 32 bits, for hashes and counter-based random numbers: the
+// logical (zero-filling) right shift, and the high half of the 64-bit unsigned product.
+inline int32_t shr_u(int32_t a, int32_t b) {
+  return static_cast<int32_t>(static_cast<uint32_t>(a) >> (b & 31));
+}
+inline int32_t mul_hi_u(int32_t a, int32_t b) {
+  const uint64_t p = uint64_t{static_cast<uint32_t>(a)} * static_cast<uint32_t>(b);
+  return static_cast<int32_t>(static_cast<uint32_t>(p >> 32));
+}
 
 inline bool logic_and(bool a, bool b) {
   return a && b;
@@ -202,6 +211,11 @@ inline int32_t float_bits(float x) {
 }
 inline float int_bits(int32_t i) {
   return std::bit_cast<float>(i);
+}
+// The high 24 bits of the unsigned value, times 2^-24: a float in [0, 1) on the grid of
+// 2^-24, exact (every such value is a binary32 number), so the same on every backend and mode.
+inline float unit_float(int32_t i) {
+  return static_cast<float>(static_cast<uint32_t>(i) >> 8) * 0x1p-24f;
 }
 
 // Whole-value ops: (result type, operands) -> result.

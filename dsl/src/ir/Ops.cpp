@@ -118,8 +118,10 @@ std::optional<Type> result_type(Op op, std::span<const Type> args, std::string* 
       return args[1].with_width(*w);
     }
     case OpClass::Convert: {
-      ScalarKind from = (op == Op::IntToFloat || op == Op::IntBitsToFloat) ? ScalarKind::Int
-                                                                            : ScalarKind::Float;
+      ScalarKind from =
+          (op == Op::IntToFloat || op == Op::IntBitsToFloat || op == Op::UnitFloat)
+              ? ScalarKind::Int
+              : ScalarKind::Float;
       if (args[0].kind != from) return fail(std::string("expects ") + kind_name(from));
       ScalarKind to = from == ScalarKind::Int ? ScalarKind::Float : ScalarKind::Int;
       return args[0].with_kind(to);

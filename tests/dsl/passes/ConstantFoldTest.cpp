@@ -489,7 +489,8 @@ const std::vector<int32_t> kIntCases = {0,  1,  -1,    2,       -2,   3,    -7, 
                                         32, 33, 65536, 1 << 30, kMax, kMin, kMax - 1, kMin + 1};
 const std::vector<Op> kIntOps = {Op::Add,    Op::Sub,   Op::Mul,    Op::Div,   Op::Mod, Op::Min,
                                  Op::Max,    Op::Abs,   Op::Sign,   Op::Neg,   Op::Shl, Op::Shr,
-                                 Op::BitAnd, Op::BitOr, Op::BitXor, Op::BitNot};
+                                 Op::BitAnd, Op::BitOr, Op::BitXor, Op::BitNot, Op::ShrU,
+                                 Op::MulHiU};
 
 Int apply_int(Op op, const Int& a, const Int& b) {
   switch (op) {
@@ -525,6 +526,10 @@ Int apply_int(Op op, const Int& a, const Int& b) {
       return a ^ b;
     case Op::BitNot:
       return ~a;
+    case Op::ShrU:
+      return shr_logical(a, b);
+    case Op::MulHiU:
+      return mul_hi_unsigned(a, b);
     default:
       throw std::logic_error("op");
   }
