@@ -11,14 +11,15 @@
 #
 #   rill_add_test_batches(<target>
 #     [FILTER <gtest filter>]   the cases to take (default: all), as --gtest_filter reads it
-#     [SUFFIX <text>]           appended to every batch's name (".opencl")
+#     [SUFFIX <text>]           appended to every batch's name ("-long")
 #     [PROPERTIES <name> <value> ...])  set on every batch (LABELS, ENVIRONMENT, TIMEOUT, ...)
 #
-# A batch is named <suite>.<parameter><suffix> ("Backends/OperationsTest.opencl.opencl") or
-# <suite><suffix> for a suite without parameters, and runs `<target> --gtest_filter=<its
-# cases>`. As with gtest_discover_tests(DISCOVERY_MODE PRE_TEST), the cases are listed when
-# CTest starts, from the executable it is about to run, so a new case needs no CMake run; the
-# list is kept until the executable changes. One case alone: `<target> --gtest_filter=<name>`.
+# A batch is named <suite>/<parameter><suffix> ("Backends/OperationsTest/opencl",
+# "Backends/Render/opencl-long") or <suite><suffix> for a suite without parameters, and runs
+# `<target> --gtest_filter=<its cases>`. As with gtest_discover_tests(DISCOVERY_MODE PRE_TEST),
+# the cases are listed when CTest starts, from the executable it is about to run, so a new case
+# needs no CMake run; the list is kept until the executable changes. One case alone:
+# `<target> --gtest_filter=<name>`. Property values are single words (no ';' lists).
 include_guard(GLOBAL)
 
 set(_rill_test_batches_script "${CMAKE_CURRENT_LIST_DIR}/RillTestBatchesScript.cmake")
@@ -28,13 +29,17 @@ function(rill_add_test_batches target)
   if(NOT arg_FILTER)
     set(arg_FILTER "*")
   endif()
-  string(MAKE_C_IDENTIFIER "${target}${arg_SUFFIX}_${arg_FILTER}" key)
-  string(MD5 key_hash "${key}")
+  string(MD5 key_hash "${target}|${arg_SUFFIX}|${arg_FILTER}")
   string(SUBSTRING "${key_hash}" 0 8 key_hash)
   set(base "${CMAKE_CURRENT_BINARY_DIR}/${target}_batches_${key_hash}")
   # The properties, written as CMake source for the script to pass to set_tests_properties.
   set(properties "")
   foreach(p IN LISTS arg_PROPERTIES)
+    if(p MATCHES ";")
+      # Each value is passed on as one word; a list value would come apart on the way.
+      message(FATAL_ERROR "rill_add_test_batches(${target}): the property value '${p}' is a "
+                          "list; set it with set_tests_properties on the batches instead")
+    endif()
     string(APPEND properties " [==[${p}]==]")
   endforeach()
   file(GENERATE OUTPUT "${base}_include.cmake" CONTENT

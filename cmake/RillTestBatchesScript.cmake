@@ -32,6 +32,8 @@ function(rill_write_test_batches)
   set(suite "")
   set(batches "")
   foreach(line IN LISTS lines)
+    # A typed suite's line ends in a comment, "Suite/0.  # TypeParam = int": drop it.
+    string(REGEX REPLACE "  #.*$" "" line "${line}")
     if(line MATCHES "^([^ #][^ ]*)\\.$")
       set(suite "${CMAKE_MATCH_1}")
     elseif(suite AND line MATCHES "^  ([^ ]+)")
@@ -59,7 +61,11 @@ function(rill_write_test_batches)
     string(APPEND script "list(APPEND rill_batches [==[${batch}${RILL_BATCH_SUFFIX}]==])\n"
                          "set([==[rill_batch_filter_${batch}${RILL_BATCH_SUFFIX}]==] [==[${filter}]==])\n")
   endforeach()
-  file(WRITE "${RILL_BATCH_OUTPUT}" "${script}")
+  # Written whole, then renamed: a second CTest run in the same build reads the old list or the
+  # new one, never half of one.
+  string(RANDOM LENGTH 8 tag)
+  file(WRITE "${RILL_BATCH_OUTPUT}.${tag}" "${script}")
+  file(RENAME "${RILL_BATCH_OUTPUT}.${tag}" "${RILL_BATCH_OUTPUT}")
 endfunction()
 
 if(NOT EXISTS "${RILL_BATCH_OUTPUT}" OR "${RILL_BATCH_EXECUTABLE}" IS_NEWER_THAN "${RILL_BATCH_OUTPUT}"

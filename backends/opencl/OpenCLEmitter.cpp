@@ -2,7 +2,7 @@
 //
 // The body is printed by the shared C-family printer with the same dialect as the CPU
 // backend (scalarized, same helpers: codegen/Helpers.cpp, where OpenCL C has bodies of its
-// own only for the bit casts), so the two compute the same operations in the same order. What
+// own only for the bit casts and mul_hi_u), so the two compute the same operations in the same order. What
 // differs is the frame: one work-item per element; an element function that returns 1 when it wrote
 // its outputs and 0 when it was discarded; and a work-group count of written elements added to one
 // global counter. A masked launch (StateMask.h) passes the state stream and the set: a work-item

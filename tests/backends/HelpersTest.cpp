@@ -109,10 +109,10 @@ TEST(Helpers, OnDemandHelpersOnlyWhereCalled) {
     if (!h.on_demand) continue;
     ++on_demand;
     for (const auto& [name, emit] : dialects) {
-      EXPECT_TRUE(emit(probe()).find("rill_" + std::string(h.name) + "(") != std::string::npos)
-          << "rill_" << h.name << " missing from a " << name << " kernel that calls it";
-      EXPECT_EQ(emit(plain()).find("rill_" + std::string(h.name) + "("), std::string::npos)
-          << "rill_" << h.name << " in a " << name << " kernel that does not call it";
+      EXPECT_TRUE(defines(emit(probe()), "rill_" + std::string(h.name)))
+          << "rill_" << h.name << " not defined in a " << name << " kernel that calls it";
+      EXPECT_FALSE(defines(emit(plain()), "rill_" + std::string(h.name)))
+          << "rill_" << h.name << " defined in a " << name << " kernel that does not call it";
     }
   }
   EXPECT_EQ(on_demand, 3);  // shr_u, mul_hi_u, unit_f

@@ -1,6 +1,6 @@
 // Counter-based random numbers in kernels: Philox4x32-10 (Salmon, Moraes, Dror and Shaw,
 // "Parallel random numbers: as easy as 1, 2, 3", SC 2011; the generator of Random123, cuRAND
-// and JAX's and PyTorch's GPU back ends).
+// and PyTorch's GPU back end).
 //
 // A counter-based generator has no state to carry: the numbers are a function of a counter
 // and a key, so each element computes its own from what identifies it (a pixel, a sample
