@@ -259,18 +259,15 @@ std::string uniform_declarations(const Function& f, const GLSLDialect& d) {
   return src;
 }
 
-std::string helper_definitions(Accuracy accuracy, const DriverRules& rules,
+// The prelude's helpers for kernel f: the table's (codegen/Helpers.cpp) under the driver's
+// rules, then the on-demand ones f calls.
+std::string helper_definitions(const Function& f, Accuracy accuracy, const DriverRules& rules,
                                bool flushes_denormals) {
   return std::string("#define RILL_NATIVE_COMPARE ") + (rules.native_compare ? "1" : "0") +
          "\n#define RILL_FLUSHES_DENORMALS " + (flushes_denormals ? "1" : "0") + "\n" +
          codegen::helper_bodies(codegen::Language::Glsl, accuracy == Accuracy::Fast
                                                              ? std::vector{codegen::Variant::Fast}
-                                                             : divsqrt_variants(rules.divsqrt));
-}
-// The same, and the on-demand helpers kernel f calls.
-std::string helper_definitions(const Function& f, Accuracy accuracy, const DriverRules& rules,
-                               bool flushes_denormals) {
-  return helper_definitions(accuracy, rules, flushes_denormals) +
+                                                             : divsqrt_variants(rules.divsqrt)) +
          codegen::on_demand_bodies(codegen::Language::Glsl, f);
 }
 
