@@ -92,6 +92,13 @@ namespace {
 Features tracer_features(const Scene& scene, const MaterialShaders& shaders,
                          const TracerOptions& options) {
   Features f = scene_features(scene, shaders);
+  if (scene.options.integrator == Integrator::Path) {
+    // Whitted's machinery is not the path integrator's: no recursive rays, no ray stack, no
+    // light buffer (its shadow rays walk the grid), no Phong highlights.
+    f.shadows = f.specular = f.reflection = f.refraction = false;
+    f.stack = 0;
+    return f;
+  }
   if (f.geometry) {
     const Features& extra = options.extra_features;
     f.specular = f.specular || (f.lights && extra.specular);
@@ -102,6 +109,19 @@ Features tracer_features(const Scene& scene, const MaterialShaders& shaders,
     f.vertex_colors = f.vertex_colors || extra.vertex_colors;
   }
   return f;
+}
+
+// The shaders, each used material's checked against the integrator: the path integrator needs
+// a BSDF (Shader.h).
+MaterialShaders checked_for_integrator(const Scene& scene, MaterialShaders shaders) {
+  if (scene.options.integrator != Integrator::Path) return shaders;
+  const std::vector<bool> used = used_materials(scene);
+  for (size_t m = 0; m < shaders.size(); ++m)
+    if (used[m] && !shaders[m]->bsdf)
+      throw SceneError("material '" + clipped(scene.materials[m].name) + "': shader '" +
+                       shaders[m]->name +
+                       "' has no BSDF (eval, sample and pdf), which the path integrator needs");
+  return shaders;
 }
 
 // A dynamic scene as it is at the start of its time range (the Tracer's first frame), or
@@ -126,7 +146,7 @@ BvhUpdate parse_bvh_update(const std::string& s) {
 struct Tracer::Impl {
   Impl(const Scene& scene, const Grid& grid, const TracerOptions& options)
       : options(scene.options),
-        shaders(resolve_shaders(scene)),
+        shaders(checked_for_integrator(scene, resolve_shaders(scene))),
         features(tracer_features(scene, shaders, options)),
         rest(features.dynamic ? std::make_unique<Scene>(scene) : nullptr),
         posed(posed_at_start(scene, features)),

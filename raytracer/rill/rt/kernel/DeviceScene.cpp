@@ -3,9 +3,9 @@
 
 namespace rt {
 
-DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions& options,
+DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions& knobs,
                          const Features& features, const MaterialShaders& shaders)
-    : K(options), F(features) {
+    : K(knobs), F(features), options(scene.options) {
   grid.upload(g);
   tris.upload(scene, K, F);
   materials.upload(scene, F, shaders);
@@ -14,6 +14,15 @@ DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions&
   shading.upload(scene);
   light_count = static_cast<int>(scene.lights.size());
   background = scene.background;
+  if (scene.options.integrator == Integrator::Path) {
+    std::vector<bool> smooth;
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+      const Bsdf& b = shaders.at(m)->bsdf;
+      smooth.push_back(!b.smooth ||
+                       b.smooth(MaterialParams(scene.materials[m], shaders.at(m)->params)));
+    }
+    path_lights.upload(scene, tris, F, smooth);
+  }
 }
 
 }  // namespace rt

@@ -5,10 +5,11 @@
 #pragma once
 
 #include "rill/rt/kernel/BvhView.h"
-#include "rill/rt/kernel/GridView.h"
-#include "rill/rt/kernel/LightBufferView.h"
 #include "rill/rt/kernel/CameraRays.h"
+#include "rill/rt/kernel/GridView.h"
 #include "rill/rt/kernel/Intersector.h"
+#include "rill/rt/kernel/LightBufferView.h"
+#include "rill/rt/kernel/LightSampler.h"
 #include "rill/rt/kernel/MaterialTable.h"
 #include "rill/rt/kernel/Shading.h"
 #include "rill/rt/kernel/Triangles.h"
@@ -26,6 +27,7 @@ struct DeviceScene {
 
   const TracerOptions K;
   const Features F;
+  const SceneOptions options;  // the integrator and its settings among them
   GridView grid;
   BvhView bvh;  // the moving triangles' (F.dynamic): the Tracer uploads it, each frame
   Triangles tris;
@@ -35,6 +37,9 @@ struct DeviceScene {
   CameraRays camera;
   Intersector intersector{grid, bvh, light_buffer, lights.position, tris, K, F};
   Shading shading{tris, materials, lights, K, F};
+  // The path integrator's lights (point lights and emitting triangles); uploaded only under
+  // Integrator::Path.
+  LightSampler path_lights;
   int light_count = 0;         // host
   glm::vec3 background{0.0f};  // host (Shading::background's value)
 };

@@ -213,6 +213,34 @@ Scatter MaterialTable::scatter(const Surface& s, const Float& weight, const Slot
   return out;
 }
 
+// The BSDF's calls: one shader is called directly, several through the dispatch into a
+// shared result (each branch assigns every field, so the result is the chosen shader's).
+template <class R, class Call>
+R MaterialTable::call_bsdf(const Surface& s, const Slots* slots, R zero, Call&& call) const {
+  if (shaders_.size() == 1) return call(shaders_[0].shader->bsdf, ShadingPoint(s, *this, 0, slots));
+  R out = zero;
+  dispatch(s, [&](int i) {
+    out = call(shaders_[static_cast<size_t>(i)].shader->bsdf, ShadingPoint(s, *this, i, slots));
+  });
+  return out;
+}
+
+Float3 MaterialTable::bsdf_eval(const Surface& s, const Float3& wi, const Slots* slots) const {
+  return call_bsdf<Float3>(s, slots, Float3(0.0f),
+                           [&](const Bsdf& b, const ShadingPoint& sp) { return b.eval(sp, wi); });
+}
+
+BsdfSample MaterialTable::bsdf_sample(const Surface& s, const Float3& u, const Slots* slots) const {
+  return call_bsdf<BsdfSample>(s, slots, BsdfSample{}, [&](const Bsdf& b, const ShadingPoint& sp) {
+    return b.sample(sp, u);
+  });
+}
+
+Float MaterialTable::bsdf_pdf(const Surface& s, const Float3& wi, const Slots* slots) const {
+  return call_bsdf<Float>(s, slots, Float(0.0f),
+                          [&](const Bsdf& b, const ShadingPoint& sp) { return b.pdf(sp, wi); });
+}
+
 // ---- ShadingPoint --------------------------------------------------------------------------
 
 ShadingPoint::ShadingPoint(const Surface& surface, const MaterialTable& table, int shader,

@@ -38,6 +38,11 @@ class MaterialTable {
   Float3 emitted(const Surface& s, const Slots* slots = nullptr) const;
   Float3 reflected(const Surface& s, const LightSample& light, const Slots* slots = nullptr) const;
   Scatter scatter(const Surface& s, const Float& weight, const Slots* slots = nullptr) const;
+  // The BSDF's functions (path tracing; Shader.h, Bsdf), dispatched the same way. Every used
+  // shader must have them (the path integrator checks that first).
+  Float3 bsdf_eval(const Surface& s, const Float3& wi, const Slots* slots = nullptr) const;
+  BsdfSample bsdf_sample(const Surface& s, const Float3& u, const Slots* slots = nullptr) const;
+  Float bsdf_pdf(const Surface& s, const Float3& wi, const Slots* slots = nullptr) const;
 
   std::vector<std::string> used_shaders() const;  // in the order of their indices
   rill::Uniform<Float> ambient{0.1f, "ambient"};
@@ -66,6 +71,8 @@ class MaterialTable {
   // per shader.
   template <class F>
   void dispatch(const Surface& s, F&& f) const;
+  template <class R, class Call>
+  R call_bsdf(const Surface& s, const Slots* slots, R zero, Call&& call) const;
 
   std::vector<Layout> shaders_;
   int stride_ = 1;

@@ -13,6 +13,11 @@
 //                           a transmitted ray (the tracer offsets their origins, traces
 //                           them, and drops those below its minimum weight or depth).
 //
+// Under the path integrator (SceneOptions::integrator, docs/path-tracing.md) a shader is its
+// BSDF instead, three more DSL functions (SurfaceShader::bsdf, below): eval, sample and pdf,
+// after Mitsuba's and pbrt's. The built-in shaders have both interfaces; a shader without the
+// BSDF is refused under "path", naming the material.
+//
 // The local colour is emitted + the sum of reflected over the lights; the pixel gains
 // local_weight * local colour, as in the thesis's eq. 5.1. A missing function contributes
 // nothing (scatter: the path ends, local_weight = weight).
@@ -129,6 +134,38 @@ class MaterialParams {
   const std::vector<ShaderParam>& decl_;
 };
 
+// ---- Path tracing: the BSDF -------------------------------------------------------------
+// Directions are unit vectors pointing away from the surface: wo = sp.s.V (back along the
+// ray that arrived), wi towards where the light comes from (the next ray's direction). Both
+// may lie on either side: a wi below the surface (dot(wi, sp.s.ngf) < 0) is transmission.
+
+// A direction the BSDF chose, and what it weighs.
+struct BsdfSample {
+  Float3 wi{0.0f};
+  // eval(wi) / pdf(wi): the factor the path's throughput takes on. For a delta lobe (a
+  // perfect mirror or refraction, which eval and pdf cannot express) its reflectance or
+  // transmittance divided by the probability of choosing the lobe. 0: the path ends.
+  Float3 weight{0.0f};
+  Float pdf = 0.0f;    // the solid-angle density of wi; for a delta lobe the lobe's probability
+  Bool delta = false;  // wi comes from a delta lobe: no light sampling can reach it
+};
+
+struct Bsdf {
+  // f(wo, wi) |dot(nf, wi)|: the BSDF times the cosine at wi (as Mitsuba's eval), without
+  // the delta lobes (they are 0 for every wi drawn from elsewhere).
+  std::function<Float3(const ShadingPoint&, const Float3& wi)> eval;
+  // Draws wi from u, three uniform numbers in [0, 1) (the first usually picks a lobe, the other
+  // two place the direction).
+  std::function<BsdfSample(const ShadingPoint&, const Float3& u)> sample;
+  // The density with which sample() draws wi, over solid angle, without the delta lobes (and
+  // times the probability of choosing the smooth lobes where there are delta ones too).
+  std::function<Float(const ShadingPoint&, const Float3& wi)> pdf;
+  // Host side: whether a material with these values has a smooth (non-delta) lobe. Light
+  // sampling (next-event estimation) happens only at such surfaces. Missing: true.
+  std::function<bool(const MaterialParams&)> smooth;
+  explicit operator bool() const { return eval && sample && pdf; }
+};
+
 struct SurfaceShader {
   std::string name;
   std::string doc;  // one line
@@ -141,6 +178,8 @@ struct SurfaceShader {
   // two parameters), or empty. The JSON reader and the Tracer's constructor report it as
   // "material 'NAME': " and the text.
   std::function<std::string(const MaterialParams&)> check;
+  // Path tracing (above): the BSDF. Empty for a shader that has only the Whitted functions.
+  Bsdf bsdf;
 };
 
 // The shaders of a scene's materials, one per material (shaders/Registry.h, resolve_shaders):

@@ -129,6 +129,23 @@ ParamValue param_value(const Ctx& c, const json& j, ParamType type, const std::s
   return ParamValue::of(num(c, j, at));
 }
 
+// A material's keys that are not its shader's: the light it emits (Material::emission).
+bool is_light_key(const std::string& key) {
+  return key == "emission" || key == "two_sided";
+}
+
+void read_light_keys(const Ctx& c, const json& j, const std::string& where, Material& m) {
+  if (j.contains("emission")) {
+    const json& e = j["emission"];
+    if (e.is_object())
+      fail(c, where + ".emission: an emission texture is not supported yet (a colour or a number)");
+    m.emission = vec3_or_scalar(c, e, where + ".emission");
+    if (m.emission.x < 0.0f || m.emission.y < 0.0f || m.emission.z < 0.0f)
+      fail(c, where + ".emission " + vec_str(m.emission) + " has a negative component");
+  }
+  if (j.contains("two_sided")) m.two_sided = boolean(c, j["two_sided"], where + ".two_sided");
+}
+
 // A material without "shader": the classic keys (scene/ClassicMaterial.h), which make a
 // phong material, or a glass one where it transmits. Textures bind to its colours.
 Material classic_material(const Ctx& c, const std::string& name, const json& j,
@@ -138,8 +155,9 @@ Material classic_material(const Ctx& c, const std::string& name, const json& j,
   std::map<std::string, ParamValue> textures;
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& key = it.key();
+    if (is_light_key(key)) continue;
     if (!is_classic_key(key)) {
-      std::vector<std::string> allowed{"shader"};
+      std::vector<std::string> allowed{"shader", "emission", "two_sided"};
       for (const char* k : kClassicKeys) allowed.push_back(k);
       fail(c, where + ": unknown key '" + key + "' (" + join(allowed) + ")");
     }
@@ -153,6 +171,7 @@ Material classic_material(const Ctx& c, const std::string& name, const json& j,
   if (std::string why = classic.problem(); !why.empty()) fail(c, "material '" + name + "': " + why);
   Material m = classic.material(name);
   for (const auto& [key, v] : textures) m.params[key] = v;
+  read_light_keys(c, j, where, m);
   return m;
 }
 
@@ -171,16 +190,17 @@ Material material(const Ctx& c, const std::string& name, const json& j, const Te
                 ")");
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& key = it.key();
-    if (key == "shader") continue;
+    if (key == "shader" || is_light_key(key)) continue;
     auto decl = std::find_if(shader->params.begin(), shader->params.end(),
                              [&](const ShaderParam& p) { return p.name == key; });
     if (decl == shader->params.end()) {
-      std::vector<std::string> allowed{"shader"};
+      std::vector<std::string> allowed{"shader", "emission", "two_sided"};
       for (const ShaderParam& p : shader->params) allowed.push_back(p.name);
       fail(c, where + ": unknown key '" + key + "' (" + join(allowed) + ")");
     }
     m.params[key] = param_value(c, it.value(), decl->type, where + "." + key, names);
   }
+  read_light_keys(c, j, where, m);
   for (const ShaderParam& p : shader->params)
     if (p.required && !j.contains(p.name))
       fail(c, where + ": shader '" + shader->name + "' needs parameter '" + p.name + "' (a " +
@@ -503,14 +523,32 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     }
     if (j.contains("options")) {
       const json& o = j["options"];
-      check_keys(c, o, "options",
-                 {"shadows", "ambient", "max_depth", "grid", "grid_density", "subgrids",
-                  "light_buffer", "spp", "smooth_normals"});
+      check_keys(
+          c, o, "options",
+          {"shadows", "ambient", "max_depth", "grid", "grid_density", "subgrids", "light_buffer",
+           "spp", "smooth_normals", "integrator", "seed", "nee", "mis", "light_samples"});
       if (o.contains("shadows")) s.options.shadows = boolean(c, o["shadows"], "options.shadows");
       if (o.contains("ambient")) s.options.ambient = num(c, o["ambient"], "options.ambient");
       if (o.contains("max_depth"))
         s.options.max_depth = integer(c, o["max_depth"], "options.max_depth", 0, 64);
-      if (o.contains("spp")) s.options.spp = integer(c, o["spp"], "options.spp", 1, 4096);
+      if (o.contains("spp")) s.options.spp = integer(c, o["spp"], "options.spp", 1, kMaxSpp);
+      if (o.contains("integrator")) {
+        if (!o["integrator"].is_string())
+          fail(c, "options.integrator must be \"whitted\" or \"path\"");
+        try {
+          s.options.integrator = parse_integrator(o["integrator"].get<std::string>());
+        } catch (const SceneError& e) {
+          fail(c, std::string("options.integrator: ") + e.what());
+        }
+      }
+      if (o.contains("seed"))
+        s.options.seed =
+            static_cast<uint32_t>(integer(c, o["seed"], "options.seed", 0, 2147483647));
+      if (o.contains("nee")) s.options.nee = boolean(c, o["nee"], "options.nee");
+      if (o.contains("mis")) s.options.mis = boolean(c, o["mis"], "options.mis");
+      if (o.contains("light_samples"))
+        s.options.light_samples =
+            integer(c, o["light_samples"], "options.light_samples", 1, kMaxLightSamples);
       if (o.contains("smooth_normals"))
         s.options.smooth_normals = boolean(c, o["smooth_normals"], "options.smooth_normals");
       // A word other than the option's own: name the words, not only the number range.

@@ -16,6 +16,7 @@ using namespace rill;
 // One loop is captured now, so that a shader's misuse of its parameters is an error of the
 // Tracer's constructor (the other loop runs the same shader code); the other at its first use.
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
+  if (path()) path_ = std::make_unique<PathIntegrator>(S_, S_.path_lights, S_.options);
   // What a skipped pixel's colour is (miss(): 0 + 1 * background, in float) encodes to;
   // to_srgb8 gives the device encoder's bytes (Srgb8.h).
   const glm::vec3 bg = glm::vec3(0.0f) + 1.0f * S_.background;
@@ -85,7 +86,40 @@ struct Megakernel::Aovs {
   Float3 normal{0.0f};
 };
 
+// The path integrator's kernel: one path per instance, for the launch's sample.
+Program Megakernel::capture_path(MegakernelOutputs outputs) const {
+  return rill::program("rill_path", [&] {
+    const Int2 pix = element_coord();
+    PathResult r;
+    const Bool sees = S_.F.geometry ? S_.camera.may_see_scene(pix, S_.F.dynamic) : Bool(true);
+    RILL_IF(path_->max_iterations > 0 && !sees) {
+      // The camera ray would miss: the background, as the path's first iteration gives it.
+      r.radiance = r.radiance + Float3(1.0f) * S_.shading.background;
+      r.rays = 1;
+      r.depth = as_float(Int(0x7f800000));
+    }
+    RILL_ELSE {
+      const Ray ray{S_.camera.eye, S_.camera.direction(pix), Float(kBig)};
+      r = path_->trace(pix + S_.camera.origin, ray);
+    }
+    RILL_ENDIF;
+    Output<Float3> out_color("color");
+    out_color = r.radiance;
+    Output<Int> out_rays("rays");
+    out_rays = r.rays;
+    if (outputs.aovs) {
+      Output<Float> depth("depth");
+      Output<Int> prim("prim");
+      Output<Float3> normal("normal");
+      depth = r.depth;
+      prim = r.prim;
+      normal = r.normal;
+    }
+  });
+}
+
 Program Megakernel::capture(MegakernelLoop loop, MegakernelOutputs outputs) const {
+  if (path()) return capture_path(outputs);
   return rill::program("rill_trace", [&] {
     Aovs aovs;
 
@@ -422,7 +456,8 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   const MegakernelLoop loop = megakernel_loop_for(rs.loop, rs.backend);
   r.loop = megakernel_loop_name(loop);
   Stopwatch since_start;
-  const MegakernelOutputs outputs = MegakernelOutputs::for_frame(rs.outputs, spp);
+  MegakernelOutputs outputs = MegakernelOutputs::for_frame(rs.outputs, spp);
+  if (path()) outputs.encoded = false;  // the path kernel writes linear colour only
   Kernel& k = kernel(rs.backend, rs.accuracy, loop, outputs);
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
   add_stages(r, k.info());
@@ -460,16 +495,20 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
       std::make_pair(kernel_key(rs.backend, rs.accuracy, loop, outputs), int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
     max_iter_.set(0);
+    if (path_) path_->max_iterations.set(0);
     k.execute();
     (void)rill::sum(out.rays);
     warmed_.insert(warm_key);
   }
   max_iter_.set(static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
+  // A path has at most depth + 1 segments, one iteration each (and one to stop).
+  if (path_) path_->max_iterations.set(depth + 2);
   r.compile_ms = since_start.ms() - r.times.setup;
 
   Stopwatch trace, step;
   for (int s = 0; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
+    if (path_) path_->sample_index.set(s);
     step.lap();
     k.execute();
     ++r.launches;

@@ -12,6 +12,10 @@
 // only wants the 8-bit image, the pixel's encoding (Srgb8Encoder, the film's bytes); and the
 // camera ray's AOVs (depth, primitive, normal) only when one of them is asked for.
 //
+// Under the path integrator (SceneOptions::integrator, integrator/PathIntegrator.h) the kernel
+// is another: each instance follows one path of its pixel for the launch's sample index, and
+// the loop shapes below do not apply (both names give the one path program).
+//
 // The loop has two shapes (MegakernelLoop, Tracer.h), with the same operations in the same
 // order and so the same bits:
 // - Ray: each iteration traces one ray and reacts to what it hit, a state (`mode`) telling a
@@ -34,6 +38,7 @@
 
 #include "rill/rt/film/Film.h"
 #include "rill/rt/film/Srgb8.h"
+#include "rill/rt/integrator/PathIntegrator.h"
 #include "rill/rt/kernel/Compile.h"
 #include "rill/rt/kernel/DeviceScene.h"
 #include "rill/rt/kernel/PerBackend.h"
@@ -68,6 +73,8 @@ class Megakernel final : public RenderStrategy {
   struct Aovs;
   struct Buffers;  // a backend's output streams (PerBackend.h: buffers_for)
   rill::Program capture(MegakernelLoop loop, MegakernelOutputs outputs) const;
+  rill::Program capture_path(MegakernelOutputs outputs) const;
+  bool path() const { return S_.options.integrator == Integrator::Path; }
   static std::string kernel_key(const std::string& backend, rill::Accuracy a, MegakernelLoop loop,
                                 MegakernelOutputs outputs);
   // The loop body's steps (Megakernel.cpp). Ray: trace, camera_or_secondary_ray or
@@ -86,6 +93,7 @@ class Megakernel final : public RenderStrategy {
   void pop_or_finish(PathLoop& L) const;
 
   DeviceScene& S_;
+  std::unique_ptr<PathIntegrator> path_;  // under Integrator::Path
   // The loop's iteration limit; 0 skips all tracing (render()'s warm-up launch).
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
   // Captured on demand, from const accessors (Tracer::program is const): a GPU never needs
@@ -95,7 +103,7 @@ class Megakernel final : public RenderStrategy {
   rill::Uniform<Int> background_rgb8_{0, "background_rgb8"};  // a skipped pixel's encoding
   std::map<std::string, rill::Kernel> kernels_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
-  std::set<std::pair<std::string, int64_t>> warmed_;      // kernels launched at a size before
+  std::set<std::pair<std::string, int64_t>> warmed_;         // kernels launched at a size before
 };
 
 }  // namespace rt

@@ -115,7 +115,11 @@ Material from_mtl(const tinyobj::material_t& m) {
   r.transmit = transmit;
   if (r.reflect + r.transmit > 1.0f) r.reflect = 1.0f - r.transmit;
   if (!std::isfinite(r.reflect)) r.reflect = 0;
-  return r.material(m.name);
+  Material out = r.material(m.name);
+  // Ke: emitted radiance (an area light; docs/path-tracing.md). The MTL syntax check already
+  // refused a negative or non-finite Ke.
+  out.emission = glm::max(glm::vec3(m.emission[0], m.emission[1], m.emission[2]), glm::vec3(0.0f));
+  return out;
 }
 
 // The line number (1-based) of the face-th face (0-based, over all shapes) that

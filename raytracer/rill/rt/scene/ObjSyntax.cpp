@@ -258,8 +258,8 @@ MtlLines check_mtl_lines(const std::string& text) {
         return malformed("'" + key + "' expects 1 or 3 numbers");
       for (double v : nums)
         if (!finite_float(v)) return bad_value("must be finite numbers");
-      // Rill renders Kd and Ks; a negative one would give negative radiance.
-      if (key == "Kd" || key == "Ks")
+      // Rill renders Kd, Ks and Ke; a negative one would give negative radiance.
+      if (key == "Kd" || key == "Ks" || key == "Ke")
         for (double v : nums)
           if (v < 0) return bad_value("is negative; colours must be >= 0");
     } else if (one_of(key, {"Ns", "Ni", "d", "Tr", "illum", "sharpness", "Pr", "Pm", "Ps", "Pc",

@@ -267,6 +267,9 @@ void check_camera(const Camera& camera, const std::string& where) {
 void validate_material(const Material& m, size_t texture_count) {
   const std::string where = "material '" + m.name + "': ";
   if (m.shader.empty()) throw SceneError(where + "no shader named");
+  if (!finite3(m.emission) || m.emission.x < 0.0f || m.emission.y < 0.0f || m.emission.z < 0.0f)
+    throw SceneError(where + "emission " + vec_str(m.emission) +
+                     " must be finite with no negative component");
   for (const auto& [name, v] : m.params) {
     const bool finite = v.kind == ParamValue::Kind::Number  ? std::isfinite(v.number)
                         : v.kind == ParamValue::Kind::Color ? finite3(v.color)
@@ -330,9 +333,23 @@ void Scene::validate() const {
     throw SceneError("options: ambient must be in [0, 1]");
   if (options.max_depth < 0 || options.max_depth > 64)
     throw SceneError("options: max_depth must be in [0, 64]");
-  if (options.spp < 1 || options.spp > 4096) throw SceneError("options: spp must be in [1, 4096]");
+  if (options.spp < 1 || options.spp > kMaxSpp)
+    throw SceneError("options: spp must be in [1, " + std::to_string(kMaxSpp) + "]");
+  if (options.light_samples < 1 || options.light_samples > kMaxLightSamples)
+    throw SceneError("options: light_samples must be in [1, " + std::to_string(kMaxLightSamples) +
+                     "]");
   if (options.grid < 0 || options.grid > 512)
     throw SceneError("options: grid must be 'auto' (0) or 1..512 cells per axis");
+}
+
+const char* integrator_name(Integrator i) {
+  return i == Integrator::Path ? "path" : "whitted";
+}
+
+Integrator parse_integrator(const std::string& s) {
+  if (s == "whitted") return Integrator::Whitted;
+  if (s == "path") return Integrator::Path;
+  throw SceneError("unknown integrator '" + clipped(s) + "' (whitted, path)");
 }
 
 bool scene_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi) {

@@ -59,6 +59,13 @@ struct Material {
   // Parameters by name. One the shader does not declare is left alone (it may be another
   // shader's, from before the material changed shader); a JSON file's is an error.
   std::map<std::string, ParamValue> params;
+  // Emitted radiance (docs/path-tracing.md), whatever the shader: a material with a non-zero
+  // emission makes each of its triangles an area light. It emits on the triangle's front
+  // side (where its vertex normals point, else where its winding's normal points: the side
+  // a ray sees when Surface::entering is true), on both sides when two_sided.
+  glm::vec3 emission{0.0f};
+  bool two_sided = false;
+  bool emits() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 
   // Sets a parameter; returns the material, so that one reads as an expression:
   // Material{"red"}.set("diffuse", glm::vec3(0.8f, 0.1f, 0.1f)).
@@ -95,6 +102,19 @@ constexpr int kLightBufferAuto = -1;   // a light buffer where the scene has sha
 constexpr int kLightBufferOff = 0;
 constexpr int kLightBufferMaxRes = 1024;  // cells per cube face edge
 
+// How light is carried (docs/path-tracing.md): the thesis's Whitted ray tracing (point lights,
+// hard shadows, perfect mirrors and glass, Phong's non-radiometric local light), or
+// unidirectional path tracing in radiometric units.
+enum class Integrator { Whitted, Path };
+const char* integrator_name(Integrator i);  // "whitted", "path"
+// Throws SceneError naming the bad value and the integrators there are.
+Integrator parse_integrator(const std::string& s);
+
+// The most samples per pixel a scene or a render may ask for (2^20: enough for references).
+constexpr int kMaxSpp = 1 << 20;
+// Whitted's samples per area light and surface point (options.light_samples).
+constexpr int kMaxLightSamples = 1024;
+
 struct SceneOptions {
   bool shadows = true;   // hard shadows from every light
   float ambient = 0.1f;  // ambient term: ambient * Kd
@@ -107,8 +127,16 @@ struct SceneOptions {
   // The shadow rays' light buffer (accel/LightBuffer.h): -1 (kLightBufferAuto) chosen from
   // the scene, 0 off (shadow rays walk the grid), or cells per cube face edge.
   int light_buffer = kLightBufferAuto;
-  int spp = 1;                 // samples per pixel
+  int spp = 1;                 // samples per pixel, 1..kMaxSpp
   bool smooth_normals = true;  // interpolate vertex normals where the mesh has them
+  Integrator integrator = Integrator::Whitted;
+  // The path integrator's random sequence (rill/Random.h's Philox key): another seed,
+  // another independent image of the same expectation.
+  uint32_t seed = 0;
+  bool nee = true;  // path: next-event estimation (light sampling at each surface)
+  bool mis = true;  // path: multiple importance sampling of NEE and BSDF sampling
+  // Whitted: shadow rays per area light (emitting triangle) at each surface point.
+  int light_samples = 16;
 };
 
 struct Scene {

@@ -4,7 +4,7 @@
 namespace rt {
 
 std::vector<SurfaceShader> builtin_shaders() {
-  return {phong_shader(), mirror_shader(), glass_shader()};
+  return {phong_shader(), mirror_shader(), glass_shader(), diffuse_shader(), ggx_shader()};
 }
 
 }  // namespace rt

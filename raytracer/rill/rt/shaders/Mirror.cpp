@@ -1,6 +1,7 @@
 // The mirror shader (Builtin.h): all of the path's weight but (1 - reflect) goes on along the
 // reflected direction; no local light.
 #include "rill/rt/shaders/Builtin.h"
+#include "rill/rt/shaders/Lobes.h"
 #include "rill/rt/shaders/PhongLight.h"
 
 namespace rt {
@@ -15,6 +16,12 @@ SurfaceShader mirror_shader() {
   };
   s.lobes = [](const MaterialParams& p) { return Lobes{p.nonzero("reflect"), false}; };
   s.check = [](const MaterialParams& p) { return reflect_problem(p.number("reflect")); };
+  // Path tracing: a delta lobe of reflectance `reflect` (the rest is absorbed).
+  s.bsdf = mixture_bsdf(
+      [](const ShadingPoint& sp) {
+        return std::vector<Lobe>{mirror_lobe(sp, sp.number("reflect"))};
+      },
+      [](const MaterialParams&) { return false; });
   return s;
 }
 

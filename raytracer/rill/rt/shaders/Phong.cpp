@@ -1,5 +1,6 @@
 // The phong shader (Builtin.h) and the Phong local light it shares with glass.
 #include "rill/rt/shaders/Builtin.h"
+#include "rill/rt/shaders/Lobes.h"
 #include "rill/rt/shaders/PhongLight.h"
 
 #include "rill/StrictMath.h"
@@ -31,6 +32,14 @@ Scatter mirror_scatter(const ShadingPoint& sp, const Float& weight, const Float&
   out.reflect_weight = weight * r;
   out.reflect_dir = reflect(-sp.s.V, sp.s.nf);
   return out;
+}
+
+Lobe mirror_lobe(const ShadingPoint& sp, const Float& p) {
+  const Surface& s = sp.s;
+  Lobe l{p, true};
+  l.sample = [&s](const Float2&) { return mirror_direction(s); };
+  l.delta_weight = Float3(1.0f);  // reflectance p over probability p
+  return l;
 }
 
 Float3 phong_diffuse(const ShadingPoint& sp) {
@@ -87,6 +96,15 @@ SurfaceShader phong_shader() {
     return mirror_scatter(sp, weight, sp.number("reflect"));
   };
   s.lobes = [](const MaterialParams& p) { return Lobes{p.nonzero("reflect"), false}; };
+  // Path tracing: diffuse (1 - reflect) and a perfect mirror (reflect); the highlights of
+  // specular and shininess belong to Whitted's point lights and are not part of it.
+  s.bsdf = mixture_bsdf(
+      [](const ShadingPoint& sp) {
+        if (!sp.may_be_nonzero("reflect")) return std::vector<Lobe>{diffuse_lobe(sp, Float(1.0f))};
+        const Float r = sp.number("reflect");
+        return std::vector<Lobe>{diffuse_lobe(sp, 1.0f - r), mirror_lobe(sp, r)};
+      },
+      [](const MaterialParams& p) { return p.number("reflect") < 1.0f; });
   s.check = [](const MaterialParams& p) {
     std::string why = reflect_problem(p.number("reflect"));
     return why.empty() ? shininess_problem(p.number("shininess")) : why;

@@ -20,6 +20,11 @@ Scatter mirror_scatter(const ShadingPoint& sp, const Float& weight, const Float&
 // The checks of the parameters they share (SurfaceShader::check): reflect in [0, 1], and
 // shininess in [0, 10000]; empty when the value is fine.
 std::string reflect_problem(float reflect);
+// Path tracing (Lobes.h): the diffuse lobe of phong_diffuse's colour with probability (and
+// share of the light) p, and the perfect mirror with probability and reflectance p.
+struct Lobe;
+Lobe diffuse_lobe(const ShadingPoint& sp, const Float& p);
+Lobe mirror_lobe(const ShadingPoint& sp, const Float& p);
 std::string shininess_problem(float shininess);
 
 }  // namespace rt

@@ -1,0 +1,176 @@
+// The path integrator's lights (LightSampler.h).
+#include "rill/rt/kernel/LightSampler.h"
+
+#include <cmath>
+
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/kernel/DeviceArrays.h"
+#include "rill/rt/kernel/Sampling.h"
+
+namespace rt {
+
+using namespace rill;
+
+namespace {
+
+double luminance(const glm::vec3& c) {
+  return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
+
+}  // namespace
+
+void LightSampler::upload(const Scene& scene, const Triangles& tris, const Features& F,
+                          const std::vector<bool>& smooth_material) {
+  tris_ = &tris;
+  F_ = F;
+  std::vector<double> power;
+  std::vector<glm::vec3> pos, col;
+  for (const Light& l : scene.lights) {
+    pos.push_back(l.position);
+    col.push_back(l.color);
+    power.push_back(4.0 * M_PI * luminance(l.color));
+  }
+  points_host_ = static_cast<int>(scene.lights.size());
+  std::vector<int32_t> emitting, entry(F.geometry ? scene.triangle_count() : 0, -1);
+  std::vector<double> material_area(scene.materials.size(), 0.0);
+  if (F.geometry) {
+    for (size_t t = 0; t < scene.triangle_count(); ++t) {
+      const Material& m = scene.materials[static_cast<size_t>(scene.material[t])];
+      const glm::vec3* p = &scene.positions[3 * t];
+      if (!m.emits() || !triangle_usable(p[0], p[1], p[2])) continue;
+      const double a = 0.5 * glm::length(glm::cross(glm::dvec3(p[1]) - glm::dvec3(p[0]),
+                                                    glm::dvec3(p[2]) - glm::dvec3(p[0])));
+      material_area[static_cast<size_t>(scene.material[t])] += a;
+      if (!(a > 0.0)) continue;
+      entry[t] = static_cast<int32_t>(power.size());
+      emitting.push_back(static_cast<int32_t>(t));
+      power.push_back(M_PI * a * luminance(m.emission) * (m.two_sided ? 2.0 : 1.0));
+    }
+    const std::vector<bool> used = used_materials(scene);
+    for (size_t m = 0; m < scene.materials.size(); ++m)
+      if (used[m] && scene.materials[m].emits() && !(material_area[m] > 0.0))
+        throw SceneError("material '" + clipped(scene.materials[m].name) +
+                         "' emits light, but its triangles have no area");
+  }
+  count_host_ = static_cast<int>(power.size());
+  double total = 0.0;
+  for (double p : power) total += p;
+  std::vector<float> cdf{0.0f};
+  double run = 0.0;
+  for (size_t i = 0; i < power.size(); ++i) {
+    run += power[i];
+    cdf.push_back(i + 1 == power.size() ? 1.0f : static_cast<float>(run / total));
+  }
+  std::vector<glm::vec4> mat;
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    const Material& mm = scene.materials[m];
+    const bool smooth = m < smooth_material.size() && smooth_material[m];
+    mat.emplace_back(mm.emission, (mm.two_sided ? 1.0f : 0.0f) + (smooth ? 2.0f : 0.0f));
+  }
+  upload_padded(cdf_, cdf);
+  upload_padded(tri_, emitting);
+  upload_padded(entry_, entry);
+  upload_padded(point_pos_, pos);
+  upload_padded(point_col_, col);
+  upload_padded(material_, mat);
+}
+
+Float3 LightSampler::emission(const Surface& s) const {
+  const Float4 m = material_[s.material];
+  const Float flags = m.w();
+  const Bool two_sided = flags == 1.0f || flags == 3.0f;
+  return select(s.entering || two_sided, Float3(m.x(), m.y(), m.z()), Float3(0.0f));
+}
+
+Bool LightSampler::smooth(const Surface& s) const {
+  return material_[s.material].w() >= 2.0f;
+}
+
+Float LightSampler::area(const Int& t) const {
+  return 0.5f * length(cross(tris_->e1[t], tris_->e2[t]));
+}
+
+Float3 LightSampler::front_normal(const Int& t, const Float2& b) const {
+  Float3 ng = tris_->ng[t];
+  if (F_.vertex_normals) {  // as Shading::surface: the vertex normals tell the outside
+    const Float w = 1.0f - b.x() - b.y();
+    const Float3 nn = tris_->n0[t] * w + tris_->n1[t] * b.x() + tris_->n2[t] * b.y();
+    ng = select(dot(ng, nn) < 0.0f, -ng, ng);
+  }
+  return ng;
+}
+
+Int LightSampler::find(const Float& u) const {
+  // The entry i with cdf[i] <= u < cdf[i + 1]: cdf[lo] <= u < cdf[hi] holds throughout.
+  Int lo = 0, hi = count_host_;
+  for (int n = count_host_; n > 1; n = (n + 1) / 2) {
+    const Int mid = shr_logical(lo + hi, Int(1));
+    const Bool below = cdf_[mid] <= u;
+    lo = select(below, mid, lo);
+    hi = select(below, hi, mid);
+  }
+  return lo;
+}
+
+Float LightSampler::pdf(const Int& prim, const Float& t, const Float3& d) const {
+  if (!areas()) return Float(0.0f);
+  const Int e = entry_[prim];
+  const Int ec = max(e, Int(0));
+  const Float pick = cdf_[ec + 1] - cdf_[ec];
+  const Float cos_l = abs(dot(tris_->ng[prim], d));
+  const Float denom = area(prim) * cos_l;
+  const Float p = pick * (t * t) / select(denom > 0.0f, denom, Float(1.0f));
+  return select(e >= 0 && denom > 0.0f, p, Float(0.0f));
+}
+
+LightDraw LightSampler::sample(const Float3& o, const Float3& u) const {
+  LightDraw out{Float3(0.0f, 0.0f, 1.0f), Float(0.0f), Float3(0.0f), Float(0.0f), Bool(false)};
+  const Int e = find(u.x());
+  const Float pick = cdf_[e + 1] - cdf_[e];
+  auto point_light = [&] {
+    const Float3 to = point_pos_[e] - o;
+    const Float d2 = dot(to, to);
+    const Float d = sqrt(d2);
+    out.wi = to / select(d > 0.0f, d, Float(1.0f));
+    out.dist = d;
+    out.radiance = point_col_[e] / select(d2 > 0.0f, d2, Float(1.0f));
+    out.pdf = select(d2 > 0.0f, pick, Float(0.0f));
+    out.delta = true;
+  };
+  auto area_light = [&] {
+    const Int t = tri_[max(e - points_host_, Int(0))];
+    const Float2 b = uniform_triangle(Float2(u.y(), u.z()));
+    const Float3 y = tris_->v0[t] + b.x() * tris_->e1[t] + b.y() * tris_->e2[t];
+    const Float3 to = y - o;
+    const Float d2 = dot(to, to);
+    const Float d = sqrt(d2);
+    const Float3 wi = to / select(d > 0.0f, d, Float(1.0f));
+    const Float3 n = front_normal(t, b);
+    const Float cos_l = dot(n, wi);  // < 0: the ray from o meets the front side
+    const Float4 m = material_[tris_->material[t]];
+    const Bool two_sided = m.w() == 1.0f || m.w() == 3.0f;
+    const Bool lit = cos_l < 0.0f || (two_sided && cos_l > 0.0f);
+    const Float denom = area(t) * abs(cos_l);
+    out.wi = wi;
+    out.dist = d;
+    out.radiance = select(lit, Float3(m.x(), m.y(), m.z()), Float3(0.0f));
+    out.pdf = select(lit && denom > 0.0f && d2 > 0.0f,
+                     pick * d2 / select(denom > 0.0f, denom, Float(1.0f)), Float(0.0f));
+  };
+  if (points() && areas()) {
+    RILL_IF(e < points_host_) {
+      point_light();
+    }
+    RILL_ELSE {
+      area_light();
+    }
+    RILL_ENDIF;
+  } else if (points()) {
+    point_light();
+  } else if (areas()) {
+    area_light();
+  }
+  return out;
+}
+
+}  // namespace rt

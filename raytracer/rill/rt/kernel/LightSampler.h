@@ -1,0 +1,72 @@
+// The lights as the path integrator sees them (docs/path-tracing.md): the point lights and the
+// area lights, every usable triangle whose material emits (Material::emission), in one table
+// that next-event estimation draws from with probability proportional to power, and the
+// emitted radiance at a hit with the density with which light sampling would have chosen it
+// (for multiple importance sampling).
+//
+// Power, for the choice only: a point light of intensity I has 4 pi lum(I), a triangle of
+// area A and radiance Le has pi A lum(Le) per side it emits from. The table is a cumulative
+// distribution in float (cdf[0] = 0, cdf[n] = 1) searched in ceil(log2 n) steps; an entry's
+// probability is cdf[i + 1] - cdf[i], the same subtraction wherever it is needed, so light
+// sampling and the MIS weights at BSDF-sampled hits use one density.
+#pragma once
+
+#include <rill/rill.h>
+
+#include "rill/rt/kernel/Features.h"
+#include "rill/rt/kernel/Records.h"
+#include "rill/rt/kernel/Triangles.h"
+#include "rill/rt/scene/Scene.h"
+
+namespace rt {
+
+// A point on a light, as next-event estimation drew it from a shading point.
+struct LightDraw {
+  Float3 wi;        // unit direction from the shading point to the light
+  Float dist;       // distance to it
+  Float3 radiance;  // the light arriving along -wi: Le, or I / dist^2 for a point light
+  Float pdf;        // over solid angle at the shading point; a point light: its probability
+  Bool delta;       // a point light (no other strategy can find it)
+};
+
+class LightSampler {
+ public:
+  // Builds the table from the scene's point lights and emitting usable triangles. Throws
+  // SceneError for an emitting material whose triangles (those the scene uses) have no area.
+  // smooth_material: per material, whether its shader's BSDF has a smooth lobe (Bsdf::smooth).
+  void upload(const Scene& scene, const Triangles& tris, const Features& F,
+              const std::vector<bool>& smooth_material);
+  bool any() const { return count_host_ > 0; }               // host: a light to sample
+  bool points() const { return points_host_ > 0; }           // host: point lights
+  bool areas() const { return count_host_ > points_host_; }  // host: emitting triangles
+  int count() const { return count_host_; }
+
+  // Le towards s.V at a hit (0 from behind a one-sided emitter).
+  Float3 emission(const Surface& s) const;
+  // Whether the hit's material has a smooth lobe (Bsdf::smooth): light sampling there.
+  Bool smooth(const Surface& s) const;
+  // The density over solid angle with which light sampling would pick the hit point of prim
+  // seen at distance t along the unit direction d (0 for a triangle that is no light).
+  Float pdf(const Int& prim, const Float& t, const Float3& d) const;
+  // A light drawn with u (u.x the light, u.y and u.z the point on a triangle) from origin o.
+  LightDraw sample(const Float3& o, const Float3& u) const;
+
+ private:
+  // The unit normal of the emitting side of triangle t at barycentrics b, as Shading::surface
+  // turns it (towards the vertex normals where the scene has them).
+  Float3 front_normal(const Int& t, const Float2& b) const;
+  Float area(const Int& t) const;
+  Int find(const Float& u) const;
+
+  const Triangles* tris_ = nullptr;
+  Features F_;
+  int count_host_ = 0, points_host_ = 0;
+  rill::Array<Float> cdf_{1, "light_cdf"};
+  rill::Array<Int> tri_{1, "light_tri"};      // entry -> triangle (areas)
+  rill::Array<Int> entry_{1, "light_entry"};  // triangle -> entry, or -1
+  rill::Array<Float3> point_pos_{1, "plight_pos"}, point_col_{1, "plight_col"};
+  // Per material: Le in xyz, and in w 1 for two-sided plus 2 for a smooth lobe.
+  rill::Array<Float4> material_{1, "mat_light"};
+};
+
+}  // namespace rt
