@@ -34,9 +34,7 @@
 
 namespace rt::testing {
 
-// A material's emitted radiance and whether both sides emit. Read from params["emission"] (a
-// colour) and params["two_sided"] (a number, != 0 for both sides) until Material has fields
-// for them: these three functions are the only places that know where they are kept.
+// A material's emitted radiance and whether both sides emit (Material::emission, two_sided).
 glm::dvec3 emission_of(const rt::Material& m);
 bool two_sided_of(const rt::Material& m);
 void set_emission(rt::Material& m, const glm::vec3& emission, bool two_sided = false);

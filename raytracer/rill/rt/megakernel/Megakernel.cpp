@@ -86,34 +86,53 @@ struct Megakernel::Aovs {
   Float3 normal{0.0f};
 };
 
-// The path integrator's kernel: one path per instance, for the launch's sample.
+// The path integrator's kernel: one path per instance, for the launch's sample. Each
+// iteration traces the path's ray, shades what it found (PathIntegrator::shade) and traces the
+// light sample's shadow ray.
 Program Megakernel::capture_path(MegakernelOutputs outputs) const {
   return rill::program("rill_path", [&] {
     const Int2 pix = element_coord();
-    PathResult r;
+    const PathIntegrator& P = *path_;
+    PathItem path = P.start(Ray{S_.camera.eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)});
+    FirstHit first;
+    first.depth = as_float(Int(0x7f800000));
     const Bool sees = S_.F.geometry ? S_.camera.may_see_scene(pix, S_.F.dynamic) : Bool(true);
-    RILL_IF(path_->max_iterations > 0 && !sees) {
-      // The camera ray would miss: the background, as the path's first iteration gives it.
-      r.radiance = r.radiance + Float3(1.0f) * S_.shading.background;
-      r.rays = 1;
-      r.depth = as_float(Int(0x7f800000));
+    RILL_IF(max_iter_ > 0 && !sees) {
+      // The camera ray would miss: what shading a miss gives, without making the ray.
+      (void)P.shade(path, Hit{Float(0.0f), Float2(0.0f), Int(-1)}, pix);
     }
-    RILL_ELSE {
-      const Ray ray{S_.camera.eye, S_.camera.direction(pix), Float(kBig)};
-      r = path_->trace(pix + S_.camera.origin, ray);
+    RILL_ELSE_IF(max_iter_ > 0) {
+      path.ray.d = S_.camera.direction(pix);
+      const Int2 image_pix = pix + S_.camera.origin;
+      Int iter = 0;
+      RILL_DO {
+        Hit hit{Float(0.0f), Float2(0.0f), Int(-1)};
+        if (S_.F.geometry) hit = S_.intersector.intersect(path.ray, nullptr);
+        const ShadowQuery shadow = P.shade(path, hit, image_pix, &first);
+        if (P.shadow_rays()) {
+          RILL_IF(shadow.active) {
+            const Bool any_hit = true;
+            P.shadow_result(path, shadow, S_.intersector.intersect(shadow.ray, &any_hit));
+          }
+          RILL_ENDIF;
+        }
+        iter += 1;
+        path.done = path.done || iter >= max_iter_;
+      }
+      RILL_UNTIL(path.done);
     }
     RILL_ENDIF;
     Output<Float3> out_color("color");
-    out_color = r.radiance;
+    out_color = path.radiance;
     Output<Int> out_rays("rays");
-    out_rays = r.rays;
+    out_rays = path.rays;
     if (outputs.aovs) {
       Output<Float> depth("depth");
       Output<Int> prim("prim");
       Output<Float3> normal("normal");
-      depth = r.depth;
-      prim = r.prim;
-      normal = r.normal;
+      depth = first.depth;
+      prim = first.prim;
+      normal = first.normal;
     }
   });
 }
@@ -495,14 +514,12 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
       std::make_pair(kernel_key(rs.backend, rs.accuracy, loop, outputs), int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
     max_iter_.set(0);
-    if (path_) path_->max_iterations.set(0);
     k.execute();
     (void)rill::sum(out.rays);
     warmed_.insert(warm_key);
   }
-  max_iter_.set(static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
-  // A path has at most depth + 1 segments, one iteration each (and one to stop).
-  if (path_) path_->max_iterations.set(depth + 2);
+  // A path has at most depth + 1 segments, one iteration each.
+  max_iter_.set(path_ ? depth + 2 : static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
   r.compile_ms = since_start.ms() - r.times.setup;
 
   Stopwatch trace, step;

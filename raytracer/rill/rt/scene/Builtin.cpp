@@ -307,6 +307,34 @@ Scene scene_cornell() {
   return s;
 }
 
+// The Cornell box for the path integrator: diffuse walls of the same colours, lit by the
+// original data's 130 x 105 mm area light 1 mm below the ceiling (emission (17, 12, 4), facing
+// down) instead of the point light.
+Scene scene_cornell_path() {
+  Scene s = scene_cornell();
+  s.name = "cornell-path";
+  for (Material& m : s.materials) {
+    const glm::vec3 diffuse = m.params.at("diffuse").color;
+    m.shader = "diffuse";
+    m.params.clear();
+    m.set("diffuse", diffuse);
+  }
+  Material light;
+  light.name = "light";
+  light.shader = "diffuse";
+  light.set("diffuse", glm::vec3(0.78f));
+  light.emission = glm::vec3(17.0f, 12.0f, 4.0f);
+  const int l = s.add_material(light);
+  auto v = [](float x, float y, float z) { return glm::vec3(x, y, z) * 0.001f; };
+  add_quad(s, v(343, 547.8f, 227), v(343, 547.8f, 332), v(213, 547.8f, 332), v(213, 547.8f, 227),
+           l);
+  s.lights.clear();
+  s.options.integrator = Integrator::Path;
+  s.options.max_depth = 5;
+  s.options.spp = 16;
+  return s;
+}
+
 // Glass and mirrors: a glass sphere and a glass teapot in front of a mirror, on a
 // checkerboard, with a mirror sphere.
 Scene scene_glass() {
@@ -509,7 +537,8 @@ Scene scene_bounce() {
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-  return {"thesis-a", "thesis-b", "thesis-c", "cornell", "glass", "textured", "bounce", "empty"};
+  return {"thesis-a", "thesis-b", "thesis-c", "cornell", "cornell-path",
+          "glass",    "textured", "bounce",   "empty"};
 }
 
 Scene builtin_scene(const std::string& name) {
@@ -517,6 +546,7 @@ Scene builtin_scene(const std::string& name) {
   if (name == "thesis-b" || name == "b") return scene_b();
   if (name == "thesis-c" || name == "c") return scene_c();
   if (name == "cornell") return scene_cornell();
+  if (name == "cornell-path") return scene_cornell_path();
   if (name == "glass") return scene_glass();
   if (name == "textured") return scene_textured();
   if (name == "bounce") return scene_bounce();

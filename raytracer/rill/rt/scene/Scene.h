@@ -242,7 +242,8 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
 
 // Built-in scenes: "thesis-a" (3 boxes, 36 triangles), "thesis-b" (cubes in a room, 2064),
 // "thesis-c" (high- and low-polygon objects with a tessellated Utah teapot, 61562),
-// "cornell" (Cornell box), "glass" (glass and mirrors), "textured" (procedural and bitmap
+// "cornell" (Cornell box), "cornell-path" (the same with diffuse walls and an area light, for
+// the path integrator), "glass" (glass and mirrors), "textured" (procedural and bitmap
 // textures, a mirror shader), "bounce" (scene B with balls bouncing and cubes spinning: a
 // dynamic scene of 4 seconds), "empty".
 std::vector<std::string> builtin_scene_names();
