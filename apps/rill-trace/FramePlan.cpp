@@ -19,14 +19,11 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
       plan.sequence ? parse_frames(o.frames, scene.animation.time, plan.animated) : FrameSpan{};
   plan.bvh_update = o.bvh;
   const FrameSpan& span = plan.span;
-  if (o.out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty() &&
-      span.count() > 1)
+  if (!any_image_output(o) && span.count() > 1)
     p.out = (scene.name.empty() ? std::string("render") : scene.name) + "-%04d.png";
-  const std::pair<std::string, const std::string*> outputs[] = {{"--out", &p.out},
-                                                                {"--pfm", &o.pfm},
-                                                                {"--depth", &o.depth},
-                                                                {"--prim", &o.prim},
-                                                                {"--normal", &o.normal}};
+  const std::pair<std::string, const std::string*> outputs[] = {
+      {"--out", &p.out},   {"--pfm", &o.pfm},       {"--depth", &o.depth},
+      {"--prim", &o.prim}, {"--normal", &o.normal}, {"--exr", &o.exr}};
   for (const auto& [option, path] : outputs) {
     if (path->empty()) continue;
     const bool numbered = plan.sequence && has_frame_number(*path, option);
@@ -37,10 +34,14 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
   }
   // Two options naming one file: the later write would silently replace the earlier one.
   {
-    const std::pair<std::string, const std::string*> files[] = {
-        {"--out", &p.out},      {"--pfm", &o.pfm},       {"--depth", &o.depth},
-        {"--prim", &o.prim},    {"--normal", &o.normal}, {"--stats-json", &o.stats_json},
-        {"--source", &o.source}};
+    const std::pair<std::string, const std::string*> files[] = {{"--out", &p.out},
+                                                                {"--pfm", &o.pfm},
+                                                                {"--depth", &o.depth},
+                                                                {"--prim", &o.prim},
+                                                                {"--normal", &o.normal},
+                                                                {"--exr", &o.exr},
+                                                                {"--stats-json", &o.stats_json},
+                                                                {"--source", &o.source}};
     std::map<std::string, std::string> seen;  // normalized path -> option
     for (const auto& [option, path] : files) {
       if (path->empty() || *path == "/dev/null") continue;

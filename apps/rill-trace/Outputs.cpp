@@ -5,6 +5,7 @@
 
 #include "Doing.h"
 #include "rill/rt/accel/LightBuffer.h"
+#include "rill/rt/scene/ExrImage.h"
 #include "rill/rt/scene/Image.h"
 
 namespace trace_cli {
@@ -15,6 +16,30 @@ std::vector<float> to_float(const std::vector<int32_t>& v) {
   std::vector<float> f(v.size());
   for (size_t i = 0; i < v.size(); ++i) f[i] = static_cast<float>(v[i]);
   return f;
+}
+
+// --exr: the linear colour (R G B) and the AOVs (Z, N.X N.Y N.Z, prim) as 32-bit channels.
+// prim is UINT, the id's 32 bits as they are: exact for every id (a scene may have 2^26
+// triangles, more than a float holds exactly), a miss (-1) 4294967295.
+void write_exr_output(const std::string& path, const rt::RenderResult& r) {
+  const size_t n = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
+  if (r.color.size() != n || r.depth.size() != n || r.normal.size() != n || r.prim.size() != n)
+    throw rt::SceneError("cannot write " + path + ": the render did not read back every AOV");
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+  const float* color = &r.color[0].x;
+  const float* normal = &r.normal[0].x;
+  const std::vector<rt::ExrChannel> channels = {
+      rt::ExrChannel::of_floats("R", color, 3),
+      rt::ExrChannel::of_floats("G", color + 1, 3),
+      rt::ExrChannel::of_floats("B", color + 2, 3),
+      rt::ExrChannel::of_floats("Z", r.depth.data()),
+      rt::ExrChannel::of_floats("N.X", normal, 3),
+      rt::ExrChannel::of_floats("N.Y", normal + 1, 3),
+      rt::ExrChannel::of_floats("N.Z", normal + 2, 3),
+      // int32_t and uint32_t may alias: the same bits, -1 read as 4294967295.
+      rt::ExrChannel::of_uints("prim", reinterpret_cast<const uint32_t*>(r.prim.data())),
+  };
+  rt::write_exr(path, r.width, r.height, channels);
 }
 
 }  // namespace
@@ -36,6 +61,10 @@ std::vector<std::string> write_outputs(const RenderOptions& o, const Prepared& p
   pfm(o.depth, r.depth);
   if (!o.prim.empty()) pfm(o.prim, to_float(r.prim));
   pfm(o.normal, r.normal);
+  if (!o.exr.empty()) {
+    write_exr_output(name(o.exr), r);
+    written.push_back(name(o.exr));
+  }
   return written;
 }
 

@@ -69,13 +69,15 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   rs.masking = o.masking;
   // Only what is written comes back from the device (the PNG: 8-bit, encoded there).
   p->out = o.out;
-  if (p->out.empty() && o.pfm.empty() && o.depth.empty() && o.prim.empty() && o.normal.empty())
+  if (!any_image_output(o))
     p->out = (scene.name.empty() ? std::string("render") : scene.name) + ".png";
   rs.outputs.rgb8 = !p->out.empty();
-  rs.outputs.color = !o.pfm.empty();
-  rs.outputs.depth = !o.depth.empty();
-  rs.outputs.prim = !o.prim.empty();
-  rs.outputs.normal = !o.normal.empty();
+  // --exr holds the linear colour and every AOV.
+  const bool exr = !o.exr.empty();
+  rs.outputs.color = !o.pfm.empty() || exr;
+  rs.outputs.depth = !o.depth.empty() || exr;
+  rs.outputs.prim = !o.prim.empty() || exr;
+  rs.outputs.normal = !o.normal.empty() || exr;
   return p;
 }
 

@@ -6,6 +6,11 @@
 
 namespace trace_cli {
 
+bool any_image_output(const RenderOptions& o) {
+  return !o.out.empty() || !o.pfm.empty() || !o.depth.empty() || !o.prim.empty() ||
+         !o.normal.empty() || !o.exr.empty();
+}
+
 CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   CLI::App* r = app.add_subcommand("render", "render a scene");
   r->add_option("scene", o.scene, "JSON scene, OBJ file or builtin:NAME")->required();
@@ -26,6 +31,10 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   r->add_option("--depth", o.depth, "hit distance AOV as PFM (+inf: miss)")->check(file_name());
   r->add_option("--prim", o.prim, "primitive id AOV as PFM (-1: miss)")->check(file_name());
   r->add_option("--normal", o.normal, "shading normal AOV as PFM")->check(file_name());
+  r->add_option("--exr", o.exr,
+                "OpenEXR, 32-bit channels: linear colour R G B, depth Z (+inf: miss) and normal "
+                "N.X N.Y N.Z as FLOAT, primitive id prim as UINT (4294967295: miss)")
+      ->check(file_name());
   r->add_option("--max-depth", o.max_depth, "reflection/refraction bounces")
       ->check(number_in(0, 64, true));
   r->add_option("--spp", o.spp, "samples per pixel")->check(number_in(1, 4096, true));

@@ -18,6 +18,7 @@ struct RenderOptions {
   rill::Accuracy accuracy = rill::Accuracy::Strict;
   int width = 0, height = 0;  // --size; 0: the scene's
   std::string out, pfm, depth, prim, normal, stats_json, source;
+  std::string exr;  // --exr: the linear colour and every AOV in one OpenEXR file
   int max_depth = -1;
   int spp = 0;
   // The scene's accelerator options where the command line gives them (Scene.h,
@@ -54,6 +55,10 @@ struct RenderOptions {
   rt::BvhUpdate bvh = rt::BvhUpdate::Rebuild;
   std::string video;
 };
+
+// Whether the command line names an image output (--out, --pfm, the AOVs, --exr); without one
+// a render writes a PNG of a default name.
+bool any_image_output(const RenderOptions& o);
 
 // Adds the "render" subcommand to app, parsing into o (which must outlive the parse).
 CLI::App* add_render_command(CLI::App& app, RenderOptions& o);

@@ -3,7 +3,8 @@
 //   rill-trace render SCENE [--backend cpu|simd|opencl|glsl|glsl-compute] [--accuracy
 //   strict|fast|double]
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
-//                           [--prim FILE.pfm] [--normal FILE.pfm] [--max-depth N] [--spp N]
+//                           [--prim FILE.pfm] [--normal FILE.pfm] [--exr FILE.exr]
+//                           [--max-depth N] [--spp N]
 //                           [--grid N|auto] [--grid-density D] [--subgrids N|off|auto]
 //                           [--light-buffer N|off|auto]
 //                           [--strategy megakernel|multipass] [--loop auto|ray|segment]

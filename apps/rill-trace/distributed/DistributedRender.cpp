@@ -40,7 +40,7 @@ std::string pixel_settings(const RenderOptions& o) {
 // The outputs asked for, in the order write_outputs writes them.
 std::vector<std::string> output_paths(const RenderOptions& o, const Prepared& p) {
   std::vector<std::string> paths;
-  for (const std::string* path : {&p.out, &o.pfm, &o.depth, &o.prim, &o.normal})
+  for (const std::string* path : {&p.out, &o.pfm, &o.depth, &o.prim, &o.normal, &o.exr})
     if (!path->empty()) paths.push_back(*path);
   return paths;
 }

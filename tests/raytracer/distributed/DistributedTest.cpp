@@ -48,9 +48,9 @@ bool has(const std::string& text, const std::string& needle) {
 // The options naming every output, each file name starting with `name`.
 std::string outputs(const std::string& name) {
   return " --out " + name + ".png --pfm " + name + ".pfm --depth " + name + "-depth.pfm --prim " +
-         name + "-prim.pfm --normal " + name + "-normal.pfm";
+         name + "-prim.pfm --normal " + name + "-normal.pfm --exr " + name + ".exr";
 }
-const char* const kSuffixes[] = {".png", ".pfm", "-depth.pfm", "-prim.pfm", "-normal.pfm"};
+const char* const kSuffixes[] = {".png", ".pfm", "-depth.pfm", "-prim.pfm", "-normal.pfm", ".exr"};
 
 void expect_same_files(const TempDir& dir, const std::string& want, const std::string& got,
                        const char* const* suffixes, size_t n) {
