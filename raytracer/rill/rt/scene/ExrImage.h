@@ -34,10 +34,10 @@ struct ExrChannel {
 // Writes a scanline EXR file, ZIP-compressed (lossless), with the channels given. Rows are
 // stored top to bottom (INCREASING_Y, data window (0,0)..(width-1,height-1)); the file lists
 // the channels sorted by name, as OpenEXR requires. Written whole or not at all
-// (write_output_file): the file is made in memory and then written, so that an error at any
-// point (a full disk, a directory that does not exist) throws SceneError naming `path` and
-// leaves no file. Throws SceneError for a size below 1, a channel without data, or two
-// channels of one name.
+// (write_output_file): the file is made in memory (its compressed size, besides the pixels)
+// and then written, so that an error at any point (a full disk, a directory that does not exist)
+// throws SceneError naming `path` and leaves no file. Throws SceneError for a size below 1, a
+// channel without data, or two channels of one name.
 void write_exr(const std::string& path, int width, int height,
                const std::vector<ExrChannel>& channels);
 
@@ -57,7 +57,8 @@ struct ExrImage {
 };
 
 // Reads a scanline or tiled EXR file's first part. Throws SceneError naming the file when it
-// is missing, unreadable or not an EXR file.
+// is missing, unreadable, not an EXR file, has a subsampled channel or is over 65536 pixels
+// on a side.
 ExrImage read_exr(const std::string& path);
 
 }  // namespace rt
