@@ -19,12 +19,12 @@ Float max3(const Float3& c) {
 }  // namespace
 
 PathIntegrator::PathIntegrator(const DeviceScene& scene, const LightSampler& lights,
-                               const SceneOptions& options, PathMutation mutation)
+                               const SceneOptions& options)
     : S_(scene),
       lights_(lights),
       nee_(options.nee && lights.any() && scene.F.geometry),
       mis_(options.mis),
-      mutation_(mutation) {
+      mutation_(scene.K.mutation) {
   seed.set(static_cast<int32_t>(options.seed));
 }
 

@@ -50,19 +50,10 @@ struct FirstHit {
   Float3 normal{0.0f};
 };
 
-// Deliberately broken variants of the integrator, for the validation tests only: each must
-// be rejected by them (tests/raytracer/integrator/). None is the integrator.
-enum class PathMutation {
-  None,
-  NeeTwice,        // light samples counted twice
-  NoMisAtHits,     // BSDF-sampled hits of lights weighed 1 although NEE counts them too
-  NoRouletteBoost  // Russian roulette without dividing by the survival probability
-};
-
 class PathIntegrator {
  public:
-  PathIntegrator(const DeviceScene& scene, const LightSampler& lights, const SceneOptions& options,
-                 PathMutation mutation = PathMutation::None);
+  // TracerOptions::mutation (scene.K) picks a broken variant, for the validation tests only.
+  PathIntegrator(const DeviceScene& scene, const LightSampler& lights, const SceneOptions& options);
   // The sample's index within its pixel (a uniform per launch): the random counter's third
   // field. Where in the pixel the camera ray goes is the camera's sample offset.
   rill::Uniform<Int> sample_index{0, "sample_index"};

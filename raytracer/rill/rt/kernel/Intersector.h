@@ -13,9 +13,9 @@
 #include <rill/rill.h>
 
 #include "rill/rt/kernel/BvhView.h"
+#include "rill/rt/kernel/Features.h"
 #include "rill/rt/kernel/GridView.h"
 #include "rill/rt/kernel/LightBufferView.h"
-#include "rill/rt/kernel/Features.h"
 #include "rill/rt/kernel/Options.h"
 #include "rill/rt/kernel/Records.h"
 #include "rill/rt/kernel/Triangles.h"

@@ -46,9 +46,12 @@ void LightSampler::upload(const Scene& scene, const Triangles& tris, const Featu
       emitting.push_back(static_cast<int32_t>(t));
       power.push_back(M_PI * a * luminance(m.emission) * (m.two_sided ? 2.0 : 1.0));
     }
-    const std::vector<bool> used = used_materials(scene);
+    // An emitting material that triangles name, none of which has an area (each degenerate
+    // or not finite): a light that cannot shine, surely a mistake in the scene.
+    std::vector<bool> named(scene.materials.size(), false);
+    for (int32_t m : scene.material) named[static_cast<size_t>(m)] = true;
     for (size_t m = 0; m < scene.materials.size(); ++m)
-      if (used[m] && scene.materials[m].emits() && !(material_area[m] > 0.0))
+      if (named[m] && scene.materials[m].emits() && !(material_area[m] > 0.0))
         throw SceneError("material '" + clipped(scene.materials[m].name) +
                          "' emits light, but its triangles have no area");
   }

@@ -21,6 +21,15 @@ enum class Traversal {
   Incremental,  // 3D-DDA: tMax += tDelta at each step (Amanatides & Woo)
   Recompute,    // tMax recomputed from the cell index at each step (no accumulated error)
 };
+// Deliberately broken variants of the path integrator, for its validation tests only
+// (tests/raytracer/integrator/): each must be rejected by them. None is the integrator.
+enum class PathMutation {
+  None,
+  NeeTwice,        // light samples counted twice
+  NoMisAtHits,     // BSDF-sampled hits of lights weighed 1 although NEE counts them too
+  NoRouletteBoost  // Russian roulette without dividing by the survival probability
+};
+
 // Defaults as measured (docs/accuracy.md): the scaled offset is far more accurate at no
 // measurable cost; the watertight test costs 5-20% on the CPU for the rare hole; the
 // recomputed traversal costs 5-30% and gains nothing measurable.
@@ -29,7 +38,8 @@ struct TracerOptions {
   SelfIntersection offset = SelfIntersection::Scaled;
   Traversal traversal = Traversal::Incremental;
   Features extra_features;  // kernel features forced on (see the Tracer constructor)
-  std::string str() const;  // "moller epsilon incremental"
+  PathMutation mutation = PathMutation::None;  // tests only (above)
+  std::string str() const;                     // "moller epsilon incremental"
 };
 // Parse the command-line names (moller|watertight, epsilon|scaled, incremental|recompute);
 // throw std::invalid_argument naming the bad value.

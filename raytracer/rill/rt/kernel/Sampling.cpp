@@ -5,7 +5,7 @@ namespace rt {
 
 using namespace rill;
 
-Frame::Frame(const Float3& normal) : n(normal) {
+Basis::Basis(const Float3& normal) : n(normal) {
   const Float sign = select(normal.z() >= 0.0f, Float(1.0f), Float(-1.0f));
   const Float a = -1.0f / (sign + normal.z());
   const Float b = normal.x() * normal.y() * a;

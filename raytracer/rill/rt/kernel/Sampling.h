@@ -16,8 +16,8 @@ constexpr float kInvPi = 0.318309886183790671538f;
 
 // An orthonormal frame (s, t, n) about the unit vector n (Duff et al. 2017, "Building an
 // Orthonormal Basis, Revisited": no branch, no singularity).
-struct Frame {
-  explicit Frame(const Float3& normal);
+struct Basis {
+  explicit Basis(const Float3& normal);
   Float3 s, t, n;
   Float3 to_world(const Float3& v) const { return s * v.x() + t * v.y() + n * v.z(); }
   Float3 to_local(const Float3& v) const { return Float3(dot(v, s), dot(v, t), dot(v, n)); }

@@ -20,7 +20,7 @@ Float lambert_pdf(const Surface& s, const Float3& wi) {
 }
 
 Float3 lambert_sample(const Surface& s, const Float2& u) {
-  return Frame(s.nf).to_world(cosine_hemisphere(u));
+  return Basis(s.nf).to_world(cosine_hemisphere(u));
 }
 
 Float3 mirror_direction(const Surface& s) {

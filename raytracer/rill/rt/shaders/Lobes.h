@@ -36,7 +36,7 @@ struct Ggx {
   Float pdf(const Float3& wi) const;    // the visible normals' density, reflected
   Float3 sample(const Float2& u) const;
   const Surface& s;
-  Frame frame;
+  Basis frame;
   Float alpha;
   Float3 f0;
   Float3 wo;  // V in the frame

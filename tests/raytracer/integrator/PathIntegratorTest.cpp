@@ -1,0 +1,432 @@
+// The path integrator (integrator/PathIntegrator.h) against answers nobody here computed with
+// its code: closed furnaces (the geometric series of the albedo), a white sphere that vanishes
+// under a uniform sky, a diffuse floor under the sky, an area light shrinking towards a point
+// light, and the independent reference path tracer (support/ReferencePathTracer.h) pixel by
+// pixel. Deliberately broken integrators (TracerOptions::mutation) must fail the same tests.
+// Then bitwise identity: every backend gives the cpu backend's bits.
+//
+// Statistics. A render's pixels are independent estimates (each has its own Philox counters),
+// so over P pixels the image mean is normal to a good approximation (central limit theorem,
+// P >= 256), with a standard error estimated from the pixels' spread. A bound of 5 standard
+// errors fails a correct integrator with probability below 6e-7 (two-sided normal tail).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "RenderCompare.h"
+#include "TestUtil.h"
+#include "rill/rt/Tracer.h"
+#include "rill/rt/accel/Grid.h"
+#include "rill/rt/load/SceneFile.h"
+#include "support/ReferencePathTracer.h"
+
+namespace rt {
+namespace {
+
+using testing::ReferenceImage;
+using testing::ReferenceOptions;
+using testing::ReferencePathTracer;
+
+// The mean colour of spp samples (and with aovs the first hit's depth, primitive and normal).
+RenderResult render(const Scene& scene, int spp, const std::string& backend = "cpu",
+                    const TracerOptions& options = {}, bool aovs = false) {
+  Grid grid = build_grid_for(scene, backend);
+  Tracer tracer(scene, grid, options);
+  RenderSettings rs;
+  rs.backend = backend;
+  rs.width = scene.width;
+  rs.height = scene.height;
+  rs.spp = spp;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = aovs;
+  return tracer.render(rs, scene.camera);
+}
+
+Material with_shader(const std::string& name, const std::string& shader) {
+  Material m;
+  m.name = name;
+  m.shader = shader;
+  return m;
+}
+
+Material diffuse(const std::string& name, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
+  Material m = with_shader(name, "diffuse");
+  m.set("diffuse", albedo);
+  m.emission = emission;
+  return m;
+}
+
+// A closed box seen from inside, every wall of albedo a emitting Le.
+Scene furnace(float a, float le, int max_depth) {
+  Scene s;
+  s.name = "furnace";
+  add_box(s, glm::vec3(-1.0f), glm::vec3(1.0f),
+          s.add_material(diffuse("wall", glm::vec3(a), glm::vec3(le))), {}, /*inward=*/true);
+  s.camera = Camera{{0.1f, 0.2f, 0.3f}, {0.5f, -0.3f, -1.0f}, {0, 1, 0}, 90.0f};
+  s.has_camera = true;
+  s.width = s.height = 32;
+  s.background = glm::vec3(5.0f);  // never seen: the box is closed
+  s.options.integrator = Integrator::Path;
+  s.options.max_depth = max_depth;
+  return s;
+}
+
+double series(double a, double le, int depth) {
+  double sum = 0.0, ak = 1.0;
+  for (int k = 0; k <= depth; ++k, ak *= a) sum += le * ak;
+  return sum;
+}
+
+// The image mean over pixels and channels and its standard error (from the pixels' spread).
+struct Mean {
+  double mean = 0, se = 0;
+};
+Mean image_mean(const RenderResult& r) {
+  const double n = static_cast<double>(r.color.size());
+  double sum = 0, sum2 = 0;
+  for (const glm::vec3& c : r.color) {
+    const double v = (double(c.x) + c.y + c.z) / 3.0;
+    sum += v;
+    sum2 += v * v;
+  }
+  const double mean = sum / n, var = std::max(sum2 / n - mean * mean, 0.0) * n / (n - 1);
+  return {mean, std::sqrt(var / n)};
+}
+
+// Without light sampling every path of a Lambertian furnace returns the same value: each
+// bounce's weight is eval / pdf = a (to rounding, ~1e-7 relative), and with max_depth 2
+// Russian roulette (from depth 3) never starts. So every pixel is Le (1 + a + a^2).
+TEST(PathFurnace, WithoutLightSamplingEveryPixelIsTheGeometricSeries) {
+  Scene s = furnace(0.5f, 1.0f, 2);
+  s.options.nee = false;
+  const RenderResult r = render(s, 2);
+  const double want = series(0.5, 1.0, 2);
+  for (size_t p = 0; p < r.color.size(); ++p)
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(r.color[p][c], want, 1e-5 * want) << "pixel " << p;
+}
+
+// With next-event estimation, with and without MIS, and with Russian roulette (max_depth 6):
+// random per path, but unbiased, so the image mean is the series within 5 standard errors.
+TEST(PathFurnace, WithLightSamplingTheMeanIsTheGeometricSeries) {
+  for (bool mis : {true, false}) {
+    Scene s = furnace(0.7f, 0.5f, 6);
+    s.options.mis = mis;
+    const Mean m = image_mean(render(s, 8));
+    const double want = series(0.7, 0.5, 6);
+    EXPECT_LT(std::abs(m.mean - want), 5 * m.se + 1e-6 * want)
+        << "mis " << mis << ": mean " << m.mean << " se " << m.se << " want " << want;
+    EXPECT_GT(m.se, 0.0) << "light sampling makes the paths random";
+  }
+}
+
+// A sphere of albedo 1 under a uniform sky B: light bounces off it and leaves (a convex
+// object never sees itself), with nothing absorbed, so every pixel is B: the sphere vanishes.
+// Faceted: with interpolated normals a cosine-weighted direction about the shading normal can
+// point into the geometric surface, where the BSDF is 0 (no light leaks) and energy is lost.
+TEST(PathFurnace, AWhiteSphereUnderAUniformSkyVanishes) {
+  Scene s;
+  add_sphere(s, glm::vec3(0.0f), 1.0f, 24, 16, s.add_material(diffuse("white", glm::vec3(1.0f))),
+             /*smooth=*/false);
+  s.camera = Camera{{0, 0, 3}, {0, 0, 0}, {0, 1, 0}, 50.0f};
+  s.has_camera = true;
+  s.width = s.height = 24;
+  s.background = glm::vec3(0.6f, 0.8f, 1.0f);
+  s.options.integrator = Integrator::Path;
+  s.options.max_depth = 4;
+  const RenderResult r = render(s, 2);
+  for (size_t p = 0; p < r.color.size(); ++p)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_NEAR(r.color[p][c], s.background[c], 1e-5f) << "pixel " << p << " channel " << c;
+}
+
+// A diffuse floor of albedo a under a sky of radiance B: its radiance is a B (the cosine-
+// weighted hemisphere above it sees only sky), exactly per path up to rounding.
+TEST(PathFurnace, ADiffuseFloorUnderAUniformSkyIsAlbedoTimesSky) {
+  Scene s;
+  const glm::vec3 a(0.2f, 0.5f, 0.8f), sky(1.5f, 1.0f, 0.5f);
+  add_quad(s, {-100, 0, 100}, {100, 0, 100}, {100, 0, -100}, {-100, 0, -100},
+           s.add_material(diffuse("floor", a)));
+  s.camera = Camera{{0, 1, 0}, {0, 0, -0.5f}, {0, 1, 0}, 60.0f};
+  s.has_camera = true;
+  s.width = s.height = 16;
+  s.background = sky;
+  s.options.integrator = Integrator::Path;
+  s.options.max_depth = 3;
+  const RenderResult r = render(s, 2);
+  for (size_t p = 0; p < r.color.size(); ++p)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_NEAR(r.color[p][c], a[c] * sky[c], 1e-5f) << "pixel " << p << " channel " << c;
+}
+
+// A square area light of side w, radiance Le, facing down at height h over a black-walled
+// diffuse floor, against a point light of intensity Le w^2 at its centre: the irradiance right
+// under them differs by the light's extent, relatively about (w / h)^2 (a disk of radius r
+// gives 1 / (1 + r^2 / h^2)). As w shrinks the two pixels under the light agree.
+TEST(PathLights, ASmallAreaLightApproachesAPointLightOfTheSameIntensity) {
+  auto scene = [](float w, bool point) {
+    Scene s;
+    add_quad(s, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5},
+             s.add_material(diffuse("floor", glm::vec3(0.5f))));
+    const float le = 1.0f / (w * w);  // intensity Le w^2 = 1
+    if (point) {
+      s.lights.push_back(Light{{0, 1, 0}, glm::vec3(1.0f)});
+    } else {
+      const float h = w / 2;
+      add_quad(s, {-h, 1, -h}, {h, 1, -h}, {h, 1, h}, {-h, 1, h},
+               s.add_material(diffuse("lamp", glm::vec3(0.0f), glm::vec3(le))));
+    }
+    s.camera = Camera{{0, 0.5f, 0.0001f}, {0, 0, 0}, {0, 0, -1}, 2.0f};  // looking straight down
+    s.has_camera = true;
+    s.width = s.height = 4;
+    s.background = glm::vec3(0.0f);
+    s.options.integrator = Integrator::Path;
+    s.options.max_depth = 1;
+    return s;
+  };
+  const double point = image_mean(render(scene(0.0f, true), 4)).mean;
+  EXPECT_NEAR(point, 0.5 / M_PI, 1e-3 * 0.5 / M_PI) << "E = I / h^2 = 1, L = a E / pi";
+  double previous = 1.0;
+  for (float w : {0.4f, 0.2f, 0.05f}) {
+    const Mean area = image_mean(render(scene(w, false), 64));
+    const double rel = std::abs(area.mean - point) / point;
+    // The extent's bias is below (w/h)^2 = w^2; the noise below 5 standard errors.
+    EXPECT_LT(rel, w * w + 5 * area.se / point) << "w " << w;
+    EXPECT_LT(rel, previous + 5 * area.se / point) << "w " << w;
+    previous = rel;
+  }
+}
+
+// ---- Against the reference path tracer ---------------------------------------------------
+
+// Rill's mean and the variance of that mean per pixel and channel, from K independent
+// renders (seeds 1..K) of n samples each (batch means: the variance of the mean is the
+// batches' sample variance over K).
+struct Estimate {
+  std::vector<glm::dvec3> mean, var;
+};
+Estimate rill_estimate(Scene s, int batches, int spp, const TracerOptions& options) {
+  Estimate e;
+  std::vector<glm::dvec3> sum, sum2;
+  for (int k = 1; k <= batches; ++k) {
+    s.options.seed = static_cast<uint32_t>(k);
+    const RenderResult r = render(s, spp, "cpu", options);
+    sum.resize(r.color.size(), glm::dvec3(0.0));
+    sum2.resize(r.color.size(), glm::dvec3(0.0));
+    for (size_t p = 0; p < r.color.size(); ++p) {
+      sum[p] += glm::dvec3(r.color[p]);
+      sum2[p] += glm::dvec3(r.color[p]) * glm::dvec3(r.color[p]);
+    }
+  }
+  const double K = batches;
+  for (size_t p = 0; p < sum.size(); ++p) {
+    const glm::dvec3 m = sum[p] / K;
+    e.mean.push_back(m);
+    e.var.push_back(glm::max((sum2[p] / K - m * m) * (K / (K - 1)), glm::dvec3(0.0)) / K);
+  }
+  return e;
+}
+
+// Per pixel and channel z = (rill - reference) / sqrt(var_rill + var_reference). With K = 16
+// batches Rill's variance has 15 degrees of freedom, so z is about Student-t with 15 or more:
+// P(|t_15| > 4.5) = 4.3e-4, and over N = 768 pixel channels the expected count beyond 4.5 is
+// 0.33; a correct integrator exceeds 4 of them with probability below 3e-5 (Poisson). Also the
+// image mean, the average of the N differences, must lie within 5 of its standard errors.
+struct Agreement {
+  int beyond = 0;  // pixel channels with |z| > 4.5
+  double z_mean = 0;
+  bool passes() const { return beyond <= 4 && std::abs(z_mean) < 5.0; }
+};
+Agreement agree(const Estimate& rill, const ReferenceImage& ref) {
+  Agreement a;
+  double diff = 0, var = 0;
+  for (size_t p = 0; p < rill.mean.size(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      const double d = rill.mean[p][c] - ref.mean[p][c], v = rill.var[p][c] + ref.variance[p][c];
+      diff += d;
+      var += v;
+      if (v > 0 ? std::abs(d) > 4.5 * std::sqrt(v) : std::abs(d) > 1e-6) ++a.beyond;
+    }
+  a.z_mean = var > 0 ? diff / std::sqrt(var) : (diff == 0 ? 0.0 : 1e9);
+  return a;
+}
+
+class PathReference : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scene_ = new Scene(builtin_scene("cornell-path"));
+    scene_->width = scene_->height = 16;
+    ReferenceOptions o;
+    o.paths_per_pixel = 4096;
+    o.seed = 7;
+    reference_ = new ReferenceImage(ReferencePathTracer(*scene_).render(o));
+  }
+  static void TearDownTestSuite() {
+    delete scene_;
+    delete reference_;
+  }
+  static Scene* scene_;
+  static ReferenceImage* reference_;
+};
+Scene* PathReference::scene_ = nullptr;
+ReferenceImage* PathReference::reference_ = nullptr;
+
+TEST_F(PathReference, TheCornellBoxAgreesWithTheReferencePixelByPixel) {
+  for (bool nee : {true, false}) {
+    Scene s = *scene_;
+    s.options.nee = nee;
+    const Agreement a = agree(rill_estimate(s, 16, 64, {}), *reference_);
+    EXPECT_TRUE(a.passes()) << "nee " << nee << ": " << a.beyond
+                            << " pixel channels beyond 4.5 sigma, image mean at " << a.z_mean
+                            << " sigma";
+  }
+}
+
+// The mutants must fail the comparison that the integrator passes.
+TEST_F(PathReference, BrokenIntegratorsAreRejected) {
+  for (PathMutation m :
+       {PathMutation::NeeTwice, PathMutation::NoMisAtHits, PathMutation::NoRouletteBoost}) {
+    TracerOptions o;
+    o.mutation = m;
+    const Agreement a = agree(rill_estimate(*scene_, 16, 64, o), *reference_);
+    EXPECT_FALSE(a.passes()) << "mutation " << static_cast<int>(m) << " passed: " << a.beyond
+                             << " beyond 4.5 sigma, image mean at " << a.z_mean << " sigma";
+  }
+}
+
+// ---- Scene contract ---------------------------------------------------------------------
+
+TEST(PathScene, TheSeedChangesTheImageAndOnlyTheSeed) {
+  Scene s = furnace(0.5f, 1.0f, 4);
+  s.width = s.height = 8;
+  const RenderResult a = render(s, 2), b = render(s, 2);
+  s.options.seed = 99;
+  const RenderResult c = render(s, 2);
+  EXPECT_EQ(std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(glm::vec3)), 0);
+  EXPECT_NE(std::memcmp(a.color.data(), c.color.data(), a.color.size() * sizeof(glm::vec3)), 0);
+}
+
+TEST(PathScene, AShaderWithoutABsdfIsRefusedNamingTheMaterial) {
+  SurfaceShader toon;
+  toon.name = "path-test-toon";
+  toon.reflected = [](const ShadingPoint&, const LightSample& l) { return l.color; };
+  if (find_shader(toon.name) == nullptr) register_shader(toon);
+  Scene s = furnace(0.5f, 1.0f, 2);
+  s.materials[0].name = "cel";
+  s.materials[0].shader = "path-test-toon";
+  s.materials[0].params.clear();
+  Grid grid = build_grid_for(s);
+  const std::string e = testing::error_of([&] { Tracer t(s, grid); });
+  EXPECT_NE(e.find("material 'cel'"), std::string::npos) << e;
+  EXPECT_NE(e.find("path-test-toon"), std::string::npos) << e;
+  EXPECT_NE(e.find("BSDF"), std::string::npos) << e;
+}
+
+TEST(PathScene, BadValuesAreErrorsNamingTheKey) {
+  auto error = [](const std::string& json) {
+    return testing::error_of([&] { (void)parse_json_scene(json, ".", "s.json"); });
+  };
+  const std::string base =
+      R"({"meshes": [{"shape": "quad", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "material": "m"}], )";
+  EXPECT_NE(error(base + R"("materials": {"m": {"shader": "diffuse", "emission": [1, -1, 0]}}})")
+                .find("materials.m.emission"),
+            std::string::npos);
+  EXPECT_NE(error(base + R"("materials": {"m": {"shader": "diffuse", "emission": [1, 1e39, 0]}}})")
+                .find("emission"),
+            std::string::npos);
+  EXPECT_NE(error(base + R"("materials": {"m": {"shader": "ggx", "roughness": 1.5}}})")
+                .find("roughness must be in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(error(base + R"("materials": {"m": {}}, "options": {"integrator": "bidir"}})")
+                .find("options.integrator: unknown integrator 'bidir' (whitted, path)"),
+            std::string::npos);
+  EXPECT_NE(
+      error(base + R"("materials": {"m": {}}, "options": {"spp": 2000000}})").find("options.spp"),
+      std::string::npos);
+  EXPECT_NE(error(base + R"("materials": {"m": {}}, "options": {"max_depth": 65}})")
+                .find("options.max_depth"),
+            std::string::npos);
+  EXPECT_NE(error(base + R"("materials": {"m": {}}, "options": {"light_samples": 0}})")
+                .find("options.light_samples"),
+            std::string::npos);
+}
+
+TEST(PathScene, AnEmitterWithoutAreaIsAnError) {
+  Scene s;
+  s.add_material(diffuse("lamp", glm::vec3(0.5f), glm::vec3(1.0f)));
+  s.add_triangle({0, 0, 0}, {1, 0, 0}, {2, 0, 0}, 0);  // collinear: no area
+  s.add_material(diffuse("floor", glm::vec3(0.5f)));
+  s.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1);
+  s.options.integrator = Integrator::Path;
+  Grid grid = build_grid_for(s);
+  const std::string e = testing::error_of([&] { Tracer t(s, grid); });
+  EXPECT_NE(e.find("material 'lamp' emits light, but its triangles have no area"),
+            std::string::npos)
+      << e;
+}
+
+// ---- Every backend: the cpu backend's bits ----------------------------------------------
+
+class PathRender : public ::testing::TestWithParam<std::string> {};
+
+// Point and area lights (one two-sided), every built-in shader's BSDF (glass's delta lobes and
+// its diffuse part, a mirror, ggx rough and at roughness 0 with a diffuse base, phong with
+// reflection), and MIS on and off.
+Scene mixed_scene(bool mis) {
+  Scene s;
+  const int floor = s.add_material(diffuse("floor", glm::vec3(0.6f, 0.5f, 0.4f)));
+  add_quad(s, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3}, floor);
+  add_quad(s, {-3, 0, -2}, {3, 0, -2}, {3, 3, -2}, {-3, 3, -2}, floor);
+  Material lamp = diffuse("lamp", glm::vec3(0.2f), glm::vec3(4.0f, 3.5f, 3.0f));
+  lamp.two_sided = true;
+  add_quad(s, {-0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, 0.5f}, {-0.5f, 2.5f, 0.5f},
+           s.add_material(lamp));
+  Material glass = with_shader("glass", "glass");
+  glass.set("transmit", 0.8f).set("reflect", 0.1f);
+  add_sphere(s, {-1.2f, 0.6f, 0}, 0.6f, 16, 12, s.add_material(glass));
+  Material metal = with_shader("metal", "ggx");
+  metal.set("roughness", 0.25f).set("specular", glm::vec3(0.9f, 0.6f, 0.3f));
+  add_sphere(s, {0.2f, 0.5f, 0.3f}, 0.5f, 16, 12, s.add_material(metal));
+  Material plastic = with_shader("plastic", "ggx");
+  plastic.set("roughness", 0.0f)
+      .set("specular", glm::vec3(0.04f))
+      .set("diffuse", glm::vec3(0.1f, 0.3f, 0.8f));
+  add_box(s, {1.0f, 0, -0.5f}, {1.8f, 0.8f, 0.3f}, s.add_material(plastic));
+  Material mirror = with_shader("mirror", "mirror");
+  add_quad(s, {2.5f, 0, -1.5f}, {2.5f, 0, 1.5f}, {2.5f, 2, 1.5f}, {2.5f, 2, -1.5f},
+           s.add_material(mirror));
+  Material shiny = with_shader("shiny", "phong");
+  shiny.set("reflect", 0.4f);
+  add_box(s, {-2.5f, 0, 0.8f}, {-1.9f, 0.5f, 1.4f}, s.add_material(shiny));
+  s.lights.push_back(Light{{1.5f, 2.0f, 1.5f}, glm::vec3(2.0f, 2.0f, 1.5f)});
+  s.camera = Camera{{0, 1.5f, 5}, {0, 0.7f, 0}, {0, 1, 0}, 45.0f};
+  s.has_camera = true;
+  s.width = 24;
+  s.height = 16;
+  s.background = glm::vec3(0.05f, 0.05f, 0.1f);
+  s.options.integrator = Integrator::Path;
+  s.options.max_depth = 6;
+  s.options.mis = mis;
+  return s;
+}
+
+TEST_P(PathRender, ImagesAreTheCpuBackendsBits) {
+  std::string why;
+  if (!testing::backend_available(GetParam(), why)) GTEST_SKIP() << why;
+  for (bool mis : {true, false}) {
+    const Scene s = mixed_scene(mis);
+    const RenderResult want = render(s, 3, "cpu", {}, true),
+                       got = render(s, 3, GetParam(), {}, true);
+    testing::expect_identical(got, want, GetParam() + (mis ? " mis" : " no mis"));
+  }
+  Scene cornell = builtin_scene("cornell-path");
+  cornell.width = cornell.height = 16;
+  testing::expect_identical(render(cornell, 2, GetParam(), {}, true),
+                            render(cornell, 2, "cpu", {}, true), GetParam() + " cornell-path");
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, PathRender, ::testing::ValuesIn(testing::backend_names()),
+                         [](const auto& info) { return rill::testing::param_name(info.param); });
+
+}  // namespace
+}  // namespace rt
