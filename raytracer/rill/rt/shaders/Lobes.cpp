@@ -41,8 +41,11 @@ Ggx::Ggx(const Surface& surface, const Float& roughness, const Float3& specular)
 }
 
 Float Ggx::d(const Float3& h) const {
+  // h is a unit vector, so cos^2 (a2 - 1) + 1 = sin^2 + a2 cos^2; written so, with sin^2 from
+  // h.x and h.y, it has no cancellation: near the peak of a narrow lobe 1 - cos^2 in float
+  // loses the digits that a2 (down to 1e-6) needs.
   const Float a2 = alpha * alpha;
-  const Float t = h.z() * h.z() * (a2 - 1.0f) + 1.0f;
+  const Float t = (h.x() * h.x() + h.y() * h.y()) + h.z() * h.z() * a2;
   return a2 / (kPi * t * t);
 }
 
