@@ -20,6 +20,7 @@
 #include "rill/rt/scene/Pose.h"
 #include "rill/rt/shaders/Registry.h"
 #include "rill/rt/strategy/RenderStrategy.h"
+#include "rill/rt/wavefront/Wavefront.h"
 
 namespace rt {
 
@@ -38,6 +39,8 @@ struct StrategyRegistry {
                          [](DeviceScene& s) { return std::make_unique<Megakernel>(s); });
     entries.emplace_back("multipass",
                          [](DeviceScene& s) { return std::make_unique<Multipass>(s); });
+    entries.emplace_back("wavefront",
+                         [](DeviceScene& s) { return std::make_unique<Wavefront>(s); });
   }
 };
 

@@ -1,5 +1,5 @@
 // The ray tracer's facade (rill::raytracer): build a Tracer from a scene and its grid, then
-// render through a camera on any backend, with either strategy.
+// render through a camera on any backend, with any registered strategy.
 //
 //   rt::Scene scene = rt::load_scene("scenes/cornell.json");   // load/SceneFile.h
 //   rt::Grid grid = rt::build_grid_for(scene);                 // accel/Grid.h

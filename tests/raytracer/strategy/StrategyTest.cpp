@@ -60,16 +60,20 @@ class FlatStrategy final : public RenderStrategy {
 
 TEST(Strategies, TheBuiltInOnesAreRegisteredByName) {
   const std::vector<std::string> names = strategy_names();
-  ASSERT_GE(names.size(), 2u);
+  ASSERT_GE(names.size(), 3u);
   EXPECT_EQ(names[0], "megakernel");
   EXPECT_EQ(names[1], "multipass");
+  EXPECT_EQ(names[2], "wavefront");
   EXPECT_EQ(parse_strategy("multipass"), Strategy::Multipass);
+  EXPECT_EQ(parse_strategy("wavefront"), Strategy::Wavefront);
   EXPECT_EQ(RenderSettings{}.strategy, Strategy::Megakernel);
   try {
     parse_strategy("quantum");
     ADD_FAILURE() << "no error";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("--strategy expects megakernel or multipass", 0), 0u)
+    EXPECT_EQ(
+        std::string(e.what()).rfind("--strategy expects megakernel or multipass or wavefront", 0),
+        0u)
         << e.what();
   }
 }

@@ -40,6 +40,7 @@
 #include "rill/Record.h"
 #include "rill/Reduce.h"
 #include "rill/Stopwatch.h"
+#include "rill/rt/kernel/Compile.h"
 #include "rill/rt/kernel/PerBackend.h"
 
 namespace rt {
@@ -70,6 +71,12 @@ struct Multipass::Buffers {
 };
 
 Multipass::Multipass(DeviceScene& scene) : S_(scene) {
+  // Its passes are Whitted's (surface, a shadow ray per light, combine): under the path
+  // integrator they would render another image than the one asked for.
+  if (S_.options.integrator == Integrator::Path)
+    throw std::runtime_error(
+        "--strategy multipass runs the Whitted tracer, not the path integrator; use "
+        "--strategy megakernel or wavefront for the path integrator");
   if (S_.F.refraction)
     throw std::runtime_error(
         "--strategy multipass: glass (transmit > 0) needs the ray stack of the single kernel; "
@@ -125,12 +132,7 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
   r.width = width;
   r.height = height;
   Stopwatch since_start;
-  Backend& be = backend(rs.backend);
-  if (std::string why = be.unavailable_reason(); !why.empty())
-    throw std::runtime_error("backend " + rs.backend + " cannot run here: " + why);
-  if (!be.supports(rs.accuracy))
-    throw std::runtime_error(std::string("backend ") + rs.backend + " has no " +
-                             accuracy_name(rs.accuracy) + " accuracy mode");
+  check_backend(rs.backend, rs.accuracy);
   Kernels& K = kernels(rs.backend, rs.accuracy);
   r.from_cache = K.raygen.info().cache_hit || K.raygen.info().from_disk_cache;
   for (const Kernel* k : {&K.raygen, &K.setup, &K.traverse, &K.intersect, &K.finish, &K.surface,
@@ -170,19 +172,9 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
   r.passes.assign(kPasses, PassStats{});
   for (int p = 0; p < kPasses; ++p) r.passes[static_cast<size_t>(p)].name = kPassNames[p];
 
-  int64_t launches = 0;
   // Runs one pass, masked to the elements in `state` when masking is on.
   auto run = [&](Kernel& k, Pass pass, const std::optional<rill::StateMask>& mask) {
-    ++launches;
-    Stopwatch launch;
-    const int64_t written = mask && rs.masking ? k.execute(*mask) : k.execute();
-    PassStats& st = r.passes[static_cast<size_t>(pass)];
-    st.ms += launch.ms();
-    r.times.add_kernel(k.last_launch().device_ms);
-    ++st.calls;
-    st.processed += k.last_launch().processed;
-    st.written += written;
-    return written;
+    return run_pass(k, rs.masking ? mask : std::nullopt, r.passes[static_cast<size_t>(pass)], r);
   };
   // The state fields the launches are masked on.
   const Stream<Int> tr_state = B.tr.field<Int>("state");
@@ -250,7 +242,6 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
   film.finish(AovStreams{B.aov.field<Float>("depth"), B.aov.field<Int>("prim"),
                          B.aov.field<Float3>("normal")},
               rs.outputs, r);
-  r.launches = launches;
   r.trace_ms = since_samples.ms();
 }
 

@@ -18,7 +18,8 @@ namespace rt {
 
 class Multipass final : public RenderStrategy {
  public:
-  // Captures the passes' programs; throws std::runtime_error for a scene with refraction.
+  // Captures the passes' programs; throws std::runtime_error for a scene with refraction or
+  // under the path integrator.
   explicit Multipass(DeviceScene& scene);
   ~Multipass() override;
   void render(const Frame& frame, RenderResult& r) override;

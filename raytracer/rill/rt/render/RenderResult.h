@@ -30,7 +30,8 @@ struct FrameTimes {
   }
 };
 
-// One multipass pass (kernel) over a render: launches, elements run and written, time.
+// One pass (kernel) of the multipass or wavefront strategy over a render: launches, elements
+// run and written, time.
 struct PassStats {
   std::string name;
   int64_t calls = 0, processed = 0, written = 0;
@@ -57,7 +58,7 @@ struct RenderResult {
   double trace_ms = 0;            // the frame: launches, accumulation, reduction, read-back
   FrameTimes times;               // trace_ms, step by step
   int64_t launches = 0;           // kernel launches while tracing
-  std::vector<PassStats> passes;  // multipass only: per pass (Multipass.cpp)
+  std::vector<PassStats> passes;  // multipass and wavefront: per pass
   std::string backend;
   std::string loop;  // the megakernel's loop as run ("ray" or "segment"); empty for multipass
 };

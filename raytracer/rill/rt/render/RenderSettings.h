@@ -11,17 +11,19 @@
 namespace rt {
 
 // A render strategy (strategy/RenderStrategy.h), by the name it is registered under
-// (Tracer.h: register_strategy, parse_strategy). Two are built in:
+// (Tracer.h: register_strategy, parse_strategy). Three are built in:
 //   Strategy::Megakernel  one kernel per pixel with a RILL_DO loop (Sh; megakernel/)
-//   Strategy::Multipass   the thesis's kernel sequence with ray states, no refraction
-//                         (multipass/)
+//   Strategy::Multipass   the thesis's kernel sequence with ray states, no refraction, the
+//                         Whitted tracer only (multipass/)
+//   Strategy::Wavefront   the path integrator's stages, a kernel each (wavefront/)
 struct Strategy {
   std::string name = "megakernel";
-  static const Strategy Megakernel, Multipass;
+  static const Strategy Megakernel, Multipass, Wavefront;
   bool operator==(const Strategy&) const = default;
 };
 inline const Strategy Strategy::Megakernel{"megakernel"};
 inline const Strategy Strategy::Multipass{"multipass"};
+inline const Strategy Strategy::Wavefront{"wavefront"};
 // The shape of the megakernel's loop (megakernel/Megakernel.h). Images do not depend on it,
 // only speed does (docs/benchmarks/2026-11-25-gpu-frame.md, "Session 23").
 enum class MegakernelLoop {

@@ -1,6 +1,7 @@
 // The render strategy interface (after pbrt's and Mitsuba's integrators): how a frame's
-// pixels are computed on the device. The megakernel (megakernel/) and the thesis's multipass
-// sequence (multipass/) implement it; Tracer.cpp registers them by name, so a new strategy
+// pixels are computed on the device. The megakernel (megakernel/), the thesis's multipass
+// sequence (multipass/) and the path integrator's wavefront (wavefront/) implement it;
+// Tracer.cpp registers them by name, so a new strategy
 // of the library is a folder of its own and one line there, and a program registers its own
 // with rt::register_strategy (Tracer.h).
 //
@@ -12,6 +13,9 @@
 // bits for the same frame where it supports the scene.
 #pragma once
 
+#include <optional>
+
+#include "rill/Stopwatch.h"
 #include "rill/rt/film/Film.h"
 #include "rill/rt/render/RenderResult.h"
 #include "rill/rt/render/RenderSettings.h"
@@ -27,6 +31,22 @@ struct Frame {
   int spp = 1;                     // samples per pixel: the settings', else the scene's
   Film& film;                      // where the samples meet (film/Film.h)
 };
+
+// One launch of a strategy of several kernels (multipass, wavefront), masked where a mask is
+// given: counted in r.launches, its time and elements in `pass` (one of r.passes) and its
+// device time in r.times. Returns the elements written.
+inline int64_t run_pass(rill::Kernel& k, const std::optional<rill::StateMask>& mask,
+                        PassStats& pass, RenderResult& r) {
+  ++r.launches;
+  rill::Stopwatch launch;
+  const int64_t written = mask ? k.execute(*mask) : k.execute();
+  pass.ms += launch.ms();
+  r.times.add_kernel(k.last_launch().device_ms);
+  ++pass.calls;
+  pass.processed += k.last_launch().processed;
+  pass.written += written;
+  return written;
+}
 
 class RenderStrategy {
  public:
