@@ -36,6 +36,10 @@ RILL_STRUCT(Hit, (Float, t), (Float2, uv), (Int, id));
 RILL_STRUCT(Surface, (Float3, P), (Float3, ns), (Float3, nf), (Float3, ngf), (Float3, V),
             (Float2, uv), (Bool, entering), (Float3, vertex_color), (Int, material));
 
+// The camera ray's AOVs as the multi-kernel strategies keep them in a stream: its hit's
+// distance (+inf: none), primitive (-1: none) and shading normal as stored (0: none).
+RILL_STRUCT(Aov, (Float, depth), (Int, prim), (Float3, normal));
+
 // A ray's grid traversal between kernels of the multipass strategy: its state, the current
 // voxel, the distances to its exit planes (tMax), where the ray leaves the grid, the voxel
 // steps taken, and the cursor over the voxel's triangle list (next, end), or a subgrid's

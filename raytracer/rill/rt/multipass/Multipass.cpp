@@ -237,11 +237,7 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
     r.times.reduce += reduce.ms();
     film.add_sample(B.path.field<Float3>("color"), sample);
   }
-  r.times.launch = 0;
-  for (const PassStats& p : r.passes) r.times.launch += p.ms;
-  film.finish(AovStreams{B.aov.field<Float>("depth"), B.aov.field<Int>("prim"),
-                         B.aov.field<Float3>("normal")},
-              rs.outputs, r);
+  finish_passes(film, B.aov, rs.outputs, r);
   r.trace_ms = since_samples.ms();
 }
 

@@ -1,6 +1,6 @@
 // The multipass strategy's per-pixel states (Multipass.h): the trace and path state values
-// its kernels switch on and mask launches by, and the path and AOV records kept in streams
-// between them (the ray, hit and traversal records are kernel/Records.h's).
+// its kernels switch on and mask launches by, and the path records kept in streams between
+// them (the ray, hit, AOV and traversal records are kernel/Records.h's).
 #pragma once
 
 #include <rill/Record.h>
@@ -23,8 +23,6 @@ using rill::Int;
 
 // A pixel's path: its state (kPathEnded...), bounce depth, rays traced, weight and colour.
 RILL_STRUCT(PathState, (Int, state), (Int, depth), (Int, rays), (Float, weight), (Float3, color));
-// The camera ray's AOVs.
-RILL_STRUCT(Aov, (Float, depth), (Int, prim), (Float3, normal));
 
 // Every pass's prologue: an element whose state is not one this pass works on (`skip`) is
 // left as it is, its outputs unwritten. With masked launches (Multipass.cpp) such elements

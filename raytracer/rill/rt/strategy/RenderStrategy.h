@@ -17,6 +17,7 @@
 
 #include "rill/Stopwatch.h"
 #include "rill/rt/film/Film.h"
+#include "rill/rt/kernel/Records.h"
 #include "rill/rt/render/RenderResult.h"
 #include "rill/rt/render/RenderSettings.h"
 
@@ -46,6 +47,17 @@ inline int64_t run_pass(rill::Kernel& k, const std::optional<rill::StateMask>& m
   pass.processed += k.last_launch().processed;
   pass.written += written;
   return written;
+}
+
+// The end of such a frame: the launch time is its passes', and the film finishes with the
+// camera ray's AOVs in `aov`.
+inline void finish_passes(Film& film, const rill::Stream<Aov>& aov, const FrameOutputs& want,
+                          RenderResult& r) {
+  r.times.launch = 0;
+  for (const PassStats& p : r.passes) r.times.launch += p.ms;
+  film.finish(AovStreams{aov.field<rill::Float>("depth"), aov.field<rill::Int>("prim"),
+                         aov.field<rill::Float3>("normal")},
+              want, r);
 }
 
 class RenderStrategy {

@@ -30,8 +30,8 @@ Program Wavefront::capture_camera(bool aovs) const {
       active = 0;
     }
     if (aovs) {
-      Output<AovRecord> aov("aov");
-      aov = AovRecord{as_float(Int(0x7f800000)), Int(-1), Float3(0.0f)};
+      Output<Aov> aov("aov");
+      aov = Aov{as_float(Int(0x7f800000)), Int(-1), Float3(0.0f)};
     }
   });
 }

@@ -1,9 +1,9 @@
 // The wavefront strategy's work items as they wait in streams between its kernels
-// (Wavefront.h): the path integrator's records (integrator/PathIntegrator.h) and the camera
-// ray's AOVs. Streams hold Float and Int fields only, so the Bool fields are stored as Int (0
-// or 1); and fields are packed into vectors of up to four (the ray's origin with its extent,
-// the path's integers together), since on the glsl backend every field of a kernel's records
-// is a texture unit, of which a kernel has 32 with the scene's arrays. The state fields the
+// (Wavefront.h): the path integrator's records (integrator/PathIntegrator.h); the camera ray's
+// AOVs are kernel/Records.h's Aov. Streams hold Float and Int fields only, so the Bool fields are
+// stored as Int (0 or 1); and fields are packed into vectors of up to four (the ray's origin with
+// its extent, the path's integers together), since on the glsl backend every field of a kernel's
+// records is a texture unit, of which a kernel has 32 with the scene's arrays. The state fields the
 // launches are masked on (done, active) stay fields of their own. Loading and storing move
 // values and nothing else: a float goes to its stream and comes back with the same bits, so
 // the stages compute what the megakernel's loop computes.
@@ -32,8 +32,6 @@ RILL_STRUCT(PathRecord, (Float4, o), (Float4, d), (Float3, radiance), (Float3, t
 RILL_STRUCT(ShadowRecord, (Float4, o), (Float3, d), (Float3, contribution), (Int, active));
 // Hit: tuv = (t, uv), id.
 RILL_STRUCT(HitRecord, (Float3, tuv), (Int, id));
-// The camera ray's first hit (FirstHit): distance (+inf: none), primitive, shading normal.
-RILL_STRUCT(AovRecord, (Float, depth), (Int, prim), (Float3, normal));
 
 inline Int as_int(const Bool& b) {
   return select(b, Int(1), Int(0));

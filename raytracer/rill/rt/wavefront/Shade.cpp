@@ -32,9 +32,9 @@ Program Wavefront::capture_shade(bool aovs) const {
       out_shadow = store(shadow);
     }
     if (aovs) {
-      Output<AovRecord> aov("aov");
+      Output<Aov> aov("aov");
       RILL_IF(depth == 0) {
-        aov = AovRecord{first.depth, first.prim, first.normal};
+        aov = Aov{first.depth, first.prim, first.normal};
       }
       RILL_ENDIF;
     }

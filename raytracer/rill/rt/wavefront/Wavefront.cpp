@@ -72,7 +72,7 @@ struct Wavefront::Buffers {
   Stream<PathRecord> path;
   Stream<HitRecord> hit;
   Stream<ShadowRecord> shadow;
-  Stream<AovRecord> aov;
+  Stream<Aov> aov;
   int width, height;
 };
 
@@ -164,11 +164,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
     r.times.reduce += reduce.ms();
     film.add_sample(B.path.field<Float3>("radiance"), s);
   }
-  r.times.launch = 0;
-  for (const PassStats& p : r.passes) r.times.launch += p.ms;
-  film.finish(AovStreams{B.aov.field<Float>("depth"), B.aov.field<Int>("prim"),
-                         B.aov.field<Float3>("normal")},
-              rs.outputs, r);
+  finish_passes(film, B.aov, rs.outputs, r);
   r.trace_ms = since_samples.ms();
 }
 
