@@ -31,7 +31,17 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   if (o.light_buffer) scene.options.light_buffer = *o.light_buffer;
   if (o.grid_density) scene.options.grid_density = *o.grid_density;
   if (o.max_depth > 64) throw rt::SceneError("--max-depth must be in 0..64");
-  if (o.spp > 4096) throw rt::SceneError("--spp must be in 1..4096");
+  if (o.integrator) scene.options.integrator = *o.integrator;
+  if (o.seed) scene.options.seed = static_cast<uint32_t>(*o.seed);
+  const bool path = scene.options.integrator == rt::Integrator::Path;
+  for (const auto& [given, name] : {std::pair{o.time_limit > 0, "--time-limit"},
+                                    {!o.save.empty(), "--save"},
+                                    {!o.resume.empty(), "--resume"}})
+    if (given && !path)
+      throw rt::SceneError(std::string(name) +
+                           " is for the path integrator (options.integrator \"path\" or "
+                           "--integrator path); a Whitted render is not progressive");
+  if (o.save_every > 0 && o.save.empty()) throw rt::SceneError("--save-every needs --save FILE");
   scene.validate();
   // An animated scene's camera as it is at the start (Pose.h): frame 0, for every path that
   // renders one frame; --frames moves it per frame.

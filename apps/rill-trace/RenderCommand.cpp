@@ -15,6 +15,7 @@
 #include "FrameReport.h"
 #include "Outputs.h"
 #include "Prepare.h"
+#include "Progressive.h"
 #include "distributed/Launch.h"
 #include "rill/Stopwatch.h"
 #include "rill/rt/scene/Pose.h"
@@ -72,7 +73,14 @@ int render(RenderOptions o) {
   const rt::Camera first_camera = rt::camera_at(scene, first_time);
   // Keys that are each fine can still interpolate to a degenerate view (eye on look_at).
   if (animated) rt::check_camera(first_camera, frame_camera_where(o.scene, scene, span.first));
-  rt::RenderResult r = tracer.render(rs, first_camera);
+  const bool progressive_path = progressive(o, p);
+  if (progressive_path && (span.count() > 1 || o.bench_frames > 0 || animated) &&
+      (o.time_limit > 0 || !o.save.empty() || !o.resume.empty()))
+    throw rt::SceneError(
+        "--time-limit, --save and --resume render one still frame (not with "
+        "--frames, --bench-frames or an animated scene)");
+  rt::RenderResult r =
+      progressive_path ? render_progressive(o, p, first_camera) : tracer.render(rs, first_camera);
   const double render_ms = ms_since(t_render);
   const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
   // Of that, the compile() calls (about 0 from a kernel cache); the rest is set-up: uploading

@@ -37,7 +37,28 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       ->check(file_name());
   r->add_option("--max-depth", o.max_depth, "reflection/refraction bounces")
       ->check(number_in(0, 64, true));
-  r->add_option("--spp", o.spp, "samples per pixel")->check(number_in(1, 4096, true));
+  r->add_option("--spp", o.spp,
+                "samples per pixel (the path integrator's target with --time-limit)")
+      ->check(number_in(1, rt::kMaxSpp, true));
+  add_parsed_option(r, "--integrator", o.integrator, rt::parse_integrator,
+                    "whitted or path (default: the scene's options.integrator)")
+      ->check(non_empty());
+  r->add_option("--seed", o.seed, "path: the random sequence (default: the scene's options.seed)")
+      ->check(number_in(0, 2147483647, true));
+  r->add_option("--time-limit", o.time_limit,
+                "path: stop after the pass (one sample per pixel) that crosses S seconds, and "
+                "say how many samples per pixel it reached")
+      ->check(number_in(1e-3, 1e7, false));
+  r->add_option("--save", o.save,
+                "path: write the running sums to FILE at the end (and every --save-every "
+                "passes), to --resume from")
+      ->check(file_name());
+  r->add_option("--save-every", o.save_every, "with --save: also every N passes")
+      ->check(number_in(1, rt::kMaxSpp, true));
+  r->add_option("--resume", o.resume,
+                "path: go on from the sums --save wrote (same scene, size and seed) up to --spp: "
+                "bitwise the image rendered at once")
+      ->check(file_name());
   add_parsed_option(r, "--grid", o.grid, parse_grid, "voxels per axis, or auto")
       ->check(non_empty());
   add_parsed_option(r, "--grid-density", o.grid_density, rt::parse_grid_density,

@@ -54,6 +54,14 @@ struct RenderOptions {
   std::string frames;
   rt::BvhUpdate bvh = rt::BvhUpdate::Rebuild;
   std::string video;
+  // The path integrator (docs/path-tracing.md): overrides of the scene's options, and
+  // progressive rendering: stop after the pass that crosses a time limit (seconds; 0: none),
+  // save the running sums (every N passes, and at the end) and resume from them.
+  std::optional<rt::Integrator> integrator;
+  std::optional<int> seed;
+  double time_limit = 0;
+  std::string save, resume;
+  int save_every = 0;
 };
 
 // Whether the command line names an image output (--out, --pfm, the AOVs, --exr); without one

@@ -54,7 +54,7 @@ uint64_t scene_hash(const Scene& s, const std::string& settings) {
   }
   h.add(s.materials.size());
   for (const Material& m : s.materials) {
-    h.add(m.name), h.add(m.shader), h.add(m.params.size());
+    h.add(m.name), h.add(m.shader), h.add(m.emission), h.add(m.two_sided), h.add(m.params.size());
     for (const auto& [name, p] : m.params) {
       h.add(name), h.add(p.kind), h.add(p.number), h.add(p.color), h.add(p.texture);
     }
@@ -65,6 +65,7 @@ uint64_t scene_hash(const Scene& s, const std::string& settings) {
   const SceneOptions& o = s.options;
   h.add(o.shadows), h.add(o.ambient), h.add(o.max_depth), h.add(o.grid), h.add(o.subgrid_min);
   h.add(o.grid_density), h.add(o.spp), h.add(o.smooth_normals);
+  h.add(o.integrator), h.add(o.seed), h.add(o.nee), h.add(o.mis), h.add(o.light_samples);
   // Animation (docs/dynamic-scenes.md): a distributed render is the first frame, but which
   // frame that is and where everything is then come from all of it.
   const Animation& a = s.animation;

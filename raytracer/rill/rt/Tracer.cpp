@@ -300,7 +300,15 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   if (moving) moving = widened(*moving, margin);
   I.device.camera.set(camera, width, height, glm::ivec2(win.x, win.y), &I.frame_boxes,
                       moving ? &*moving : nullptr);
-  I.strategy(rs.strategy).render(Frame{rs, win.width, win.height, depth, spp, I.film}, r);
+  Frame frame{rs, win.width, win.height, depth, spp, I.film};
+  if (rs.resume != nullptr) {
+    if (rs.resume->samples > spp)
+      throw std::runtime_error(
+          "render: the accumulation to resume has " + std::to_string(rs.resume->samples) +
+          " samples per pixel, more than the " + std::to_string(spp) + " asked for");
+    frame.first_sample = rs.resume->samples;
+  }
+  I.strategy(rs.strategy).render(frame, r);
 }
 
 std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Camera& camera,

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -291,6 +292,51 @@ TEST_F(PathReference, BrokenIntegratorsAreRejected) {
     const Agreement a = agree(rill_estimate(*scene_, 16, 64, o), *reference_);
     EXPECT_FALSE(a.passes()) << "mutation " << static_cast<int>(m) << " passed: " << a.beyond
                              << " beyond 4.5 sigma, image mean at " << a.z_mean << " sigma";
+  }
+}
+
+// ---- Progressive rendering ---------------------------------------------------------------
+
+// Resuming from k samples to n gives the render of n at once, bit for bit, in both strategies
+// that run the path integrator; a render stopped after a pass (after_pass) is the render of
+// that many samples.
+TEST(PathProgressive, ResumedAndStoppedRendersAreTheRendersOfTheirSamples) {
+  Scene s = builtin_scene("cornell-path");
+  s.width = 10;
+  s.height = 8;
+  Grid grid = build_grid_for(s);
+  Tracer tracer(s, grid);
+  for (const Strategy& strategy : {Strategy::Megakernel, Strategy::Wavefront}) {
+    SCOPED_TRACE(strategy.name);
+    RenderSettings rs;
+    rs.strategy = strategy;
+    rs.width = s.width;
+    rs.height = s.height;
+    rs.spp = 7;
+    const RenderResult once = tracer.render(rs, s.camera);
+    EXPECT_EQ(once.spp, 7);
+    RenderSettings first = rs;
+    first.spp = 3;
+    first.outputs.accumulation = true;
+    const RenderResult part = tracer.render(first, s.camera);
+    ASSERT_EQ(part.accumulation.samples, 3);
+    RenderSettings rest = rs;
+    rest.resume = &part.accumulation;
+    const RenderResult resumed = tracer.render(rest, s.camera);
+    EXPECT_EQ(resumed.spp, 7);
+    // (Its ray count is the resumed samples' only.)
+    ASSERT_EQ(resumed.color.size(), once.color.size());
+    EXPECT_EQ(
+        std::memcmp(resumed.color.data(), once.color.data(), once.color.size() * sizeof(glm::vec3)),
+        0);
+    // Stopped after the fourth pass: the render of 4 samples.
+    RenderSettings stop = rs;
+    stop.after_pass = [](int done) { return done < 4; };
+    RenderSettings four = rs;
+    four.spp = 4;
+    const RenderResult stopped = tracer.render(stop, s.camera);
+    EXPECT_EQ(stopped.spp, 4);
+    testing::expect_identical(stopped, tracer.render(four, s.camera), "stopped at 4");
   }
 }
 

@@ -478,7 +478,7 @@ TEST(BadInputTextures, JsonShadersAndParameters) {
             "t.json: materials.m: shader 'texture-test-required' needs parameter 'tint' (a "
             "colour)");
   EXPECT_HAS(err(R"({"shader": "texture-test-required", "tint": 1, "diffuse": 1})"),
-             "t.json: materials.m: unknown key 'diffuse' (shader, tint, gain)");
+             "t.json: materials.m: unknown key 'diffuse' (shader, emission, two_sided, tint, gain)");
   EXPECT_HAS(err(R"({"shader": "mirror", "color": 1})"), "materials.m: unknown key 'color'");
   EXPECT_HAS(err(R"({"difuse": 1})"), "materials.m: unknown key 'difuse'");
   EXPECT_EQ(err(R"({"diffuse": {"texture": "nope"}})", R"({"a": {"type": "wood"}})"),

@@ -132,27 +132,42 @@ Program Film::pack_program(const Stream<Int>& pixels) const {
 
 Film::~Film() = default;
 
-void Film::begin(const std::string& backend, Accuracy a, int width, int height, int spp) {
+void Film::begin(const std::string& backend, Accuracy a, int width, int height, int spp,
+                 const Accumulation* resume, bool summing) {
   const std::string key = backend_key(backend, a);
   auto it = buffers_.find(key);
   if (it == buffers_.end())
     it = buffers_.emplace(key, std::make_unique<Buffers>(*this, backend, a)).first;
   now_ = it->second.get();
-  if (spp > 1) now_->resize(width, height);
+  summing_ = spp > 1 || summing || resume != nullptr;
+  if (summing_) now_->resize(width, height);
+  samples_done_ = 0;
+  if (resume != nullptr) {
+    const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
+    if (resume->width != width || resume->height != height || resume->sum.size() != n ||
+        resume->carry.size() != n || resume->samples < 1)
+      throw std::invalid_argument(
+          "Film: the accumulation to resume is of " + std::to_string(resume->width) + "x" +
+          std::to_string(resume->height) + " pixels and " + std::to_string(resume->samples) +
+          " samples, the frame is " + std::to_string(width) + "x" + std::to_string(height));
+    now_->sum->upload(resume->sum);
+    now_->carry->upload(resume->carry);
+    samples_done_ = resume->samples;
+  }
   // The encoder holds the colour stream it gathers from: one of another size goes now,
   // before the strategy makes this frame's streams (PerBackend.h: the old streams go first).
   if (now_->encode_source && (now_->encode_size.x != width || now_->encode_size.y != height)) {
     now_->encode.reset();
     now_->encode_source.reset();
   }
-  spp_ = spp;
   single_.reset();
   encoded_.reset();
   accumulate_ms_ = 0;
 }
 
 void Film::add_sample(const Stream<Float3>& color, int s) {
-  if (spp_ == 1) {
+  ++samples_done_;
+  if (!summing_) {
     single_ = color;
     return;
   }
@@ -164,7 +179,8 @@ void Film::add_sample(const Stream<Float3>& color, int s) {
 }
 
 void Film::add_encoded(const Stream<Int>& pixels) {
-  if (spp_ != 1) throw std::logic_error("Film::add_encoded: a frame of one sample only");
+  if (summing_) throw std::logic_error("Film::add_encoded: a frame of one sample only");
+  ++samples_done_;
   encoded_ = pixels;
 }
 
@@ -185,9 +201,10 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     throw std::logic_error("Film::finish: the colour is wanted but only its encoding was added");
   // The colour stream (one sample's or the mean), unless the strategy encoded it itself.
   std::optional<Stream<Float3>> color;
-  if (!encoded_) color = spp_ == 1 ? *single_ : *now_->mean_color;
-  if (spp_ > 1) {
-    samples_.set(static_cast<float>(spp_));
+  if (!encoded_) color = summing_ ? *now_->mean_color : *single_;
+  r.spp = encoded_ ? 1 : samples_done_;
+  if (summing_) {
+    samples_.set(static_cast<float>(samples_done_));
     now_->mean.inputs(*now_->sum, *now_->carry).outputs(*color);
     now_->mean.execute();
     accumulate_ms_ += step.lap();
@@ -205,6 +222,14 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
   read(aovs.depth, r.depth, want.depth);
   read(aovs.prim, r.prim, want.prim);
   read(aovs.normal, r.normal, want.normal);
+  r.accumulation = Accumulation{};
+  if (want.accumulation && summing_) {
+    r.accumulation.width = static_cast<int>(now_->sum->width());
+    r.accumulation.height = static_cast<int>(now_->sum->height());
+    r.accumulation.samples = samples_done_;
+    read(*now_->sum, r.accumulation.sum, true);
+    read(*now_->carry, r.accumulation.carry, true);
+  }
   if (!want.rgb8) r.rgb8.clear();
   if (want.rgb8) {
     static_assert(std::endian::native == std::endian::little,

@@ -46,16 +46,20 @@ class Film {
   Film(const Film&) = delete;
   Film& operator=(const Film&) = delete;
 
-  // Starts a frame of spp samples on a backend.
-  void begin(const std::string& backend, rill::Accuracy a, int width, int height, int spp);
+  // Starts a frame of up to spp samples on a backend. With `resume` (an earlier frame's
+  // accumulation, of this size) its sums are uploaded and the frame goes on from them; with
+  // `summing`, the film keeps running sums even for one sample (finish can then read them
+  // back).
+  void begin(const std::string& backend, rill::Accuracy a, int width, int height, int spp,
+             const Accumulation* resume = nullptr, bool summing = false);
   // Sample s's colour, just written by the strategy on the frame's backend.
   void add_sample(const rill::Stream<rill::Float3>& color, int s);
   // Instead, for a frame of one sample whose linear colour is not read back: the 8-bit image
   // that the strategy encoded itself, one Int per pixel (R + 256 G + 65536 B, each byte as
   // Srgb8Encoder gives it). The film packs it into RenderResult::rgb8's bytes.
   void add_encoded(const rill::Stream<rill::Int>& pixels);
-  // The mean, encoded and read back as `want` asks, with the first sample's AOVs; adds the
-  // time it took to r.times.
+  // The mean of the samples added (and resumed), encoded and read back as `want` asks, with
+  // the first sample's AOVs; r.spp is their count. Adds the time it took to r.times.
   void finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r);
 
  private:
@@ -75,7 +79,8 @@ class Film {
   rill::Program add_, mean_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
   Buffers* now_ = nullptr;                                   // the frame's
-  int spp_ = 1;
+  bool summing_ = false;  // running sums (spp > 1, resumed, or their read-back wanted)
+  int samples_done_ = 0;  // samples in the sums (resumed ones included)
   std::optional<rill::Stream<rill::Float3>> single_;  // spp == 1: the sample itself
   std::optional<rill::Stream<rill::Int>> encoded_;    // or its 8-bit encoding (add_encoded)
   double accumulate_ms_ = 0;

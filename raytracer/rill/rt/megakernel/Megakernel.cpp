@@ -476,7 +476,8 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   r.loop = megakernel_loop_name(loop);
   Stopwatch since_start;
   MegakernelOutputs outputs = MegakernelOutputs::for_frame(rs.outputs, spp);
-  if (path()) outputs.encoded = false;  // the path kernel writes linear colour only
+  // The path kernel writes linear colour only; running sums need it too.
+  if (path() || frame.summing()) outputs.encoded = false;
   Kernel& k = kernel(rs.backend, rs.accuracy, loop, outputs);
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
   add_stages(r, k.info());
@@ -505,7 +506,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
     k.bind("color", out.color);
   }
   if (outputs.aovs) k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
-  film.begin(rs.backend, rs.accuracy, width, height, spp);
+  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing());
   r.times.setup = setup.ms();
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
@@ -523,7 +524,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   r.compile_ms = since_start.ms() - r.times.setup;
 
   Stopwatch trace, step;
-  for (int s = 0; s < spp; ++s) {
+  for (int s = frame.first_sample; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
     if (path_) path_->sample_index.set(s);
     step.lap();
@@ -537,6 +538,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
       film.add_encoded(*out.pixels);
     else
       film.add_sample(out.color, s);
+    if (!frame.more_after(s)) break;
   }
   film.finish(AovStreams{out.dist, out.prim, out.normal}, rs.outputs, r);
   r.trace_ms = trace.ms();

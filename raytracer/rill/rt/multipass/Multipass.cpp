@@ -142,7 +142,7 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
   S_.shading.max_depth.set(depth);
   Stopwatch setup;
   Buffers& B = buffers_for(buffers_, backend_key(rs.backend, rs.accuracy), width, height);
-  film.begin(rs.backend, rs.accuracy, width, height, spp);
+  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing());
   r.times.setup = setup.ms();
   // The ray count is a reduction on the device (rill::sum): its kernels compile here, not in
   // the first sample's trace time.
@@ -215,7 +215,7 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
     K.shadow_acc.bind("local", B.local);
   }
   Stopwatch since_samples;
-  for (int sample = 0; sample < spp; ++sample) {
+  for (int sample = frame.first_sample; sample < spp; ++sample) {
     S_.camera.offset.set(sample_offset(sample));
     run(K.raygen, kRaygen, std::nullopt);
     const rill::StateMask with_surface = where(path_state, kPathSurface);
@@ -236,6 +236,7 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
     r.rays += rill::sum(path_rays);
     r.times.reduce += reduce.ms();
     film.add_sample(B.path.field<Float3>("color"), sample);
+    if (!frame.more_after(sample)) break;
   }
   finish_passes(film, B.aov, rs.outputs, r);
   r.trace_ms = since_samples.ms();

@@ -11,6 +11,17 @@
 
 namespace rt {
 
+// A render's running sums, to stop it and go on later (progressive rendering; the path
+// integrator's --save and --resume, docs/path-tracing.md): per pixel, row 0 at the top, the
+// compensated sum of its samples' colours (sum + carry, film/Film.h) after `samples` samples.
+// Resuming from it adds the later samples to the very same floats, so an image resumed from k
+// samples to n is bitwise the image rendered to n at once.
+struct Accumulation {
+  int width = 0, height = 0;
+  int samples = 0;
+  std::vector<glm::vec3> sum, carry;
+};
+
 // A render's time, step by step, in milliseconds (wall clock on the host; they add up to
 // RenderResult::trace_ms, less a little bookkeeping).
 struct FrameTimes {
@@ -48,6 +59,8 @@ struct RenderResult {
   std::vector<int32_t> prim;        // primitive id (-1: miss)
   std::vector<glm::vec3> normal;    // shading normal as stored (0 on a miss)
   int64_t rays = 0;                 // rays traced (camera, shadow, secondary), all samples
+  int spp = 0;                      // samples per pixel in the image (resumed ones included)
+  Accumulation accumulation;        // the running sums, when FrameOutputs::accumulation
   double compile_ms = 0;            // 0 when the compiled kernel came from a cache
   bool from_cache = false;
   // The render's kernels' compile stages (Kernel::info()), summed over them: the multipass

@@ -6,7 +6,11 @@
 
 #include <rill/rill.h>
 
+#include "rill/rt/render/RenderResult.h"
+
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace rt {
 
@@ -42,11 +46,12 @@ MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backe
 // What a render reads back to the host (RenderResult): everything else stays on the device.
 // A PNG needs only `rgb8`; a PFM needs `color`; the AOVs only when asked for.
 struct FrameOutputs {
-  bool color = true;   // RenderResult::color: the linear mean colour, 3 floats per pixel
-  bool rgb8 = false;   // RenderResult::rgb8: the 8-bit sRGB encoding, encoded on the device
-  bool depth = true;   // RenderResult::depth
-  bool prim = true;    // RenderResult::prim
-  bool normal = true;  // RenderResult::normal
+  bool color = true;          // RenderResult::color: the linear mean colour, 3 floats per pixel
+  bool rgb8 = false;          // RenderResult::rgb8: the 8-bit sRGB encoding, encoded on the device
+  bool depth = true;          // RenderResult::depth
+  bool prim = true;           // RenderResult::prim
+  bool normal = true;         // RenderResult::normal
+  bool accumulation = false;  // RenderResult::accumulation: the running sums, to resume from
 };
 
 struct RenderSettings {
@@ -70,6 +75,14 @@ struct RenderSettings {
     int x = 0, y = 0, width = 0, height = 0;
     bool empty() const { return width <= 0 || height <= 0; }
   } window;
+  // Progressive rendering. A render runs in passes of one sample per pixel, samples 0 to
+  // spp - 1 in order. With `resume` (the accumulation of an earlier render of the same scene,
+  // seed and size; RenderResult::accumulation) it starts after that render's samples.
+  // `after_pass`, if set, is called after each pass with the samples per pixel done so far;
+  // returning false stops the render there (a time limit, a cancel button): the image is the
+  // mean of the samples done, RenderResult::spp says how many.
+  const Accumulation* resume = nullptr;
+  std::function<bool(int samples_done)> after_pass;
 };
 
 }  // namespace rt

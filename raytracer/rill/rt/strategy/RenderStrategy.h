@@ -31,6 +31,13 @@ struct Frame {
   int depth = 0;                   // bounces: the settings' max_depth, else the scene's
   int spp = 1;                     // samples per pixel: the settings', else the scene's
   Film& film;                      // where the samples meet (film/Film.h)
+  // The first sample to render: 0, or the resumed accumulation's count (settings.resume).
+  int first_sample = 0;
+  // After sample s was handed to the film: whether to go on (settings.after_pass).
+  bool more_after(int s) const { return !settings.after_pass || settings.after_pass(s + 1); }
+  // Whether the film must keep running sums even for one sample (to resume from, or to be
+  // resumed): a strategy then does not encode a one-sample frame itself.
+  bool summing() const { return settings.resume != nullptr || settings.outputs.accumulation; }
 };
 
 // One launch of a strategy of several kernels (multipass, wavefront), masked where a mask is

@@ -110,7 +110,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
     K.camera.bind_fields("aov", B.aov);
     K.shade.bind_fields("aov", B.aov);
   }
-  film.begin(rs.backend, rs.accuracy, width, height, spp);
+  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing());
   r.times.setup = setup.ms();
 
   // The masks: the paths not done (intersect, shade), the active shadow queries (shadow).
@@ -142,7 +142,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
   };
 
   Stopwatch since_samples;
-  for (int s = 0; s < spp; ++s) {
+  for (int s = frame.first_sample; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
     path_->sample_index.set(s);
     run(K.camera, kCamera, std::nullopt);
@@ -163,6 +163,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
     r.rays += rill::sum(ints).z;  // on the device: only the total comes back
     r.times.reduce += reduce.ms();
     film.add_sample(B.path.field<Float3>("radiance"), s);
+    if (!frame.more_after(s)) break;
   }
   finish_passes(film, B.aov, rs.outputs, r);
   r.trace_ms = since_samples.ms();

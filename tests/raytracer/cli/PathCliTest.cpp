@@ -1,0 +1,87 @@
+// rill-trace render's progressive path rendering (apps/rill-trace/Progressive.h): --save,
+// --save-every and --resume give the image rendered at once, bit for bit; --time-limit stops
+// and says how many samples it reached; a saved render of another scene, size or seed, or a
+// file of another kind, is refused naming the file; the options are refused under Whitted.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "RunCommand.h"
+#include "TestUtil.h"
+
+namespace rt {
+namespace {
+
+#ifdef RILL_TRACE_EXE
+
+// rill-trace render of the path-traced Cornell box, small.
+testing::Run run_path(const std::string& args, const testing::TempDir& dir) {
+  return testing::run_command(
+      "'" RILL_TRACE_EXE "' render builtin:cornell-path --size 12x10 --quiet " + args, dir);
+}
+
+TEST(CliPath, SavedAndResumedRendersAreTheRenderAtOnce) {
+  testing::TempDir dir;
+  ASSERT_EQ(run_path("--spp 9 --pfm once.pfm --out once.png", dir).status, 0);
+  ASSERT_EQ(run_path("--spp 4 --save four.acc --out /dev/null", dir).status, 0);
+  ASSERT_EQ(run_path("--spp 9 --resume four.acc --pfm resumed.pfm --out resumed.png", dir).status,
+            0);
+  ASSERT_EQ(
+      run_path("--spp 9 --save chunks.acc --save-every 2 --pfm chunks.pfm --out /dev/null", dir)
+          .status,
+      0);
+  const std::string once = testing::read_text(dir.path("once.pfm"));
+  ASSERT_FALSE(once.empty());
+  EXPECT_EQ(testing::read_text(dir.path("resumed.pfm")), once);
+  EXPECT_EQ(testing::read_text(dir.path("chunks.pfm")), once);
+  EXPECT_EQ(testing::read_text(dir.path("resumed.png")), testing::read_text(dir.path("once.png")));
+  // The chunks' file holds all 9 samples: resuming from it to 9 renders nothing more.
+  ASSERT_EQ(run_path("--spp 9 --resume chunks.acc --pfm again.pfm --out /dev/null", dir).status, 0);
+  EXPECT_EQ(testing::read_text(dir.path("again.pfm")), once);
+}
+
+TEST(CliPath, ATimeLimitStopsAndSaysHowFarItGot) {
+  testing::TempDir dir;
+  const auto r = testing::run_command("'" RILL_TRACE_EXE
+                                      "' render builtin:cornell-path --size 12x10 --spp 1000000 "
+                                      "--time-limit 0.3 --out t.png",
+                                      dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("stopped by --time-limit"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("samples per pixel"), std::string::npos) << r.out;
+}
+
+TEST(CliPath, AResumeFromAnotherRenderIsRefusedNamingTheFile) {
+  testing::TempDir dir;
+  ASSERT_EQ(run_path("--spp 3 --save s.acc --out /dev/null", dir).status, 0);
+  ASSERT_EQ(testing::run_command("'" RILL_TRACE_EXE "' render builtin:cornell-path --size 10x10 "
+                                 "--spp 3 --save s10.acc --out /dev/null",
+                                 dir)
+                .status,
+            0);
+  dir.file("junk.acc", "not a saved render");
+  struct Case {
+    std::string args, needle;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"--spp 8 --seed 5 --resume s.acc", "s.acc: saved with seed 0, the scene's is 5"},
+           {"--spp 8 --resume s10.acc", "s10.acc: saved at 10x10, the render is 12x10"},
+           {"--spp 8 --max-depth 2 --resume s.acc", "s.acc: saved from another scene"},
+           {"--spp 2 --resume s.acc", "s.acc: holds 3 samples per pixel, more than the 2"},
+           {"--spp 8 --resume junk.acc", "junk.acc: not a render saved by rill-trace --save"},
+           {"--spp 8 --resume gone.acc", "gone.acc: cannot open"},
+           {"--integrator whitted --spp 8 --resume s.acc", "--resume is for the path integrator"},
+           {"--save-every 2", "--save-every needs --save FILE"},
+       }) {
+    const auto r = run_path(c.args + " --out /dev/null", dir);
+    SCOPED_TRACE(c.args);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
+  }
+}
+
+#endif
+
+}  // namespace
+}  // namespace rt
