@@ -86,6 +86,24 @@ struct Megakernel::Aovs {
   Float3 normal{0.0f};
 };
 
+namespace {
+
+// Both programs' last outputs: the ray count, and the camera ray's AOVs where they are asked for.
+void write_rays_and_aovs(const Int& rays, bool aovs, const Float& depth, const Int& prim,
+                         const Float3& normal) {
+  Output<Int> out_rays("rays");
+  out_rays = rays;
+  if (!aovs) return;
+  Output<Float> out_depth("depth");
+  Output<Int> out_prim("prim");
+  Output<Float3> out_normal("normal");
+  out_depth = depth;
+  out_prim = prim;
+  out_normal = normal;
+}
+
+}  // namespace
+
 // The path integrator's kernel: one path per instance, for the launch's sample. Each
 // iteration traces the path's ray, shades what it found (PathIntegrator::shade) and traces the
 // light sample's shadow ray.
@@ -124,16 +142,7 @@ Program Megakernel::capture_path(MegakernelOutputs outputs) const {
     RILL_ENDIF;
     Output<Float3> out_color("color");
     out_color = path.radiance;
-    Output<Int> out_rays("rays");
-    out_rays = path.rays;
-    if (outputs.aovs) {
-      Output<Float> depth("depth");
-      Output<Int> prim("prim");
-      Output<Float3> normal("normal");
-      depth = first.depth;
-      prim = first.prim;
-      normal = first.normal;
-    }
+    write_rays_and_aovs(path.rays, outputs.aovs, first.depth, first.prim, first.normal);
   });
 }
 
@@ -207,16 +216,7 @@ Program Megakernel::capture(MegakernelLoop loop, MegakernelOutputs outputs) cons
       Output<Float3> out_color("color");
       out_color = L.color;
     }
-    Output<Int> out_rays("rays");
-    out_rays = L.rays;
-    if (outputs.aovs) {
-      Output<Float> depth("depth");
-      Output<Int> prim("prim");
-      Output<Float3> normal("normal");
-      depth = aovs.depth;
-      prim = aovs.prim;
-      normal = aovs.normal;
-    }
+    write_rays_and_aovs(L.rays, outputs.aovs, aovs.depth, aovs.prim, aovs.normal);
   });
 }
 
