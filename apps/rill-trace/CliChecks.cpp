@@ -14,7 +14,10 @@ namespace trace_cli {
 CLI::Validator number_in(double lo, double hi, bool integer) {
   auto text = [](double v) {
     std::ostringstream s;
-    s << v;
+    if (v == static_cast<double>(static_cast<long long>(v)))
+      s << static_cast<long long>(v);  // 1048576, not 1.04858e+06
+    else
+      s << v;
     return s.str();
   };
   return CLI::Validator(

@@ -76,7 +76,8 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       "the grid), or auto (default: 64 where the scene has shadows)")
       ->check(non_empty());
   add_parsed_option(r, "--strategy", o.strategy, rt::parse_strategy,
-                    "megakernel (one kernel, Sh style) or multipass (the thesis's kernel sequence)")
+                    "megakernel (one kernel, Sh style), multipass (the thesis's kernel sequence; whitted) "
+                    "or wavefront (the path integrator's stages, a kernel each; path)")
       ->default_str("megakernel");
   add_parsed_option(r, "--loop", o.loop, rt::parse_megakernel_loop,
                     "megakernel: one traced ray per loop iteration (ray), or one path segment with "

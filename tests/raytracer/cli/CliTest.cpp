@@ -86,7 +86,7 @@ TEST(Cli, BadCommandLinesAndInputs) {
                          std::string(opt) + ": an empty value");
   expect_clean_failure("render builtin:thesis-a --size 4x4 --size 8x8",
                        "--size is given 2 times: give it once");
-  expect_clean_failure("render builtin:thesis-a --spp 0", "0 is out of range (1 to 4096)");
+  expect_clean_failure("render builtin:thesis-a --spp 0", "0 is out of range (1 to 1048576)");
   expect_clean_failure("render builtin:thesis-a --max-depth -3", "out of range (0 to 64)");
   expect_clean_failure("render builtin:thesis-a --max-depth x", "'x' is not an integer");
   expect_clean_failure("render builtin:thesis-a --spp 2.5", "'2.5' is not an integer");
