@@ -154,6 +154,13 @@ TEST_F(Distributed, IdenticalToSingleProcessWhateverRanksAndTiles) {
   r = run_command(kMpirun + " -np 3 " + kExe + bounce + outputs("b") + " --tile 9", dir, 120);
   ASSERT_EQ(r.status, 0) << r.err;
   expect_same_files(dir, "b-ref", "b", kSuffixes, std::size(kSuffixes));
+  // The path integrator: each pixel's random numbers are keyed by its image coordinates, so a
+  // tile's pixels are the single process's (docs/path-tracing.md).
+  const std::string path = " render builtin:cornell-path --size 40x30 --spp 3 --quiet";
+  ASSERT_EQ(run_command(kExe + path + outputs("p-ref"), dir).status, 0);
+  r = run_command(kMpirun + " -np 3 " + kExe + path + outputs("p") + " --tile 7", dir, 120);
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_same_files(dir, "p-ref", "p", kSuffixes, std::size(kSuffixes));
 }
 
 // An image sequence (--frames) over the ranks: every frame's files are the single process's,
