@@ -104,7 +104,7 @@ Features tracer_features(const Scene& scene, const MaterialShaders& shaders,
   }
   if (f.geometry) {
     const Features& extra = options.extra_features;
-    f.specular = f.specular || (f.lights && extra.specular);
+    f.specular = f.specular || ((f.lights || f.area_lights) && extra.specular);
     f.refraction = f.refraction || extra.refraction;
     f.reflection = f.reflection || extra.reflection || f.refraction;
     f.stack = std::max(f.stack, f.refraction ? kRayStack : extra.stack);

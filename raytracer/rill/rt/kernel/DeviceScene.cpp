@@ -10,11 +10,16 @@ DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions&
   tris.upload(scene, K, F);
   materials.upload(scene, F, shaders);
   lights.upload(scene);
-  if (F.shadows) light_buffer.upload(build_light_buffer(scene, g, light_buffer_res(scene)));
+  // The light buffer is per point light: area lights' shadow rays walk the grid.
+  if (F.shadows && !scene.lights.empty())
+    light_buffer.upload(build_light_buffer(scene, g, light_buffer_res(scene)));
   shading.upload(scene);
   light_count = static_cast<int>(scene.lights.size());
   background = scene.background;
-  if (scene.options.integrator == Integrator::Path) {
+  if (F.area_lights) {  // Whitted's area lights draw from the same table (Shading::loop_light)
+    path_lights.upload(scene, tris, F, {});
+    shading.area_samples(scene.options);
+  } else if (scene.options.integrator == Integrator::Path) {
     std::vector<bool> smooth;
     for (size_t m = 0; m < scene.materials.size(); ++m) {
       const Bsdf& b = shaders.at(m)->bsdf;

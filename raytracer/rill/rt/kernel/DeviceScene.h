@@ -36,9 +36,11 @@ struct DeviceScene {
   LightBufferView light_buffer;  // the shadow rays' (F.shadows, SceneOptions::light_buffer)
   CameraRays camera;
   Intersector intersector{grid, bvh, light_buffer, lights.position, tris, K, F};
-  Shading shading{tris, materials, lights, K, F};
-  // The path integrator's lights (point lights and emitting triangles); uploaded only under
-  // Integrator::Path.
+  // (path_lights, declared below, is only referred to here: constructed after shading, and
+  // declared in this order so that every other scene's kernels are the same.)
+  Shading shading{tris, materials, lights, path_lights, K, F};
+  // The path integrator's lights (point lights and emitting triangles); uploaded under
+  // Integrator::Path, and for Whitted's area lights (F.area_lights), which draw from it.
   LightSampler path_lights;
   int light_count = 0;         // host
   glm::vec3 background{0.0f};  // host (Shading::background's value)

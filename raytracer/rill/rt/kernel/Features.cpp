@@ -16,6 +16,7 @@ std::string Features::str() const {
   };
   add(geometry, "geometry");
   add(lights, "lights");
+  add(area_lights, "area-lights");
   add(shadows, "shadows");
   add(specular, "specular");
   add(reflection, "reflection");
@@ -47,7 +48,10 @@ Features scene_features(const Scene& s, const MaterialShaders& shaders) {
   for (bool u : used) f.geometry = f.geometry || u;
   for (const AnimatedObject& o : s.animation.objects) f.dynamic = f.dynamic || o.count > 0;
   f.lights = !s.lights.empty() && f.geometry;
-  f.shadows = f.lights && s.options.shadows;
+  if (s.options.integrator == Integrator::Whitted)
+    for (size_t m = 0; m < s.materials.size(); ++m)
+      f.area_lights = f.area_lights || (used[m] && s.materials[m].emits());
+  f.shadows = (f.lights || f.area_lights) && s.options.shadows;
   for (size_t m = 0; m < s.materials.size(); ++m) {
     if (!used[m]) continue;
     const Material& mat = s.materials[m];
@@ -57,7 +61,8 @@ Features scene_features(const Scene& s, const MaterialShaders& shaders) {
     f.reflection = f.reflection || lobes.reflect;
     f.refraction = f.refraction || lobes.transmit;
     for (const ShaderParam& p : sh.params) {
-      if (f.lights && p.name == "specular" && params.nonzero("specular")) f.specular = true;
+      if ((f.lights || f.area_lights) && p.name == "specular" && params.nonzero("specular"))
+        f.specular = true;
       if (params.get(p.name).kind == ParamValue::Kind::Texture) f.texcoords = true;
     }
   }

@@ -15,9 +15,13 @@ struct SurfaceShader;
 using MaterialShaders = std::vector<const SurfaceShader*>;  // per material (kernel/Shader.h)
 
 struct Features {
-  bool geometry = false;        // any traceable triangle (else every ray misses)
-  bool lights = false;          // point lights (else a headlight at the eye, no shadows)
-  bool shadows = false;         // shadow rays (lights and options.shadows)
+  bool geometry = false;  // any traceable triangle (else every ray misses)
+  bool lights = false;    // point lights (else a headlight at the eye, no shadows)
+  // Whitted only: emitting materials are area lights too, options.light_samples points drawn
+  // on them per shaded point (kernel/Shading.h, loop_light); with neither these nor point
+  // lights, the headlight.
+  bool area_lights = false;
+  bool shadows = false;         // shadow rays (lights or area lights, and options.shadows)
   bool specular = false;        // any used material with a Phong highlight, and lights
   bool reflection = false;      // any used material that reflects (shader lobes)
   bool refraction = false;      // any used material that transmits (Fresnel, TIR)

@@ -1,6 +1,8 @@
 // The intersector's DSL functions (Intersector.h).
 #include "rill/rt/kernel/Intersector.h"
 
+#include <optional>
+
 namespace rt {
 
 using namespace rill;
@@ -291,7 +293,10 @@ Hit Intersector::intersect(const Ray& ray, const Bool* any_hit, const Int* light
   // which skips every box beyond it.
   if (!grid_.empty && light != nullptr && any_hit != nullptr && lb_.enabled()) {
     Bool listed = false;
-    RILL_IF(any) {
+    // With area lights, light -1 is an area light sample's shadow ray: no light buffer.
+    std::optional<Bool> area_buffered;
+    if (F_.area_lights) area_buffered.emplace(any && *light >= 0);
+    RILL_IF(area_buffered ? *area_buffered : any) {
       listed = occluders(ray, *light, best);
     }
     RILL_ENDIF;

@@ -68,7 +68,7 @@ class Intersector {
   // before ray.tmax ends it (shadow rays); any_hit null: closest hit only. No hit: id -1,
   // t = ray.tmax. A shadow ray towards light *light (any_hit true, light given) tests its
   // light buffer cell's list instead of walking the grid where the scene has a light
-  // buffer and the cell a list.
+  // buffer and the cell a list (with area lights, *light -1: none, an area sample's).
   Hit intersect(const Ray& ray, const Bool* any_hit, const Int* light = nullptr) const;
 
   // Whether the light buffer settles a shadow ray towards light `light`: its cell's

@@ -64,6 +64,15 @@ void LightSampler::upload(const Scene& scene, const Triangles& tris, const Featu
     run += power[i];
     cdf.push_back(i + 1 == power.size() ? 1.0f : static_cast<float>(run / total));
   }
+  // The area lights' own table, for Whitted's (sample_area): the same powers from the first
+  // triangle on.
+  std::vector<float> area_cdf{0.0f};
+  double area_total = 0.0, area_run = 0.0;
+  for (size_t i = static_cast<size_t>(points_host_); i < power.size(); ++i) area_total += power[i];
+  for (size_t i = static_cast<size_t>(points_host_); i < power.size(); ++i) {
+    area_run += power[i];
+    area_cdf.push_back(i + 1 == power.size() ? 1.0f : static_cast<float>(area_run / area_total));
+  }
   std::vector<glm::vec4> mat;
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     const Material& mm = scene.materials[m];
@@ -71,6 +80,7 @@ void LightSampler::upload(const Scene& scene, const Triangles& tris, const Featu
     mat.emplace_back(mm.emission, (mm.two_sided ? 1.0f : 0.0f) + (smooth ? 2.0f : 0.0f));
   }
   upload_padded(cdf_, cdf);
+  upload_padded(area_cdf_, area_cdf);
   upload_padded(tri_, emitting);
   upload_padded(entry_, entry);
   upload_padded(point_pos_, pos);
@@ -103,12 +113,12 @@ Float3 LightSampler::front_normal(const Int& t, const Float2& b) const {
   return ng;
 }
 
-Int LightSampler::find(const Float& u) const {
+Int LightSampler::find(const rill::Array<Float>& cdf, int count, const Float& u) const {
   // The entry i with cdf[i] <= u < cdf[i + 1]: cdf[lo] <= u < cdf[hi] holds throughout.
-  Int lo = 0, hi = count_host_;
-  for (int n = count_host_; n > 1; n = (n + 1) / 2) {
+  Int lo = 0, hi = count;
+  for (int n = count; n > 1; n = (n + 1) / 2) {
     const Int mid = shr_logical(lo + hi, Int(1));
-    const Bool below = cdf_[mid] <= u;
+    const Bool below = cdf[mid] <= u;
     lo = select(below, mid, lo);
     hi = select(below, hi, mid);
   }
@@ -128,7 +138,7 @@ Float LightSampler::pdf(const Int& prim, const Float& t, const Float3& d) const 
 
 LightDraw LightSampler::sample(const Float3& o, const Float3& u) const {
   LightDraw out{Float3(0.0f, 0.0f, 1.0f), Float(0.0f), Float3(0.0f), Float(0.0f), Bool(false)};
-  const Int e = find(u.x());
+  const Int e = find(cdf_, count_host_, u.x());
   const Float pick = cdf_[e + 1] - cdf_[e];
   auto point_light = [&] {
     const Float3 to = point_pos_[e] - o;
@@ -174,6 +184,19 @@ LightDraw LightSampler::sample(const Float3& o, const Float3& u) const {
     area_light();
   }
   return out;
+}
+
+AreaPoint LightSampler::sample_area(const Float3& u) const {
+  const Int i = find(area_cdf_, count_host_ - points_host_, u.x());
+  const Float pick = area_cdf_[i + 1] - area_cdf_[i];
+  const Int t = tri_[i];
+  const Float2 b = uniform_triangle(Float2(u.y(), u.z()));
+  const Float3 y = tris_->v0[t] + b.x() * tris_->e1[t] + b.y() * tris_->e2[t];
+  const Float4 m = material_[tris_->material[t]];
+  const Float a = area(t);
+  return AreaPoint{y, front_normal(t, b), Float3(m.x(), m.y(), m.z()),
+                   m.w() == 1.0f || m.w() == 3.0f,
+                   select(a > 0.0f, pick / select(a > 0.0f, a, Float(1.0f)), Float(0.0f))};
 }
 
 }  // namespace rt

@@ -9,6 +9,10 @@
 // distribution in float (cdf[0] = 0, cdf[n] = 1) searched in ceil(log2 n) steps; an entry's
 // probability is cdf[i + 1] - cdf[i], the same subtraction wherever it is needed, so light
 // sampling and the MIS weights at BSDF-sampled hits use one density.
+//
+// Whitted's area lights (Features::area_lights, Shading::loop_light) draw from the emitting
+// triangles alone: the same powers restricted to them, in a table of their own (light_cdf_area),
+// so that bright point lights do not squeeze the triangles' entries into a few floats.
 #pragma once
 
 #include <rill/rill.h>
@@ -27,6 +31,15 @@ struct LightDraw {
   Float3 radiance;  // the light arriving along -wi: Le, or I / dist^2 for a point light
   Float pdf;        // over solid angle at the shading point; a point light: its probability
   Bool delta;       // a point light (no other strategy can find it)
+};
+
+// A point drawn on the emitting triangles alone (LightSampler::sample_area).
+struct AreaPoint {
+  Float3 y;        // the point
+  Float3 n;        // the unit normal of its emitting (front) side
+  Float3 le;       // the material's emitted radiance
+  Bool two_sided;  // it emits on both sides
+  Float p_area;    // the density over area with which it was drawn: pick / triangle area
 };
 
 class LightSampler {
@@ -50,20 +63,25 @@ class LightSampler {
   Float pdf(const Int& prim, const Float& t, const Float3& d) const;
   // A light drawn with u (u.x the light, u.y and u.z the point on a triangle) from origin o.
   LightDraw sample(const Float3& o, const Float3& u) const;
+  // A point on the emitting triangles alone, the triangle drawn by power with u.x (the table
+  // restricted to area lights), the point uniformly on it with u.y, u.z. Needs areas().
+  AreaPoint sample_area(const Float3& u) const;
 
  private:
   // The unit normal of the emitting side of triangle t at barycentrics b, as Shading::surface
   // turns it (towards the vertex normals where the scene has them).
   Float3 front_normal(const Int& t, const Float2& b) const;
   Float area(const Int& t) const;
-  Int find(const Float& u) const;
+  // The entry of cdf (n entries) with cdf[i] <= u < cdf[i + 1].
+  Int find(const rill::Array<Float>& cdf, int n, const Float& u) const;
 
   const Triangles* tris_ = nullptr;
   Features F_;
   int count_host_ = 0, points_host_ = 0;
   rill::Array<Float> cdf_{1, "light_cdf"};
-  rill::Array<Int> tri_{1, "light_tri"};      // entry -> triangle (areas)
-  rill::Array<Int> entry_{1, "light_entry"};  // triangle -> entry, or -1
+  rill::Array<Float> area_cdf_{1, "light_cdf_area"};  // the emitting triangles' alone
+  rill::Array<Int> tri_{1, "light_tri"};              // entry -> triangle (areas)
+  rill::Array<Int> entry_{1, "light_entry"};          // triangle -> entry, or -1
   rill::Array<Float3> point_pos_{1, "plight_pos"}, point_col_{1, "plight_col"};
   // Per material: Le in xyz, and in w 1 for two-sided plus 2 for a smooth lobe.
   rill::Array<Float4> material_{1, "mat_light"};

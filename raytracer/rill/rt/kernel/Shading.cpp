@@ -1,7 +1,11 @@
 // The tracer's side of shading (Shading.h).
 #include "rill/rt/kernel/Shading.h"
 
+#include <stdexcept>
+
+#include "rill/Random.h"
 #include "rill/rt/kernel/DeviceArrays.h"
+#include "rill/rt/kernel/Sampling.h"
 
 namespace rt {
 
@@ -95,9 +99,20 @@ Float3 Shading::light(const Int& l, const Surface& s, const MaterialTable::Slots
   return materials_.reflected(s, LightSample{L, lights_.color[l], false}, slots);
 }
 
-Float3 Shading::unshadowed_light(const Surface& s, const MaterialTable::Slots* slots) const {
+void Shading::area_samples(const SceneOptions& options) {
+  light_samples.set(options.light_samples);
+  seed.set(static_cast<int32_t>(options.seed));
+}
+
+Float3 Shading::unshadowed_light(const Surface& s, const MaterialTable::Slots* slots,
+                                 const LightKey* key) const {
   Float3 sum(0.0f);
-  if (F_.lights) {
+  if (F_.area_lights) {
+    RILL_FOR(Int l = 0, l < loop_lights(), l += 1) {
+      sum += loop_light(l, s, key, slots);
+    }
+    RILL_ENDFOR;
+  } else if (F_.lights) {
     RILL_FOR(Int l = 0, l < lights_.count, l += 1) {
       sum += light(l, s, slots);
     }
@@ -117,6 +132,85 @@ ShadowRay Shading::shadow_ray(const Int& l, const Surface& s) const {
   // Stop short of the light by the same offset: a light on a surface (as on an area
   // light's quad) is not shadowed by that surface.
   return ShadowRay{Ray{so, rd, dist - eps}, active};
+}
+
+namespace {
+constexpr int32_t kWhittedKey = 0x57686974;  // "Whit": the key's second word
+
+const LightKey& need_key(const LightKey* key) {
+  if (key == nullptr) throw std::logic_error("Shading: area lights need a LightKey");
+  return *key;
+}
+}  // namespace
+
+Int Shading::loop_lights() const {
+  if (!F_.area_lights) return lights_.count;
+  return lights_.count + light_samples;
+}
+
+Int Shading::buffer_light(const Int& l) const {
+  if (!F_.area_lights) return l;
+  return select(l < lights_.count, l, Int(-1));
+}
+
+LoopLight Shading::area_light(const Int& k, const Surface& s, const LightKey& key) const {
+  const Int4 counter(key.pixel.x(), key.pixel.y(), sample_index, key.depth * kMaxLightSamples + k);
+  const Float4 u = unit_float(philox4x32(counter, Int2(seed, Int(kWhittedKey))));
+  const AreaPoint a = area_lights_.sample_area(Float3(u.x(), u.y(), u.z()));
+  // The light's direction and colour from the surface point, as a point light's.
+  const Float3 to = a.y - s.P;
+  const Float d2 = dot(to, to);
+  const Float d = sqrt(d2);
+  const Float3 L = to / select(d > 0.0f, d, Float(1.0f));
+  const Float cos_l = dot(a.n, L);  // < 0: the point sees the front side
+  const Bool lit = cos_l < 0.0f || (a.two_sided && cos_l > 0.0f);
+  // Le |cos_l| / (pi d^2 p_area) / light_samples (Shading.h's top says why).
+  const Float denom = kPi * d2 * a.p_area * to_float(light_samples);
+  const Bool shines = lit && denom > 0.0f;
+  const Float3 color =
+      select(shines, a.le * (abs(cos_l) / select(denom > 0.0f, denom, Float(1.0f))), Float3(0.0f));
+  // The shadow ray as towards a point light: off the surface, stopping eps short of y.
+  const Float3 so = offset_origin(s.P, s.ngf);
+  const Float3 sl = a.y - so;
+  const Float dist = length(sl);
+  const Float3 rd = sl / select(dist > 0.0f, dist, Float(1.0f));
+  const Bool active = shines && dist > 0.0f && dot(s.nf, rd) > 0.0f;
+  return LoopLight{LightSample{L, color, false}, ShadowRay{Ray{so, rd, dist - eps}, active}};
+}
+
+Float3 Shading::loop_light(const Int& l, const Surface& s, const LightKey* key_or_null,
+                           const MaterialTable::Slots* slots) const {
+  if (!F_.area_lights) return light(l, s, slots);
+  const LightKey& key = need_key(key_or_null);
+  Float3 out(0.0f);
+  if (F_.lights) {
+    RILL_IF(l < lights_.count) {
+      out = light(l, s, slots);
+    }
+    RILL_ELSE {
+      out = materials_.reflected(s, area_light(l - lights_.count, s, key).sample, slots);
+    }
+    RILL_ENDIF;
+  } else {
+    out = materials_.reflected(s, area_light(l, s, key).sample, slots);
+  }
+  return out;
+}
+
+ShadowRay Shading::loop_shadow_ray(const Int& l, const Surface& s,
+                                   const LightKey* key_or_null) const {
+  if (!F_.area_lights) return shadow_ray(l, s);
+  const LightKey& key = need_key(key_or_null);
+  if (!F_.lights) return area_light(l, s, key).shadow;
+  ShadowRay out{Ray{Float3(0.0f), Float3(0.0f, 0.0f, 1.0f), Float(0.0f)}, Bool(false)};
+  RILL_IF(l < lights_.count) {
+    out = shadow_ray(l, s);
+  }
+  RILL_ELSE {
+    out = area_light(l - lights_.count, s, key).shadow;
+  }
+  RILL_ENDIF;
+  return out;
 }
 
 Bounce Shading::shade(const Surface& s, const Float3& local, const PathSums& path, bool branches,

@@ -7,6 +7,7 @@
 #include <rill/rill.h>
 
 #include "rill/rt/kernel/Features.h"
+#include "rill/rt/kernel/LightSampler.h"
 #include "rill/rt/kernel/MaterialTable.h"
 #include "rill/rt/kernel/Options.h"
 #include "rill/rt/kernel/Records.h"
@@ -56,17 +57,61 @@ struct ShadowRay {
   Bool active;
 };
 
+// What keys an area light sample's random numbers besides its number: the pixel (image
+// coordinates) and the surface's bounce.
+struct LightKey {
+  Int2 pixel;
+  Int depth;
+};
+
+// The light loop (Whitted): light l of a surface, as its shader sees it and its shadow ray.
+struct LoopLight {
+  LightSample sample;
+  ShadowRay shadow;
+};
+
+// Whitted's area lights (Features::area_lights; docs/scene-format.md, "emission" and
+// "light_samples"). Emitting materials are lights too: the light loop's lights l in
+// [point lights, point lights + light_samples) are each one point y drawn on the emitting
+// triangles alone (LightSampler::sample_area: the power table restricted to them, then
+// uniformly on the triangle), with Philox keyed by the pixel (image coordinates), the frame's
+// sample index, the bounce depth and the sample number k (counter (x, y, sample, depth * 1024
+// + k), key (seed, "Whit")): a pixel's samples are the same whichever backend, loop or window
+// computes them, and the first k of a larger light_samples are the same points. Each acts as
+// a point light at y of colour
+//     Le |cos_l| / (pi d^2 p_area) / light_samples,
+// where d is the distance from the shaded point, cos_l the cosine at y and p_area the
+// point's density over area (the solid-angle density times |cos_l| / d^2). Point lights'
+// colours are Whitted's non-radiometric 'irradiance at normal incidence without falloff'
+// (a Lambertian phong surface of diffuse Kd gets Kd C cos); this weighting makes the
+// sum over the samples Kd E / pi on such a surface, E the irradiance from the emitters: the
+// path integrator's direct light for f = Kd / pi. So an emitter of area A and radiance Le
+// facing a point from distance D far away lights it as a point light of colour
+// Le A / (pi D^2) would. A point behind a one-sided emitter gives 0. The shadow ray starts
+// off the surface and stops eps short of y, as a point light's does, and walks the grid (the
+// light buffer is per point light). Two surfaces at one depth of one path (a ray stack's
+// branches) see the same points.
 class Shading {
  public:
   Shading(const Triangles& tris, const MaterialTable& materials, const Lights& lights,
-          const TracerOptions& K, const Features& F)
-      : tris_(tris), materials_(materials), lights_(lights), K_(K), F_(F) {}
+          const LightSampler& area_lights, const TracerOptions& K, const Features& F)
+      : tris_(tris),
+        materials_(materials),
+        lights_(lights),
+        area_lights_(area_lights),
+        K_(K),
+        F_(F) {}
 
   rill::Uniform<Float> eps{1e-4f, "ray_epsilon"};
   rill::Uniform<Float3> background{glm::vec3(0.0f), "background"};
   rill::Uniform<Int> max_depth{5, "max_depth"};
   // Sets eps from the scene's size, and the background.
   void upload(const Scene& scene);
+  // Area lights (F.area_lights): the samples per surface and the random sequence's seed.
+  rill::Uniform<Int> light_samples{16, "light_samples"};
+  rill::Uniform<Int> seed{0, "whitted_seed"};
+  rill::Uniform<Int> sample_index{0, "whitted_sample"};  // the frame's sample: set per launch
+  void area_samples(const SceneOptions& options);
 
   // The surface at hit (a hit of ray, id >= 0).
   Surface surface(const Ray& ray, const Hit& hit) const;
@@ -78,10 +123,25 @@ class Shading {
   }
   // The light l sends towards the viewer through the shader, shadows aside.
   Float3 light(const Int& l, const Surface& s, const MaterialTable::Slots* slots = nullptr) const;
-  // Local light when there are no shadow rays: all lights, or the headlight.
-  Float3 unshadowed_light(const Surface& s, const MaterialTable::Slots* slots = nullptr) const;
+  // Local light when there are no shadow rays: all lights, or the headlight. key: needed
+  // with area lights.
+  Float3 unshadowed_light(const Surface& s, const MaterialTable::Slots* slots = nullptr,
+                          const LightKey* key = nullptr) const;
   // The shadow ray towards light l.
   ShadowRay shadow_ray(const Int& l, const Surface& s) const;
+
+  // The light loop: the point lights, then (F.area_lights) the area light samples.
+  // Without area lights, these are exactly light() and shadow_ray() over the point lights.
+  Int loop_lights() const;
+  // Light l's share towards the viewer, shadows aside.
+  // key: needed with area lights (null without).
+  Float3 loop_light(const Int& l, const Surface& s, const LightKey* key,
+                    const MaterialTable::Slots* slots = nullptr) const;
+  ShadowRay loop_shadow_ray(const Int& l, const Surface& s, const LightKey* key) const;
+  // The light buffer's light for loop light l: l for a point light, -1 for an area sample.
+  Int buffer_light(const Int& l) const;
+  // Area light sample k (0 <= k < light_samples) from s.
+  LoopLight area_light(const Int& k, const Surface& s, const LightKey& key) const;
   // Eq. 5.1 and the next ray: adds the surface's share of local light to the path's colour,
   // then (if some material reflects) makes the reflected and refracted rays. With `branches`
   // (the caller has a ray stack), refraction with reflection makes a second branch, the
@@ -97,6 +157,7 @@ class Shading {
   const Triangles& tris_;
   const MaterialTable& materials_;
   const Lights& lights_;
+  const LightSampler& area_lights_;
   const TracerOptions& K_;
   const Features& F_;
 };

@@ -1,6 +1,7 @@
 // The megakernel (Megakernel.h): its program and its render loop over samples.
 #include "rill/rt/megakernel/Megakernel.h"
 
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -228,8 +229,14 @@ Hit Megakernel::trace(PathLoop& L) const {
   }
   RILL_IF(L.ray_active) {
     Bool any_hit = L.mode == 1;
-    hit = S_.F.shadows ? S_.intersector.intersect(L.ray, &any_hit, &L.li)
-                       : S_.intersector.intersect(L.ray, nullptr);
+    if (S_.F.area_lights) {  // an area light sample's shadow ray has no light buffer
+      const Int buffer_light = S_.shading.buffer_light(L.li);
+      hit = S_.F.shadows ? S_.intersector.intersect(L.ray, &any_hit, &buffer_light)
+                         : S_.intersector.intersect(L.ray, nullptr);
+    } else {
+      hit = S_.F.shadows ? S_.intersector.intersect(L.ray, &any_hit, &L.li)
+                         : S_.intersector.intersect(L.ray, nullptr);
+    }
     L.rays += 1;
   }
   RILL_ENDIF;
@@ -257,6 +264,8 @@ MaterialTable::Slots Megakernel::begin_surface(PathLoop& L, const Hit& hit, Aovs
   set_surface(L.surf, sh.surface(L.ray, hit));
   const MaterialTable::Slots slots = sh.material(L.surf);
   L.local = sh.emitted(L.surf, &slots);
+  // An area light's own emission where a ray meets its front (LightSampler::emission).
+  if (S_.F.area_lights) L.local += S_.path_lights.emission(L.surf);
   RILL_IF(L.depth == 0) {
     aovs.depth = hit.t;
     aovs.prim = hit.id;
@@ -282,7 +291,8 @@ void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs
       L.li = 0;
       shadow_ray_to_light(L);
     } else {  // the surface is done in this iteration: its parameters serve the next ray too
-      L.local += sh.unshadowed_light(L.surf, &slots);
+      const std::optional<LightKey> key = light_key(L);
+      L.local += sh.unshadowed_light(L.surf, &slots, key ? &*key : nullptr);
       next_ray(L, &slots);
     }
   }
@@ -294,7 +304,8 @@ void Megakernel::camera_or_secondary_ray(PathLoop& L, const Hit& hit, Aovs& aovs
 
 // Ray: the next ray is the shadow ray towards light L.li.
 void Megakernel::shadow_ray_to_light(PathLoop& L) const {
-  const ShadowRay shadow = S_.shading.shadow_ray(L.li, L.surf);
+  const std::optional<LightKey> key = light_key(L);
+  const ShadowRay shadow = S_.shading.loop_shadow_ray(L.li, L.surf, key ? &*key : nullptr);
   L.ray = shadow.ray;
   L.ray_active = shadow.active;
 }
@@ -305,11 +316,14 @@ void Megakernel::shadow_ray_back(PathLoop& L, const Hit& hit) const {
   const Shading& sh = S_.shading;
   Bool hit_something = hit.id >= 0;
   RILL_IF(L.ray_active && !hit_something) {
-    L.local += sh.light(L.li, L.surf);
+    const std::optional<LightKey> key = light_key(L);
+    L.local += sh.loop_light(L.li, L.surf, key ? &*key : nullptr);
   }
   RILL_ENDIF;
   L.li += 1;
-  RILL_IF(L.li < S_.lights.count) {
+  // (Without area lights, the point lights' count itself: the same kernel as before them.)
+  const Bool more = S_.F.area_lights ? Bool(L.li < sh.loop_lights()) : Bool(L.li < S_.lights.count);
+  RILL_IF(more) {
     shadow_ray_to_light(L);
   }
   RILL_ELSE {
@@ -317,6 +331,13 @@ void Megakernel::shadow_ray_back(PathLoop& L, const Hit& hit) const {
     L.shade_done = true;
   }
   RILL_ENDIF;
+}
+
+// What keys the area light samples of the loop's surface (Shading.h): the pixel in image
+// coordinates and the bounce. Only area lights use it.
+std::optional<LightKey> Megakernel::light_key(const PathLoop& L) const {
+  if (!S_.F.area_lights) return std::nullopt;
+  return LightKey{element_coord() + S_.camera.origin, L.depth};
 }
 
 // A camera or secondary ray that hit nothing: the background, and the path ends.
@@ -341,7 +362,8 @@ void Megakernel::path_segment(PathLoop& L, Aovs& aovs) const {
     if (S_.F.shadows) {
       shadowed_lights(L, slots);
     } else {
-      L.local += sh.unshadowed_light(L.surf, &slots);
+      const std::optional<LightKey> key = light_key(L);
+      L.local += sh.unshadowed_light(L.surf, &slots, key ? &*key : nullptr);
     }
     next_ray(L, &slots);
   }
@@ -355,6 +377,10 @@ void Megakernel::path_segment(PathLoop& L, Aovs& aovs) const {
 // that is not blocked adds its share.
 void Megakernel::shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots) const {
   const Shading& sh = S_.shading;
+  if (S_.F.area_lights) {
+    area_shadowed_lights(L, slots);
+    return;
+  }
   RILL_FOR(Int l = 0, l < S_.lights.count, l += 1) {
     const ShadowRay shadow = sh.shadow_ray(l, L.surf);
     RILL_IF(shadow.active) {
@@ -363,6 +389,28 @@ void Megakernel::shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots)
       L.rays += 1;
       RILL_IF(blocker.id < 0) {
         L.local += sh.light(l, L.surf, &slots);
+      }
+      RILL_ENDIF;
+    }
+    RILL_ENDIF;
+  }
+  RILL_ENDFOR;
+}
+
+// Segment with area lights: the same over the point lights and then the area light samples
+// (Shading.h), whose shadow rays walk the grid.
+void Megakernel::area_shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots) const {
+  const Shading& sh = S_.shading;
+  const std::optional<LightKey> key = light_key(L);
+  RILL_FOR(Int l = 0, l < sh.loop_lights(), l += 1) {
+    const ShadowRay shadow = sh.loop_shadow_ray(l, L.surf, &*key);
+    RILL_IF(shadow.active) {
+      const Bool any_hit = true;
+      const Int buffer_light = sh.buffer_light(l);
+      const Hit blocker = S_.intersector.intersect(shadow.ray, &any_hit, &buffer_light);
+      L.rays += 1;
+      RILL_IF(blocker.id < 0) {
+        L.local += sh.loop_light(l, L.surf, &*key, &slots);
       }
       RILL_ENDIF;
     }
@@ -492,7 +540,9 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   const int64_t segments = S_.F.stack == 0 ? int64_t{depth} + 1
                            : depth >= 29   ? int64_t{1} << 30
                                            : (int64_t{1} << (depth + 1)) - 1;
-  const int64_t iters = segments * (static_cast<int64_t>(S_.light_count) + 1) + 8;
+  const int64_t loop_lights =
+      S_.light_count + (S_.F.area_lights ? int64_t{S_.options.light_samples} : 0);
+  const int64_t iters = segments * (loop_lights + 1) + 8;
 
   // Both loops write the same outputs: they share the backend's buffers, and each warms up.
   const std::string key = backend_key(rs.backend, rs.accuracy);
@@ -527,6 +577,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   for (int s = frame.first_sample; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
     if (path_) path_->sample_index.set(s);
+    if (S_.F.area_lights) S_.shading.sample_index.set(s);
     step.lap();
     k.execute();
     ++r.launches;

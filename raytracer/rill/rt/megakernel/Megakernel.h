@@ -89,6 +89,9 @@ class Megakernel final : public RenderStrategy {
   // Segment: path_segment (which ends with next_ray), pop_or_finish.
   void path_segment(PathLoop& L, Aovs& aovs) const;
   void shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots) const;
+  void area_shadowed_lights(PathLoop& L, const MaterialTable::Slots& slots) const;
+  // Area lights (F.area_lights): what keys the surface's samples; none without.
+  std::optional<LightKey> light_key(const PathLoop& L) const;
   void next_ray(PathLoop& L, const MaterialTable::Slots* slots = nullptr) const;
   void pop_or_finish(PathLoop& L) const;
 

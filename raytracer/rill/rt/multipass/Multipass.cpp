@@ -77,6 +77,13 @@ Multipass::Multipass(DeviceScene& scene) : S_(scene) {
     throw std::runtime_error(
         "--strategy multipass runs the Whitted tracer, not the path integrator; use "
         "--strategy megakernel or wavefront for the path integrator");
+  // Its shadow passes are per point light (a light index per pass, the light buffer's), and
+  // the surface pass has no random numbers: Whitted's area lights are the megakernel's.
+  if (S_.F.area_lights)
+    throw std::runtime_error(
+        "--strategy multipass: emitting materials are area lights under Whitted, sampled with "
+        "random shadow rays (options.light_samples) that only the megakernel traces; use "
+        "--strategy megakernel");
   if (S_.F.refraction)
     throw std::runtime_error(
         "--strategy multipass: glass (transmit > 0) needs the ray stack of the single kernel; "
