@@ -112,7 +112,7 @@ Integrator parse_integrator(const std::string& s);
 
 // The most samples per pixel a scene or a render may ask for (2^20: enough for references).
 constexpr int kMaxSpp = 1 << 20;
-// Whitted's samples per area light and surface point (options.light_samples).
+// Whitted's area light samples per shaded point (options.light_samples).
 constexpr int kMaxLightSamples = 1024;
 
 struct SceneOptions {
@@ -135,7 +135,8 @@ struct SceneOptions {
   uint32_t seed = 0;
   bool nee = true;  // path: next-event estimation (light sampling at each surface)
   bool mis = true;  // path: multiple importance sampling of NEE and BSDF sampling
-  // Whitted: shadow rays per area light (emitting triangle) at each surface point.
+  // Whitted: shadow rays to the area lights (points drawn on all emitting triangles
+  // together) at each shaded point (kernel/Shading.h).
   int light_samples = 16;
 };
 
