@@ -1,6 +1,7 @@
 // rill-trace's subcommands (docs/cli.md), one file each: render (RenderCommand.cpp, with its
 // options in RenderOptions.h and, under mpirun, distributed/DistributedRender.cpp), accuracy
-// (AccuracyCommand.cpp over AccuracyBench.h), demo (DemoCommand.cpp) and info
+// (AccuracyCommand.cpp over AccuracyBench.h), noise (NoiseCommand.cpp over
+// NoiseBench.h), demo (DemoCommand.cpp) and info
 // (InfoCommand.cpp). Each returns the exit status and throws on an error; main() reports it.
 #pragma once
 
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "AccuracyBench.h"
+#include "NoiseBench.h"
 #include "RenderOptions.h"
 
 namespace trace_cli {
@@ -27,6 +29,14 @@ struct AccuracyCommandOptions {
 };
 CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& o);
 int accuracy(const AccuracyCommandOptions& o);
+
+// rill-trace noise: path tracing's error against spp and time on every backend.
+struct NoiseCommandOptions {
+  rt::NoiseBenchOptions bench;
+  std::string size, backends, variants, modes, targets;  // as given
+};
+CLI::App* add_noise_command(CLI::App& app, NoiseCommandOptions& o);
+int noise(const NoiseCommandOptions& o);
 
 // rill-trace demo: the flagship scene on every backend, and whether the images are identical.
 struct DemoOptions {

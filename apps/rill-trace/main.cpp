@@ -17,6 +17,10 @@
 //                           (under mpirun: docs/distributed.md)
 //   rill-trace accuracy [--backends LIST] [--scenes LIST] [--size WxH] [--repeats N]
 //                       [--one-at-a-time] [--out-dir DIR]
+//   rill-trace noise [--scene SCENE] [--backends LIST] [--variants LIST] [--modes LIST]
+//                    [--size WxH] [--max-spp N] [--repeats N] [--ref-spp N] [--ref-backend B]
+//                    [--reference FILE] [--seed N] [--ref-seed N] [--targets LIST]
+//                    [--out-dir DIR]
 //   rill-trace demo [--scene SCENE] [--size WxH] [--out-dir DIR]
 //   rill-trace info
 //
@@ -47,9 +51,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   RenderOptions ro;
   AccuracyCommandOptions ao;
+  NoiseCommandOptions no;
   DemoOptions dm;
   CLI::App* r = add_render_command(app, ro);
   CLI::App* acc = add_accuracy_command(app, ao);
+  CLI::App* nz = add_noise_command(app, no);
   CLI::App* d = add_demo_command(app, dm);
   CLI::App* in = add_info_command(app);
 
@@ -67,7 +73,7 @@ int main(int argc, char** argv) {
     if (std::smatch m; std::regex_match(what, m, twice))
       what = m[1].str() + " is given " + m[2].str() + " times: give it once";
     if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty())
-      what = std::string("unknown command '") + argv[1] + "' (render, accuracy, demo, info)";
+      what = std::string("unknown command '") + argv[1] + "' (render, accuracy, noise, demo, info)";
     std::fprintf(stderr, "rill-trace: %s (see --help)\n", what.c_str());
     return 2;
   }
@@ -76,6 +82,7 @@ int main(int argc, char** argv) {
     ro.backend_given = r->count("--backend") > 0;
     if (*r) rc = render(ro);
     if (*acc) rc = accuracy(ao);
+    if (*nz) rc = noise(no);
     if (*d) rc = demo(dm);
     if (*in) rc = info();
   } catch (const std::bad_alloc&) {

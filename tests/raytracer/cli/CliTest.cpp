@@ -56,7 +56,8 @@ TEST(Cli, AnUnknownBackendFromTheEnvironmentIsNamed) {
 TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("");
   expect_clean_failure("render");
-  expect_clean_failure("frobnicate", "unknown command 'frobnicate' (render, accuracy, demo, info)");
+  expect_clean_failure("frobnicate",
+                       "unknown command 'frobnicate' (render, accuracy, noise, demo, info)");
   expect_clean_failure("render builtin:thesis-a --out o.png --pfm ./o.png",
                        "--out and --pfm both name ./o.png: one would overwrite the other");
   expect_clean_failure("render builtin:thesis-a --frobnicate");
