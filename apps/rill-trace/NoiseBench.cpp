@@ -52,7 +52,8 @@ struct Series {
   rill::Accuracy mode;
   Variant variant;
   std::vector<Point> points;
-  double slope = 0, intercept = 0;  // log(rel RMSE) = intercept + slope * log(spp)
+  double slope = 0, intercept = 0;  // log(rel RMSE) = intercept + slope * log(spp), the tail
+  double slope_all = 0;             // the slope fitted over every spp
   std::string label() const {
     return backend + " " + rill::accuracy_name(mode) + " " + variant.name;
   }
@@ -265,20 +266,30 @@ int run(const NoiseBenchOptions& o) {
             p.vs_strict = rmse(sd, first[i]);
           }
         }
-        // Least squares of log(rel) on log(spp).
-        double sx = 0, sy = 0, sxx = 0, sxy = 0;
-        const double n = static_cast<double>(se.points.size());
-        for (const Point& p : se.points) {
-          const double x = std::log(p.spp), y = std::log(std::max(p.rel, 1e-30));
-          sx += x, sy += y, sxx += x * x, sxy += x * y;
-        }
-        const double den = n * sxx - sx * sx;
-        se.slope = den > 0 ? (n * sxy - sx * sy) / den : 0.0;
-        se.intercept = (sy - se.slope * sx) / n;
-        std::fprintf(stderr,
-                     "noise: %-28s slope %.3f, rel RMSE %.4f at %d spp, %s there (%.0f s)\n",
-                     se.label().c_str(), se.slope, se.points.back().rel, se.points.back().spp,
-                     duration(se.points.back().median()).c_str(), clock.ms() / 1e3);
+        // Least squares of log(rel) on log(spp): over every point, and over spp >= fit_from
+        // (the tail, whose line the targets and comparisons use: at low spp the pixel-area
+        // (edge) error, which stratified pixel samples integrate faster, still counts).
+        auto fit = [&](int from, double& slope, double& intercept) {
+          double sx = 0, sy = 0, sxx = 0, sxy = 0, n = 0;
+          for (const Point& p : se.points) {
+            if (p.spp < from) continue;
+            const double x = std::log(p.spp), y = std::log(std::max(p.rel, 1e-30));
+            sx += x, sy += y, sxx += x * x, sxy += x * y, n += 1;
+          }
+          const double den = n * sxx - sx * sx;
+          slope = den > 0 ? (n * sxy - sx * sy) / den : 0.0;
+          intercept = n > 0 ? (sy - slope * sx) / n : 0.0;
+        };
+        double unused = 0;
+        fit(1, se.slope_all, unused);
+        // The tail needs two points: with fewer, the last two.
+        fit(std::min(o.fit_from, spps.size() >= 2 ? spps[spps.size() - 2] : 1), se.slope,
+            se.intercept);
+        std::fprintf(
+            stderr,
+            "noise: %-28s slope %.3f (all %.3f), rel RMSE %.4f at %d spp, %s there (%.0f s)\n",
+            se.label().c_str(), se.slope, se.slope_all, se.points.back().rel, se.points.back().spp,
+            duration(se.points.back().median()).c_str(), clock.ms() / 1e3);
         all.push_back(std::move(se));
       }
   }
@@ -351,17 +362,19 @@ int run(const NoiseBenchOptions& o) {
   md << "\n";
 
   // Per series: slope, time at 1 and max spp, ms per sample, and each target.
-  md << "| backend | mode | variant | slope | rel. RMSE at " << spps.back()
-     << " spp | fast vs strict image (RMSE) | time at 1 spp | time at " << spps.back()
-     << " spp | ms per spp |";
+  const int tail = std::min(o.fit_from, spps.size() >= 2 ? spps[spps.size() - 2] : 1);
+  md << "| backend | mode | variant | slope (all) | slope (spp >= " << tail << ") | rel. RMSE at "
+     << spps.back() << " spp | fast vs strict image (RMSE) | time at 1 spp | time at "
+     << spps.back() << " spp | ms per spp |";
   for (double t : o.targets) md << " " << fmt("%g%%", 100 * t) << ": spp, time |";
-  md << "\n|---|---|---|---:|---:|---:|---:|---:|---:|";
+  md << "\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|";
   for (size_t i = 0; i < o.targets.size(); ++i) md << "---:|";
   md << "\n";
   for (const Series& se : all) {
     const Point& last = se.points.back();
     md << "| " << se.backend << " | " << rill::accuracy_name(se.mode) << " | " << se.variant.name
-       << " | " << fmt("%.3f", se.slope) << " | " << fmt("%.3f%%", 100 * last.rel) << " | "
+       << " | " << fmt("%.3f", se.slope_all) << " | " << fmt("%.3f", se.slope) << " | "
+       << fmt("%.3f%%", 100 * last.rel) << " | "
        << (se.mode == rill::Accuracy::Strict ? std::string("-") : fmt("%.2g", last.vs_strict))
        << " | " << duration(se.points.front().median()) << " | " << duration(last.median()) << " | "
        << fmt("%.3g", last.median() / last.spp) << " |";
@@ -445,8 +458,9 @@ int run(const NoiseBenchOptions& o) {
     guide.color = "#808080";
     guide.dash = "8,4";
     guide.marker = -1;
-    const double y1 = by_spp.series.front().points.front().second;
-    for (int s : spps) guide.points.emplace_back(s, y1 / std::sqrt(static_cast<double>(s)));
+    // Through the first series' last point: the slope its tail should have.
+    const auto [xn, yn] = by_spp.series.front().points.back();
+    for (int s : spps) guide.points.emplace_back(s, yn * std::sqrt(xn / s));
     by_spp.series.push_back(std::move(guide));
   }
   // Right: strict, colour per backend, dash per variant; the legend names each once.

@@ -8,11 +8,12 @@
 // BSDF sampling only), renders the image with another seed (independent errors), times it
 // (median of repeats after a warm-up render that compiles) and measures its RMSE over pixels
 // and channels against the reference, and its relative RMSE (RMSE over the reference's mean).
-// Fits log RMSE against log spp per series (the slope; -1/2 for an unbiased Monte Carlo
-// estimate), and for each target relative RMSE gives the samples and the time each backend
-// needs. Checks that under strict every backend's image is bitwise the same (then so is the
-// RMSE). Writes noise.md, noise.csv and noise.svg (two log-log panels, error against spp with
-// the 1/sqrt(spp) line, and error against time).
+// Fits log RMSE against log spp per series, over every spp and over spp >= 16 (the slope;
+// -1/2 for an unbiased Monte Carlo estimate once the pixel-area error has gone), and for each
+// target relative RMSE gives the samples and the time each backend needs. Checks that under strict
+// every backend's image is bitwise the same (then so is the RMSE). Writes noise.md, noise.csv and
+// noise.svg (two log-log panels, error against spp with the 1/sqrt(spp) line, and error against
+// time).
 //
 // A subcommand beside `rill-trace accuracy` (AccuracyBench.h), not a bench/ program, for the
 // same reason: it needs the ray tracer's scenes and tracer, and a user can measure a scene of
@@ -45,6 +46,9 @@ struct NoiseBenchOptions {
   // to ref_spp when it holds fewer.
   std::string reference;
   std::vector<double> targets = {0.05, 0.01};  // relative RMSE
+  // The line the targets and comparisons use is fitted over spp >= fit_from (and the slope
+  // over every spp is reported beside it).
+  int fit_from = 16;
   std::string out_dir = ".";
 };
 

@@ -31,6 +31,9 @@ CLI::App* add_noise_command(CLI::App& app, NoiseCommandOptions& o) {
   n->add_option("--ref-seed", o.bench.ref_seed, "the reference's seed (default 1000003)");
   n->add_option("--targets", o.targets,
                 "comma-separated relative RMSE targets (default 0.05,0.01)");
+  n->add_option("--fit-from", o.bench.fit_from,
+                "fit the line for the targets over spp >= this (default 16)")
+      ->check(number_in(1, 1 << 20, true));
   n->add_option("--out-dir", o.bench.out_dir, "where noise.{md,csv,svg} go");
   return n;
 }
