@@ -23,7 +23,7 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
     p.out = (scene.name.empty() ? std::string("render") : scene.name) + "-%04d.png";
   const std::pair<std::string, const std::string*> outputs[] = {
       {"--out", &p.out},   {"--pfm", &o.pfm},       {"--depth", &o.depth},
-      {"--prim", &o.prim}, {"--normal", &o.normal}, {"--exr", &o.exr}};
+      {"--prim", &o.prim}, {"--normal", &o.normal}, {"--exr", &o.exr}, {"--albedo", &o.albedo}};
   for (const auto& [option, path] : outputs) {
     if (path->empty()) continue;
     const bool numbered = plan.sequence && has_frame_number(*path, option);
@@ -40,6 +40,7 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
                                                                 {"--prim", &o.prim},
                                                                 {"--normal", &o.normal},
                                                                 {"--exr", &o.exr},
+                                                                {"--albedo", &o.albedo},
                                                                 {"--stats-json", &o.stats_json},
                                                                 {"--source", &o.source}};
     std::map<std::string, std::string> seen;  // normalized path -> option

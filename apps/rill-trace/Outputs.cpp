@@ -28,7 +28,7 @@ void write_exr_output(const std::string& path, const rt::RenderResult& r) {
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
   const float* color = &r.color[0].x;
   const float* normal = &r.normal[0].x;
-  const std::vector<rt::ExrChannel> channels = {
+  std::vector<rt::ExrChannel> channels = {
       rt::ExrChannel::of_floats("R", color, 3),
       rt::ExrChannel::of_floats("G", color + 1, 3),
       rt::ExrChannel::of_floats("B", color + 2, 3),
@@ -39,6 +39,13 @@ void write_exr_output(const std::string& path, const rt::RenderResult& r) {
       // int32_t and uint32_t may alias: the same bits, -1 read as 4294967295.
       rt::ExrChannel::of_uints("prim", reinterpret_cast<const uint32_t*>(r.prim.data())),
   };
+  // The path integrator's albedo (a single-process render reads it back with --exr).
+  if (r.albedo.size() == n) {
+    const float* albedo = &r.albedo[0].x;
+    for (int c = 0; c < 3; ++c)
+      channels.push_back(
+          rt::ExrChannel::of_floats(std::string("albedo.") + "RGB"[c], albedo + c, 3));
+  }
   rt::write_exr(path, r.width, r.height, channels);
 }
 
@@ -61,6 +68,7 @@ std::vector<std::string> write_outputs(const RenderOptions& o, const Prepared& p
   pfm(o.depth, r.depth);
   if (!o.prim.empty()) pfm(o.prim, to_float(r.prim));
   pfm(o.normal, r.normal);
+  pfm(o.albedo, r.albedo);
   if (!o.exr.empty()) {
     write_exr_output(name(o.exr), r);
     written.push_back(name(o.exr));

@@ -42,6 +42,8 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
                            " is for the path integrator (options.integrator \"path\" or "
                            "--integrator path); a Whitted render is not progressive");
   if (o.save_every > 0 && o.save.empty()) throw rt::SceneError("--save-every needs --save FILE");
+  if (!o.albedo.empty() && !path)
+    throw rt::SceneError("--albedo is the path integrator's AOV (--integrator path)");
   scene.validate();
   // An animated scene's camera as it is at the start (Pose.h): frame 0, for every path that
   // renders one frame; --frames moves it per frame.
@@ -88,6 +90,9 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   rs.outputs.depth = !o.depth.empty() || exr;
   rs.outputs.prim = !o.prim.empty() || exr;
   rs.outputs.normal = !o.normal.empty() || exr;
+  // The albedo is the path integrator's (--exr adds its channels there).
+  rs.outputs.albedo =
+      scene.options.integrator == rt::Integrator::Path && (!o.albedo.empty() || exr);
   return p;
 }
 

@@ -8,7 +8,7 @@ namespace trace_cli {
 
 bool any_image_output(const RenderOptions& o) {
   return !o.out.empty() || !o.pfm.empty() || !o.depth.empty() || !o.prim.empty() ||
-         !o.normal.empty() || !o.exr.empty();
+         !o.normal.empty() || !o.exr.empty() || !o.albedo.empty();
 }
 
 CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
@@ -31,6 +31,9 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   r->add_option("--depth", o.depth, "hit distance AOV as PFM (+inf: miss)")->check(file_name());
   r->add_option("--prim", o.prim, "primitive id AOV as PFM (-1: miss)")->check(file_name());
   r->add_option("--normal", o.normal, "shading normal AOV as PFM")->check(file_name());
+  r->add_option("--albedo", o.albedo,
+                "path: the first hit's albedo AOV as PFM (for denoisers; 0 for a miss)")
+      ->check(file_name());
   r->add_option("--exr", o.exr,
                 "OpenEXR, 32-bit channels: linear colour R G B, depth Z (+inf: miss) and normal "
                 "N.X N.Y N.Z as FLOAT, primitive id prim as UINT (4294967295: miss)")

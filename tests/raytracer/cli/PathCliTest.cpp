@@ -72,6 +72,7 @@ TEST(CliPath, AResumeFromAnotherRenderIsRefusedNamingTheFile) {
            {"--spp 8 --resume gone.acc", "gone.acc: cannot open"},
            {"--integrator whitted --spp 8 --resume s.acc", "--resume is for the path integrator"},
            {"--save-every 2", "--save-every needs --save FILE"},
+           {"--integrator whitted --albedo a.pfm", "--albedo is the path integrator's AOV"},
        }) {
     const auto r = run_path(c.args + " --out /dev/null", dir);
     SCOPED_TRACE(c.args);

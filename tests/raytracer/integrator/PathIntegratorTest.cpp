@@ -11,6 +11,7 @@
 // errors fails a correct integrator with probability below 6e-7 (two-sided normal tail).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -41,7 +42,7 @@ RenderResult render(const Scene& scene, int spp, const std::string& backend = "c
   rs.width = scene.width;
   rs.height = scene.height;
   rs.spp = spp;
-  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = aovs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = rs.outputs.albedo = aovs;
   return tracer.render(rs, scene.camera);
 }
 
@@ -412,6 +413,51 @@ TEST(PathScene, AnEmitterWithoutAreaIsAnError) {
       << e;
 }
 
+// ---- AOVs ----------------------------------------------------------------------------------
+
+// The albedo AOV is the first hit's reflectance as its shader defines it (SurfaceShader::albedo):
+// a diffuse wall's colour, ggx's F0 plus its weighted base, 0 for a miss; in both strategies
+// that run the path integrator.
+TEST(PathAovs, TheAlbedoIsTheFirstHitsReflectance) {
+  Scene s = builtin_scene("cornell-path");
+  s.width = 12;
+  s.height = 10;
+  Material& white = s.materials[0];
+  ASSERT_EQ(white.name, "white");
+  white.shader = "ggx";  // the white walls become plastic
+  white.params.clear();
+  white.set("specular", glm::vec3(0.04f, 0.05f, 0.06f)).set("diffuse", glm::vec3(0.5f, 0.6f, 0.7f));
+  Grid grid = build_grid_for(s);
+  Tracer tracer(s, grid);
+  for (const Strategy& strategy : {Strategy::Megakernel, Strategy::Wavefront}) {
+    RenderSettings rs;
+    rs.strategy = strategy;
+    rs.width = s.width;
+    rs.height = s.height;
+    rs.spp = 1;
+    rs.outputs.albedo = true;
+    const RenderResult r = tracer.render(rs, s.camera);
+    ASSERT_EQ(r.albedo.size(), r.prim.size()) << strategy.name;
+    int walls = 0;
+    for (size_t p = 0; p < r.prim.size(); ++p) {
+      glm::vec3 want(0.0f);
+      if (r.prim[p] >= 0) {
+        const Material& m =
+            s.materials[static_cast<size_t>(s.material[static_cast<size_t>(r.prim[p])])];
+        if (m.shader == "ggx") {
+          const glm::vec3 f0 = m.params.at("specular").color;
+          want = f0 + m.params.at("diffuse").color * (1.0f - std::max({f0.x, f0.y, f0.z}));
+          ++walls;
+        } else {
+          want = m.params.at("diffuse").color;
+        }
+      }
+      ASSERT_EQ(r.albedo[p], want) << strategy.name << " pixel " << p << " prim " << r.prim[p];
+    }
+    EXPECT_GT(walls, 0);
+  }
+}
+
 // ---- Only the effects a scene calls for ------------------------------------------------
 
 // The path kernel's cpu source holds light sampling only with some light, area-light sampling
@@ -496,6 +542,11 @@ TEST_P(PathRender, ImagesAreTheCpuBackendsBits) {
     const RenderResult want = render(s, 3, "cpu", {}, true),
                        got = render(s, 3, GetParam(), {}, true);
     testing::expect_identical(got, want, GetParam() + (mis ? " mis" : " no mis"));
+    ASSERT_EQ(got.albedo.size(), want.albedo.size());
+    EXPECT_EQ(
+        std::memcmp(got.albedo.data(), want.albedo.data(), want.albedo.size() * sizeof(glm::vec3)),
+        0)
+        << "albedo";
   }
   Scene cornell = builtin_scene("cornell-path");
   cornell.width = cornell.height = 16;

@@ -222,6 +222,10 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
   read(aovs.depth, r.depth, want.depth);
   read(aovs.prim, r.prim, want.prim);
   read(aovs.normal, r.normal, want.normal);
+  if (aovs.albedo)
+    read(*aovs.albedo, r.albedo, want.albedo);
+  else
+    r.albedo.clear();
   r.accumulation = Accumulation{};
   if (want.accumulation && summing_) {
     r.accumulation.width = static_cast<int>(now_->sum->width());

@@ -37,6 +37,7 @@ struct AovStreams {
   rill::Stream<rill::Float> depth;
   rill::Stream<rill::Int> prim;
   rill::Stream<rill::Float3> normal;
+  const rill::Stream<rill::Float3>* albedo = nullptr;  // the path integrator's, or none
 };
 
 class Film {

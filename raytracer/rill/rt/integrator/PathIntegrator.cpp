@@ -115,6 +115,7 @@ ShadowQuery PathIntegrator::shade(PathItem& path, const Hit& hit, const Int2& pi
         first->depth = hit.t;
         first->prim = hit.id;
         first->normal = s.ns;
+        first->albedo = S_.materials.albedo(s, &slots);
       }
       RILL_ENDIF;
     }

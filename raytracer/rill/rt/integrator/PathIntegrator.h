@@ -48,6 +48,7 @@ struct FirstHit {
   Float depth = 0.0f;  // distance (+inf: none)
   Int prim = -1;
   Float3 normal{0.0f};
+  Float3 albedo{0.0f};  // the shader's albedo (SurfaceShader::albedo); 0 for a miss
 };
 
 class PathIntegrator {

@@ -241,6 +241,17 @@ Float MaterialTable::bsdf_pdf(const Surface& s, const Float3& wi, const Slots* s
                           [&](const Bsdf& b, const ShadingPoint& sp) { return b.pdf(sp, wi); });
 }
 
+Float3 MaterialTable::albedo(const Surface& s, const Slots* slots) const {
+  auto one = [&](int i) {
+    const SurfaceShader& sh = *shaders_[static_cast<size_t>(i)].shader;
+    return sh.albedo ? sh.albedo(ShadingPoint(s, *this, i, slots)) : Float3(1.0f);
+  };
+  if (shaders_.size() == 1) return one(0);
+  Float3 out(1.0f);
+  dispatch(s, [&](int i) { out = one(i); });
+  return out;
+}
+
 // ---- ShadingPoint --------------------------------------------------------------------------
 
 ShadingPoint::ShadingPoint(const Surface& surface, const MaterialTable& table, int shader,

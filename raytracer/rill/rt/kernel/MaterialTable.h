@@ -43,6 +43,8 @@ class MaterialTable {
   Float3 bsdf_eval(const Surface& s, const Float3& wi, const Slots* slots = nullptr) const;
   BsdfSample bsdf_sample(const Surface& s, const Float3& u, const Slots* slots = nullptr) const;
   Float bsdf_pdf(const Surface& s, const Float3& wi, const Slots* slots = nullptr) const;
+  // SurfaceShader::albedo (white where a shader has none).
+  Float3 albedo(const Surface& s, const Slots* slots = nullptr) const;
 
   std::vector<std::string> used_shaders() const;  // in the order of their indices
   rill::Uniform<Float> ambient{0.1f, "ambient"};

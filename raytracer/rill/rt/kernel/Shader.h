@@ -180,6 +180,10 @@ struct SurfaceShader {
   std::function<std::string(const MaterialParams&)> check;
   // Path tracing (above): the BSDF. Empty for a shader that has only the Whitted functions.
   Bsdf bsdf;
+  // The surface's reflectance as a denoiser wants it (the path integrator's albedo AOV at the
+  // camera ray's hit: the colour that multiplies the light, roughly its directional albedo).
+  // Missing: white.
+  std::function<Float3(const ShadingPoint&)> albedo;
 };
 
 // The shaders of a scene's materials, one per material (shaders/Registry.h, resolve_shaders):

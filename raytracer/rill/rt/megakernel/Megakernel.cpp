@@ -30,7 +30,7 @@ Megakernel::~Megakernel() = default;
 MegakernelOutputs MegakernelOutputs::for_frame(const FrameOutputs& want, int spp) {
   MegakernelOutputs o;
   // The AOVs are a third of the kernel's writes: only for a render that reads one back.
-  o.aovs = want.depth || want.prim || want.normal;
+  o.aovs = want.depth || want.prim || want.normal || want.albedo;
   // Encoded in the kernel: 4 bytes a pixel written instead of 12, and no encoding pass
   // reading them again. Samples are added up as linear colours.
   o.encoded = spp == 1 && want.rgb8 && !want.color;
@@ -144,6 +144,10 @@ Program Megakernel::capture_path(MegakernelOutputs outputs) const {
     Output<Float3> out_color("color");
     out_color = path.radiance;
     write_rays_and_aovs(path.rays, outputs.aovs, first.depth, first.prim, first.normal);
+    if (outputs.aovs) {
+      Output<Float3> albedo("albedo");
+      albedo = first.albedo;
+    }
   });
 }
 
@@ -505,11 +509,13 @@ struct Megakernel::Buffers {
         normal(w, h, "normal"),
         dist(w, h, "depth"),
         prim(w, h, "prim"),
-        rays(w, h, "rays") {}
+        rays(w, h, "rays"),
+        albedo(w, h, "albedo") {}
   int width, height;
   Stream<Float3> color, normal;
   Stream<Float> dist;
   Stream<Int> prim, rays;
+  Stream<Float3> albedo;              // the path program's
   std::optional<Stream<Int>> pixels;  // the encoded variant's, made at its first use
 };
 
@@ -556,6 +562,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
     k.bind("color", out.color);
   }
   if (outputs.aovs) k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
+  if (outputs.aovs && path()) k.bind("albedo", out.albedo);
   film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing());
   r.times.setup = setup.ms();
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
@@ -591,7 +598,8 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
       film.add_sample(out.color, s);
     if (!frame.more_after(s)) break;
   }
-  film.finish(AovStreams{out.dist, out.prim, out.normal}, rs.outputs, r);
+  film.finish(AovStreams{out.dist, out.prim, out.normal, path() ? &out.albedo : nullptr},
+              rs.outputs, r);
   r.trace_ms = trace.ms();
 }
 

@@ -58,6 +58,9 @@ struct RenderResult {
   std::vector<float> depth;         // first-sample AOVs: hit distance (+inf: miss)
   std::vector<int32_t> prim;        // primitive id (-1: miss)
   std::vector<glm::vec3> normal;    // shading normal as stored (0 on a miss)
+  // Path integrator: the first hit's albedo (SurfaceShader::albedo; 0 on a miss), for
+  // denoisers; empty under Whitted.
+  std::vector<glm::vec3> albedo;
   int64_t rays = 0;                 // rays traced (camera, shadow, secondary), all samples
   int spp = 0;                      // samples per pixel in the image (resumed ones included)
   Accumulation accumulation;        // the running sums, when FrameOutputs::accumulation

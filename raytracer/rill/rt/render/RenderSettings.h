@@ -51,6 +51,7 @@ struct FrameOutputs {
   bool depth = true;          // RenderResult::depth
   bool prim = true;           // RenderResult::prim
   bool normal = true;         // RenderResult::normal
+  bool albedo = false;        // RenderResult::albedo (the path integrator's; empty under Whitted)
   bool accumulation = false;  // RenderResult::accumulation: the running sums, to resume from
 };
 

@@ -33,6 +33,7 @@ SurfaceShader diffuse_shader() {
   s.bsdf = mixture_bsdf(
       [](const ShadingPoint& sp) { return std::vector<Lobe>{diffuse_lobe(sp, Float(1.0f))}; },
       nullptr);
+  s.albedo = phong_diffuse;
   s.check = [](const MaterialParams& p) -> std::string {
     const glm::vec3 kd = p.get("diffuse").color;
     return kd.x <= 1.0f && kd.y <= 1.0f && kd.z <= 1.0f ? "" : "diffuse must be at most 1";

@@ -75,6 +75,12 @@ SurfaceShader ggx_shader() {
   s.bsdf = mixture_bsdf(ggx_lobes, [](const MaterialParams& p) {
     return p.number("roughness") > 0.0f || p.nonzero("diffuse");
   });
+  // F0 plus the base as the BSDF weighs it.
+  s.albedo = [](const ShadingPoint& sp) {
+    const Float3 f0 = sp.color("specular");
+    if (!sp.may_be_nonzero("diffuse")) return f0;
+    return Float3(f0 + phong_diffuse(sp) * (1.0f - max(max(f0.x(), f0.y()), f0.z())));
+  };
   s.check = [](const MaterialParams& p) -> std::string {
     const float r = p.number("roughness");
     if (!(r >= 0.0f && r <= 1.0f)) return "roughness must be in [0, 1]";

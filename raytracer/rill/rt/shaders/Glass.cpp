@@ -84,6 +84,10 @@ SurfaceShader glass_shader() {
                                  mirror_lobe(sp, refl + trans * rf.fresnel), through};
       },
       [](const MaterialParams& p) { return p.number("reflect") + p.number("transmit") < 1.0f; });
+  s.albedo = [](const ShadingPoint& sp) {
+    const Float specular = sp.number("reflect") + sp.number("transmit");
+    return Float3(phong_diffuse(sp) * (1.0f - specular) + specular);
+  };
   s.lobes = [](const MaterialParams& p) { return Lobes{true, p.nonzero("transmit")}; };
   s.check = [](const MaterialParams& p) -> std::string {
     const float reflect = p.number("reflect"), transmit = p.number("transmit");

@@ -22,6 +22,7 @@ SurfaceShader mirror_shader() {
         return std::vector<Lobe>{mirror_lobe(sp, sp.number("reflect"))};
       },
       [](const MaterialParams&) { return false; });
+  s.albedo = [](const ShadingPoint& sp) { return Float3(sp.number("reflect")); };
   return s;
 }
 

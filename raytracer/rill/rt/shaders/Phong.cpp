@@ -105,6 +105,11 @@ SurfaceShader phong_shader() {
         return std::vector<Lobe>{diffuse_lobe(sp, 1.0f - r), mirror_lobe(sp, r)};
       },
       [](const MaterialParams& p) { return p.number("reflect") < 1.0f; });
+  s.albedo = [](const ShadingPoint& sp) {
+    if (!sp.may_be_nonzero("reflect")) return phong_diffuse(sp);
+    const Float r = sp.number("reflect");
+    return Float3(phong_diffuse(sp) * (1.0f - r) + r);
+  };
   s.check = [](const MaterialParams& p) {
     std::string why = reflect_problem(p.number("reflect"));
     return why.empty() ? shininess_problem(p.number("shininess")) : why;

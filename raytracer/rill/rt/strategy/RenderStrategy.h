@@ -59,11 +59,11 @@ inline int64_t run_pass(rill::Kernel& k, const std::optional<rill::StateMask>& m
 // The end of such a frame: the launch time is its passes', and the film finishes with the
 // camera ray's AOVs in `aov`.
 inline void finish_passes(Film& film, const rill::Stream<Aov>& aov, const FrameOutputs& want,
-                          RenderResult& r) {
+                          RenderResult& r, const rill::Stream<rill::Float3>* albedo = nullptr) {
   r.times.launch = 0;
   for (const PassStats& p : r.passes) r.times.launch += p.ms;
   film.finish(AovStreams{aov.field<rill::Float>("depth"), aov.field<rill::Int>("prim"),
-                         aov.field<rill::Float3>("normal")},
+                         aov.field<rill::Float3>("normal"), albedo},
               want, r);
 }
 

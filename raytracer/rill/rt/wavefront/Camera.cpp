@@ -32,6 +32,8 @@ Program Wavefront::capture_camera(bool aovs) const {
     if (aovs) {
       Output<Aov> aov("aov");
       aov = Aov{as_float(Int(0x7f800000)), Int(-1), Float3(0.0f)};
+      Output<Float3> albedo("albedo");
+      albedo = Float3(0.0f);
     }
   });
 }

@@ -33,8 +33,10 @@ Program Wavefront::capture_shade(bool aovs) const {
     }
     if (aovs) {
       Output<Aov> aov("aov");
+      Output<Float3> albedo("albedo");
       RILL_IF(depth == 0) {
         aov = Aov{first.depth, first.prim, first.normal};
+        albedo = first.albedo;
       }
       RILL_ENDIF;
     }

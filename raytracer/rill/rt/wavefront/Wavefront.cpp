@@ -67,12 +67,14 @@ struct Wavefront::Buffers {
         hit(w, h, "hit"),
         shadow(w, h, "shadow"),
         aov(w, h, "aov"),
+        albedo(w, h, "albedo"),
         width(w),
         height(h) {}
   Stream<PathRecord> path;
   Stream<HitRecord> hit;
   Stream<ShadowRecord> shadow;
   Stream<Aov> aov;
+  Stream<Float3> albedo;
   int width, height;
 };
 
@@ -84,7 +86,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
   r.width = width;
   r.height = height;
   Stopwatch since_start;
-  const bool aovs = rs.outputs.depth || rs.outputs.prim || rs.outputs.normal;
+  const bool aovs = rs.outputs.depth || rs.outputs.prim || rs.outputs.normal || rs.outputs.albedo;
   Kernels& K = kernels(rs.backend, rs.accuracy, aovs);
   r.from_cache = K.camera.info().cache_hit || K.camera.info().from_disk_cache;
   for (const Kernel* k : {&K.camera, &K.intersect, &K.shade, &K.shadow})
@@ -109,6 +111,8 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
   if (aovs) {
     K.camera.bind_fields("aov", B.aov);
     K.shade.bind_fields("aov", B.aov);
+    K.camera.bind("albedo", B.albedo);
+    K.shade.bind("albedo", B.albedo);
   }
   film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing());
   r.times.setup = setup.ms();
@@ -165,7 +169,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
     film.add_sample(B.path.field<Float3>("radiance"), s);
     if (!frame.more_after(s)) break;
   }
-  finish_passes(film, B.aov, rs.outputs, r);
+  finish_passes(film, B.aov, rs.outputs, r, &B.albedo);
   r.trace_ms = since_samples.ms();
 }
 
