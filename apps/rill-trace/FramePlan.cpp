@@ -22,8 +22,8 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
   if (!any_image_output(o) && span.count() > 1)
     p.out = (scene.name.empty() ? std::string("render") : scene.name) + "-%04d.png";
   const std::pair<std::string, const std::string*> outputs[] = {
-      {"--out", &p.out},   {"--pfm", &o.pfm},       {"--depth", &o.depth},
-      {"--prim", &o.prim}, {"--normal", &o.normal}, {"--exr", &o.exr}, {"--albedo", &o.albedo}};
+      {"--out", &p.out},       {"--pfm", &o.pfm}, {"--depth", &o.depth},  {"--prim", &o.prim},
+      {"--normal", &o.normal}, {"--exr", &o.exr}, {"--albedo", &o.albedo}};
   for (const auto& [option, path] : outputs) {
     if (path->empty()) continue;
     const bool numbered = plan.sequence && has_frame_number(*path, option);
@@ -34,15 +34,12 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
   }
   // Two options naming one file: the later write would silently replace the earlier one.
   {
-    const std::pair<std::string, const std::string*> files[] = {{"--out", &p.out},
-                                                                {"--pfm", &o.pfm},
-                                                                {"--depth", &o.depth},
-                                                                {"--prim", &o.prim},
-                                                                {"--normal", &o.normal},
-                                                                {"--exr", &o.exr},
-                                                                {"--albedo", &o.albedo},
-                                                                {"--stats-json", &o.stats_json},
-                                                                {"--source", &o.source}};
+    const std::pair<std::string, const std::string*> files[] = {
+        {"--out", &p.out},       {"--pfm", &o.pfm},
+        {"--depth", &o.depth},   {"--prim", &o.prim},
+        {"--normal", &o.normal}, {"--exr", &o.exr},
+        {"--albedo", &o.albedo}, {"--stats-json", &o.stats_json},
+        {"--source", &o.source}};
     std::map<std::string, std::string> seen;  // normalized path -> option
     for (const auto& [option, path] : files) {
       if (path->empty() || *path == "/dev/null") continue;

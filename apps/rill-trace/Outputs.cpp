@@ -39,7 +39,7 @@ void write_exr_output(const std::string& path, const rt::RenderResult& r) {
       // int32_t and uint32_t may alias: the same bits, -1 read as 4294967295.
       rt::ExrChannel::of_uints("prim", reinterpret_cast<const uint32_t*>(r.prim.data())),
   };
-  // The path integrator's albedo (a single-process render reads it back with --exr).
+  // The path integrator's albedo, where --albedo read it back.
   if (r.albedo.size() == n) {
     const float* albedo = &r.albedo[0].x;
     for (int c = 0; c < 3; ++c)

@@ -90,9 +90,9 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   rs.outputs.depth = !o.depth.empty() || exr;
   rs.outputs.prim = !o.prim.empty() || exr;
   rs.outputs.normal = !o.normal.empty() || exr;
-  // The albedo is the path integrator's (--exr adds its channels there).
-  rs.outputs.albedo =
-      scene.options.integrator == rt::Integrator::Path && (!o.albedo.empty() || exr);
+  // The albedo is the path integrator's, read back for --albedo (--exr then adds its channels
+  // too; a distributed render, which does not gather it, writes the same EXR as one process).
+  rs.outputs.albedo = scene.options.integrator == rt::Integrator::Path && !o.albedo.empty();
   return p;
 }
 

@@ -78,9 +78,10 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       "shadow rays: cells per edge of each light's direction cube (1..1024), off (walk "
       "the grid), or auto (default: 64 where the scene has shadows)")
       ->check(non_empty());
-  add_parsed_option(r, "--strategy", o.strategy, rt::parse_strategy,
-                    "megakernel (one kernel, Sh style), multipass (the thesis's kernel sequence; whitted) "
-                    "or wavefront (the path integrator's stages, a kernel each; path)")
+  add_parsed_option(
+      r, "--strategy", o.strategy, rt::parse_strategy,
+      "megakernel (one kernel, Sh style), multipass (the thesis's kernel sequence; whitted) "
+      "or wavefront (the path integrator's stages, a kernel each; path)")
       ->default_str("megakernel");
   add_parsed_option(r, "--loop", o.loop, rt::parse_megakernel_loop,
                     "megakernel: one traced ray per loop iteration (ray), or one path segment with "

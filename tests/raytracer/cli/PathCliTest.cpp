@@ -8,6 +8,8 @@
 
 #include "RunCommand.h"
 #include "TestUtil.h"
+#include "rill/rt/scene/ExrImage.h"
+#include "rill/rt/scene/Image.h"
 
 namespace rt {
 namespace {
@@ -38,6 +40,26 @@ TEST(CliPath, SavedAndResumedRendersAreTheRenderAtOnce) {
   // The chunks' file holds all 9 samples: resuming from it to 9 renders nothing more.
   ASSERT_EQ(run_path("--spp 9 --resume chunks.acc --pfm again.pfm --out /dev/null", dir).status, 0);
   EXPECT_EQ(testing::read_text(dir.path("again.pfm")), once);
+}
+
+// --albedo writes the first hit's albedo as PFM, and with --exr the same floats as channels
+// albedo.R, albedo.G, albedo.B; a miss is 0 (the camera sees the box's open front's edges).
+TEST(CliPath, TheAlbedoGoesToItsPfmAndToTheExr) {
+  testing::TempDir dir;
+  ASSERT_EQ(run_path("--spp 2 --albedo a.pfm --exr a.exr --out /dev/null", dir).status, 0);
+  int w = 0, h = 0, c = 0;
+  const std::vector<float> pfm = read_pfm(dir.path("a.pfm"), w, h, c);
+  ASSERT_EQ(w * h * c, 12 * 10 * 3);
+  const ExrImage exr = read_exr(dir.path("a.exr"));
+  for (int k = 0; k < 3; ++k) {
+    const ExrImage::Channel* ch = exr.find(std::string("albedo.") + "RGB"[k]);
+    ASSERT_NE(ch, nullptr) << k;
+    for (int p = 0; p < w * h; ++p) ASSERT_EQ(ch->floats[p], pfm[3 * p + k]) << p;
+  }
+  // The white walls' colour is somewhere in it.
+  bool white = false;
+  for (int p = 0; p < w * h; ++p) white = white || (pfm[3 * p] == 0.75f && pfm[3 * p + 1] == 0.75f);
+  EXPECT_TRUE(white);
 }
 
 TEST(CliPath, ATimeLimitStopsAndSaysHowFarItGot) {

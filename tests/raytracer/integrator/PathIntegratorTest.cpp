@@ -203,16 +203,17 @@ TEST(PathLights, ASmallAreaLightApproachesAPointLightOfTheSameIntensity) {
 // ---- Against the reference path tracer ---------------------------------------------------
 
 // Rill's mean and the variance of that mean per pixel and channel, from K independent
-// renders (seeds 1..K) of n samples each (batch means: the variance of the mean is the
-// batches' sample variance over K).
+// renders (seeds first_seed .. first_seed + K - 1) of n samples each (batch means: the variance of
+// the mean is the batches' sample variance over K).
 struct Estimate {
   std::vector<glm::dvec3> mean, var;
 };
-Estimate rill_estimate(Scene s, int batches, int spp, const TracerOptions& options) {
+Estimate rill_estimate(Scene s, int batches, int spp, const TracerOptions& options,
+                       uint32_t first_seed = 1) {
   Estimate e;
   std::vector<glm::dvec3> sum, sum2;
-  for (int k = 1; k <= batches; ++k) {
-    s.options.seed = static_cast<uint32_t>(k);
+  for (int k = 0; k < batches; ++k) {
+    s.options.seed = first_seed + static_cast<uint32_t>(k);
     const RenderResult r = render(s, spp, "cpu", options);
     sum.resize(r.color.size(), glm::dvec3(0.0));
     sum2.resize(r.color.size(), glm::dvec3(0.0));
@@ -231,14 +232,17 @@ Estimate rill_estimate(Scene s, int batches, int spp, const TracerOptions& optio
 }
 
 // Per pixel and channel z = (rill - reference) / sqrt(var_rill + var_reference). With K = 16
-// batches Rill's variance has 15 degrees of freedom, so z is about Student-t with 15 or more:
-// P(|t_15| > 4.5) = 4.3e-4, and over N = 768 pixel channels the expected count beyond 4.5 is
-// 0.33; a correct integrator exceeds 4 of them with probability below 3e-5 (Poisson). Also the
-// image mean, the average of the N differences, must lie within 5 of its standard errors.
+// batches Rill's variance has 15 degrees of freedom, so z would be about Student-t with 15 or
+// more: P(|t_15| > 4.5) = 4.3e-4, 0.33 expected beyond 4.5 over N = 768 pixel channels. The
+// reference's BSDF-only estimates near the light are heavy-tailed, so their sample variances
+// run low: over 20 independent seed sets (DISABLED_FalseFailureRateOverSeeds, 2026-12-07) the
+// count averaged 0.85. At most 6 are allowed: for a Poisson count of mean 0.85,
+// P(X >= 7) = 1.5e-5. Also the image mean, the average of the N differences, must lie within
+// 5 of its standard errors.
 struct Agreement {
   int beyond = 0;  // pixel channels with |z| > 4.5
   double z_mean = 0;
-  bool passes() const { return beyond <= 4 && std::abs(z_mean) < 5.0; }
+  bool passes() const { return beyond <= 6 && std::abs(z_mean) < 5.0; }
 };
 Agreement agree(const Estimate& rill, const ReferenceImage& ref) {
   Agreement a;
@@ -285,6 +289,33 @@ TEST_F(PathReference, TheCornellBoxAgreesWithTheReferencePixelByPixel) {
   }
 }
 
+// Off CI (--gtest_also_run_disabled_tests): the comparison's false-failure rate over 20
+// independent seed sets for Rill and 5 references (the measurement the bound above rests on).
+// Each run fails a correct integrator with probability about 1.5e-5, so the expected count of
+// failures is 0.
+TEST_F(PathReference, DISABLED_FalseFailureRateOverSeeds) {
+  int failures = 0, beyond = 0, runs = 0;
+  for (uint64_t ref_seed = 100; ref_seed < 105; ++ref_seed) {
+    ReferenceOptions o;
+    o.paths_per_pixel = 4096;
+    o.seed = ref_seed;
+    const ReferenceImage ref = ReferencePathTracer(*scene_).render(o);
+    for (uint32_t base = 0; base < 4; ++base) {
+      // Seeds 1001 + 100 base ..: disjoint from the other runs' and the tests'.
+      const Estimate e = rill_estimate(*scene_, 16, 64, {}, 1001 + 100 * base);
+      const Agreement a = agree(e, ref);
+      failures += a.passes() ? 0 : 1;
+      beyond += a.beyond;
+      ++runs;
+    }
+  }
+  std::printf(
+      "%d runs: %d failed (expected 0), %.2f pixel channels beyond 4.5 sigma per run "
+      "(the bound assumes 0.85)\n",
+      runs, failures, static_cast<double>(beyond) / runs);
+  EXPECT_EQ(failures, 0);
+}
+
 // The mutants must fail the comparison that the integrator passes.
 TEST_F(PathReference, BrokenIntegratorsAreRejected) {
   for (PathMutation m :
@@ -294,6 +325,8 @@ TEST_F(PathReference, BrokenIntegratorsAreRejected) {
     const Agreement a = agree(rill_estimate(*scene_, 16, 64, o), *reference_);
     EXPECT_FALSE(a.passes()) << "mutation " << static_cast<int>(m) << " passed: " << a.beyond
                              << " beyond 4.5 sigma, image mean at " << a.z_mean << " sigma";
+    std::printf("mutation %d: %d pixel channels beyond 4.5 sigma, image mean at %.1f sigma\n",
+                static_cast<int>(m), a.beyond, a.z_mean);
   }
 }
 
@@ -484,9 +517,10 @@ TEST(PathFeatures, TheKernelHoldsOnlyWhatTheSceneCallsFor) {
   EXPECT_LT(d.size(), p.size());
   EXPECT_LT(p.size(), a.size());
   EXPECT_LT(a.size(), g.size()) << "GGX's code only with a ggx material";
-  std::printf("path kernel source (cpu, bytes): no lights %zu, point light %zu, area light %zu, "
-              "area light and ggx %zu\n",
-              d.size(), p.size(), a.size(), g.size());
+  std::printf(
+      "path kernel source (cpu, bytes): no lights %zu, point light %zu, area light %zu, "
+      "area light and ggx %zu\n",
+      d.size(), p.size(), a.size(), g.size());
 }
 
 // ---- Every backend: the cpu backend's bits ----------------------------------------------

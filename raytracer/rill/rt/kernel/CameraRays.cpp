@@ -44,9 +44,9 @@ void CameraRays::set(const Camera& camera, int width, int height, glm::ivec2 lau
   // last one: projecting a thousand boxes costs about 0.1 ms, a tenth of a GPU's frame.
   // (By their bits: memcmp, which an empty list must not reach with its null data.)
   auto same_bits = [](const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof a) == 0; };
-  const bool same = boxes && seen_from_ && same_bits(*seen_from_, f) &&
-                    std::equal(boxes->begin(), boxes->end(), seen_boxes_.begin(),
-                               seen_boxes_.end(), same_bits);
+  const bool same =
+      boxes && seen_from_ && same_bits(*seen_from_, f) &&
+      std::equal(boxes->begin(), boxes->end(), seen_boxes_.begin(), seen_boxes_.end(), same_bits);
   if (same) return;
   use(boxes ? tiles_seeing_boxes(f, *boxes) : whole_image(width, height));
   seen_from_.reset();

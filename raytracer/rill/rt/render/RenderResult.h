@@ -61,10 +61,10 @@ struct RenderResult {
   // Path integrator: the first hit's albedo (SurfaceShader::albedo; 0 on a miss), for
   // denoisers; empty under Whitted.
   std::vector<glm::vec3> albedo;
-  int64_t rays = 0;                 // rays traced (camera, shadow, secondary), all samples
-  int spp = 0;                      // samples per pixel in the image (resumed ones included)
-  Accumulation accumulation;        // the running sums, when FrameOutputs::accumulation
-  double compile_ms = 0;            // 0 when the compiled kernel came from a cache
+  int64_t rays = 0;           // rays traced (camera, shadow, secondary), all samples
+  int spp = 0;                // samples per pixel in the image (resumed ones included)
+  Accumulation accumulation;  // the running sums, when FrameOutputs::accumulation
+  double compile_ms = 0;      // 0 when the compiled kernel came from a cache
   bool from_cache = false;
   // The render's kernels' compile stages (Kernel::info()), summed over them: the multipass
   // strategy compiles its nine at once (compile_all), so the sum exceeds compile_ms. origin
