@@ -39,6 +39,12 @@ void write_exr_output(const std::string& path, const rt::RenderResult& r) {
       // int32_t and uint32_t may alias: the same bits, -1 read as 4294967295.
       rt::ExrChannel::of_uints("prim", reinterpret_cast<const uint32_t*>(r.prim.data())),
   };
+  // --variance: each pixel's variance of its mean.
+  if (r.variance.size() == n) {
+    const float* var = &r.variance[0].x;
+    for (int c = 0; c < 3; ++c)
+      channels.push_back(rt::ExrChannel::of_floats(std::string("var.") + "RGB"[c], var + c, 3));
+  }
   // The path integrator's albedo, where --albedo read it back.
   if (r.albedo.size() == n) {
     const float* albedo = &r.albedo[0].x;

@@ -42,6 +42,10 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
                            " is for the path integrator (options.integrator \"path\" or "
                            "--integrator path); a Whitted render is not progressive");
   if (o.save_every > 0 && o.save.empty()) throw rt::SceneError("--save-every needs --save FILE");
+  if (o.variance && o.exr.empty()) throw rt::SceneError("--variance needs --exr FILE");
+  if (o.variance && (!o.resume.empty() || o.save_every > 0))
+    throw rt::SceneError(
+        "--variance is of one render's samples; it does not go with --resume or --save-every");
   if (!o.albedo.empty() && !path)
     throw rt::SceneError("--albedo is the path integrator's AOV (--integrator path)");
   scene.validate();
@@ -93,6 +97,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   // The albedo is the path integrator's, read back for --albedo (--exr then adds its channels
   // too; a distributed render, which does not gather it, writes the same EXR as one process).
   rs.outputs.albedo = scene.options.integrator == rt::Integrator::Path && !o.albedo.empty();
+  rs.outputs.variance = o.variance;
   return p;
 }
 

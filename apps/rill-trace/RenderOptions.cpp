@@ -38,6 +38,9 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
                 "OpenEXR, 32-bit channels: linear colour R G B, depth Z (+inf: miss) and normal "
                 "N.X N.Y N.Z as FLOAT, primitive id prim as UINT (4294967295: miss)")
       ->check(file_name());
+  r->add_flag("--variance", o.variance,
+              "with --exr: channels var.R var.G var.B, each pixel's variance of its mean colour "
+              "(2 samples or more; not with --resume)");
   r->add_option("--max-depth", o.max_depth, "reflection/refraction bounces")
       ->check(number_in(0, 64, true));
   r->add_option("--spp", o.spp,

@@ -20,6 +20,7 @@ struct RenderOptions {
   std::string out, pfm, depth, prim, normal, stats_json, source;
   std::string exr;  // --exr: the linear colour and every AOV in one OpenEXR file
   std::string albedo;  // --albedo: the path integrator's first-hit albedo AOV (PFM)
+  bool variance = false;  // --variance: the pixels' variance as channels of --exr
   int max_depth = -1;
   int spp = 0;
   // The scene's accelerator options where the command line gives them (Scene.h,

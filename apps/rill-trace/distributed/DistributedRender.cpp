@@ -120,9 +120,10 @@ int render_distributed(const RenderOptions& o) {
   namespace dist = rt::distributed;
   if (o.bench_frames > 0)
     throw rt::SceneError("--bench-frames times one process; it does not run under mpirun");
-  if (!o.albedo.empty() || o.time_limit > 0 || !o.save.empty() || !o.resume.empty())
-    throw rt::SceneError("--albedo, --time-limit, --save and --resume are not supported under "
-                         "mpirun yet: render in one process");
+  if (!o.albedo.empty() || o.variance || o.time_limit > 0 || !o.save.empty() || !o.resume.empty())
+    throw rt::SceneError(
+        "--albedo, --variance, --time-limit, --save and --resume are not "
+        "supported under mpirun yet: render in one process");
   dist::MpiSession mpi;
   const bool root = mpi.rank() == 0;
   const std::string who = "rank " + std::to_string(mpi.rank()) + " on " + mpi.host();

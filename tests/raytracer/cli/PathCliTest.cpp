@@ -4,6 +4,7 @@
 // file of another kind, is refused naming the file; the options are refused under Whitted.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "RunCommand.h"
@@ -60,6 +61,26 @@ TEST(CliPath, TheAlbedoGoesToItsPfmAndToTheExr) {
   bool white = false;
   for (int p = 0; p < w * h; ++p) white = white || (pfm[3 * p] == 0.75f && pfm[3 * p + 1] == 0.75f);
   EXPECT_TRUE(white);
+}
+
+// --variance: the EXR gets var.R var.G var.B (the values are PathAovs.TheVariance...'s), finite,
+// >= 0 and positive somewhere; without --exr it is an error.
+TEST(CliPath, VarianceChannelsGoToTheExr) {
+  testing::TempDir dir;
+  ASSERT_EQ(run_path("--spp 8 --variance --exr v.exr --out /dev/null", dir).status, 0);
+  const ExrImage exr = read_exr(dir.path("v.exr"));
+  bool positive = false;
+  for (int k = 0; k < 3; ++k) {
+    const ExrImage::Channel* ch = exr.find(std::string("var.") + "RGB"[k]);
+    ASSERT_NE(ch, nullptr) << k;
+    for (float v : ch->floats) {
+      ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << v;
+      positive = positive || v > 0.0f;
+    }
+  }
+  EXPECT_TRUE(positive);
+  EXPECT_NE(run_path("--spp 8 --variance --out /dev/null", dir).err.find("--variance needs --exr"),
+            std::string::npos);
 }
 
 TEST(CliPath, ATimeLimitStopsAndSaysHowFarItGot) {

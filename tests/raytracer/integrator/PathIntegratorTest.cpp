@@ -491,6 +491,49 @@ TEST(PathAovs, TheAlbedoIsTheFirstHitsReflectance) {
   }
 }
 
+// FrameOutputs::variance: each pixel's variance of its mean. Where every sample is the same
+// (a furnace without light sampling, depth 2: PathFurnace above) it is 0 to rounding. With
+// light sampling, two renders of independent seeds give pixel means m1, m2 whose
+// (m1 - m2)^2 / 2 has the expectation of the pixel's variance of the mean, as the variance
+// estimate itself does: over P = 1024 pixels the two averages agree. Their relative standard
+// errors: (m1 - m2)^2 / 2 is sigma^2/n times a chi-square of 1 degree (relative sd sqrt 2), so
+// its average has sqrt(2 / 1024) = 4.4%; the estimates (n - 1 = 7 degrees each) average to
+// sqrt(2 / 7 / 1024) = 1.7%; together 4.7%, and 5 of them, 24%, bound the difference for
+// normal samples. Path samples have heavier tails, so 30% is allowed.
+TEST(PathAovs, TheVarianceIsEachPixelsVarianceOfItsMean) {
+  auto render_var = [](Scene s, uint32_t seed) {
+    s.options.seed = seed;
+    Grid grid = build_grid_for(s);
+    Tracer tracer(s, grid);
+    RenderSettings rs;
+    rs.width = s.width;
+    rs.height = s.height;
+    rs.spp = 8;
+    rs.outputs.variance = true;
+    return tracer.render(rs, s.camera);
+  };
+  Scene exact = furnace(0.5f, 1.0f, 2);
+  exact.options.nee = false;
+  const RenderResult e = render_var(exact, 0);
+  ASSERT_EQ(e.variance.size(), e.color.size());
+  for (const glm::vec3& v : e.variance)
+    for (int c = 0; c < 3; ++c) ASSERT_LE(v[c], 1e-10f);
+  const Scene noisy = furnace(0.7f, 0.5f, 6);
+  const RenderResult a = render_var(noisy, 1), b = render_var(noisy, 2);
+  double spread = 0, estimate = 0;
+  for (size_t p = 0; p < a.color.size(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      const double d = double(a.color[p][c]) - b.color[p][c];
+      spread += d * d / 2;
+      estimate += (double(a.variance[p][c]) + b.variance[p][c]) / 2;
+    }
+  std::printf("variance of the mean, summed over pixels: from two seeds %.6g, estimated %.6g\n",
+              spread, estimate);
+  EXPECT_GT(estimate, 0.0);
+  EXPECT_LT(std::abs(spread - estimate), 0.3 * estimate)
+      << "spread " << spread << " estimate " << estimate;
+}
+
 // ---- Only the effects a scene calls for ------------------------------------------------
 
 // The path kernel's cpu source holds light sampling only with some light, area-light sampling

@@ -2,6 +2,7 @@
 // read-back of what was asked for.
 #include "rill/rt/film/Film.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <functional>
@@ -31,12 +32,15 @@ struct Film::Buffers {
     sum.emplace(w, h, "film_sum");
     carry.emplace(w, h, "film_carry");
     mean_color.emplace(w, h, "film_mean");
+    squares.reset();
   }
   Kernel add, mean;
   std::string backend;
   Accuracy accuracy;
   int width = 0, height = 0;  // of sum, carry and mean_color (made for frames of spp > 1)
   std::optional<Stream<Float3>> sum, carry, mean_color;
+  std::optional<Stream<Float3>> squares;  // made at a frame's first use (FrameOutputs::variance)
+  std::optional<Kernel> add_squares;
   // The encoder gathers from the colour stream it was captured with: it is captured again
   // when a frame's colour is another stream (another size, or the other strategy's).
   std::optional<Kernel> encode;
@@ -58,6 +62,12 @@ Film::Film() {
     Bool first = first_ != 0;
     new_sum = select(first, color, s);
     new_carry = select(first, Float3(0.0f), carry + error);
+  });
+  // The samples' squares, summed in float for the variance (an estimate: no carry).
+  add_squares_ = program("rill_film_add_squares", [&] {
+    Input<Float3> squares("squares"), color("color");
+    Output<Float3> new_squares("new_squares");
+    new_squares = select(first_ != 0, color * color, squares + color * color);
   });
   mean_ = program("rill_film_mean", [&] {
     Input<Float3> sum("sum"), carry("carry");
@@ -133,14 +143,20 @@ Program Film::pack_program(const Stream<Int>& pixels) const {
 Film::~Film() = default;
 
 void Film::begin(const std::string& backend, Accuracy a, int width, int height, int spp,
-                 const Accumulation* resume, bool summing) {
+                 const Accumulation* resume, bool summing, bool squares) {
   const std::string key = backend_key(backend, a);
   auto it = buffers_.find(key);
   if (it == buffers_.end())
     it = buffers_.emplace(key, std::make_unique<Buffers>(*this, backend, a)).first;
   now_ = it->second.get();
-  summing_ = spp > 1 || summing || resume != nullptr;
+  summing_ = spp > 1 || summing || resume != nullptr || squares;
   if (summing_) now_->resize(width, height);
+  // The variance needs every sample's square: not of a resumed render (its sums hold none).
+  squares_ = squares && resume == nullptr;
+  if (squares_ && !now_->squares) {
+    now_->squares.emplace(width, height, "film_squares");
+    now_->add_squares.emplace(compile_for(add_squares_, backend, a));
+  }
   samples_done_ = 0;
   if (resume != nullptr) {
     const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
@@ -175,6 +191,10 @@ void Film::add_sample(const Stream<Float3>& color, int s) {
   first_.set(s == 0 ? 1 : 0);
   now_->add.inputs(*now_->sum, *now_->carry, color).outputs(*now_->sum, *now_->carry);
   now_->add.execute();
+  if (squares_) {
+    now_->add_squares->inputs(*now_->squares, color).outputs(*now_->squares);
+    now_->add_squares->execute();
+  }
   accumulate_ms_ += add.ms();
 }
 
@@ -226,6 +246,23 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     read(*aovs.albedo, r.albedo, want.albedo);
   else
     r.albedo.clear();
+  r.variance.clear();
+  if (want.variance && squares_ && color) {
+    // (squares / n - mean^2) n / (n - 1) / n, in double on the host; 0 below 2 samples.
+    std::vector<glm::vec3> sq, mean;
+    read(*now_->squares, sq, true);
+    if (want.color)
+      mean = r.color;
+    else
+      read(*color, mean, true);
+    const double n = samples_done_;
+    r.variance.resize(sq.size());
+    for (size_t p = 0; p < sq.size(); ++p)
+      for (int c = 0; c < 3; ++c) {
+        const double m = mean[p][c], v = n > 1 ? (sq[p][c] / n - m * m) / (n - 1) : 0.0;
+        r.variance[p][c] = static_cast<float>(std::max(v, 0.0));
+      }
+  }
   r.accumulation = Accumulation{};
   if (want.accumulation && summing_) {
     r.accumulation.width = static_cast<int>(now_->sum->width());

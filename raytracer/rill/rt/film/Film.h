@@ -52,7 +52,7 @@ class Film {
   // `summing`, the film keeps running sums even for one sample (finish can then read them
   // back).
   void begin(const std::string& backend, rill::Accuracy a, int width, int height, int spp,
-             const Accumulation* resume = nullptr, bool summing = false);
+             const Accumulation* resume = nullptr, bool summing = false, bool squares = false);
   // Sample s's colour, just written by the strategy on the frame's backend.
   void add_sample(const rill::Stream<rill::Float3>& color, int s);
   // Instead, for a frame of one sample whose linear colour is not read back: the 8-bit image
@@ -77,10 +77,11 @@ class Film {
   rill::Uniform<rill::Float> samples_{1.0f, "samples"};
   rill::Uniform<rill::Int> width_{1, "film_width"};
   Srgb8Encoder srgb8_;
-  rill::Program add_, mean_;
+  rill::Program add_, mean_, add_squares_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
   Buffers* now_ = nullptr;                                   // the frame's
   bool summing_ = false;  // running sums (spp > 1, resumed, or their read-back wanted)
+  bool squares_ = false;  // and the sum of the samples' squares (FrameOutputs::variance)
   int samples_done_ = 0;  // samples in the sums (resumed ones included)
   std::optional<rill::Stream<rill::Float3>> single_;  // spp == 1: the sample itself
   std::optional<rill::Stream<rill::Int>> encoded_;    // or its 8-bit encoding (add_encoded)

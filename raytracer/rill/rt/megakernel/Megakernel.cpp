@@ -563,7 +563,8 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   }
   if (outputs.aovs) k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
   if (outputs.aovs && path()) k.bind("albedo", out.albedo);
-  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing());
+  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing(),
+             rs.outputs.variance);
   r.times.setup = setup.ms();
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time

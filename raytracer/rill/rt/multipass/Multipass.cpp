@@ -149,7 +149,8 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
   S_.shading.max_depth.set(depth);
   Stopwatch setup;
   Buffers& B = buffers_for(buffers_, backend_key(rs.backend, rs.accuracy), width, height);
-  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing());
+  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing(),
+             rs.outputs.variance);
   r.times.setup = setup.ms();
   // The ray count is a reduction on the device (rill::sum): its kernels compile here, not in
   // the first sample's trace time.

@@ -61,6 +61,9 @@ struct RenderResult {
   // Path integrator: the first hit's albedo (SurfaceShader::albedo; 0 on a miss), for
   // denoisers; empty under Whitted.
   std::vector<glm::vec3> albedo;
+  // Per pixel, the variance of its mean colour: the samples' variance (n - 1 in the
+  // denominator) over n, from their sum and sum of squares (FrameOutputs::variance).
+  std::vector<glm::vec3> variance;
   int64_t rays = 0;           // rays traced (camera, shadow, secondary), all samples
   int spp = 0;                // samples per pixel in the image (resumed ones included)
   Accumulation accumulation;  // the running sums, when FrameOutputs::accumulation

@@ -52,6 +52,7 @@ struct FrameOutputs {
   bool prim = true;           // RenderResult::prim
   bool normal = true;         // RenderResult::normal
   bool albedo = false;        // RenderResult::albedo (the path integrator's; empty under Whitted)
+  bool variance = false;      // RenderResult::variance (a render of 2 samples or more, not resumed)
   bool accumulation = false;  // RenderResult::accumulation: the running sums, to resume from
 };
 

@@ -37,7 +37,9 @@ struct Frame {
   bool more_after(int s) const { return !settings.after_pass || settings.after_pass(s + 1); }
   // Whether the film must keep running sums even for one sample (to resume from, or to be
   // resumed): a strategy then does not encode a one-sample frame itself.
-  bool summing() const { return settings.resume != nullptr || settings.outputs.accumulation; }
+  bool summing() const {
+    return settings.resume != nullptr || settings.outputs.accumulation || settings.outputs.variance;
+  }
 };
 
 // One launch of a strategy of several kernels (multipass, wavefront), masked where a mask is

@@ -114,7 +114,8 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
     K.camera.bind("albedo", B.albedo);
     K.shade.bind("albedo", B.albedo);
   }
-  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing());
+  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing(),
+             rs.outputs.variance);
   r.times.setup = setup.ms();
 
   // The masks: the paths not done (intersect, shade), the active shadow queries (shadow).
