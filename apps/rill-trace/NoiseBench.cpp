@@ -182,9 +182,8 @@ int run(const NoiseBenchOptions& o) {
   Scene ref_scene = scene;
   ref_scene.options.nee = ref_scene.options.mis = true;
   ref_scene.options.seed = o.ref_seed;
-  ref_scene.options.spp = 1;
   const AccumulationKey key{
-      distributed::scene_hash(ref_scene, "noise reference strict " + TracerOptions{}.str()),
+      distributed::accumulation_hash(ref_scene, "noise reference strict " + TracerOptions{}.str()),
       o.ref_seed};
   std::optional<Accumulation> ref_sums;
   if (!o.reference.empty() && std::filesystem::exists(o.reference))

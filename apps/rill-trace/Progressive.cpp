@@ -18,12 +18,9 @@ namespace {
 
 // The key of a saved render: the scene as loaded with the command line's changes, and what
 // decides its pixels beyond the scene (the accuracy and the knobs).
-// The samples per pixel are left out: resuming goes on to another count.
 rt::AccumulationKey accumulation_key(const RenderOptions& o, const Prepared& p) {
   const std::string settings = std::string(rill::accuracy_name(o.accuracy)) + " " + o.knobs.str();
-  rt::Scene scene = p.scene;
-  scene.options.spp = 1;
-  return {rt::distributed::scene_hash(scene, settings), p.scene.options.seed};
+  return {rt::distributed::accumulation_hash(p.scene, settings), p.scene.options.seed};
 }
 
 // "samples 12/64 [=====>     ] 18%, 35.2 samples/s, 1.5 s left" on stderr, where it is a

@@ -41,7 +41,9 @@ class Fnv1a {
 
 }  // namespace
 
-uint64_t scene_hash(const Scene& s, const std::string& settings) {
+namespace {
+
+uint64_t hash(const Scene& s, const std::string& settings, bool with_spp) {
   Fnv1a h;
   h.add(settings);
   h.add(s.camera.eye), h.add(s.camera.look_at), h.add(s.camera.up), h.add(s.camera.fov_y);
@@ -64,7 +66,7 @@ uint64_t scene_hash(const Scene& s, const std::string& settings) {
   h.add(s.background);
   const SceneOptions& o = s.options;
   h.add(o.shadows), h.add(o.ambient), h.add(o.max_depth), h.add(o.grid), h.add(o.subgrid_min);
-  h.add(o.grid_density), h.add(o.spp), h.add(o.smooth_normals);
+  h.add(o.grid_density), h.add(with_spp ? o.spp : 1), h.add(o.smooth_normals);
   h.add(o.integrator), h.add(o.seed), h.add(o.nee), h.add(o.mis), h.add(o.light_samples);
   // Animation (docs/dynamic-scenes.md): a distributed render is the first frame, but which
   // frame that is and where everything is then come from all of it.
@@ -87,6 +89,16 @@ uint64_t scene_hash(const Scene& s, const std::string& settings) {
     h.add(k.camera.fov_y);
   }
   return h.value();
+}
+
+}  // namespace
+
+uint64_t scene_hash(const Scene& s, const std::string& settings) {
+  return hash(s, settings, true);
+}
+
+uint64_t accumulation_hash(const Scene& s, const std::string& settings) {
+  return hash(s, settings, false);
 }
 
 }  // namespace rt::distributed

@@ -20,5 +20,8 @@ namespace rt::distributed {
 // 64-bit FNV-1a over the scene's contents and `settings`; the same on every host (the bytes
 // of floats and integers as little-endian x86-64 and AArch64 hold them).
 uint64_t scene_hash(const Scene& scene, const std::string& settings);
+// The same with the samples per pixel taken as 1: the key of a saved render
+// (film/AccumulationFile.h), which a resume takes on to another count.
+uint64_t accumulation_hash(const Scene& scene, const std::string& settings);
 
 }  // namespace rt::distributed
