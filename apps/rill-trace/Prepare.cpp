@@ -43,9 +43,6 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
                            "--integrator path); a Whitted render is not progressive");
   if (o.save_every > 0 && o.save.empty()) throw rt::SceneError("--save-every needs --save FILE");
   if (o.variance && o.exr.empty()) throw rt::SceneError("--variance needs --exr FILE");
-  if (o.variance && (!o.resume.empty() || o.save_every > 0))
-    throw rt::SceneError(
-        "--variance is of one render's samples; it does not go with --resume or --save-every");
   if (!o.albedo.empty() && !path)
     throw rt::SceneError("--albedo is the path integrator's AOV (--integrator path)");
   scene.validate();

@@ -70,6 +70,11 @@ rt::RenderResult render_progressive(const RenderOptions& o, Prepared& p, const r
       throw rt::SceneError(o.resume + ": holds " + std::to_string(sums->samples) +
                            " samples per pixel, more than the " + std::to_string(target) +
                            " asked for (--spp)");
+    if (o.variance && sums->squares.empty())
+      throw rt::SceneError(o.resume +
+                           ": saved without --variance, so it holds no sums of squares and the "
+                           "variance of a render resumed from it cannot be known (save with "
+                           "--variance, or resume without it)");
   }
   const int first = sums ? sums->samples : 0;
   SampleProgress progress(first, target, o.time_limit, o.quiet);

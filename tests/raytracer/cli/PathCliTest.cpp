@@ -83,6 +83,38 @@ TEST(CliPath, VarianceChannelsGoToTheExr) {
             std::string::npos);
 }
 
+// --variance goes with --save, --save-every and --resume: the saved sums keep the squares, and
+// the resumed render's variance channels are the render at once's, bit for bit. Resuming from
+// sums saved without --variance is refused, naming the file and why.
+TEST(CliPath, TheVarianceSurvivesSaveAndResume) {
+  testing::TempDir dir;
+  ASSERT_EQ(run_path("--spp 6 --variance --exr once.exr --out /dev/null", dir).status, 0);
+  ASSERT_EQ(run_path("--spp 2 --variance --save two.acc --exr two.exr --out /dev/null", dir).status,
+            0);
+  const auto resumed =
+      run_path("--spp 6 --variance --resume two.acc --exr resumed.exr --out /dev/null", dir);
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  const auto chunks = run_path(
+      "--spp 6 --variance --save c.acc --save-every 4 --exr chunks.exr --out /dev/null", dir);
+  ASSERT_EQ(chunks.status, 0) << chunks.err;
+  const ExrImage once = read_exr(dir.path("once.exr"));
+  for (const char* name : {"resumed.exr", "chunks.exr"}) {
+    const ExrImage other = read_exr(dir.path(name));
+    for (int k = 0; k < 3; ++k) {
+      const std::string channel = std::string("var.") + "RGB"[k];
+      ASSERT_NE(once.find(channel), nullptr);
+      ASSERT_NE(other.find(channel), nullptr) << name;
+      EXPECT_EQ(other.find(channel)->floats, once.find(channel)->floats) << name << " " << channel;
+    }
+  }
+  ASSERT_EQ(run_path("--spp 2 --save plain.acc --out /dev/null", dir).status, 0);
+  const auto refused =
+      run_path("--spp 6 --variance --resume plain.acc --exr r.exr --out /dev/null", dir);
+  EXPECT_NE(refused.status, 0);
+  EXPECT_NE(refused.err.find("plain.acc: saved without --variance"), std::string::npos)
+      << refused.err;
+}
+
 TEST(CliPath, ATimeLimitStopsAndSaysHowFarItGot) {
   testing::TempDir dir;
   const auto r = testing::run_command("'" RILL_TRACE_EXE

@@ -333,8 +333,8 @@ TEST_F(PathReference, BrokenIntegratorsAreRejected) {
 // ---- Progressive rendering ---------------------------------------------------------------
 
 // Resuming from k samples to n gives the render of n at once, bit for bit, in both strategies
-// that run the path integrator; a render stopped after a pass (after_pass) is the render of
-// that many samples.
+// that run the path integrator, its variance too when the sums kept their squares; a render stopped
+// after a pass (after_pass) is the render of that many samples.
 TEST(PathProgressive, ResumedAndStoppedRendersAreTheRendersOfTheirSamples) {
   Scene s = builtin_scene("cornell-path");
   s.width = 10;
@@ -364,6 +364,25 @@ TEST(PathProgressive, ResumedAndStoppedRendersAreTheRendersOfTheirSamples) {
     EXPECT_EQ(
         std::memcmp(resumed.color.data(), once.color.data(), once.color.size() * sizeof(glm::vec3)),
         0);
+    // With the variance: the resumed render goes on adding to the saved squares, so its
+    // variance is the render at once's too; from sums without squares it has none.
+    RenderSettings with_var = rs;
+    with_var.outputs.variance = true;
+    const RenderResult once_var = tracer.render(with_var, s.camera);
+    RenderSettings first_var = first;
+    first_var.outputs.variance = true;
+    const RenderResult part_var = tracer.render(first_var, s.camera);
+    ASSERT_EQ(part_var.accumulation.squares.size(), part_var.accumulation.sum.size());
+    EXPECT_TRUE(part.accumulation.squares.empty());
+    RenderSettings rest_var = with_var;
+    rest_var.resume = &part_var.accumulation;
+    const RenderResult resumed_var = tracer.render(rest_var, s.camera);
+    ASSERT_EQ(resumed_var.variance.size(), once_var.variance.size());
+    EXPECT_EQ(std::memcmp(resumed_var.variance.data(), once_var.variance.data(),
+                          once_var.variance.size() * sizeof(glm::vec3)),
+              0);
+    rest_var.resume = &part.accumulation;
+    EXPECT_TRUE(tracer.render(rest_var, s.camera).variance.empty());
     // Stopped after the fourth pass: the render of 4 samples.
     RenderSettings stop = rs;
     stop.after_pass = [](int done) { return done < 4; };

@@ -12,7 +12,10 @@ namespace rt {
 
 namespace {
 
+// RILLACC1: the sums and carries; RILLACC2: then the sums of squares too (a render saved with
+// its variance, which a resumed render goes on adding to).
 constexpr char kMagic[8] = {'R', 'I', 'L', 'L', 'A', 'C', 'C', '1'};
+constexpr char kMagicSquares[8] = {'R', 'I', 'L', 'L', 'A', 'C', 'C', '2'};
 
 struct Header {
   char magic[8];
@@ -27,10 +30,10 @@ static_assert(sizeof(Header) == 32);
 void write_accumulation(const std::string& path, const Accumulation& a,
                         const AccumulationKey& key) {
   const size_t n = static_cast<size_t>(a.width) * static_cast<size_t>(a.height);
-  if (a.sum.size() != n || a.carry.size() != n)
+  if (a.sum.size() != n || a.carry.size() != n || (!a.squares.empty() && a.squares.size() != n))
     throw SceneError(path + ": the accumulation's sums do not match its size");
   Header h{};
-  std::memcpy(h.magic, kMagic, sizeof kMagic);
+  std::memcpy(h.magic, a.squares.empty() ? kMagic : kMagicSquares, sizeof kMagic);
   h.hash = key.scene_hash;
   h.seed = key.seed;
   h.width = a.width;
@@ -43,6 +46,9 @@ void write_accumulation(const std::string& path, const Accumulation& a,
             static_cast<std::streamsize>(n * sizeof(glm::vec3)));
     f.write(reinterpret_cast<const char*>(a.carry.data()),
             static_cast<std::streamsize>(n * sizeof(glm::vec3)));
+    if (!a.squares.empty())
+      f.write(reinterpret_cast<const char*>(a.squares.data()),
+              static_cast<std::streamsize>(n * sizeof(glm::vec3)));
     f.close();
     if (!f) throw SceneError("cannot write " + path);
   });
@@ -54,7 +60,8 @@ Accumulation read_accumulation(const std::string& path, const AccumulationKey& k
   if (!f) throw SceneError(path + ": cannot open the render to resume");
   Header h{};
   f.read(reinterpret_cast<char*>(&h), sizeof h);
-  if (!f || std::memcmp(h.magic, kMagic, sizeof kMagic) != 0)
+  const bool squares = f && std::memcmp(h.magic, kMagicSquares, sizeof kMagic) == 0;
+  if (!f || (!squares && std::memcmp(h.magic, kMagic, sizeof kMagic) != 0))
     throw SceneError(path + ": not a render saved by rill-trace --save");
   if (h.seed != key.seed)
     throw SceneError(path + ": saved with seed " + std::to_string(h.seed) + ", the scene's is " +
@@ -80,6 +87,11 @@ Accumulation read_accumulation(const std::string& path, const AccumulationKey& k
          static_cast<std::streamsize>(n * sizeof(glm::vec3)));
   f.read(reinterpret_cast<char*>(a.carry.data()),
          static_cast<std::streamsize>(n * sizeof(glm::vec3)));
+  if (squares) {
+    a.squares.resize(n);
+    f.read(reinterpret_cast<char*>(a.squares.data()),
+           static_cast<std::streamsize>(n * sizeof(glm::vec3)));
+  }
   if (!f)
     throw SceneError(path + ": cut short (" + std::to_string(h.samples) + " samples of " +
                      std::to_string(width) + "x" + std::to_string(height) + " expected)");

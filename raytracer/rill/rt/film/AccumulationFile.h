@@ -5,7 +5,9 @@
 //
 // The format (little-endian): the 8 bytes "RILLACC1", then uint64 scene hash, uint32 seed,
 // int32 width, height, samples, then width * height * 3 floats of the sum and as many of the
-// carry (row 0 first). Written whole or not at all (scene/OutputFile.h).
+// carry (row 0 first). "RILLACC2" instead: as many floats of the sum of squares follow (an
+// accumulation that kept them, Accumulation::squares). Written whole or not at all
+// (scene/OutputFile.h).
 #pragma once
 
 #include <cstdint>

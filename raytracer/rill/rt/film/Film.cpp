@@ -151,8 +151,9 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
   now_ = it->second.get();
   summing_ = spp > 1 || summing || resume != nullptr || squares;
   if (summing_) now_->resize(width, height);
-  // The variance needs every sample's square: not of a resumed render (its sums hold none).
-  squares_ = squares && resume == nullptr;
+  // The variance needs every sample's square: of a resumed render, only if its accumulation
+  // kept them.
+  squares_ = squares && (resume == nullptr || !resume->squares.empty());
   if (squares_ && !now_->squares) {
     now_->squares.emplace(width, height, "film_squares");
     now_->add_squares.emplace(compile_for(add_squares_, backend, a));
@@ -161,13 +162,15 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
   if (resume != nullptr) {
     const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
     if (resume->width != width || resume->height != height || resume->sum.size() != n ||
-        resume->carry.size() != n || resume->samples < 1)
+        resume->carry.size() != n || resume->samples < 1 ||
+        (!resume->squares.empty() && resume->squares.size() != n))
       throw std::invalid_argument(
           "Film: the accumulation to resume is of " + std::to_string(resume->width) + "x" +
           std::to_string(resume->height) + " pixels and " + std::to_string(resume->samples) +
           " samples, the frame is " + std::to_string(width) + "x" + std::to_string(height));
     now_->sum->upload(resume->sum);
     now_->carry->upload(resume->carry);
+    if (squares_) now_->squares->upload(resume->squares);
     samples_done_ = resume->samples;
   }
   // The encoder holds the colour stream it gathers from: one of another size goes now,
@@ -270,6 +273,7 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     r.accumulation.samples = samples_done_;
     read(*now_->sum, r.accumulation.sum, true);
     read(*now_->carry, r.accumulation.carry, true);
+    if (squares_) read(*now_->squares, r.accumulation.squares, true);
   }
   if (!want.rgb8) r.rgb8.clear();
   if (want.rgb8) {

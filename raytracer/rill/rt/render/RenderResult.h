@@ -16,10 +16,14 @@ namespace rt {
 // compensated sum of its samples' colours (sum + carry, film/Film.h) after `samples` samples.
 // Resuming from it adds the later samples to the very same floats, so an image resumed from k
 // samples to n is bitwise the image rendered to n at once.
+// `squares`, when the render kept them (FrameOutputs::variance), is the float sum of the
+// samples' squares, which a resumed render with its variance goes on adding to; empty
+// otherwise.
 struct Accumulation {
   int width = 0, height = 0;
   int samples = 0;
   std::vector<glm::vec3> sum, carry;
+  std::vector<glm::vec3> squares;
 };
 
 // A render's time, step by step, in milliseconds (wall clock on the host; they add up to

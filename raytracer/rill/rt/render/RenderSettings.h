@@ -46,13 +46,13 @@ MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backe
 // What a render reads back to the host (RenderResult): everything else stays on the device.
 // A PNG needs only `rgb8`; a PFM needs `color`; the AOVs only when asked for.
 struct FrameOutputs {
-  bool color = true;          // RenderResult::color: the linear mean colour, 3 floats per pixel
-  bool rgb8 = false;          // RenderResult::rgb8: the 8-bit sRGB encoding, encoded on the device
-  bool depth = true;          // RenderResult::depth
-  bool prim = true;           // RenderResult::prim
-  bool normal = true;         // RenderResult::normal
-  bool albedo = false;        // RenderResult::albedo (the path integrator's; empty under Whitted)
-  bool variance = false;      // RenderResult::variance (a render of 2 samples or more, not resumed)
+  bool color = true;      // RenderResult::color: the linear mean colour, 3 floats per pixel
+  bool rgb8 = false;      // RenderResult::rgb8: the 8-bit sRGB encoding, encoded on the device
+  bool depth = true;      // RenderResult::depth
+  bool prim = true;       // RenderResult::prim
+  bool normal = true;     // RenderResult::normal
+  bool albedo = false;    // RenderResult::albedo (the path integrator's; empty under Whitted)
+  bool variance = false;  // RenderResult::variance (2 samples or more; resumed: if it kept squares)
   bool accumulation = false;  // RenderResult::accumulation: the running sums, to resume from
 };
 
