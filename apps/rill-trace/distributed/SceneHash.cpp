@@ -56,7 +56,7 @@ uint64_t hash(const Scene& s, const std::string& settings, bool with_spp) {
   }
   h.add(s.materials.size());
   for (const Material& m : s.materials) {
-    h.add(m.name), h.add(m.shader), h.add(m.emission), h.add(m.two_sided), h.add(m.params.size());
+    h.add(m.name), h.add(m.shader), h.add(m.emission), h.add(m.emission_texture), h.add(m.two_sided), h.add(m.params.size());
     for (const auto& [name, p] : m.params) {
       h.add(name), h.add(p.kind), h.add(p.number), h.add(p.color), h.add(p.texture);
     }

@@ -23,6 +23,7 @@
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/load/SceneFile.h"
+#include "rill/rt/scene/Image.h"
 #include "support/ReferencePathTracer.h"
 
 namespace rt {
@@ -43,6 +44,18 @@ RenderResult render(const Scene& scene, int spp, const std::string& backend = "c
   rs.height = scene.height;
   rs.spp = spp;
   rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = rs.outputs.albedo = aovs;
+  return tracer.render(rs, scene.camera);
+}
+
+// The mean colour of spp samples and each pixel's variance of it (FrameOutputs::variance).
+RenderResult render_with_variance(const Scene& scene, int spp) {
+  Grid grid = build_grid_for(scene);
+  Tracer tracer(scene, grid);
+  RenderSettings rs;
+  rs.width = scene.width;
+  rs.height = scene.height;
+  rs.spp = spp;
+  rs.outputs.variance = true;
   return tracer.render(rs, scene.camera);
 }
 
@@ -465,6 +478,101 @@ TEST(PathScene, AnEmitterWithoutAreaIsAnError) {
       << e;
 }
 
+// ---- Emission textures ------------------------------------------------------------------
+
+// A texture whose two colours are the same is that colour everywhere: the furnace whose walls
+// emit it through a texture (scale 1) is the furnace with that constant emission, bit for bit
+// (the light table's powers come from the texture's mean, the same number), with light
+// sampling on, whose draws read the texture at the point drawn.
+TEST(PathEmissionTexture, AUniformTextureRendersTheConstantEmissionsBits) {
+  const Scene plain = furnace(0.6f, 0.75f, 4);
+  Scene textured = plain;
+  Texture flat;
+  flat.name = "flat";
+  flat.type = "checker";
+  flat.color1 = flat.color2 = glm::vec3(0.75f);
+  textured.textures.push_back(flat);
+  textured.materials[0].emission = glm::vec3(1.0f);
+  textured.materials[0].emission_texture = 0;
+  const RenderResult a = render(plain, 4), b = render(textured, 4);
+  ASSERT_EQ(a.color.size(), b.color.size());
+  EXPECT_EQ(std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(glm::vec3)), 0);
+}
+
+// The Cornell box's light through a noise texture (a solid texture: no texture coordinates
+// needed), black to 2 (17, 12, 4) over cells of 2.5 cm. Light sampling, which reads the texture
+// where it draws a point, and BSDF sampling alone, which reads it where a path happens to hit,
+// estimate the same image. Statistic: the red channel summed over the image, S, whose variance
+// is the sum of the pixels' variances of their means (the variance AOV; the pixels are
+// independent); Z = (S_nee - S_bsdf) / sqrt(V_nee + V_bsdf) is normal (central limit theorem
+// over 16 x 16 pixels of 64 samples each), so |Z| < 5 fails a correct integrator with
+// probability below 6e-7. Light sampling that took the material's scale instead of the
+// texture's value at the point drawn gave Z = -7.1 when this was written.
+TEST(PathEmissionTexture, LightSamplingReadsTheTextureWhereItDraws) {
+  Scene s = builtin_scene("cornell-path");
+  s.width = s.height = 16;
+  Texture noise;
+  noise.name = "noise";
+  noise.type = "noise";
+  noise.color1 = glm::vec3(0.0f);
+  noise.color2 = glm::vec3(34.0f, 24.0f, 8.0f);
+  noise.scale = 40.0f;
+  s.textures.push_back(noise);
+  for (Material& m : s.materials)
+    if (m.emits()) m.emission = glm::vec3(1.0f), m.emission_texture = 0;
+  auto red_sum = [&](bool nee) {
+    Scene v = s;
+    v.options.nee = nee;
+    const RenderResult r = render_with_variance(v, 64);
+    double sum = 0, var = 0;
+    for (size_t p = 0; p < r.color.size(); ++p) sum += r.color[p].x, var += r.variance[p].x;
+    return std::pair{sum, var};
+  };
+  const auto [nee, nee_var] = red_sum(true);
+  const auto [bsdf, bsdf_var] = red_sum(false);
+  const double z = (nee - bsdf) / std::sqrt(nee_var + bsdf_var);
+  std::printf("red summed over the image: light sampling %.4g, BSDF sampling %.4g, z %.2f\n", nee,
+              bsdf, z);
+  EXPECT_GT(nee, 0.0);
+  EXPECT_LT(std::abs(z), 5.0) << "light sampling " << nee << ", BSDF sampling " << bsdf;
+}
+
+TEST(PathEmissionTexture, JsonAndMtlNameTheTexture) {
+  const std::string base =
+      R"({"meshes": [{"shape": "quad", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "material": "m"}], )"
+      R"("textures": {"t": {"type": "checker", "color1": 0, "color2": 1, "scale": 4}}, )";
+  const Scene s = parse_json_scene(
+      base +
+          R"("materials": {"m": {"shader": "diffuse", "emission": {"texture": "t", "scale": [2, 3, 4]}}}})",
+      ".", "s.json");
+  const Material& m = s.materials[static_cast<size_t>(s.material[0])];
+  EXPECT_EQ(m.emission_texture, 0);
+  EXPECT_EQ(m.emission, glm::vec3(2.0f, 3.0f, 4.0f));
+  auto error = [&](const std::string& materials) {
+    return testing::error_of([&] { (void)parse_json_scene(base + materials, ".", "s.json"); });
+  };
+  EXPECT_NE(error(R"("materials": {"m": {"emission": {"texture": "u"}}}})")
+                .find("materials.m.emission: unknown texture 'u' (textures: t)"),
+            std::string::npos);
+  EXPECT_NE(error(R"("materials": {"m": {"emission": {"texture": "t", "gain": 2}}}})")
+                .find("materials.m.emission: unknown key 'gain' (texture, scale)"),
+            std::string::npos);
+  EXPECT_NE(error(R"("materials": {"m": {"emission": {"texture": "t", "scale": -1}}}})")
+                .find("materials.m.emission"),
+            std::string::npos);
+  // OBJ/MTL: map_Ke is the emission texture, scaled by Ke.
+  testing::TempDir dir;
+  const std::vector<unsigned char> texel{255, 128, 0};
+  write_png_rgb8(dir.path("glow.png"), 1, 1, texel);
+  dir.file("m.mtl", "newmtl lamp\nKd 0.5 0.5 0.5\nKe 2 2 2\nmap_Ke glow.png\n");
+  dir.file("m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl lamp\nf 1 2 3\n");
+  const Scene obj = load_scene(dir.path("m.obj"));
+  const Material& lamp = obj.materials[static_cast<size_t>(obj.material[0])];
+  ASSERT_EQ(lamp.emission_texture, 0);
+  EXPECT_EQ(lamp.emission, glm::vec3(2.0f));
+  EXPECT_EQ(obj.textures.at(0).texels.at(0).x, 1.0f);
+}
+
 // ---- AOVs ----------------------------------------------------------------------------------
 
 // The albedo AOV is the first hit's reflectance as its shader defines it (SurfaceShader::albedo):
@@ -522,14 +630,7 @@ TEST(PathAovs, TheAlbedoIsTheFirstHitsReflectance) {
 TEST(PathAovs, TheVarianceIsEachPixelsVarianceOfItsMean) {
   auto render_var = [](Scene s, uint32_t seed) {
     s.options.seed = seed;
-    Grid grid = build_grid_for(s);
-    Tracer tracer(s, grid);
-    RenderSettings rs;
-    rs.width = s.width;
-    rs.height = s.height;
-    rs.spp = 8;
-    rs.outputs.variance = true;
-    return tracer.render(rs, s.camera);
+    return render_with_variance(s, 8);
   };
   Scene exact = furnace(0.5f, 1.0f, 2);
   exact.options.nee = false;

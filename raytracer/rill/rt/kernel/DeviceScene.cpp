@@ -17,7 +17,7 @@ DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions&
   light_count = static_cast<int>(scene.lights.size());
   background = scene.background;
   if (F.area_lights) {  // Whitted's area lights draw from the same table (Shading::loop_light)
-    path_lights.upload(scene, tris, F, {});
+    path_lights.upload(scene, tris, F, {}, materials.textures());
     shading.area_samples(scene.options);
   } else if (scene.options.integrator == Integrator::Path) {
     std::vector<bool> smooth;
@@ -26,7 +26,7 @@ DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions&
       smooth.push_back(!b.smooth ||
                        b.smooth(MaterialParams(scene.materials[m], shaders.at(m)->params)));
     }
-    path_lights.upload(scene, tris, F, smooth);
+    path_lights.upload(scene, tris, F, smooth, materials.textures());
   }
 }
 

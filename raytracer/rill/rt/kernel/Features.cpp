@@ -55,6 +55,7 @@ Features scene_features(const Scene& s, const MaterialShaders& shaders) {
   for (size_t m = 0; m < s.materials.size(); ++m) {
     if (!used[m]) continue;
     const Material& mat = s.materials[m];
+    if (mat.emits() && mat.emission_texture >= 0) f.texcoords = true;
     const SurfaceShader& sh = *shaders.at(m);
     const MaterialParams params(mat, sh.params);
     const Lobes lobes = sh.lobes ? sh.lobes(params) : Lobes{};

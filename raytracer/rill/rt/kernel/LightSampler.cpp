@@ -17,12 +17,30 @@ double luminance(const glm::vec3& c) {
   return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
 }
 
+// A texture's mean colour, for the lights' powers: a bitmap's texels', a procedural one's two
+// colours'.
+glm::dvec3 mean_colour(const Texture& t) {
+  if (t.type != "bitmap") return (glm::dvec3(t.color1) + glm::dvec3(t.color2)) * 0.5;
+  glm::dvec3 sum(0.0);
+  for (const glm::vec3& texel : t.texels) sum += glm::dvec3(texel);
+  return t.texels.empty() ? sum : sum / static_cast<double>(t.texels.size());
+}
+
+// The radiance a material's power is computed from: its emission, times its texture's mean.
+glm::vec3 mean_emission(const Scene& scene, const Material& m) {
+  if (m.emission_texture < 0) return m.emission;
+  return glm::vec3(glm::dvec3(m.emission) *
+                   mean_colour(scene.textures[static_cast<size_t>(m.emission_texture)]));
+}
+
 }  // namespace
 
 void LightSampler::upload(const Scene& scene, const Triangles& tris, const Features& F,
-                          const std::vector<bool>& smooth_material) {
+                          const std::vector<bool>& smooth_material, const TextureTable& textures) {
   tris_ = &tris;
+  textures_ = &textures;
   F_ = F;
+  textured_ = false;
   std::vector<double> power;
   std::vector<glm::vec3> pos, col;
   for (const Light& l : scene.lights) {
@@ -44,7 +62,8 @@ void LightSampler::upload(const Scene& scene, const Triangles& tris, const Featu
       if (!(a > 0.0)) continue;
       entry[t] = static_cast<int32_t>(power.size());
       emitting.push_back(static_cast<int32_t>(t));
-      power.push_back(M_PI * a * luminance(m.emission) * (m.two_sided ? 2.0 : 1.0));
+      power.push_back(M_PI * a * luminance(mean_emission(scene, m)) * (m.two_sided ? 2.0 : 1.0));
+      textured_ = textured_ || m.emission_texture >= 0;
     }
     // An emitting material that triangles name, none of which has an area (each degenerate
     // or not finite): a light that cannot shine, surely a mistake in the scene.
@@ -58,6 +77,11 @@ void LightSampler::upload(const Scene& scene, const Triangles& tris, const Featu
   count_host_ = static_cast<int>(power.size());
   double total = 0.0;
   for (double p : power) total += p;
+  // Lights whose powers are all 0 (black emission textures): chosen uniformly instead.
+  if (!(total > 0.0)) {
+    for (double& p : power) p = 1.0;
+    total = static_cast<double>(power.size());
+  }
   std::vector<float> cdf{0.0f};
   double run = 0.0;
   for (size_t i = 0; i < power.size(); ++i) {
@@ -69,6 +93,9 @@ void LightSampler::upload(const Scene& scene, const Triangles& tris, const Featu
   std::vector<float> area_cdf{0.0f};
   double area_total = 0.0, area_run = 0.0;
   for (size_t i = static_cast<size_t>(points_host_); i < power.size(); ++i) area_total += power[i];
+  if (!(area_total > 0.0))  // every triangle black: chosen uniformly (they give nothing)
+    for (size_t i = static_cast<size_t>(points_host_); i < power.size(); ++i)
+      area_total += (power[i] = 1.0);
   for (size_t i = static_cast<size_t>(points_host_); i < power.size(); ++i) {
     area_run += power[i];
     area_cdf.push_back(i + 1 == power.size() ? 1.0f : static_cast<float>(area_run / area_total));
@@ -86,13 +113,37 @@ void LightSampler::upload(const Scene& scene, const Triangles& tris, const Featu
   upload_padded(point_pos_, pos);
   upload_padded(point_col_, col);
   upload_padded(material_, mat);
+  if (textured_) {
+    std::vector<int32_t> tex;
+    for (const Material& m : scene.materials) tex.push_back(m.emission_texture);
+    upload_padded(texture_, tex);
+  }
+}
+
+Float2 LightSampler::uv_at(const Int& t, const Float2& b) const {
+  if (!F_.texcoords) return Float2(0.0f);
+  const Float w = 1.0f - b.x() - b.y();
+  return tris_->uv[3 * t] * w + tris_->uv[3 * t + 1] * b.x() + tris_->uv[3 * t + 2] * b.y();
+}
+
+Float3 LightSampler::radiance(const Int& material, const Float3& le, const Float2& uv,
+                              const Float3& P) const {
+  if (!textured_) return le;  // (the kernels of scenes without emission textures: unchanged)
+  Float3 out = le;
+  const Int tex = texture_[material];
+  RILL_IF(tex >= 0) {
+    out = le * textures_->sample(tex, uv, P);
+  }
+  RILL_ENDIF;
+  return out;
 }
 
 Float3 LightSampler::emission(const Surface& s) const {
   const Float4 m = material_[s.material];
   const Float flags = m.w();
   const Bool two_sided = flags == 1.0f || flags == 3.0f;
-  return select(s.entering || two_sided, Float3(m.x(), m.y(), m.z()), Float3(0.0f));
+  return select(s.entering || two_sided,
+                radiance(s.material, Float3(m.x(), m.y(), m.z()), s.uv, s.P), Float3(0.0f));
 }
 
 Bool LightSampler::smooth(const Surface& s) const {
@@ -166,7 +217,9 @@ LightDraw LightSampler::sample(const Float3& o, const Float3& u) const {
     const Float denom = area(t) * abs(cos_l);
     out.wi = wi;
     out.dist = d;
-    out.radiance = select(lit, Float3(m.x(), m.y(), m.z()), Float3(0.0f));
+    out.radiance =
+        select(lit, radiance(tris_->material[t], Float3(m.x(), m.y(), m.z()), uv_at(t, b), y),
+               Float3(0.0f));
     out.pdf = select(lit && denom > 0.0f && d2 > 0.0f,
                      pick * d2 / select(denom > 0.0f, denom, Float(1.0f)), Float(0.0f));
   };
@@ -192,9 +245,11 @@ AreaPoint LightSampler::sample_area(const Float3& u) const {
   const Int t = tri_[i];
   const Float2 b = uniform_triangle(Float2(u.y(), u.z()));
   const Float3 y = tris_->v0[t] + b.x() * tris_->e1[t] + b.y() * tris_->e2[t];
-  const Float4 m = material_[tris_->material[t]];
+  const Int material = tris_->material[t];
+  const Float4 m = material_[material];
   const Float a = area(t);
-  return AreaPoint{y, front_normal(t, b), Float3(m.x(), m.y(), m.z()),
+  return AreaPoint{y, front_normal(t, b),
+                   radiance(material, Float3(m.x(), m.y(), m.z()), uv_at(t, b), y),
                    m.w() == 1.0f || m.w() == 3.0f,
                    select(a > 0.0f, pick / select(a > 0.0f, a, Float(1.0f)), Float(0.0f))};
 }

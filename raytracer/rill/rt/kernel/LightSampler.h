@@ -5,7 +5,10 @@
 // (for multiple importance sampling).
 //
 // Power, for the choice only: a point light of intensity I has 4 pi lum(I), a triangle of
-// area A and radiance Le has pi A lum(Le) per side it emits from. The table is a cumulative
+// area A and radiance Le has pi A lum(Le) per side it emits from. Under an emission texture
+// (Material::emission_texture) Le is the scale times the texture's mean (a bitmap's texels',
+// a procedural texture's two colours'): the choice stays unbiased wherever the texture is,
+// since the radiance at the point drawn is the texture's there. The table is a cumulative
 // distribution in float (cdf[0] = 0, cdf[n] = 1) searched in ceil(log2 n) steps; an entry's
 // probability is cdf[i + 1] - cdf[i], the same subtraction wherever it is needed, so light
 // sampling and the MIS weights at BSDF-sampled hits use one density.
@@ -19,6 +22,7 @@
 
 #include "rill/rt/kernel/Features.h"
 #include "rill/rt/kernel/Records.h"
+#include "rill/rt/kernel/Textures.h"
 #include "rill/rt/kernel/Triangles.h"
 #include "rill/rt/scene/Scene.h"
 
@@ -47,8 +51,9 @@ class LightSampler {
   // Builds the table from the scene's point lights and emitting usable triangles. Throws
   // SceneError for an emitting material whose triangles (those the scene uses) have no area.
   // smooth_material: per material, whether its shader's BSDF has a smooth lobe (Bsdf::smooth).
+  // textures: the scene's, for emission textures (kept by reference; none needed without).
   void upload(const Scene& scene, const Triangles& tris, const Features& F,
-              const std::vector<bool>& smooth_material);
+              const std::vector<bool>& smooth_material, const TextureTable& textures);
   bool any() const { return count_host_ > 0; }               // host: a light to sample
   bool points() const { return points_host_ > 0; }           // host: point lights
   bool areas() const { return count_host_ > points_host_; }  // host: emitting triangles
@@ -72,10 +77,17 @@ class LightSampler {
   // turns it (towards the vertex normals where the scene has them).
   Float3 front_normal(const Int& t, const Float2& b) const;
   Float area(const Int& t) const;
+  // The radiance of material `material` (le its Material::emission) at texture coordinates uv
+  // and point P: le, times its emission texture's colour there where it has one.
+  Float3 radiance(const Int& material, const Float3& le, const Float2& uv, const Float3& P) const;
+  // Triangle t's texture coordinates at barycentrics b (as Shading::surface interpolates them).
+  Float2 uv_at(const Int& t, const Float2& b) const;
   // The entry of cdf (n entries) with cdf[i] <= u < cdf[i + 1].
   Int find(const rill::Array<Float>& cdf, int n, const Float& u) const;
 
   const Triangles* tris_ = nullptr;
+  const TextureTable* textures_ = nullptr;
+  bool textured_ = false;  // host: some emitting material has an emission texture
   Features F_;
   int count_host_ = 0, points_host_ = 0;
   rill::Array<Float> cdf_{1, "light_cdf"};
@@ -85,6 +97,7 @@ class LightSampler {
   rill::Array<Float3> point_pos_{1, "plight_pos"}, point_col_{1, "plight_col"};
   // Per material: Le in xyz, and in w 1 for two-sided plus 2 for a smooth lobe.
   rill::Array<Float4> material_{1, "mat_light"};
+  rill::Array<Int> texture_{1, "mat_light_tex"};  // per material: its emission texture, or -1
 };
 
 }  // namespace rt

@@ -54,6 +54,7 @@ class MaterialTable {
   Float number(int shader, const std::string& name, const Surface& s, const Slots* slots) const;
   bool may_be_nonzero(int shader, const std::string& name) const;
   bool vertex_colors() const { return vertex_colors_; }
+  const TextureTable& textures() const { return textures_; }  // the scene's (emission too)
 
  private:
   struct Param {

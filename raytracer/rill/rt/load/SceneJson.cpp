@@ -134,12 +134,25 @@ bool is_light_key(const std::string& key) {
   return key == "emission" || key == "two_sided";
 }
 
-void read_light_keys(const Ctx& c, const json& j, const std::string& where, Material& m) {
+// "emission": a colour, a number (grey), or {"texture": NAME} with an optional "scale" (a
+// colour or a number, default 1) that multiplies the texture's colour.
+void read_light_keys(const Ctx& c, const json& j, const std::string& where,
+                     const TextureNames& names, Material& m) {
   if (j.contains("emission")) {
     const json& e = j["emission"];
-    if (e.is_object())
-      fail(c, where + ".emission: an emission texture is not supported yet (a colour or a number)");
-    m.emission = vec3_or_scalar(c, e, where + ".emission");
+    const std::string at = where + ".emission";
+    if (e.is_object()) {
+      for (auto it = e.begin(); it != e.end(); ++it)
+        if (it.key() != "texture" && it.key() != "scale")
+          fail(c, at + ": unknown key '" + it.key() + "' (texture, scale)");
+      if (!e.contains("texture"))
+        fail(c, at + ": expected a colour [r, g, b], a number or {\"texture\": NAME}");
+      m.emission_texture = colour(c, json{{"texture", e["texture"]}}, at, names).texture;
+      m.emission =
+          e.contains("scale") ? vec3_or_scalar(c, e["scale"], at + ".scale") : glm::vec3(1.0f);
+    } else {
+      m.emission = vec3_or_scalar(c, e, at);
+    }
     if (m.emission.x < 0.0f || m.emission.y < 0.0f || m.emission.z < 0.0f)
       fail(c, where + ".emission " + vec_str(m.emission) + " has a negative component");
   }
@@ -171,7 +184,7 @@ Material classic_material(const Ctx& c, const std::string& name, const json& j,
   if (std::string why = classic.problem(); !why.empty()) fail(c, "material '" + name + "': " + why);
   Material m = classic.material(name);
   for (const auto& [key, v] : textures) m.params[key] = v;
-  read_light_keys(c, j, where, m);
+  read_light_keys(c, j, where, names, m);
   return m;
 }
 
@@ -200,7 +213,7 @@ Material material(const Ctx& c, const std::string& name, const json& j, const Te
     }
     m.params[key] = param_value(c, it.value(), decl->type, where + "." + key, names);
   }
-  read_light_keys(c, j, where, m);
+  read_light_keys(c, j, where, names, m);
   for (const ShaderParam& p : shader->params)
     if (p.required && !j.contains(p.name))
       fail(c, where + ": shader '" + shader->name + "' needs parameter '" + p.name + "' (a " +

@@ -206,26 +206,33 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
   if (opt.override_material != nullptr) {
     fallback = s.add_material(*opt.override_material);
   } else {
-    // map_Kd: the PNG (relative to the OBJ's directory, where the MTL files are read from)
-    // becomes a bitmap texture, loaded once however many materials name it, bound to the
-    // diffuse colour (in place of Kd).
+    // map_Kd and map_Ke: the PNG (relative to the OBJ's directory, where the MTL files are
+    // read from) becomes a bitmap texture, loaded once however many materials name it. map_Kd
+    // is bound to the diffuse colour (in place of Kd); map_Ke is the emission texture, scaled by
+    // Ke where Ke is given (else by 1).
     std::map<std::string, int> texture_of_file;
+    auto texture = [&](const std::string& map, const char* key, const Material& m) {
+      fs::path file(map);
+      if (file.is_relative()) file = dir / file;
+      auto [it, added] = texture_of_file.emplace(file.string(), 0);
+      if (added) {
+        try {
+          s.textures.push_back(load_png_texture(file.string()));
+        } catch (const SceneError& e) {
+          throw SceneError(path + ": material '" + clipped(m.name) + "': " + key + " " + e.what());
+        }
+        s.textures.back().name = map;
+        it->second = static_cast<int>(s.textures.size()) - 1;
+      }
+      return it->second;
+    };
     for (size_t i = 0; i < mtls.size(); ++i) {
       Material m = from_mtl(mtls[i]);
-      if (const std::string& map = mtls[i].diffuse_texname; !map.empty()) {
-        fs::path file(map);
-        if (file.is_relative()) file = dir / file;
-        auto [it, added] = texture_of_file.emplace(file.string(), 0);
-        if (added) {
-          try {
-            s.textures.push_back(load_png_texture(file.string()));
-          } catch (const SceneError& e) {
-            throw SceneError(path + ": material '" + clipped(m.name) + "': map_Kd " + e.what());
-          }
-          s.textures.back().name = map;
-          it->second = static_cast<int>(s.textures.size()) - 1;
-        }
-        m.params["diffuse"] = ParamValue::of_texture(it->second);
+      if (const std::string& map = mtls[i].diffuse_texname; !map.empty())
+        m.params["diffuse"] = ParamValue::of_texture(texture(map, "map_Kd", m));
+      if (const std::string& map = mtls[i].emissive_texname; !map.empty()) {
+        m.emission_texture = texture(map, "map_Ke", m);
+        if (!m.emits()) m.emission = glm::vec3(1.0f);
       }
       mat_index[i] = s.add_material(m);
     }

@@ -175,6 +175,7 @@ void Scene::append(const Scene& o) {
   for (Material m : o.materials) {
     for (auto& [name, v] : m.params)
       if (v.kind == ParamValue::Kind::Texture) v.texture += tex_base;
+    if (m.emission_texture >= 0) m.emission_texture += tex_base;
     materials.push_back(std::move(m));
   }
   for (AnimatedObject obj : o.animation.objects) {
@@ -270,6 +271,10 @@ void validate_material(const Material& m, size_t texture_count) {
   if (!finite3(m.emission) || m.emission.x < 0.0f || m.emission.y < 0.0f || m.emission.z < 0.0f)
     throw SceneError(where + "emission " + vec_str(m.emission) +
                      " must be finite with no negative component");
+  if (m.emission_texture < -1 ||
+      (m.emission_texture >= 0 && static_cast<size_t>(m.emission_texture) >= texture_count))
+    throw SceneError(where + "emission refers to texture " + std::to_string(m.emission_texture) +
+                     ", but the scene has " + std::to_string(texture_count));
   for (const auto& [name, v] : m.params) {
     const bool finite = v.kind == ParamValue::Kind::Number  ? std::isfinite(v.number)
                         : v.kind == ParamValue::Kind::Color ? finite3(v.color)

@@ -63,7 +63,11 @@ struct Material {
   // emission makes each of its triangles an area light. It emits on the triangle's front
   // side (where its vertex normals point, else where its winding's normal points: the side
   // a ray sees when Surface::entering is true), on both sides when two_sided.
+  // With emission_texture (an index into Scene::textures, or -1), the radiance at a point is
+  // emission times the texture's colour there (at the point's texture coordinates, or the
+  // point itself for a solid texture): emission is then the texture's scale.
   glm::vec3 emission{0.0f};
+  int emission_texture = -1;
   bool two_sided = false;
   bool emits() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 
