@@ -308,6 +308,15 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
           " samples per pixel, more than the " + std::to_string(spp) + " asked for");
     frame.first_sample = rs.resume->samples;
   }
+  // Only the wavefront keeps its paths in streams between bounces (render/BounceRays.h).
+  if (rs.bounce_rays != nullptr && !(rs.strategy == Strategy::Wavefront))
+    throw std::runtime_error(
+        "render: the bounce rays are read back by the wavefront strategy "
+        "only, not by '" +
+        rs.strategy.name + "'");
+  if (rs.bounce_rays != nullptr && rs.bounce_rays->bounce < 0)
+    throw std::runtime_error("render: the bounce rays' bounce must be 0 or more (got " +
+                             std::to_string(rs.bounce_rays->bounce) + ")");
   I.strategy(rs.strategy).render(frame, r);
 }
 

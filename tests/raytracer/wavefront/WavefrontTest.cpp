@@ -2,13 +2,19 @@
 // images are bitwise the megakernel's, AOVs and ray counts included, on the Cornell box with
 // its area light and on a scene of point lights, glass and GGX (with and without next-event
 // estimation, the latter launching no shadow kernel), and a window's pixels are the whole
-// render's. Host only: it refuses Whitted's tracer, and the multipass strategy the path
-// integrator, each with a message that says what to use instead.
+// render's; the bounce rays it reads back start where the path's last ray hit. Host only: it
+// refuses Whitted's tracer, and the multipass strategy the path integrator, each with a
+// message that says what to use instead.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "RenderCompare.h"
 #include "TestUtil.h"
@@ -145,6 +151,72 @@ TEST(WavefrontStrategy, RefusesWhittedAndMultipassRefusesThePathIntegrator) {
   EXPECT_NE(multipass.find("multipass runs the Whitted tracer, not the path integrator"),
             std::string::npos)
       << multipass;
+}
+
+// The bounce rays read back from the wavefront (render/BounceRays.h; rill-bench-trace's bounce
+// section) are the path tracer's own: on the Cornell box, each ray after two scatterings
+// starts where the same path's ray after one scattering hits (traced again here by the
+// tracer's intersector: the origin is that hit offset off the surface by some ulps), heads in
+// a unit direction, and there are some but at most as many as after one scattering. Reading
+// them back leaves the image as it was, and the megakernel refuses the request.
+TEST(WavefrontStrategy, BounceRaysStartWhereTheLastBounceHit) {
+  const Scene s = builtin_scene("cornell-path");
+  Tracer t(s, build_grid_for(s));
+  RenderSettings rs = settings("cpu", 16, 16, 2);
+  rs.strategy = Strategy::Wavefront;
+  const RenderResult plain = t.render(rs, s.camera);
+  BounceRays one, two;
+  one.bounce = 1;
+  two.bounce = 2;
+  rs.bounce_rays = &one;
+  const RenderResult read_back = t.render(rs, s.camera);
+  ASSERT_EQ(read_back.color.size(), plain.color.size());
+  EXPECT_EQ(std::memcmp(read_back.color.data(), plain.color.data(),
+                        plain.color.size() * sizeof(glm::vec3)),
+            0);
+  rs.bounce_rays = &two;
+  (void)t.render(rs, s.camera);
+  ASSERT_GT(two.size(), 0u);
+  EXPECT_LE(two.size(), one.size());
+  EXPECT_LE(one.size(), size_t{16 * 16 * 2});
+  ASSERT_EQ(two.directions.size(), two.size());
+  ASSERT_EQ(two.pixels.size(), two.size());
+  ASSERT_EQ(two.samples.size(), two.size());
+
+  std::vector<int32_t> prim;
+  std::vector<float> dist;
+  t.intersect("cpu", one.origins, one.directions, prim, dist);
+  // How far off its surface Shading::offset_origin moves an origin: each coordinate by the
+  // scene's epsilon e (within 1/32 of 0) or by 8 ulps, which is less than e = max(2e-5 of the
+  // scene's diagonal, 1e-6 of its largest coordinate) (Shading::upload), so sqrt(3) e in
+  // all; the hit point (from the barycentrics) and o + t d here round by some ulps of the
+  // coordinates more, which 1e-5 of them covers 80 times over.
+  glm::vec3 lo(s.positions[0]), hi(s.positions[0]);
+  for (const glm::vec3& p : s.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const float mag = std::max(glm::length(lo), glm::length(hi));
+  const float e = std::max(2e-5f * glm::length(hi - lo), 1e-6f * mag);
+  const float tolerance = std::sqrt(3.0f) * e + 1e-5f * mag;
+  std::map<std::pair<int32_t, int32_t>, size_t> first;  // (sample, pixel) -> ray after one
+  for (size_t j = 0; j < one.size(); ++j) first[{one.samples[j], one.pixels[j]}] = j;
+  for (size_t i = 0; i < two.size(); ++i) {
+    EXPECT_NEAR(glm::length(two.directions[i]), 1.0f, 1e-5f) << "ray " << i;
+    const auto it = first.find({two.samples[i], two.pixels[i]});
+    ASSERT_NE(it, first.end()) << "ray " << i << ": its path had no ray after one scattering";
+    const size_t j = it->second;
+    ASSERT_GE(prim[j], 0) << "ray " << i << ": its path's last ray hit nothing";
+    const glm::vec3 hit = one.origins[j] + dist[j] * one.directions[j];
+    EXPECT_LT(glm::length(two.origins[i] - hit), tolerance) << "ray " << i;
+    if (i > 0) {  // sample after sample, pixels in order
+      EXPECT_LT(std::make_pair(two.samples[i - 1], two.pixels[i - 1]),
+                std::make_pair(two.samples[i], two.pixels[i]));
+    }
+  }
+
+  rs.strategy = Strategy::Megakernel;
+  EXPECT_THROW(t.render(rs, s.camera), std::runtime_error);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <rill/rill.h>
 
+#include "rill/rt/render/BounceRays.h"
 #include "rill/rt/render/RenderResult.h"
 
 #include <functional>
@@ -85,6 +86,10 @@ struct RenderSettings {
   // mean of the samples done, RenderResult::spp says how many.
   const Accumulation* resume = nullptr;
   std::function<bool(int samples_done)> after_pass;
+  // If set, the render also reads back the path tracer's rays after bounce_rays->bounce
+  // scatterings into it (render/BounceRays.h): the wavefront strategy only; for the others
+  // the Tracer throws. It costs a read-back of the paths per sample; the image is the same.
+  BounceRays* bounce_rays = nullptr;
 };
 
 }  // namespace rt

@@ -13,6 +13,7 @@
 #include <rill/rill.h>
 
 #include "rill/rt/integrator/PathIntegrator.h"
+#include "rill/rt/render/BounceRays.h"
 
 namespace rt {
 namespace wf {
@@ -65,6 +66,13 @@ inline Hit load(const HitRecord& r) {
 inline HitRecord store(const Hit& h) {
   return HitRecord{Float3(h.t, h.uv), h.id};
 }
+
+// Appends to `out` the rays of the paths in `paths` (the window's width x height) that are not
+// done, as sample `sample`'s (render/BounceRays.h: BounceRays.cpp). Each must have taken
+// out.bounce scatterings; std::logic_error if one has not (the strategy read it back at the
+// wrong stage).
+void append_bounce_rays(const rill::Stream<PathRecord>& paths, int width, int height, int sample,
+                        BounceRays& out);
 
 }  // namespace wf
 }  // namespace rt

@@ -146,11 +146,22 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
     return run_pass(k, mask, r.passes[static_cast<size_t>(stage)], r);
   };
 
+  // The rays after `scatterings` bounces, if asked for (render/BounceRays.h): the paths not
+  // done once the stage that made those rays ran (the camera stage for 0 bounces, else the
+  // shade stage of that many hits), read back before the intersect stage traces them.
+  BounceRays* const capture = rs.bounce_rays;
+  if (capture != nullptr) capture->clear();
+  auto capture_after = [&](int scatterings, int s) {
+    if (capture != nullptr && capture->bounce == scatterings)
+      append_bounce_rays(B.path, width, height, s, *capture);
+  };
+
   Stopwatch since_samples;
   for (int s = frame.first_sample; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
     path_->sample_index.set(s);
     run(K.camera, kCamera, std::nullopt);
+    capture_after(0, s);
     // The megakernel's loop takes at most depth + 2 iterations, one bounce each: the camera
     // ray and depth bounces end every path (PathIntegrator::shade), the last is a backstop.
     for (int bounce = 0; bounce < depth + 2; ++bounce) {
@@ -162,6 +173,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
         break;
       }
       run(K.shade, kShade, alive);
+      capture_after(bounce + 1, s);
       if (shadows) run(K.shadow, kShadow, queried);
     }
     Stopwatch reduce;

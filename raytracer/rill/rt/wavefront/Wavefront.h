@@ -16,6 +16,8 @@
 //                               integrator makes no shadow rays)
 //
 // and the paths' radiance is the sample's colour, handed to the film (no kernel of its own).
+// With RenderSettings::bounce_rays, the rays of the paths not done are read back after the
+// stage that made the bounce asked for (BounceRays.cpp; render/BounceRays.h).
 // Each launch is masked (rill::where) to the elements it works on: intersect and shade to the
 // paths not done, shadow to the active queries. A pixel's operations are the megakernel's
 // (capture_path), in the same order, so the image has its bits on every backend under
