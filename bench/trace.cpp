@@ -1,11 +1,13 @@
 // rill-bench-trace: the ray tracer's benchmarks (issue #6, docs/raytracer.md, Performance).
 //
-//   rill-bench-trace [--sections throughput,embree,grid,depth,spec] [--size WxH]
+//   rill-bench-trace [--sections throughput,embree,grid,depth,spec,bounce] [--size WxH]
 //                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends
 //                    all|cpu,simd,opencl,glsl,glsl-compute]
 //                    [--repeats R] [--subgrids N|off|auto] [--grid-density D] [--grid-scene S]
 //                    [--grids auto,16,32,...] [--loops auto|ray,segment]
-//                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu] [--md F] [--csv F]
+//                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu]
+//                    [--path-scenes default|S,...] [--bounce 2] [--spp 1] [--seed N]
+//                    [--md F] [--csv F]
 //
 // Sections (each a table; all timings are medians of R interleaved repeats, after an
 // untimed warm-up run that also compiles):
@@ -30,11 +32,22 @@
 //               for) against one with every effect on (specular, reflection, refraction with
 //               its ray stack, vertex normals and colours, the lights and shadows the scene
 //               has), same scene, interleaved: trace times, ratio, and pixels that differ.
+//   bounce      (not in the default list) the path tracer's incoherent rays: per path scene
+//               (--path-scenes; default cornell-path, thesis C with an area light and, where
+//               ../shared/meshes has it, the bunny under one), the rays leaving the second
+//               surface hit of each camera path (--bounce 2: after two scatterings), read back
+//               from the wavefront strategy's own records on cpu (render/BounceRays.h; paths
+//               that ended before are absent, and the count is printed), and the camera rays,
+//               each traced by Rill's intersector on cpu and simd and by Embree's
+//               rtcIntersect1, interleaved: Mrays/s, Rill/Embree, agreement as in the Embree
+//               section with the mismatches counted by kind, the rays' mean grid cells crossed
+//               (a plain 3D-DDA's walk, to explain the times), and how the ratio changes from
+//               camera rays to bounce rays. Needs Embree.
 //
 // Exit status 1 if a check fails: Embree and Rill agree on fewer than --min-agree of the
-// rays, a backend's primary hits differ from the CPU's (strict: they must be identical), or
-// the every-effect kernel's image differs from the specialized one by more than the tracer's
-// weight cut-off (1e-3) or one of its camera rays hits another primitive.
+// rays (primary or bounce), a backend's hits differ from the CPU's (strict: they must be
+// identical), or the every-effect kernel's image differs from the specialized one by more than
+// the tracer's weight cut-off (1e-3) or one of its camera rays hits another primitive.
 #include <rill/rill.h>
 #include <tbb/info.h>
 #include <CLI/CLI.hpp>
@@ -45,7 +58,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -54,10 +69,12 @@
 #include <vector>
 
 #include "CommaList.h"
+#include "HitAgreement.h"
 #include "Timing.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/kernel/DeviceArrays.h"
+#include "rill/rt/render/BounceRays.h"
 #include "rill/rt/scene/Scene.h"
 #include "trace_embree.h"
 
@@ -124,6 +141,12 @@ struct Options {
   std::string depth_scene = "builtin:thesis-b,builtin:glass";
   std::string depths = "1-8";
   std::string sweep_backends = "cpu";
+  // The bounce section: the path tracer's rays after `bounce` scatterings, `spp` samples per
+  // pixel, the scenes' seed unless one is given.
+  std::string path_scenes = "default";
+  int bounce = 2;
+  int spp = 1;
+  int64_t seed = -1;  // -1: the scene's
   std::string md, csv;
   double min_agree = 0.999;
   int width = 0, height = 0;
@@ -171,6 +194,19 @@ rt::Scene load(const std::string& spec, const Options& o) {
   return s;
 }
 
+// The bounce section's default scenes: the built-in Cornell box with its area light, thesis C
+// with a 4 x 4 area light (the path benchmark's scene, docs/benchmarks/2026-12-07-path.md) and
+// the bunny under an area light where ../shared/meshes has it (the repository does not ship it;
+// no test needs it).
+std::vector<std::string> default_path_scenes() {
+  const std::string root = RILL_BENCH_SOURCE_DIR;
+  std::vector<std::string> out{"builtin:cornell-path",
+                               root + "/docs/benchmarks/2026-12-07-path/thesis-c-area.json"};
+  if (std::filesystem::exists(root + "/../shared/meshes/stanford-bunny.obj"))
+    out.push_back(root + "/docs/benchmarks/2026-12-07-bounce-rays/bunny-area.json");
+  return out;
+}
+
 int64_t grid_bytes(const rt::Grid& g) {
   return static_cast<int64_t>(g.voxels.size() * sizeof(glm::ivec2) +
                               g.elements.size() * sizeof(int32_t));
@@ -180,18 +216,46 @@ std::string res_str(const rt::Grid& g) {
   return std::to_string(g.res.x) + "x" + std::to_string(g.res.y) + "x" + std::to_string(g.res.z);
 }
 
-// The tracer's intersector on one backend, bound to the camera rays; launches are timed.
-struct PrimaryRun {
+// The grid cells a ray's segment inside the grid crosses up to its hit (dist; +inf: up to
+// where it leaves the grid), 1 + the cell boundaries crossed on each axis, averaged over the
+// rays: the length of a plain 3D-DDA walk, before empty-space skipping shortens it and before
+// subgrids lengthen it. Only to explain why some rays cost more than others.
+double mean_cells_crossed(const rt::Grid& g, const std::vector<glm::vec3>& origins,
+                          const std::vector<glm::vec3>& dirs, const std::vector<float>& dist) {
+  double sum = 0;
+  for (size_t i = 0; i < dirs.size(); ++i) {
+    const glm::dvec3 o(origins[i]), d(dirs[i]);
+    double t0 = 0, t1 = std::isfinite(dist[i]) ? static_cast<double>(dist[i]) : HUGE_VAL;
+    for (int a = 0; a < 3; ++a) {  // the slabs of the grid's box
+      if (d[a] == 0) {
+        if (o[a] < g.lo[a] || o[a] > g.hi[a]) t1 = -1;
+        continue;
+      }
+      const double ta = (g.lo[a] - o[a]) / d[a], tb = (g.hi[a] - o[a]) / d[a];
+      t0 = std::max(t0, std::min(ta, tb));
+      t1 = std::min(t1, std::max(ta, tb));
+    }
+    if (!(t1 > t0)) continue;  // misses the grid: no cell
+    double cells = 1;
+    for (int a = 0; a < 3; ++a) cells += std::fabs(d[a]) * (t1 - t0) / g.cell[a];
+    sum += cells;
+  }
+  return dirs.empty() ? 0.0 : sum / static_cast<double>(dirs.size());
+}
+
+// The tracer's intersector on one backend, bound to rays (the camera rays, or the bounce
+// section's); launches are timed.
+struct RayRun {
   std::string backend;
   rill::Kernel kernel;
   rill::Stream<rill::Float3> origins, dirs;
   rill::Stream<rill::Int> prim;
   rill::Stream<rill::Float> dist;
   // The rays of a width x height image, as 2D streams (a backend may use the shape: simd
-  // runs tiles of neighbouring pixels together).
-  PrimaryRun(rt::Tracer& tracer, const std::string& be, const std::vector<glm::vec3>& o,
-             const std::vector<glm::vec3>& d, int width, int height,
-             rill::Accuracy accuracy = rill::Accuracy::Strict)
+  // runs tiles of neighbouring pixels together); rays of no image shape as n x 1.
+  RayRun(rt::Tracer& tracer, const std::string& be, const std::vector<glm::vec3>& o,
+         const std::vector<glm::vec3>& d, int width, int height,
+         rill::Accuracy accuracy = rill::Accuracy::Strict)
       : backend(be),
         kernel(tracer.intersect_kernel(be, accuracy)),
         origins(width, height),
@@ -306,10 +370,10 @@ class Bench {
           setup_of[0]->tracer->camera_rays("cpu", scene.camera, scene.width, scene.height);
       const std::vector<glm::vec3> origins(n, scene.camera.eye);
 
-      std::vector<std::unique_ptr<PrimaryRun>> runs;
+      std::vector<std::unique_ptr<RayRun>> runs;
       for (size_t b = 0; b < bes.size(); ++b) {
-        runs.push_back(std::make_unique<PrimaryRun>(*setup_of[b]->tracer, bes[b], origins, dirs,
-                                                    scene.width, scene.height, o_.acc));
+        runs.push_back(std::make_unique<RayRun>(*setup_of[b]->tracer, bes[b], origins, dirs,
+                                                scene.width, scene.height, o_.acc));
         runs.back()->run();  // warm-up: uploads, driver compiles
       }
 #ifdef RILL_BENCH_HAVE_EMBREE
@@ -397,16 +461,10 @@ class Bench {
       }
 #ifdef RILL_BENCH_HAVE_EMBREE
       if (ebr) {
-        const std::vector<float> cpu_dist = runs[0]->dists(n);
-        size_t same = 0, agree = 0;
-        for (size_t i = 0; i < n; ++i) {
-          const bool s = cpu_prim[i] == e_prim[i];
-          same += s;
-          const bool both_hit = cpu_prim[i] >= 0 && e_prim[i] >= 0;
-          agree += s || (both_hit && std::fabs(cpu_dist[i] - e_dist[i]) <=
-                                         1e-5f * std::max(cpu_dist[i], e_dist[i]));
-        }
-        const double frac = static_cast<double>(agree) / static_cast<double>(n);
+        const bench::HitAgreement agreement =
+            bench::compare_hits(cpu_prim, runs[0]->dists(n), e_prim, e_dist);
+        const size_t same = agreement.same;
+        const double frac = agreement.fraction();
         ok = ok && frac >= o_.min_agree;
         const double emm = median(embree_ms);
         for (size_t b = 0; b < bes.size(); ++b) {
@@ -436,6 +494,162 @@ class Bench {
     }
   }
 
+  // The path tracer's bounce rays against its camera rays: the rays the path integrator
+  // traces after o_.bounce scatterings, read back from the wavefront strategy's own path
+  // records (render/BounceRays.h), and the camera rays of the Embree section, each traced by
+  // Rill's intersector on cpu and simd and by Embree's rtcIntersect1 one ray at a time,
+  // interleaved in one run. Both ray sets go to Rill and to Embree with an origin per ray, so
+  // the two rows of a scene differ only in which rays they trace.
+  void bounce_rays() {
+#ifndef RILL_BENCH_HAVE_EMBREE
+    std::printf("note: built without Embree 3 (libembree-dev): no bounce-ray comparison\n");
+#else
+    const std::vector<std::string> bes = usable_backends("cpu,simd");
+    const std::string bounce_name = "bounce " + std::to_string(o_.bounce);
+    Table t{"Rill's CPU backends against Embree " + embree_version() + ", the path tracer's " +
+                bounce_name + " rays and the camera rays, " + size_str() + ", " +
+                std::to_string(o_.spp) + " spp, Rill " + rill::accuracy_name(o_.acc) + ", " +
+                std::to_string(tbb::info::default_concurrency()) + " threads, median of " +
+                std::to_string(o_.repeats),
+            {"scene", "triangles", "rays", "count", "hit", "cells/ray", "backend", "Rill ms",
+             "Rill Mrays/s", "Embree ms", "Embree Mrays/s", "Rill/Embree", "same prim", "agree",
+             "mismatches (vs Embree)"},
+            {}};
+    std::vector<std::string> ratios;  // per scene and backend: the bounce ratio over the primary
+    const std::vector<std::string> specs =
+        o_.path_scenes == "default" ? default_path_scenes() : split_list(o_.path_scenes);
+    for (const auto& spec : specs) {
+      rt::Scene scene = load(spec, o_);
+      if (scene.options.integrator != rt::Integrator::Path)
+        throw rt::SceneError(spec + ": the bounce section traces the path integrator's rays: " +
+                             "the scene needs options.integrator \"path\"");
+      scene.options.spp = o_.spp;
+      if (o_.seed >= 0) scene.options.seed = static_cast<uint32_t>(o_.seed);
+      scene.validate();
+      // cpu and simd want the same grid (subgrid_min_for: both run on the CPU).
+      const rt::Grid grid = rt::build_grid_for(scene, "cpu");
+      rt::Tracer tracer(scene, grid);
+      std::printf("%s: %zu triangles, grid %s, max_depth %d, seed %u\n", scene.name.c_str(),
+                  scene.triangle_count(), res_str(grid).c_str(), scene.options.max_depth,
+                  static_cast<unsigned>(scene.options.seed));
+      std::fflush(stdout);
+
+      struct RaySet {
+        std::string name;
+        std::vector<glm::vec3> origins, dirs;
+        int width = 0, height = 0;  // the streams' shape
+        std::vector<std::unique_ptr<RayRun>> runs;
+        std::vector<std::vector<double>> rill_ms;
+        std::vector<double> embree_ms;
+        std::vector<int32_t> e_prim;
+        std::vector<float> e_dist;
+      };
+      std::vector<RaySet> sets(2);
+      RaySet& primary = sets[0];
+      primary.name = "primary";
+      primary.dirs = tracer.camera_rays("cpu", scene.camera, scene.width, scene.height);
+      primary.origins.assign(primary.dirs.size(), scene.camera.eye);
+      primary.width = scene.width;
+      primary.height = scene.height;
+      RaySet& bounce = sets[1];
+      bounce.name = bounce_name;
+      {
+        // The path tracer's own frame, on cpu: its rays after o_.bounce scatterings, in pixel
+        // order sample after sample (a 1D list: simd groups neighbouring pixels' rays).
+        rt::BounceRays captured;
+        captured.bounce = o_.bounce;
+        rt::RenderSettings rs = settings("cpu", scene, -1, o_.acc);
+        rs.strategy = rt::Strategy::Wavefront;
+        rs.spp = o_.spp;
+        rs.bounce_rays = &captured;
+        tracer.render(rs, scene.camera);
+        if (captured.size() > static_cast<size_t>(std::numeric_limits<int>::max()))
+          throw rt::SceneError("--size and --spp: more bounce rays than one stream holds");
+        bounce.origins = std::move(captured.origins);
+        bounce.dirs = std::move(captured.directions);
+        bounce.width = static_cast<int>(bounce.dirs.size());
+        bounce.height = 1;
+      }
+      const size_t paths = static_cast<size_t>(scene.width) * scene.height * o_.spp;
+      std::printf("  %s rays: %zu of %zu camera paths (%.1f%%)\n", bounce_name.c_str(),
+                  bounce.dirs.size(), paths,
+                  100.0 * static_cast<double>(bounce.dirs.size()) / static_cast<double>(paths));
+      std::fflush(stdout);
+      if (bounce.dirs.empty()) {
+        std::printf("  no path reaches %s: no row\n", bounce_name.c_str());
+        sets.pop_back();
+      }
+
+      bench::EmbreeScene ebr(scene);
+      for (RaySet& rays : sets) {
+        for (const auto& be : bes) {
+          rays.runs.push_back(std::make_unique<RayRun>(tracer, be, rays.origins, rays.dirs,
+                                                       rays.width, rays.height, o_.acc));
+          rays.runs.back()->run();  // warm-up: uploads, compiles
+        }
+        rays.rill_ms.resize(bes.size());
+        rays.e_prim.resize(rays.dirs.size());
+        rays.e_dist.resize(rays.dirs.size());
+        ebr.trace(rays.origins, rays.dirs, rays.e_prim.data(), rays.e_dist.data());  // warm-up
+      }
+      for (int r = 0; r < o_.repeats; ++r)
+        for (RaySet& rays : sets) {
+          for (size_t b = 0; b < bes.size(); ++b) rays.rill_ms[b].push_back(rays.runs[b]->run());
+          const auto t0 = Clock::now();
+          ebr.trace(rays.origins, rays.dirs, rays.e_prim.data(), rays.e_dist.data());
+          rays.embree_ms.push_back(ms_since(t0));
+        }
+
+      std::vector<double> primary_ratio(bes.size(), 0.0);
+      for (size_t k = 0; k < sets.size(); ++k) {
+        RaySet& rays = sets[k];
+        const size_t n = rays.dirs.size();
+        const double emm = median(rays.embree_ms);
+        const std::vector<int32_t> cpu_prim = rays.runs[0]->hits(n);
+        size_t hit = 0;
+        for (int32_t p : cpu_prim) hit += p >= 0;
+        const double cells =
+            mean_cells_crossed(grid, rays.origins, rays.dirs, rays.runs[0]->dists(n));
+        for (size_t b = 0; b < bes.size(); ++b) {
+          const std::vector<int32_t> prim = rays.runs[b]->hits(n);
+          if (b > 0) {  // under strict simd's hits are cpu's, bit for bit
+            size_t differ = 0;
+            for (size_t i = 0; i < n; ++i) differ += prim[i] != cpu_prim[i];
+            if (differ) {
+              std::printf("%s: %s: %s's hits differ from cpu's on %zu rays\n",
+                          o_.acc == rill::Accuracy::Fast ? "note" : "error", scene.name.c_str(),
+                          bes[b].c_str(), differ);
+              ok = ok && o_.acc == rill::Accuracy::Fast;
+            }
+          }
+          const bench::HitAgreement a =
+              bench::compare_hits(prim, rays.runs[b]->dists(n), rays.e_prim, rays.e_dist);
+          ok = ok && a.fraction() >= o_.min_agree;
+          const double rm = median(rays.rill_ms[b]);
+          const double ratio = emm / rm;  // Rill's rays/s over Embree's
+          if (k == 0)
+            primary_ratio[b] = ratio;
+          else
+            ratios.push_back(scene.name + " " + bes[b] + ": " + fmt("%.3f", ratio) + " / " +
+                             fmt("%.3f", primary_ratio[b]) + " = " +
+                             fmt("%.2f", ratio / primary_ratio[b]));
+          const double nd = static_cast<double>(n);
+          t.rows.push_back({scene.name, std::to_string(scene.triangle_count()), rays.name,
+                            std::to_string(n), fmt("%.1f%%", 100.0 * static_cast<double>(hit) / nd),
+                            fmt("%.1f", cells), bes[b], fmt("%.2f", rm), fmt("%.3f", mrays(nd, rm)),
+                            fmt("%.2f", emm), fmt("%.3f", mrays(nd, emm)), fmt("%.3f", ratio),
+                            fmt("%.4f%%", 100.0 * static_cast<double>(a.same) / nd),
+                            fmt("%.4f%%", 100.0 * a.fraction()), a.mismatch_str("Rill", "Embree")});
+        }
+      }
+    }
+    add(t);
+    std::printf("Rill/Embree on %s rays over Rill/Embree on primary rays (the ratio's change):\n",
+                bounce_name.c_str());
+    for (const auto& r : ratios) std::printf("  %s\n", r.c_str());
+#endif
+  }
+
   // Time against grid resolution. Every grid's tracer is set up first, so that the timed
   // repeats can interleave the resolutions (the machine's load drifts).
   void grid_sweep() {
@@ -453,7 +667,7 @@ class Bench {
       rt::Grid grid;
       std::vector<double> build;
       std::unique_ptr<rt::Tracer> tracer;
-      std::vector<std::unique_ptr<PrimaryRun>> runs;  // per backend
+      std::vector<std::unique_ptr<RayRun>> runs;  // per backend
       std::vector<std::vector<double>> prim_ms, full_ms;
       std::vector<int64_t> rays;
     };
@@ -474,7 +688,7 @@ class Bench {
       const auto dirs = p.tracer->camera_rays("cpu", scene.camera, scene.width, scene.height);
       for (const auto& be : bes) {
         p.runs.push_back(
-            std::make_unique<PrimaryRun>(*p.tracer, be, origins, dirs, scene.width, scene.height));
+            std::make_unique<RayRun>(*p.tracer, be, origins, dirs, scene.width, scene.height));
         p.runs.back()->run();                                 // warm-up
         p.tracer->render(settings(be, scene), scene.camera);  // compile, warm-up
       }
@@ -630,8 +844,9 @@ int main(int argc, char** argv) {
   Options o;
   CLI::App app{
       "rill-bench-trace: the ray tracer's benchmarks (primary and full-shading "
-      "throughput, Embree, grid and depth sweeps, kernel specialization)"};
-  app.add_option("--sections", o.sections, "comma list of throughput,embree,grid,depth,spec")
+      "throughput, Embree, grid and depth sweeps, kernel specialization, the path tracer's "
+      "bounce rays against Embree)"};
+  app.add_option("--sections", o.sections, "comma list of throughput,embree,grid,depth,spec,bounce")
       ->default_str(o.sections);
   app.add_option("--size", o.size, "image size WxH")->default_str(o.size);
   app.add_option("--scenes", o.scenes, "comma list: builtin:NAME, OBJ or JSON files")
@@ -667,6 +882,18 @@ int main(int argc, char** argv) {
       ->default_str(o.depths);
   app.add_option("--sweep-backends", o.sweep_backends, "backends of the two sweeps")
       ->default_str(o.sweep_backends);
+  app.add_option("--path-scenes", o.path_scenes,
+                 "scenes of the bounce section (path integrator): default, or a comma list")
+      ->default_str(o.path_scenes);
+  app.add_option("--bounce", o.bounce,
+                 "the bounce section's rays: after this many scatterings (0: camera rays)")
+      ->check(CLI::Range(0, 64))
+      ->default_str("2");
+  app.add_option("--spp", o.spp, "samples per pixel of the bounce section's rays")
+      ->check(CLI::Range(1, 64))
+      ->default_str("1");
+  app.add_option("--seed", o.seed, "the bounce section's path seed (default: the scene's)")
+      ->check(CLI::Range(int64_t{0}, int64_t{0xffffffff}));
   app.add_option("--min-agree", o.min_agree, "fraction of rays Embree and Rill must agree on")
       ->check(CLI::Range(0.0, 1.0))
       ->default_str("0.999");
@@ -692,9 +919,10 @@ int main(int argc, char** argv) {
       return std::find(sections.begin(), sections.end(), s) != sections.end();
     };
     for (const auto& s : sections)
-      if (s != "throughput" && s != "embree" && s != "grid" && s != "depth" && s != "spec")
+      if (s != "throughput" && s != "embree" && s != "grid" && s != "depth" && s != "spec" &&
+          s != "bounce")
         throw rt::SceneError("--sections: unknown section '" + s +
-                             "' (throughput, embree, grid, depth, spec)");
+                             "' (throughput, embree, grid, depth, spec, bounce)");
     std::printf("rill-bench-trace: %dx%d, %d repeats, %d threads\n", o.width, o.height, o.repeats,
                 tbb::info::default_concurrency());
     Bench b(o);
@@ -703,6 +931,7 @@ int main(int argc, char** argv) {
     if (has("grid")) b.grid_sweep();
     if (has("depth")) b.depth_sweep();
     if (has("spec")) b.specialization();
+    if (has("bounce")) b.bounce_rays();
     if (!o.md.empty()) {
       std::ofstream f(o.md);
       for (const auto& t : b.tables) f << t.markdown();

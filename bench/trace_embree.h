@@ -79,16 +79,31 @@ class EmbreeScene {
   // Closest hit of rays (eye, dirs[i]), t in (0, inf): primitive id (-1: miss), distance.
   void trace(const glm::vec3& eye, const std::vector<glm::vec3>& dirs, int32_t* prim,
              float* dist) const {
+    trace_each([&](size_t) -> const glm::vec3& { return eye; }, dirs, prim, dist);
+  }
+  // The same for rays of their own origins (origins[i], dirs[i]): the path tracer's bounces.
+  void trace(const std::vector<glm::vec3>& origins, const std::vector<glm::vec3>& dirs,
+             int32_t* prim, float* dist) const {
+    if (origins.size() != dirs.size())
+      throw std::invalid_argument("Embree: origins and directions differ in size");
+    trace_each([&](size_t i) -> const glm::vec3& { return origins[i]; }, dirs, prim, dist);
+  }
+
+ private:
+  template <class OriginOf>
+  void trace_each(const OriginOf& origin_of, const std::vector<glm::vec3>& dirs, int32_t* prim,
+                  float* dist) const {
     const float inf = std::numeric_limits<float>::infinity();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, dirs.size(), 1024),
                       [&](const tbb::blocked_range<size_t>& r) {
                         RTCIntersectContext ctx;
                         rtcInitIntersectContext(&ctx);
                         for (size_t i = r.begin(); i < r.end(); ++i) {
+                          const glm::vec3& o = origin_of(i);
                           RTCRayHit rh;
-                          rh.ray.org_x = eye.x;
-                          rh.ray.org_y = eye.y;
-                          rh.ray.org_z = eye.z;
+                          rh.ray.org_x = o.x;
+                          rh.ray.org_y = o.y;
+                          rh.ray.org_z = o.z;
                           rh.ray.dir_x = dirs[i].x;
                           rh.ray.dir_y = dirs[i].y;
                           rh.ray.dir_z = dirs[i].z;
@@ -108,7 +123,6 @@ class EmbreeScene {
                       });
   }
 
- private:
   static bool monitor(void* self, ssize_t bytes, bool /*post*/) {
     static_cast<EmbreeScene*>(self)->bytes_ += bytes;
     return true;
