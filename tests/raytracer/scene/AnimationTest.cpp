@@ -153,6 +153,14 @@ TEST(Animation, JsonErrorsNameTheFileAndTheKey) {
             "in time order)");
   EXPECT_EQ(err(R"({"meshes": [{)" + box + R"("name": "a"}], "instances": [{"mesh": "b"}]})"),
             "anim.json: instances[0].mesh: unknown object 'b' (named meshes: a)");
+  // Many named meshes: a few and a count (NameList.h).
+  std::string many;
+  for (const char* n : {"a", "b", "c", "d", "e", "f", "g"})
+    many += std::string("{") + box + R"("name": ")" + n + R"("}, )";
+  EXPECT_EQ(err(R"({"meshes": [)" + many + R"({)" + box +
+                R"("name": "h"}], "instances": [{"mesh": "x"}]})"),
+            "anim.json: instances[0].mesh: unknown object 'x' (named meshes: a, b, c, d, e and 3 "
+            "more)");
   EXPECT_EQ(err(R"({"meshes": [{)" + box +
                 R"("animate": {"keys": [{"time": 0}]}}], "animation": {"start": 1, "end": 1}})"),
             "anim.json: animation: the time range is empty (end 1 is not after start 1)");

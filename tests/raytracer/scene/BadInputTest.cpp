@@ -323,6 +323,17 @@ TEST(BadInput, UnknownUsemtlIsAWarning) {
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_EQ(s.warnings[0], p + ":7: usemtl 'blue': no material of that name in its MTL files; its "
                                "faces get the default grey");
+  // The first 3 names are warned about with their lines, the rest counted (they were dropped
+  // without a word).
+  std::string five = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (const char* name : {"c1", "c2", "c3", "c4", "c5", "c4"})
+    five += std::string("usemtl ") + name + "\nf 1 2 3\n";
+  const std::string f = dir.file("five.obj", five);
+  Scene many = load_obj(f);
+  ASSERT_EQ(many.warnings.size(), 4u);
+  EXPECT_EQ(many.warnings[2].rfind(f + ":9: usemtl 'c3'", 0), 0u) << many.warnings[2];
+  EXPECT_EQ(many.warnings[3], f + ": 2 more usemtl names with no material (5 in all); their "
+                                  "faces get the default grey too");
   // Without any mtllib.
   const std::string q = dir.file("n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red \nf 1 2 3\n");
   Scene n = load_obj(q);
@@ -590,6 +601,36 @@ TEST(BadInput, DuplicateJsonKeysAreErrors) {
       R"({"lights": [{"position": [0, 1, 0]}, {"position": [1, 1, 1]}]})", ".", "ok.json"));
 }
 
+// Objects and arrays nest at most kMaxJsonDepth (256) levels: a file past it is an error naming
+// the file, the key it is under and the limit, raised at the 257th bracket, so that a small
+// hostile file cannot make the parser build a document of millions of levels.
+TEST(BadInput, JsonNestedDeeperThanTheLimitIsAnError) {
+  auto meshes_nested = [](int arrays) {
+    return R"({"meshes": )" + std::string(static_cast<size_t>(arrays), '[') +
+           std::string(static_cast<size_t>(arrays), ']') + "}";
+  };
+  // 256 levels (the scene object and 255 arrays) are read, and the scene is then refused for
+  // what it says.
+  EXPECT_EQ(error_of([&] { parse_json_scene(meshes_nested(255), ".", "n.json"); }),
+            "n.json: meshes[0] must be an object");
+  const std::string limit =
+      "n.json: meshes: JSON nested deeper than 256 levels (objects and arrays), the most a "
+      "scene file may nest";
+  EXPECT_EQ(error_of([&] { parse_json_scene(meshes_nested(256), ".", "n.json"); }), limit);
+  // 200 KB of brackets: the same error, named by the file it came from.
+  TempDir dir;
+  const std::string path = dir.file("n.json", meshes_nested(100000));
+  EXPECT_EQ(error_of([&] { load_json(path); }), path + limit.substr(std::string("n.json").size()));
+  // Objects count as arrays do.
+  std::string objects = "{\"options\": ";
+  for (int i = 0; i < 300; ++i) objects += R"({"a": )";
+  objects += "1" + std::string(301, '}');
+  EXPECT_NE(error_of([&] {
+              parse_json_scene(objects, ".", "o.json");
+            }).find("o.json: options: JSON nested deeper than 256 levels"),
+            std::string::npos);
+}
+
 // A word an option does not take is named with the words it does.
 TEST(BadInput, OptionWordsAreNamed) {
   EXPECT_EQ(error_of([] { parse_json_scene(R"({"options": {"grid": "AUTO"}})", ".", "o.json"); }),
@@ -691,8 +732,9 @@ TEST(BadInput, MalformedJson) {
   // Deep nesting: an error, not a stack overflow.
   std::string deep(100000, '[');
   EXPECT_FALSE(err(deep).empty());
-  std::string deep_ok = "{\"x\": " + std::string(20000, '[') + std::string(20000, ']') + "}";
-  EXPECT_NE(err(deep_ok).find("unknown key"), std::string::npos);
+  // Well-formed but past the nesting limit (JsonNestedDeeperThanTheLimitIsAnError has more).
+  std::string deep_closed = "{\"x\": " + std::string(20000, '[') + std::string(20000, ']') + "}";
+  EXPECT_NE(err(deep_closed).find("x: JSON nested deeper than 256 levels"), std::string::npos);
 }
 
 TEST(BadInput, TruncatedJson) {

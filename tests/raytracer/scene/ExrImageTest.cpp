@@ -142,5 +142,30 @@ TEST(ExrImage, NotAnExrNamesTheFile) {
             std::string::npos);
 }
 
+// The header's size and channel count are held to ImageLimits.h before any pixel is allocated:
+// a file one pixel wider than the limit, or with more channels than it, is an error naming the
+// file, what the header declares and the limit.
+TEST(ExrImage, AHeaderOverTheLimitsIsRefusedBeforeAllocating) {
+  TempDir dir;
+  const std::vector<float> row(16385, 0.25f);
+  const std::string wide = dir.path("wide.exr");
+  write_exr(wide, 16385, 1, {ExrChannel::of_floats("Y", row.data())});
+  EXPECT_EQ(error_of([&] { read_exr(wide); }),
+            wide +
+                ": its header declares a 16385x1 EXR image, over the limits (1..16384 per "
+                "side, at most 33554432 pixels)");
+  std::vector<ExrChannel> many;
+  for (int c = 0; c < 65; ++c)
+    many.push_back(ExrChannel::of_floats("c" + std::to_string(c), row.data()));
+  const std::string deep = dir.path("deep.exr");
+  write_exr(deep, 1, 1, many);
+  EXPECT_EQ(error_of([&] { read_exr(deep); }),
+            deep + ": its header declares 65 channels, over the limit of 64 for EXR images");
+  // At the limits: read.
+  many.pop_back();
+  write_exr(deep, 16384, 1, many);
+  EXPECT_EQ(read_exr(deep).channels.size(), 64u);
+}
+
 }  // namespace
 }  // namespace rt::exr_image_test

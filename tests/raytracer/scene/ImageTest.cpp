@@ -19,6 +19,7 @@
 
 #include "TestUtil.h"
 #include "rill/rt/scene/Image.h"
+#include "rill/rt/scene/ImageLimits.h"
 #include "rill/rt/scene/OutputFile.h"
 
 namespace rt {
@@ -85,6 +86,31 @@ TEST(ImageTest, PfmHeaderLargerThanItsDataIsAnErrorBeforeAllocating) {
             std::string::npos);
   // Exactly enough.
   EXPECT_EQ(parse_pfm("Pf\n2 1\n-1\n" + std::string(8, '\0'), "ok.pfm", w, h, c).size(), 2u);
+}
+
+// A PFM whose data is all there is still held to the image limits (ImageLimits.h), checked
+// from its header: the message names the file, the size and the limits.
+TEST(ImageTest, PfmOverTheImageLimitsIsAnError) {
+  int w = 0, h = 0, c = 0;
+  const std::string wide = "Pf\n16385 1\n-1\n" + std::string(16385 * 4, '\0');
+  EXPECT_EQ(runtime_error_of([&] { parse_pfm(wide, "wide.pfm", w, h, c); }),
+            "wide.pfm: its header declares a 16385x1 PFM image, over the limits (1..16384 per "
+            "side, at most 33554432 pixels)");
+  EXPECT_EQ(parse_pfm("Pf\n16384 1\n-1\n" + std::string(16384 * 4, '\0'), "ok.pfm", w, h, c).size(),
+            16384u);
+}
+
+// The limits themselves (docs/robustness.md): 16384 a side and 2^25 pixels, both included.
+TEST(ImageLimits, SidesAndPixelsAreBoundedBothIncluded) {
+  EXPECT_TRUE(image_size_fits(1, 1));
+  EXPECT_TRUE(image_size_fits(16384, 2048));  // 2^25 pixels
+  EXPECT_FALSE(image_size_fits(16384, 2049));
+  EXPECT_FALSE(image_size_fits(16385, 1));
+  EXPECT_FALSE(image_size_fits(1, 16385));
+  EXPECT_FALSE(image_size_fits(0, 1));
+  EXPECT_FALSE(image_size_fits(1, -1));
+  EXPECT_FALSE(image_size_fits(INT64_MAX, INT64_MAX));
+  EXPECT_EQ(image_size_limits(), "1..16384 per side, at most 33554432 pixels");
 }
 
 TEST(ImageTest, NotAPfmNamesTheFile) {

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include "MaterialValues.h"
 #include "TestUtil.h"
@@ -444,6 +446,72 @@ TEST(BadInputTextures, PngFiles) {
   EXPECT_HAS(error_of([&] { load_png_texture(dir.dir()); }), "is a directory");
 }
 
+// A small PNG whose header declares w x h pixels: a 1 x 1 image from libpng with its IHDR's
+// size (and the chunk's CRC, which libpng checks) rewritten. Its data is one pixel's.
+std::string png_declaring(const TempDir& dir, uint32_t w, uint32_t h) {
+  const unsigned char px[3] = {1, 2, 3};
+  const std::string path = dir.path("one.png");
+  write_raw_png(path, 1, 1, PNG_FORMAT_RGB, px);
+  std::ifstream f(path, std::ios::binary);
+  std::string png((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  auto put32 = [&](size_t at, uint32_t v) {
+    for (int i = 0; i < 4; ++i)
+      png[at + static_cast<size_t>(i)] = static_cast<char>(v >> (24 - 8 * i));
+  };
+  put32(16, w);  // the signature (8), the IHDR's length (4) and type (4), then width, height
+  put32(20, h);
+  uint32_t crc = 0xffffffffu;  // CRC-32 over the chunk's type and data (bytes 12..28)
+  for (size_t i = 12; i < 29; ++i) {
+    crc ^= static_cast<unsigned char>(png[i]);
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  put32(29, ~crc);
+  return png;
+}
+
+// A PNG's declared size is held to the image limits (ImageLimits.h) from its header, before
+// the decoder allocates: a 16384 x 16384 texture (1 GiB decoded; the per-side cap alone let
+// it through) and one side over 16384 are errors naming the file, the size and the limits,
+// and in a scene file the texture too.
+TEST(BadInputTextures, ADeclaredSizeOverTheLimitsIsRefusedBeforeDecoding) {
+  TempDir dir;
+  const std::string limits = "over the limits (1..16384 per side, at most 33554432 pixels)";
+  const std::string square = png_declaring(dir, 16384, 16384);
+  EXPECT_LT(square.size(), 100u);
+  EXPECT_EQ(error_of([&] { decode_png_texture(square, "huge.png"); }),
+            "huge.png: its header declares a 16384x16384 PNG image, " + limits);
+  EXPECT_EQ(error_of([&] { decode_png_texture(png_declaring(dir, 16385, 1), "wide.png"); }),
+            "wide.png: its header declares a 16385x1 PNG image, " + limits);
+  // The patched header itself is sound: at a size within the limits, libpng reads the header
+  // and fails on the data (one pixel's), not on the chunk.
+  EXPECT_HAS(error_of([&] { decode_png_texture(png_declaring(dir, 2, 1), "two.png"); }),
+             "two.png: cannot read the PNG");
+  dir.file("huge.png", square);
+  EXPECT_EQ(error_of([&] {
+              parse_json_scene(R"({"textures": {"wood": {"file": "huge.png"}}})", dir.dir(),
+                               "s.json");
+            }),
+            "s.json: textures.wood.file: " + dir.path("huge.png") +
+                ": its header declares a 16384x16384 PNG image, " + limits);
+}
+
+// An unknown texture's message names a few of the file's textures and counts the rest: with
+// 20,000 of them it stays one short line (it listed every name, 148 KB).
+TEST(BadInputTextures, AnUnknownTextureListsAFewOfTheFilesAndCountsTheRest) {
+  std::string textures;
+  for (int i = 0; i < 20000; ++i)
+    textures += (i ? ", " : "") + std::string("\"t") + std::to_string(i) + R"(": {"type": "wood"})";
+  const std::string msg = error_of([&] {
+    parse_json_scene(R"({"textures": {)" + textures +
+                         R"(}, "materials": {"m": {"diffuse": {"texture": "nope"}}}})",
+                     ".", "t.json");
+  });
+  // The names in the file's order as the scene keeps them (sorted): t0, t1, t10, t100, t1000.
+  EXPECT_EQ(msg,
+            "t.json: materials.m.diffuse: unknown texture 'nope' (textures: t0, t1, t10, t100, "
+            "t1000 and 19,995 more)");
+}
+
 TEST(BadInputTextures, JsonShadersAndParameters) {
   SurfaceShader req;
   req.name = "texture-test-required";
@@ -477,8 +545,9 @@ TEST(BadInputTextures, JsonShadersAndParameters) {
   EXPECT_EQ(err(R"({"shader": "texture-test-required", "gain": 2})"),
             "t.json: materials.m: shader 'texture-test-required' needs parameter 'tint' (a "
             "colour)");
-  EXPECT_HAS(err(R"({"shader": "texture-test-required", "tint": 1, "diffuse": 1})"),
-             "t.json: materials.m: unknown key 'diffuse' (shader, emission, two_sided, tint, gain)");
+  EXPECT_HAS(
+      err(R"({"shader": "texture-test-required", "tint": 1, "diffuse": 1})"),
+      "t.json: materials.m: unknown key 'diffuse' (shader, emission, two_sided, tint, gain)");
   EXPECT_HAS(err(R"({"shader": "mirror", "color": 1})"), "materials.m: unknown key 'color'");
   EXPECT_HAS(err(R"({"difuse": 1})"), "materials.m: unknown key 'difuse'");
   EXPECT_EQ(err(R"({"diffuse": {"texture": "nope"}})", R"({"a": {"type": "wood"}})"),

@@ -11,6 +11,11 @@
 
 namespace rt {
 
+// How deeply a scene file's objects and arrays may nest (the scene object is level 1); a file
+// nested deeper is an error naming it and the limit, found as it is read, so that a hostile
+// file of nested brackets costs no more memory than a scene does. Real scenes nest 5 deep.
+inline constexpr int kMaxJsonDepth = 256;
+
 // A JSON scene file. The OBJ files it names are read with `input`.
 Scene load_json(const std::string& path, const InputOptions& input = {});
 Scene parse_json_scene(const std::string& text, const std::string& base_dir,

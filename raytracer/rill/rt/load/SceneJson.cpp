@@ -7,17 +7,17 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <memory>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "rill/rt/kernel/Shader.h"
+#include "rill/rt/load/JsonStructure.h"
 #include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/AnimationJson.h"
 #include "rill/rt/scene/ClassicMaterial.h"
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/JsonFields.h"
+#include "rill/rt/scene/NameList.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/shaders/Registry.h"
 
@@ -108,9 +108,9 @@ ParamValue colour(const Ctx& c, const json& j, const std::string& where,
     if (it == names.end()) {
       std::vector<std::string> known;
       for (const auto& [n, i] : names) known.push_back(n);
-      fail(c, where + ": unknown texture '" + name + "' (" +
+      fail(c, where + ": unknown texture '" + clipped(name) + "' (" +
                   (known.empty() ? std::string("the file defines no textures")
-                                 : "textures: " + join(known)) +
+                                 : "textures: " + name_list(known)) +
                   ")");
     }
     return ParamValue::of_texture(it->second);
@@ -369,67 +369,20 @@ void check_room_for_shapes(const Ctx& c, const Scene& s, const json& meshes) {
   }
 }
 
-// A parser callback that rejects a key given twice in one object (JSON parsers keep the
-// last, so a repeated "builtin" silently replaced the first), naming the key and its path.
-json::parser_callback_t duplicate_key_check() {
-  struct Frame {
-    bool object = false;
-    std::set<std::string> keys;
-    std::string name;  // the frame's path: "scene", "materials.m", "lights[]"
-  };
-  auto stack = std::make_shared<std::vector<Frame>>();
-  auto pending = std::make_shared<std::string>();  // the last key read, naming what follows
-  return [stack, pending](int, json::parse_event_t event, json& parsed) {
-    using E = json::parse_event_t;
-    auto child_name = [&] {
-      if (stack->empty()) return std::string("scene");
-      const Frame& top = stack->back();
-      // A path past a few hundred characters stops growing ("...": no scene nests that
-      // deep), so that a hostile file nested 100,000 deep costs linear time and memory, not
-      // a path per level as long as its depth (gigabytes, 18 s).
-      constexpr size_t kLongestPath = 256;
-      if (top.name.size() >= kLongestPath)
-        return top.name.ends_with("...") ? top.name : top.name + "...";
-      return top.object ? (top.name == "scene" ? *pending : top.name + "." + *pending)
-                        : top.name + "[]";
-    };
-    switch (event) {
-      case E::object_start:
-      case E::array_start:
-        stack->push_back(Frame{event == E::object_start, {}, child_name()});
-        break;
-      case E::object_end:
-      case E::array_end:
-        if (!stack->empty()) stack->pop_back();
-        break;
-      case E::key: {
-        const std::string key = parsed.get<std::string>();
-        if (!stack->empty() && !stack->back().keys.insert(key).second)
-          throw std::runtime_error("key '" + key + "' appears twice in " + stack->back().name);
-        *pending = key;
-        break;
-      }
-      case E::value:
-        break;
-    }
-    return true;
-  };
-}
-
 }  // namespace
 
 Scene parse_json_scene(const std::string& text, const std::string& base_dir,
                        const std::string& name, const InputOptions& input) {
   Ctx c{name, base_dir, input};
+  // Syntax, keys given twice and the nesting first, in a pass that builds nothing; then the
+  // document, which that pass found sound.
+  if (const std::string why = json_structure_problem(text, kMaxJsonDepth); !why.empty())
+    fail(c, why);
   json j;
   try {
-    j = json::parse(text, duplicate_key_check());
+    j = json::parse(text);
   } catch (const json::exception& e) {
-    std::string msg = e.what();
-    auto p = msg.find("parse error");
-    fail(c, "invalid JSON: " + (p == std::string::npos ? msg : msg.substr(p)));
-  } catch (const std::runtime_error& e) {  // duplicate_key_check
-    fail(c, e.what());
+    fail(c, std::string("invalid JSON: ") + e.what());
   }
   try {
     check_keys(c, j, "scene",

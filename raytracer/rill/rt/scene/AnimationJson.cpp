@@ -2,6 +2,7 @@
 #include "rill/rt/scene/AnimationJson.h"
 
 #include "rill/rt/scene/FramePattern.h"
+#include "rill/rt/scene/NameList.h"
 
 #include <algorithm>
 #include <cmath>
@@ -153,10 +154,10 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
     const std::string name = inst["mesh"].get<std::string>();
     auto it = meshes.find(name);
     if (it == meshes.end()) {
-      std::string known;
-      for (const auto& [n, r] : meshes) known += (known.empty() ? "" : ", ") + n;
-      fail(c, where + ".mesh: unknown object '" + name + "' (named meshes: " +
-                  (known.empty() ? "none; give a mesh a \"name\"" : known) + ")");
+      std::vector<std::string> known;
+      for (const auto& [n, r] : meshes) known.push_back(n);
+      fail(c, where + ".mesh: unknown object '" + clipped(name) + "' (named meshes: " +
+                  (known.empty() ? "none; give a mesh a \"name\"" : name_list(known)) + ")");
     }
     Transform t;
     if (inst.contains("transform")) t = transform(c, inst["transform"], where + ".transform");

@@ -17,6 +17,7 @@
 #include <cstring>
 #include <set>
 
+#include "rill/rt/scene/ImageLimits.h"
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/OutputFile.h"
 #include "rill/rt/scene/Scene.h"
@@ -146,19 +147,18 @@ ExrImage read_exr(const std::string& path) {
     Imf::InputFile file(in);
     const Imath::Box2i dw = file.header().dataWindow();
     ExrImage image;
-    // A header's size is checked before allocating: a data window of 2^31 x 2^31 pixels in a
-    // small file is an error, not an allocation of exabytes.
-    if (dw.max.x < dw.min.x || dw.max.y < dw.min.y ||
-        static_cast<int64_t>(dw.max.x) - dw.min.x >= (1 << 16) ||
-        static_cast<int64_t>(dw.max.y) - dw.min.y >= (1 << 16))
-      throw SceneError(path + ": a data window of " + std::to_string(dw.min.x) + "," +
-                       std::to_string(dw.min.y) + ".." + std::to_string(dw.max.x) + "," +
-                       std::to_string(dw.max.y) + " (at most 65536 pixels a side are read)");
+    // A header's size and channels are checked before allocating (ImageLimits.h): a data
+    // window of 2^31 x 2^31 pixels, or thousands of channels, in a small file is an error, not
+    // an allocation of exabytes.
+    const Imf::ChannelList& list = file.header().channels();
+    int64_t channels = 0;
+    for (auto it = list.begin(); it != list.end(); ++it) ++channels;
+    check_declared_image(path, "EXR", static_cast<int64_t>(dw.max.x) - dw.min.x + 1,
+                         static_cast<int64_t>(dw.max.y) - dw.min.y + 1, channels);
     image.width = dw.max.x - dw.min.x + 1;
     image.height = dw.max.y - dw.min.y + 1;
     const size_t n = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
     const size_t row = static_cast<size_t>(image.width);
-    const Imf::ChannelList& list = file.header().channels();
     for (auto it = list.begin(); it != list.end(); ++it) {
       if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
         throw SceneError(path + ": channel '" + it.name() + "' is subsampled (not supported)");

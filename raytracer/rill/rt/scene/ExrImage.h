@@ -57,8 +57,8 @@ struct ExrImage {
 };
 
 // Reads a scanline or tiled EXR file's first part. Throws SceneError naming the file when it
-// is missing, unreadable, not an EXR file, has a subsampled channel or is over 65536 pixels
-// on a side.
+// is missing, unreadable, not an EXR file, has a subsampled channel, or its header declares a
+// size or a channel count over the limits (ImageLimits.h), checked before allocating.
 ExrImage read_exr(const std::string& path);
 
 }  // namespace rt

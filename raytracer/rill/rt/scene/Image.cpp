@@ -1,5 +1,6 @@
 #include "rill/rt/scene/Image.h"
 
+#include "rill/rt/scene/ImageLimits.h"
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/OutputFile.h"
 
@@ -101,6 +102,8 @@ std::vector<float> parse_pfm(const std::string& bytes, const std::string& path, 
     throw std::runtime_error(path + ": truncated PFM file (" + std::to_string(w) + "x" +
                              std::to_string(h) + " needs " + std::to_string(need) +
                              " bytes of data, the file has " + std::to_string(left) + ")");
+  // Bytes enough, and a size Rill could have written (ImageLimits.h).
+  check_declared_image(path, "PFM", w, h);
   const size_t row = static_cast<size_t>(w) * static_cast<size_t>(channels);
   std::vector<float> data(row * static_cast<size_t>(h));
   // Rows are stored bottom to top.

@@ -18,7 +18,8 @@ unsigned char to_srgb8(float linear);
 void write_pfm(const std::string& path, int w, int h, const std::vector<glm::vec3>& rgb);
 void write_pfm(const std::string& path, int w, int h, const std::vector<float>& grey);
 // Reads a PFM (either kind) into 3 or 1 channels per pixel, rows top to bottom. Throws
-// std::runtime_error naming the file when it is not a PFM or shorter than its header says.
+// std::runtime_error naming the file when it is not a PFM, shorter than its header says, or
+// larger than the limits (ImageLimits.h; SceneError), before allocating.
 std::vector<float> read_pfm(const std::string& path, int& w, int& h, int& channels);
 // The same from a PFM's bytes; `path` names it in errors.
 std::vector<float> parse_pfm(const std::string& bytes, const std::string& path, int& w, int& h,

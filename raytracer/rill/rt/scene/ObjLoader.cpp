@@ -14,6 +14,7 @@
 
 #include "rill/rt/scene/ClassicMaterial.h"
 #include "rill/rt/scene/InputFile.h"
+#include "rill/rt/scene/NameList.h"
 #include "rill/rt/scene/ObjSyntax.h"
 #include "rill/rt/scene/Scene.h"
 
@@ -181,17 +182,22 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
           "triangles)");
   }
   // usemtl names that no MTL file defines (unless an MTL file was missing, which has its own
-  // warning): their faces get the default grey.
+  // warning): their faces get the default grey. The first 3 are named, the rest counted.
   if (opt.override_material == nullptr && !mtl_reader.missing()) {
+    constexpr size_t kShown = 3;
     std::set<std::string> defined, reported;
     for (const tinyobj::material_t& m : mtls) defined.insert(m.name);
     for (const auto& [line, name] : lines.usemtl)
-      if (!defined.count(name) && reported.insert(name).second && reported.size() <= 3)
+      if (!defined.count(name) && reported.insert(name).second && reported.size() <= kShown)
         s.warnings.push_back(
             path + ":" + std::to_string(line) + ": usemtl '" + clipped(name) +
             "': no material of that name in " +
             (mtls.empty() ? "any MTL file (the OBJ loads none)" : "its MTL files") +
             "; its faces get the default grey");
+    if (reported.size() > kShown)
+      s.warnings.push_back(path + ": " + grouped(reported.size() - kShown) +
+                           " more usemtl names with no material (" + grouped(reported.size()) +
+                           " in all); their faces get the default grey too");
   }
   const fs::path dir = fs::path(path).parent_path();  // relative names start here
 

@@ -2,6 +2,7 @@
 // The loaders are ObjLoader.cpp, Builtin.cpp and load/SceneJson.cpp.
 #include "rill/rt/scene/Scene.h"
 
+#include "rill/rt/scene/ImageLimits.h"
 #include "rill/rt/scene/InputFile.h"
 
 #include <algorithm>
@@ -330,10 +331,9 @@ void Scene::validate() const {
     const CameraPose& p = animation.camera.keys[k].camera;
     check_camera(Camera{p.eye, p.look_at, p.up, p.fov_y}, "camera.keys[" + std::to_string(k) + "]");
   }
-  if (width < 1 || height < 1 || width > 16384 || height > 16384 ||
-      static_cast<int64_t>(width) * height > (int64_t{1} << 25))
+  if (!image_size_fits(width, height))
     throw SceneError("image size " + std::to_string(width) + "x" + std::to_string(height) +
-                     " is out of range (1..16384 per side, at most 33554432 pixels)");
+                     " is out of range (" + image_size_limits() + ")");
   if (!std::isfinite(options.ambient) || options.ambient < 0 || options.ambient > 1)
     throw SceneError("options: ambient must be in [0, 1]");
   if (options.max_depth < 0 || options.max_depth > 64)

@@ -12,6 +12,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "rill/rt/scene/ImageLimits.h"
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/Scene.h"
 
@@ -73,11 +74,13 @@ Texture decode_png_texture(const std::string& bytes, const std::string& path, bo
   // composite onto black). libpng converts grey, palettes and 16 bits.
   image.format = PNG_FORMAT_RGBA;
   // The size the header claims, checked before allocating: compressed data can claim far more
-  // pixels than it holds, and a 16384x16384 texture is 3 GiB of linear floats already.
-  if (image.width > 16384 || image.height > 16384) {
+  // pixels than it holds (69 bytes can claim 16384x16384: 1 GiB of RGBA, 3 GiB of linear
+  // floats), so a texture is held to the limits of a rendered image (ImageLimits.h).
+  try {
+    check_declared_image(path, "PNG", image.width, image.height);
+  } catch (const SceneError&) {
     png_image_free(&image);
-    throw SceneError(path + ": " + std::to_string(image.width) + "x" +
-                     std::to_string(image.height) + " is too large (at most 16384 per side)");
+    throw;
   }
   std::vector<png_byte> px(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, px.data(), 0, nullptr))

@@ -38,7 +38,8 @@ struct Texture {
 // Reads a PNG (8 or 16 bits, grey or colour, with or without alpha; alpha is ignored) as
 // linear RGB: srgb decodes the sRGB transfer curve (colour maps, the default), otherwise the
 // values are taken as they are (data maps). Throws SceneError naming the file when it is
-// missing, unreadable or not a PNG.
+// missing, unreadable or not a PNG, and, before decoding, when its header declares a size over
+// the limits of ImageLimits.h (naming the size and the limits).
 Texture load_png_texture(const std::string& path, bool srgb = true);
 // The same from a PNG's bytes; `path` names it in errors and in the texture.
 Texture decode_png_texture(const std::string& bytes, const std::string& path, bool srgb = true);
