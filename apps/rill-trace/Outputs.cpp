@@ -5,8 +5,9 @@
 
 #include "Doing.h"
 #include "rill/rt/accel/LightBuffer.h"
-#include "rill/rt/scene/ExrImage.h"
+#include "rill/rt/render/ResultFiles.h"
 #include "rill/rt/scene/Image.h"
+#include "rill/rt/scene/NameList.h"
 
 namespace trace_cli {
 
@@ -18,41 +19,15 @@ std::vector<float> to_float(const std::vector<int32_t>& v) {
   return f;
 }
 
-// --exr: the linear colour (R G B) and the AOVs (Z, N.X N.Y N.Z, prim) as 32-bit channels.
+// --exr: the linear colour (R G B) and the AOVs (Z, N.X N.Y N.Z, prim) as 32-bit channels,
+// always (docs/cli.md), and var.* and albedo.* where --variance and --albedo read them back.
 // prim is UINT, the id's 32 bits as they are: exact for every id (a scene may have 2^26
 // triangles, more than a float holds exactly), a miss (-1) 4294967295.
 void write_exr_output(const std::string& path, const rt::RenderResult& r) {
   const size_t n = static_cast<size_t>(r.width) * static_cast<size_t>(r.height);
   if (r.color.size() != n || r.depth.size() != n || r.normal.size() != n || r.prim.size() != n)
     throw rt::SceneError("cannot write " + path + ": the render did not read back every AOV");
-  static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-  const float* color = &r.color[0].x;
-  const float* normal = &r.normal[0].x;
-  std::vector<rt::ExrChannel> channels = {
-      rt::ExrChannel::of_floats("R", color, 3),
-      rt::ExrChannel::of_floats("G", color + 1, 3),
-      rt::ExrChannel::of_floats("B", color + 2, 3),
-      rt::ExrChannel::of_floats("Z", r.depth.data()),
-      rt::ExrChannel::of_floats("N.X", normal, 3),
-      rt::ExrChannel::of_floats("N.Y", normal + 1, 3),
-      rt::ExrChannel::of_floats("N.Z", normal + 2, 3),
-      // int32_t and uint32_t may alias: the same bits, -1 read as 4294967295.
-      rt::ExrChannel::of_uints("prim", reinterpret_cast<const uint32_t*>(r.prim.data())),
-  };
-  // --variance: each pixel's variance of its mean.
-  if (r.variance.size() == n) {
-    const float* var = &r.variance[0].x;
-    for (int c = 0; c < 3; ++c)
-      channels.push_back(rt::ExrChannel::of_floats(std::string("var.") + "RGB"[c], var + c, 3));
-  }
-  // The path integrator's albedo, where --albedo read it back.
-  if (r.albedo.size() == n) {
-    const float* albedo = &r.albedo[0].x;
-    for (int c = 0; c < 3; ++c)
-      channels.push_back(
-          rt::ExrChannel::of_floats(std::string("albedo.") + "RGB"[c], albedo + c, 3));
-  }
-  rt::write_exr(path, r.width, r.height, channels);
+  rt::write_exr(path, r);
 }
 
 }  // namespace

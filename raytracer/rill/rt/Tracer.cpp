@@ -17,6 +17,7 @@
 #include "rill/rt/kernel/DeviceScene.h"
 #include "rill/rt/megakernel/Megakernel.h"
 #include "rill/rt/multipass/Multipass.h"
+#include "rill/rt/scene/ImageLimits.h"
 #include "rill/rt/scene/Pose.h"
 #include "rill/rt/shaders/Registry.h"
 #include "rill/rt/strategy/RenderStrategy.h"
@@ -149,6 +150,8 @@ BvhUpdate parse_bvh_update(const std::string& s) {
 struct Tracer::Impl {
   Impl(const Scene& scene, const Grid& grid, const TracerOptions& options)
       : options(scene.options),
+        width(scene.width),
+        height(scene.height),
         shaders(checked_for_integrator(scene, resolve_shaders(scene))),
         features(tracer_features(scene, shaders, options)),
         rest(features.dynamic ? std::make_unique<Scene>(scene) : nullptr),
@@ -163,6 +166,7 @@ struct Tracer::Impl {
   }
 
   SceneOptions options;  // depth and samples per pixel by default
+  int width, height;     // the image size by default
   // The materials' shaders as registered when the tracer was built: its kernels are generated
   // from these, whatever is registered later (shaders/Registry.h).
   MaterialShaders shaders;
@@ -276,9 +280,13 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   fresh.normal.swap(r.normal);
   r = std::move(fresh);
   Impl& I = *d_;
-  const int width = rs.width > 0 ? rs.width : 0;
-  const int height = rs.height > 0 ? rs.height : 0;
-  if (width == 0 || height == 0) throw std::runtime_error("render: image size not set");
+  // 0 is the scene's (RenderSettings.h); any other size is held to the limits every image is.
+  const int width = rs.width != 0 ? rs.width : I.width;
+  const int height = rs.height != 0 ? rs.height : I.height;
+  if (!image_size_fits(width, height))
+    throw std::runtime_error("render: image size " + std::to_string(width) + "x" +
+                             std::to_string(height) + " is out of range (" + image_size_limits() +
+                             "; 0 for the scene's)");
   const int depth = rs.max_depth >= 0 ? rs.max_depth : I.options.max_depth;
   const int spp = rs.spp > 0 ? rs.spp : I.options.spp;
   RenderSettings::Window win = rs.window;

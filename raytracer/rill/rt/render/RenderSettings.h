@@ -62,9 +62,11 @@ struct RenderSettings {
   Strategy strategy = Strategy::Megakernel;
   MegakernelLoop loop = MegakernelLoop::Auto;  // the megakernel strategy's loop
   rill::Accuracy accuracy = rill::Accuracy::Strict;
-  int width = 0, height = 0;  // 0: the scene's
-  int max_depth = -1;         // -1: the scene's
-  int spp = 0;                // 0: the scene's
+  // 0: the scene's (Scene::width, height; each side on its own); otherwise within the image
+  // limits, 1..16384 a side and 2^25 pixels (scene/ImageLimits.h), or Tracer::render throws.
+  int width = 0, height = 0;
+  int max_depth = -1;  // -1: the scene's
+  int spp = 0;         // 0: the scene's
   // Multipass strategy (Multipass.cpp): rerun the intersector while at least this fraction
   // of the traced rays waits for it (thesis 5.6: 20%); launch each pass masked to its state.
   double wait_threshold = 0.2;
