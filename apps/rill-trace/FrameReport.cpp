@@ -13,11 +13,9 @@ nlohmann::json split_json(const rt::FrameTimes& t) {
 nlohmann::json frames_json(const std::vector<FrameStats>& frames, const rt::Features& f) {
   nlohmann::json a = nlohmann::json::array();
   for (const FrameStats& s : frames) {
-    nlohmann::json j = {{"frame", s.frame},
-                        {"time", s.time},
-                        {"trace_ms", s.trace_ms},
-                        {"compile_ms", s.compile_ms},
-                        {"kernels_compiled", s.compiles}};
+    nlohmann::json j = {{"frame", s.frame},           {"time", s.time},
+                        {"trace_ms", s.trace_ms},     {"rays", s.rays},
+                        {"compile_ms", s.compile_ms}, {"kernels_compiled", s.compiles}};
     if (f.dynamic)
       j["update"] = {
           {"pose_ms", s.update.pose_ms},         {"bvh_ms", s.update.bvh_ms},
@@ -27,6 +25,16 @@ nlohmann::json frames_json(const std::vector<FrameStats>& frames, const rt::Feat
     a.push_back(j);
   }
   return a;
+}
+
+FrameTotals totals(const std::vector<FrameStats>& frames) {
+  FrameTotals t;
+  for (const FrameStats& s : frames) {
+    t.rays += s.rays;
+    t.launches += s.launches;
+    t.trace_ms += s.trace_ms;
+  }
+  return t;
 }
 
 double median(std::vector<double> v) {

@@ -11,14 +11,23 @@
 namespace trace_cli {
 
 // One frame of a sequence (--frames): where it is in time, what moving its objects cost
-// (Tracer::set_time) and its trace time.
+// (Tracer::set_time), its trace time, rays and launches.
 struct FrameStats {
   int frame = 0;
   double time = 0;
   rt::FrameUpdate update;
   double trace_ms = 0, compile_ms = 0;
   int64_t compiles = 0;  // kernels compiled for it (misses of Rill's in-process kernel cache)
+  int64_t rays = 0, launches = 0;
 };
+
+// The frames together: what the stats line and --stats-json report for a sequence, every
+// frame counted (as a distributed render counts them).
+struct FrameTotals {
+  int64_t rays = 0, launches = 0;
+  double trace_ms = 0;
+};
+FrameTotals totals(const std::vector<FrameStats>& frames);
 
 // The frames as --stats-json's "frames" array (with each frame's update when the scene is
 // dynamic).

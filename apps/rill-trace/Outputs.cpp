@@ -102,7 +102,13 @@ void write_json(const std::string& path, const nlohmann::json& j) {
 void print_notes(const RenderOptions& o, const Prepared& p,
                  const std::vector<std::string>& written) {
   if (o.quiet) return;
-  for (const auto& w : written) std::printf("wrote %s\n", w.c_str());
+  // A long sequence's files: the first few, then how many more and the last (a video's, when
+  // there is one), never dropped without a word.
+  for (size_t i = 0; i < written.size() && i < kWroteShown; ++i)
+    std::printf("wrote %s\n", written[i].c_str());
+  if (written.size() > kWroteShown)
+    std::printf("... and %s more (the last: %s)\n",
+                rt::grouped(written.size() - kWroteShown).c_str(), written.back().c_str());
   glm::vec3 lo, hi;
   if (rt::scene_bounds(p.scene, lo, hi)) {
     // In double: the float length of a 1e20-unit box overflows.

@@ -30,7 +30,11 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
 // Writes j to path, indented; throws rt::SceneError when it cannot.
 void write_json(const std::string& path, const nlohmann::json& j);
 
-// The notes after the outputs (unless --quiet): what was written, and scene trouble.
+// How many "wrote FILE" lines print_notes prints; the rest are counted.
+constexpr size_t kWroteShown = 8;
+
+// The notes after the outputs (unless --quiet): what was written (the first kWroteShown files,
+// then "... and N more (the last: FILE)"), and scene trouble.
 void print_notes(const RenderOptions& o, const Prepared& p,
                  const std::vector<std::string>& written);
 

@@ -119,6 +119,8 @@ int render(RenderOptions o) {
   frame_stats[0].trace_ms = r.trace_ms;
   frame_stats[0].compile_ms = r.compile_ms;
   frame_stats[0].compiles = rill::kernel_cache_stats().misses - misses_before;
+  frame_stats[0].rays = r.rays;
+  frame_stats[0].launches = r.launches;
   // --frames: the other frames, back to back through the same tracer (compiled kernels, the
   // grid and the static arrays stay; Tracer::set_time moves the objects and their BVH).
   Progress progress(span.count(), o.quiet);
@@ -136,9 +138,10 @@ int render(RenderOptions o) {
     fs.trace_ms = frame.trace_ms;
     fs.compile_ms = frame.compile_ms;
     fs.compiles = rill::kernel_cache_stats().misses - misses;
+    fs.rays = frame.rays;
+    fs.launches = frame.launches;
     g_doing = "writing frame " + std::to_string(k);
-    for (const std::string& w : write_outputs(o, p, frame, frame_file(k)))
-      if (written.size() < 8) written.push_back(w);
+    for (const std::string& w : write_outputs(o, p, frame, frame_file(k))) written.push_back(w);
     frame_stats.push_back(fs);
     progress.update(k - span.first + 1, fs.trace_ms);
   }
@@ -154,11 +157,14 @@ int render(RenderOptions o) {
     if (!f) throw rt::SceneError("cannot write " + o.source);
   }
 
+  // The rays, launches and trace time of every frame of --frames (the first alone without it;
+  // --bench-frames' repeats are reported on their own).
+  const FrameTotals all = totals(frame_stats);
   const double rays_per_s =
-      r.trace_ms > 0 ? static_cast<double>(r.rays) / (r.trace_ms * 1e-3) : 0.0;
+      all.trace_ms > 0 ? static_cast<double>(all.rays) / (all.trace_ms * 1e-3) : 0.0;
   if (!o.stats_json.empty()) {
-    nlohmann::json j = stats_json(o, p, r.width, r.height, r.rays);
-    j["launches"] = r.launches;
+    nlohmann::json j = stats_json(o, p, r.width, r.height, all.rays);
+    j["launches"] = all.launches;
     if (o.strategy == rt::Strategy::Multipass) {
       j["wait_threshold"] = rs.wait_threshold;
       j["masking"] = rs.masking;
@@ -196,7 +202,7 @@ int render(RenderOptions o) {
     j["time_ms"] = {
         {"load", load_ms},       {"grid_build", grid.build_ms},
         {"compile", kernels_ms}, {"setup", compile_ms - kernels_ms},
-        {"trace", r.trace_ms},   {"total", load_ms + grid.build_ms + compile_ms + r.trace_ms}};
+        {"trace", all.trace_ms}, {"total", load_ms + grid.build_ms + compile_ms + all.trace_ms}};
     // The first frame's trace time, step by step (Tracer.h, FrameTimes).
     j["trace_split_ms"] = split_json(r.times);
     if (animated || span.count() > 1) j["frames"] = frames_json(frame_stats, tracer.features());
@@ -241,16 +247,20 @@ int render(RenderOptions o) {
                   static_cast<long long>(ps.calls), static_cast<long long>(ps.processed),
                   static_cast<long long>(ps.written), ps.ms);
   }
+  // "N frames of WxH" for a sequence, as a distributed render's line says.
+  const std::string what =
+      span.count() > 1 ? std::to_string(span.count()) + " frames of " : std::string();
   std::printf(
-      "rill-trace: %s, %zu triangles, %dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld rays); "
-      "load %.1f ms, grid build %.1f ms, compile %.1f ms%s, set-up %.1f ms, trace %.1f ms%s\n",
-      scene.name.c_str(), scene.triangle_count(), r.width, r.height, o.backend.c_str(),
-      rill::accuracy_name(o.accuracy), o.strategy == rt::Strategy::Multipass ? " multipass" : "",
-      grid.res.x, grid.res.y, grid.res.z, rays_per_s * 1e-6, static_cast<long long>(r.rays),
-      load_ms, grid.build_ms, kernels_ms, r.from_cache ? " (cached)" : "", compile_ms - kernels_ms,
-      r.trace_ms,
+      "rill-trace: %s, %zu triangles, %s%dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld "
+      "rays); load %.1f ms, grid build %.1f ms, compile %.1f ms%s, set-up %.1f ms, trace %.1f "
+      "ms%s\n",
+      scene.name.c_str(), scene.triangle_count(), what.c_str(), r.width, r.height,
+      o.backend.c_str(), rill::accuracy_name(o.accuracy),
+      o.strategy == rt::Strategy::Multipass ? " multipass" : "", grid.res.x, grid.res.y, grid.res.z,
+      rays_per_s * 1e-6, static_cast<long long>(all.rays), load_ms, grid.build_ms, kernels_ms,
+      r.from_cache ? " (cached)" : "", compile_ms - kernels_ms, all.trace_ms,
       o.strategy == rt::Strategy::Multipass
-          ? (" (" + std::to_string(r.launches) + " launches)").c_str()
+          ? (" (" + std::to_string(all.launches) + " launches)").c_str()
           : "");
   return 0;
 }

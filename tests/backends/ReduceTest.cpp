@@ -71,6 +71,32 @@ TEST_P(ReduceTest, TwoDimensionalStreamsFoldRowByRow) {
   }
 }
 
+// The example of docs/programming-model.md ("Reductions"), written out from the text rather
+// than through host_tree: a 130 x 3 stream gives blocks of 64, 64 and 2 elements per row,
+// nine partial results p0 .. p8 in row order, then one block of nine. The values make the
+// layout matter: folding the 390 elements as a 1D stream of blocks that cross rows gives
+// other bits, which the test checks too.
+TEST_P(ReduceTest, TheDocumentedTwoDimensionalBlockLayout) {
+  const int w = 130, h = 3;
+  std::vector<float> v = values(11, w * h);
+  Stream<Float> s(w, h, "image");
+  s.upload(v);
+  std::vector<float> partial;  // row 0's blocks left to right, then row 1's, then row 2's
+  for (int y = 0; y < h; ++y)
+    for (int first = 0; first < w; first += 64) {
+      float acc = v[static_cast<size_t>(y * w + first)];
+      for (int x = first + 1; x < std::min(first + 64, w); ++x)
+        acc = acc + v[static_cast<size_t>(y * w + x)];
+      partial.push_back(acc);
+    }
+  ASSERT_EQ(partial.size(), 9u);
+  float want = partial[0];
+  for (size_t k = 1; k < partial.size(); ++k) want = want + partial[k];
+  EXPECT_EQ(bits_of(sum(s, backend_name())), bits_of(want));
+  // Blocks of 64 over the flattened stream (what a 1D stream of 390 elements does).
+  EXPECT_NE(bits_of(host_tree(v, w * h, std::plus<float>())), bits_of(want));
+}
+
 TEST_P(ReduceTest, VectorsReduceComponentwise) {
   const size_t n = 5000;
   std::vector<float> a = values(5, n), b = values(6, n), c = values(7, n);

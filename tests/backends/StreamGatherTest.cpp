@@ -144,6 +144,29 @@ TEST_P(StreamGatherTest, BoundaryModesApplyToStreams) {
   }
 }
 
+// The example of docs/programming-model.md ("Boundary modes of streams"), as written there but
+// on each backend: one element past each end of a 4-element stream, read through four handles
+// with the four modes.
+TEST_P(StreamGatherTest, TheDocumentedBoundaryExampleRuns) {
+  Stream<Float> ring(std::vector<float>{1, 2, 3, 4});  // uploaded, or written by a launch
+  Stream<Float> clamped = ring, wrapped = ring, mirrored = ring, zero = ring;  // one data
+  wrapped.boundary(Boundary::Wrap);
+  mirrored.boundary(Boundary::Mirror);
+  zero.boundary(Boundary::Constant, 0.0f);
+  Stream<Float4> out(6, "out");
+  Program edges = program("edges", [&] {
+    Output<Float4> o("o");
+    Int i = element_index() - 1;  // -1 .. 4: one element past each end
+    o = Float4(clamped[i], wrapped[i], mirrored[i], zero[i]);
+  });
+  compile(edges).bind("o", out).execute();
+  const std::vector<glm::vec4> want = {{1, 4, 1, 0}, {1, 1, 1, 1}, {2, 2, 2, 2},
+                                       {3, 3, 3, 3}, {4, 4, 4, 4}, {4, 1, 4, 0}};
+  EXPECT_EQ(out.download(), want);
+  // Only Constant takes a value for outside.
+  EXPECT_THROW(wrapped.boundary(Boundary::Wrap, 1.0f), Error);
+}
+
 TEST_P(StreamGatherTest, GatheringFromTheStreamBeingWrittenIsAnError) {
   Stream<Float> s(16, "field");
   Program p = program("smooth_in_place", [&] {

@@ -193,7 +193,7 @@ int render_distributed(const RenderOptions& o) {
       frames.width = image.width;
       frames.height = image.height;
       for (const std::string& path : output_paths(o, *prepared))
-        if (frames.written.size() < 8) frames.written.push_back(plan.file(frame)(path));
+        frames.written.push_back(plan.file(frame)(path));  // print_notes counts past a few
       progress.update(static_cast<int>(frames.done.size()), 0);
       // Written beside the farm's loop, which goes on handing out tiles meanwhile.
       writer.post([&, frame, image = std::move(image)] {

@@ -2,6 +2,7 @@
 // non-zero status and one line on stderr. And what `rill-trace info` lists.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <cstdlib>
@@ -453,8 +454,42 @@ TEST(Cli, FramesWriteNumberedImagesOfADynamicScene) {
   EXPECT_EQ(run("render builtin:thesis-a --size 8x8 --frames 0 --out s.png", dir).status, 0);
 }
 
+// --frames' statistics cover every frame, as a distributed render's do: the stats line says
+// "N frames of WxH" with all their rays and trace time, --stats-json's rays, launches and
+// trace time are the frames' sums and each frame has its rays (they were frame 0's alone).
+// The "wrote" lines name the first 8 files and count the rest (they stopped at 8 silently).
+TEST(Cli, FramesStatisticsCoverEveryFrameAndEveryFileIsCounted) {
+  testing::TempDir dir;
+  dir.file("ten.json", R"({"builtin": "thesis-a", "animation": {"end": 1, "fps": 9},
+    "meshes": [{"shape": "box", "min": [-0.3, 0, -0.3], "max": [0.3, 0.6, 0.3],
+      "animate": {"keys": [{"time": 0, "translate": [0, 2.8, 1.2]},
+                           {"time": 1, "translate": [1, 0.2, 1.2]}]}}]})");
+  auto r = run("render ten.json --size 8x6 --frames 0:9 --out f-%d.png --stats-json s.json", dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(testing::read_text(dir.path("s.json")));
+  ASSERT_EQ(j["frames"].size(), 10u);
+  int64_t rays = 0;
+  double trace_ms = 0;
+  for (const nlohmann::json& f : j["frames"]) {
+    EXPECT_GT(f.value("rays", int64_t{0}), 0) << f;
+    rays += f.value("rays", int64_t{0});
+    trace_ms += f["trace_ms"].get<double>();
+  }
+  EXPECT_EQ(j["rays"].get<int64_t>(), rays);
+  EXPECT_GT(rays, j["frames"][0].value("rays", int64_t{0}));
+  EXPECT_DOUBLE_EQ(j["time_ms"]["trace"].get<double>(), trace_ms);
+  EXPECT_NE(r.out.find(" triangles, 10 frames of 8x6, cpu strict"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(" + std::to_string(rays) + " rays)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("wrote f-7.png\n... and 2 more (the last: f-9.png)\n"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("wrote f-8.png"), std::string::npos) << r.out;
+}
+
 #else
 TEST(Cli, FramesWriteNumberedImagesOfADynamicScene) {
+  GTEST_SKIP() << "rill-trace is not built";
+}
+TEST(Cli, FramesStatisticsCoverEveryFrameAndEveryFileIsCounted) {
   GTEST_SKIP() << "rill-trace is not built";
 }
 TEST(Cli, RunningOutOfMemoryNamesTheStep) {
