@@ -6,13 +6,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <sstream>
 
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/scene/OutputFile.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt {
@@ -305,8 +305,8 @@ int accuracy_bench(const AccuracyBenchOptions& o) {
         "spp > 1 against its 16-sample image). Times: trace only, median of "
      << o.repeats << " interleaved repeats, " << o.width << "x" << o.height << " pixels.\n";
   std::printf("%s", md.str().c_str());
-  std::ofstream(dir / "accuracy.md") << md.str();
-  std::ofstream(dir / "accuracy.csv") << csv.str();
+  write_output_file((dir / "accuracy.md").string(), md.str());
+  write_output_file((dir / "accuracy.csv").string(), csv.str());
 
   // ---- the plot: error against time; one series per knob setting, a point per backend
   // and math mode (the backends' times differ tenfold, so they form clusters along x) ----
@@ -328,11 +328,11 @@ int accuracy_bench(const AccuracyBenchOptions& o) {
     points[name] << fmt("%.4f", total) << " " << fmt("%.6g", std::exp(log_err)) << " \""
                  << c.backend << " " << rill::accuracy_name(c.accuracy) << "\"\n";
   }
-  std::ofstream dat(dir / "accuracy-plot.dat");
+  std::ostringstream dat;
   for (size_t i = 0; i < series.size(); ++i)
     dat << (i ? "\n\n" : "") << "# " << series[i] << "\n" << points[series[i]].str();
-  dat.close();
-  std::ofstream gp(dir / "accuracy.gp");
+  write_output_file((dir / "accuracy-plot.dat").string(), dat.str());
+  std::ostringstream gp;
   gp << "# gnuplot accuracy.gp -> accuracy.svg (written by rill-trace accuracy)\n"
         "set terminal svg size 1100,650 dynamic font 'sans,11'\n"
         "set output 'accuracy.svg'\n"
@@ -347,7 +347,7 @@ int accuracy_bench(const AccuracyBenchOptions& o) {
     gp << (i ? ", \\\n     " : "") << "'accuracy-plot.dat' index " << i
        << " using 1:2 with points pt " << (4 + i % 10) << " ps 1.3 title '" << series[i] << "'";
   gp << "\n";
-  gp.close();
+  write_output_file((dir / "accuracy.gp").string(), gp.str());
   bool plotted = false;
   if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
     const std::string cmd = "cd '" + dir.string() + "' && gnuplot accuracy.gp";

@@ -22,6 +22,7 @@ CLI::Validator number_in(double lo, double hi, bool integer) {
   };
   return CLI::Validator(
       [=](std::string& s) -> std::string {
+        if (s.empty()) return "an empty value";  // as every option's (refuse_empty_values)
         char* end = nullptr;
         errno = 0;
         const double v = integer ? static_cast<double>(std::strtoll(s.c_str(), &end, 10))
@@ -44,6 +45,13 @@ CLI::Validator file_name() {
 CLI::Validator non_empty() {
   return CLI::Validator(
       [](std::string& s) -> std::string { return s.empty() ? "an empty value" : ""; }, "");
+}
+
+void refuse_empty_values(CLI::App& app) {
+  for (CLI::Option* opt : app.get_options())
+    if (opt->get_type_size_max() > 0) opt->check(non_empty());
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    refuse_empty_values(*sub);
 }
 
 void parse_size(const std::string& s, int& w, int& h) {

@@ -14,6 +14,9 @@ CLI::Validator number_in(double lo, double hi, bool integer);
 CLI::Validator file_name();
 // A setting's check where an empty value would otherwise read as the option not given.
 CLI::Validator non_empty();
+// Adds non_empty() to every option of app and of its subcommands that takes a value, the
+// positional ones too: CLI11 reads `--frames ''` as the option not given, a silent default.
+void refuse_empty_values(CLI::App& app);
 
 // "WxH" (1..16384 per side, at most 2^25 pixels) into w and h; throws rt::SceneError.
 void parse_size(const std::string& s, int& w, int& h);

@@ -2,13 +2,47 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <stdexcept>
 #include <utility>
 
+#include "OutputPaths.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace trace_cli {
+
+namespace {
+
+// Before rendering: each output's format against its name, and no output that is another or
+// an input, by any spelling (OutputPaths.h). A sequence's outputs are checked frame by frame:
+// frame-%d.png and frame-%04d.png are one file from frame 1000 on.
+void check_outputs(const RenderOptions& o, const Prepared& p, const FramePlan& plan) {
+  const std::pair<std::string, const std::string*> images[] = {
+      {"--out", &p.out},       {"--pfm", &o.pfm}, {"--depth", &o.depth},  {"--prim", &o.prim},
+      {"--normal", &o.normal}, {"--exr", &o.exr}, {"--albedo", &o.albedo}};
+  const std::pair<std::string, const std::string*> others[] = {
+      {"--stats-json", &o.stats_json}, {"--source", &o.source}, {"--save", &o.save}};
+  std::vector<NamedFile> outputs;
+  for (const auto& [option, path] : images)
+    if (!path->empty()) check_output_format(option, *path);
+  for (const auto& [option, path] : others)
+    if (!path->empty()) check_output_format(option, *path);
+  for (int k = plan.span.first; k <= plan.span.last; ++k)
+    for (const auto& [option, path] : images)
+      if (!path->empty()) outputs.push_back({option, plan.file(k)(*path)});
+  for (const auto& [option, path] : others)
+    if (!path->empty()) outputs.push_back({option, *path});
+  if (!o.video.empty()) outputs.push_back({"--video", o.video});  // ffmpeg's format: its own
+  std::vector<NamedFile> inputs;
+  if (o.scene.rfind("builtin:", 0) != 0) inputs.push_back({"the scene file", o.scene});
+  for (const std::string& f : p.inputs) inputs.push_back({"a file the scene loaded", f});
+  // --save F --resume F goes on from F and saves over it (docs/cli.md): F is read whole before
+  // the render starts, and replaced whole only once the new sums are written.
+  if (!o.resume.empty() && (o.save.empty() || file_identity(o.resume) != file_identity(o.save)))
+    inputs.push_back({"the --resume file", o.resume});
+  check_output_files(outputs, inputs);
+}
+
+}  // namespace
 
 FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
   const rt::Scene& scene = p.scene;
@@ -32,24 +66,7 @@ FramePlan plan_frames(const RenderOptions& o, Prepared& p, bool check_tools) {
                            " frames: " + option + " needs a frame number, such as frame-%04d" +
                            std::filesystem::path(*path).extension().string());
   }
-  // Two options naming one file: the later write would silently replace the earlier one.
-  {
-    const std::pair<std::string, const std::string*> files[] = {
-        {"--out", &p.out},       {"--pfm", &o.pfm},
-        {"--depth", &o.depth},   {"--prim", &o.prim},
-        {"--normal", &o.normal}, {"--exr", &o.exr},
-        {"--albedo", &o.albedo}, {"--stats-json", &o.stats_json},
-        {"--source", &o.source}};
-    std::map<std::string, std::string> seen;  // normalized path -> option
-    for (const auto& [option, path] : files) {
-      if (path->empty() || *path == "/dev/null") continue;
-      const std::string key = std::filesystem::path(*path).lexically_normal().string();
-      auto [it, fresh] = seen.emplace(key, option);
-      if (!fresh)
-        throw rt::SceneError(it->second + " and " + option + " both name " + *path +
-                             ": one would overwrite the other");
-    }
-  }
+  check_outputs(o, p, plan);
   if (!o.video.empty()) {
     if (p.out.empty() || !plan.sequence)
       throw rt::SceneError("--video makes a video of the frames' PNGs: give --frames and --out");

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -17,6 +16,7 @@
 #include "rill/Stopwatch.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/film/AccumulationFile.h"
+#include "rill/rt/scene/OutputFile.h"
 
 namespace rt {
 
@@ -412,8 +412,8 @@ int run(const NoiseBenchOptions& o) {
           << fmt("%.6g", p.rel) << "," << fmt("%.3g", p.vs_strict) << "," << hex16(p.hash) << ","
           << (p.repeatable ? 1 : 0) << "\n";
   std::printf("%s", md.str().c_str());
-  std::ofstream(dir / "noise.md") << md.str();
-  std::ofstream(dir / "noise.csv") << csv.str();
+  write_output_file((dir / "noise.md").string(), md.str());
+  write_output_file((dir / "noise.csv").string(), csv.str());
 
   // ---- the plot ----------------------------------------------------------------------------
   static const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
@@ -497,10 +497,12 @@ int run(const NoiseBenchOptions& o) {
     by_spp.hlines.emplace_back(t, fmt("%g%%", 100 * t));
     by_time.hlines.emplace_back(t, fmt("%g%%", 100 * t));
   }
-  std::ofstream(dir / "noise.svg") << trace_cli::loglog_svg(
-      "Path tracing noise: " + scene.name + " " + std::to_string(o.width) + "x" +
-          std::to_string(o.height) + ", reference " + std::to_string(ref_sums->samples) + " spp",
-      {by_spp, by_time});
+  write_output_file(
+      (dir / "noise.svg").string(),
+      trace_cli::loglog_svg("Path tracing noise: " + scene.name + " " + std::to_string(o.width) +
+                                "x" + std::to_string(o.height) + ", reference " +
+                                std::to_string(ref_sums->samples) + " spp",
+                            {by_spp, by_time}));
   std::printf("\nwrote %s, %s, %s\n", (dir / "noise.md").c_str(), (dir / "noise.csv").c_str(),
               (dir / "noise.svg").c_str());
   return strict_differ || unrepeatable ? 1 : 0;

@@ -1,13 +1,13 @@
 #include "Outputs.h"
 
 #include <cstdio>
-#include <fstream>
 
 #include "Doing.h"
 #include "rill/rt/accel/LightBuffer.h"
 #include "rill/rt/render/ResultFiles.h"
 #include "rill/rt/scene/Image.h"
 #include "rill/rt/scene/NameList.h"
+#include "rill/rt/scene/OutputFile.h"
 
 namespace trace_cli {
 
@@ -94,9 +94,13 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
 }
 
 void write_json(const std::string& path, const nlohmann::json& j) {
-  std::ofstream f(path);
-  f << j.dump(2) << "\n";
-  if (!f) throw rt::SceneError("cannot write " + path);
+  rt::write_output_file(path, j.dump(2) + "\n");
+}
+
+void write_source(const RenderOptions& o, const Prepared& p) {
+  if (o.source.empty()) return;
+  rt::write_output_file(o.source, p.tracer->source(o.backend, o.accuracy, p.rs.loop, p.rs.outputs,
+                                                   p.scene.options.spp));
 }
 
 void print_notes(const RenderOptions& o, const Prepared& p,

@@ -27,8 +27,13 @@ std::vector<std::string> write_outputs(
 nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, int height,
                           int64_t rays);
 
-// Writes j to path, indented; throws rt::SceneError when it cannot.
+// Writes j to path, indented, through the checked writer (rt/scene/OutputFile.h); throws
+// naming the file when it cannot.
 void write_json(const std::string& path, const nlohmann::json& j);
+
+// --source, when given: the generated kernel source of the variant the render ran (the
+// outputs asked for, the scene's samples per pixel).
+void write_source(const RenderOptions& o, const Prepared& p);
 
 // How many "wrote FILE" lines print_notes prints; the rest are counted.
 constexpr size_t kWroteShown = 8;

@@ -7,6 +7,7 @@
 #include "rill/Stopwatch.h"
 #include "rill/rt/accel/LightBuffer.h"
 #include "rill/rt/load/SceneFile.h"
+#include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/Pose.h"
 
 namespace trace_cli {
@@ -21,7 +22,11 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   rt::InputOptions input;
   input.strict = o.strict_input;
   input.allow_empty = o.allow_empty;
-  p->scene = rt::load_scene(o.scene, input);
+  {
+    rt::InputFileLog read;  // every file loading reads, which no output may overwrite
+    p->scene = rt::load_scene(o.scene, input);
+    p->inputs = read.paths();
+  }
   rt::Scene& scene = p->scene;
   if (o.width > 0) scene.width = o.width, scene.height = o.height;
   if (o.max_depth >= 0) scene.options.max_depth = o.max_depth;

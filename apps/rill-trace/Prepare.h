@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "RenderOptions.h"
 #include "rill/rt/Tracer.h"
@@ -20,7 +21,8 @@ struct Prepared {
   rt::Grid grid;
   std::unique_ptr<rt::Tracer> tracer;
   rt::RenderSettings rs;
-  std::string out;  // the PNG: --out, or a default name when no output is named
+  std::string out;                  // the PNG: --out, or a default name when no output is named
+  std::vector<std::string> inputs;  // the files loading read (scene, OBJ, MTL, textures)
   double load_ms = 0, setup_ms = 0;
 };
 

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -151,11 +150,7 @@ int render(RenderOptions o) {
     write_video(p.out, span.first, scene.animation.time.fps, o.video);
     written.push_back(o.video);
   }
-  if (!o.source.empty()) {
-    std::ofstream f(o.source);
-    f << tracer.source(o.backend, o.accuracy, p.rs.loop, p.rs.outputs, scene.options.spp);
-    if (!f) throw rt::SceneError("cannot write " + o.source);
-  }
+  write_source(o, p);
 
   // The rays, launches and trace time of every frame of --frames (the first alone without it;
   // --bench-frames' repeats are reported on their own).

@@ -37,6 +37,7 @@
 #include <regex>
 #include <string>
 
+#include "CliChecks.h"
 #include "Commands.h"
 #include "Doing.h"
 #include "RenderOptions.h"
@@ -58,6 +59,7 @@ int main(int argc, char** argv) {
   CLI::App* nz = add_noise_command(app, no);
   CLI::App* d = add_demo_command(app, dm);
   CLI::App* in = add_info_command(app);
+  refuse_empty_values(app);  // every option that takes a value, those added above included
 
   try {
     app.parse(argc, argv);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 #include <rill/rill.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 
 #include <atomic>
 #include <cmath>
@@ -46,6 +48,15 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// A device that takes no bytes (ENOSPC on every write), as /dev/full is: a node of its own in
+// dir where the test may make one (root), else /dev/full itself. A writer that removes the
+// file it could not write (libpng's did) then removes the test's node, never the system's.
+inline std::string full_device(const TempDir& dir) {
+  const std::string node = dir.path("full");
+  if (::mknod(node.c_str(), S_IFCHR | 0666, makedev(1, 7)) == 0) return node;
+  return "/dev/full";
+}
 
 // The message of the SceneError that f throws (fails the test if it throws none).
 template <class F>

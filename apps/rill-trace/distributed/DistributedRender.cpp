@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -78,11 +77,7 @@ std::vector<std::string> write_partial(const RenderOptions& o, const Prepared& p
   f << "missing tiles (x y width height):\n";
   for (const rt::distributed::Tile& t : part.missing)
     f << t.x << " " << t.y << " " << t.width << " " << t.height << "\n";
-  rt::write_output_file(note, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << f.str();
-    if (!out) throw rt::SceneError("cannot write " + note);
-  });
+  rt::write_output_file(note, f.str());
   std::vector<std::string> written = write_outputs(o, p, part.image, [&](const std::string& path) {
     return rt::distributed::partial_name(file(path));
   });
@@ -302,12 +297,7 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
     write_video(p.out, plan.span.first, p.scene.animation.time.fps, o.video);
     written.push_back(o.video);
   }
-  if (!o.source.empty()) {
-    std::ofstream f(o.source);
-    // The variant the tiles ran: the outputs asked for and the scene's samples per pixel.
-    f << p.tracer->source(o.backend, o.accuracy, p.rs.loop, p.rs.outputs, p.scene.options.spp);
-    if (!f) throw rt::SceneError("cannot write " + o.source);
-  }
+  write_source(o, p);  // the variant the tiles ran
   const double wall_ms = R.wall_ms;
   if (!o.stats_json.empty()) {
     nlohmann::json j = stats_json(o, p, frames.width, frames.height, frames.rays);

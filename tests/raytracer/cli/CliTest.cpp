@@ -59,8 +59,8 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render");
   expect_clean_failure("frobnicate",
                        "unknown command 'frobnicate' (render, accuracy, noise, demo, info)");
-  expect_clean_failure("render builtin:thesis-a --out o.png --pfm ./o.png",
-                       "--out and --pfm both name ./o.png: one would overwrite the other");
+  expect_clean_failure("render builtin:thesis-a --pfm o.pfm --depth ./o.pfm",
+                       "--pfm and --depth both name ./o.pfm: one would overwrite the other");
   expect_clean_failure("render builtin:thesis-a --frobnicate");
   expect_clean_failure("render no-such-scene.json", "no such file");
   expect_clean_failure("render builtin:nope", "unknown built-in");

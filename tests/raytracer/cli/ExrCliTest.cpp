@@ -123,7 +123,9 @@ TEST(CliExr, UnwritableOrCollidingNamesAreErrors) {
   expect_failure("render builtin:thesis-a --size 8x6 --exr /dev/full",
                  "cannot write /dev/full: No space left on device");
   expect_failure("render builtin:thesis-a --size 8x6 --out o.exr --exr ./o.exr",
-                 "--out and --exr both name ./o.exr: one would overwrite the other");
+                 "--out o.exr: .exr names OpenEXR, but --out writes PNG");
+  expect_failure("render builtin:thesis-a --size 8x6 --out /dev/null --exr o.exr --source ./o.exr",
+                 "--source ./o.exr: .exr names OpenEXR, but --source writes the kernel source");
   expect_failure("render builtin:thesis-a --size 8x6 --exr ''", "--exr: an empty file name");
 }
 

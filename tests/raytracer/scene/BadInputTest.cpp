@@ -14,6 +14,8 @@
 #include "TestUtil.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/load/SceneFile.h"
+#include "rill/rt/scene/Image.h"
+#include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/shaders/Registry.h"
 
@@ -56,6 +58,38 @@ TEST(BadInput, MissingFiles) {
 
 // A path naming a device or a pipe is refused before anything is read (reading /dev/zero
 // grew memory without bound), and so is a file over the input limit.
+// A NUL character (JSON's \u0000) in a string that names a file is an error naming the key:
+// the system reads a name only up to its NUL, so "m.obj\u0000.png" loaded m.obj, another file
+// than the one named, without a word.
+TEST(BadInput, ANulInAFileNameIsAnErrorNamingTheKey) {
+  TempDir dir;
+  dir.file("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write_png(dir.path("t.png"), 1, 1, {glm::vec3(1.0f)});
+  const std::string tex = R"("textures": {"t": {"file": "t.png"}}, )";
+  EXPECT_EQ(load_json(dir.file("fine.json", "{" + tex + R"("meshes": [{"file": "m.obj"}]})"))
+                .triangle_count(),
+            1u);
+  const std::pair<std::string, std::string> cases[] = {
+      {R"({"meshes": [{"file": "m.obj\u0000.png"}]})",
+       "meshes[0].file has a NUL character (at "
+       "byte 5): a file name cannot; the system "
+       "would read it as 'm.obj'"},
+      {R"({"textures": {"t": {"file": "t.png\u0000.jpg"}}, "meshes": [{"file": "m.obj"}]})",
+       "textures.t.file has a NUL character (at byte 5)"},
+      {R"({"meshes": [{"file": "m.obj\u0000%d", "sequence": {"last": 1}}]})",
+       "meshes[0].file has a NUL character (at byte 5)"},
+  };
+  for (const auto& [json, expected] : cases) {
+    const std::string e = error_of([&] { load_json(dir.file("nul.json", json)); });
+    EXPECT_NE(e.find(expected), std::string::npos) << json << "\n" << e;
+  }
+  // Below the scene file's keys, any reader's: the file is not opened.
+  EXPECT_NE(error_of([&] { read_input_file(std::string("m.obj\0x", 7), "an OBJ file"); })
+                .find("m.obj\\x00x: a file name with a NUL character (at byte 5); the system "
+                      "would read it as 'm.obj', another file"),
+            std::string::npos);
+}
+
 TEST(BadInput, OnlyRegularFilesWithinTheLimitAreRead) {
   TempDir dir;
   const std::string fifo = dir.path("pipe.obj");

@@ -1,12 +1,8 @@
-// The image files the ray tracer writes and reads back (scene/Image.h): PFM round trips, PFM
-// headers that do not match their data (the image fuzzer's findings stay fixed here), and
-// whole-or-nothing writes (scene/OutputFile.h).
+// The image files the ray tracer writes and reads back (scene/Image.h): PFM round trips and PFM
+// headers that do not match their data (the image fuzzer's findings stay fixed here). How the
+// files are written (whole or not at all, checked) is OutputFileTest.cpp's.
 #include <gtest/gtest.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -20,7 +16,6 @@
 #include "TestUtil.h"
 #include "rill/rt/scene/Image.h"
 #include "rill/rt/scene/ImageLimits.h"
-#include "rill/rt/scene/OutputFile.h"
 
 namespace rt {
 namespace {
@@ -121,93 +116,6 @@ TEST(ImageTest, NotAPfmNamesTheFile) {
     EXPECT_EQ(runtime_error_of([&] { parse_pfm(bad, "x.pfm", w, h, c); }),
               "x.pfm: not a little-endian PFM file")
         << bad;
-}
-
-// Outputs are written whole or not at all (OutputFile.h).
-TEST(OutputFile, AFailedWriteLeavesTheEarlierFileAndNoPartialOne) {
-  TempDir dir;
-  const std::string path = dir.file("o.png", "the earlier image");
-  EXPECT_THROW(write_output_file(path,
-                                 [&](const std::string& tmp) {
-                                   std::ofstream(tmp) << "half an ima";
-                                   EXPECT_NE(tmp, path);
-                                   throw std::runtime_error("the backend failed");
-                                 }),
-               std::runtime_error);
-  std::ifstream f(path);
-  std::string content((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(content, "the earlier image");
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.dir()), {}), 1);
-  // A write that completes replaces it.
-  write_output_file(path, [&](const std::string& tmp) {
-    std::ofstream(tmp) << "new";
-    EXPECT_TRUE(std::filesystem::exists(path));  // the old one, until the rename
-  });
-  std::ifstream g(path);
-  std::string now((std::istreambuf_iterator<char>(g)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(now, "new");
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.dir()), {}), 1);
-  // Writing into a folder that does not exist: an error naming the file, nothing left.
-  EXPECT_THROW(write_pfm(dir.path("no/such/x.pfm"), 1, 1, std::vector<float>{1.0f}),
-               std::runtime_error);
-}
-
-// A symbolic link stays a link (its target is replaced); a FIFO or a device under the name
-// is written in place, never replaced by a regular file.
-TEST(OutputFile, LinksAreFollowedAndDevicesWrittenInPlace) {
-  namespace fs = std::filesystem;
-  TempDir dir;
-  auto read = [](const std::string& p) {
-    std::ifstream f(p);
-    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  };
-  const std::string target = dir.file("target.png", "old");
-  const std::string link = dir.path("link.png");
-  fs::create_symlink("target.png", link);
-  write_output_file(link, [&](const std::string& tmp) { std::ofstream(tmp) << "new"; });
-  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
-  EXPECT_EQ(read(target), "new");
-
-  const std::string fifo = dir.path("pipe");
-  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  const pid_t reader = fork();
-  ASSERT_GE(reader, 0);
-  if (reader == 0) {  // drains the pipe, exits 0 when it read what was written
-    std::ifstream f(fifo);
-    std::string got((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    _exit(got == "image" ? 0 : 1);
-  }
-  write_output_file(fifo, [&](const std::string& to) {
-    EXPECT_EQ(to, fifo);
-    std::ofstream(to) << "image";
-  });
-  int status = 0;
-  ASSERT_EQ(waitpid(reader, &status, 0), reader);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
-  EXPECT_TRUE(fs::is_fifo(fs::status(fifo))) << "the FIFO was replaced";
-
-  write_output_file("/dev/null", [&](const std::string& to) { std::ofstream(to) << "x"; });
-  EXPECT_TRUE(fs::is_character_file(fs::status("/dev/null")));
-}
-
-TEST(OutputFile, AnInterruptRemovesThePartialFile) {
-  TempDir dir;
-  const std::string path = dir.path("o.pfm");
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    remove_partial_output_on_interrupt();
-    write_output_file(path, [&](const std::string& tmp) {
-      std::ofstream(tmp) << "PF\n8 8\n-1\n";  // then Ctrl-C
-      std::raise(SIGINT);
-    });
-    _exit(0);  // not reached
-  }
-  int status = 0;
-  ASSERT_EQ(waitpid(child, &status, 0), child);
-  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << status;
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.dir()), {}), 0)
-      << "a partial file was left";
 }
 
 }  // namespace

@@ -39,18 +39,11 @@ void write_accumulation(const std::string& path, const Accumulation& a,
   h.width = a.width;
   h.height = a.height;
   h.samples = a.samples;
-  write_output_file(path, [&](const std::string& tmp) {
-    std::ofstream f(tmp, std::ios::binary);
-    f.write(reinterpret_cast<const char*>(&h), sizeof h);
-    f.write(reinterpret_cast<const char*>(a.sum.data()),
-            static_cast<std::streamsize>(n * sizeof(glm::vec3)));
-    f.write(reinterpret_cast<const char*>(a.carry.data()),
-            static_cast<std::streamsize>(n * sizeof(glm::vec3)));
-    if (!a.squares.empty())
-      f.write(reinterpret_cast<const char*>(a.squares.data()),
-              static_cast<std::streamsize>(n * sizeof(glm::vec3)));
-    f.close();
-    if (!f) throw SceneError("cannot write " + path);
+  write_output_file(path, [&](OutputSink& out) {
+    out.write(&h, sizeof h);
+    out.write(a.sum.data(), n * sizeof(glm::vec3));
+    out.write(a.carry.data(), n * sizeof(glm::vec3));
+    if (!a.squares.empty()) out.write(a.squares.data(), n * sizeof(glm::vec3));
   });
 }
 

@@ -56,7 +56,7 @@ void textures(const Ctx& c, Scene& s, const json& j, TextureNames& names) {
       check_keys(c, t, where, {"type", "file", "wrap", "filter", "srgb"});
       if (!t.contains("file") || !t["file"].is_string())
         fail(c, where + ".file must be the path of a PNG file");
-      std::filesystem::path p(t["file"].get<std::string>());
+      std::filesystem::path p(file_name(c, t["file"], where + ".file"));
       if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
       const bool srgb = !t.contains("srgb") || boolean(c, t["srgb"], where + ".srgb");
       try {
@@ -281,16 +281,14 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
   }
   if (j.contains("file")) {
     check_keys(c, j, where, {"file", "material", "transform"});
-    if (!j["file"].is_string()) fail(c, where + ".file must be a path");
-    std::filesystem::path p(j["file"].get<std::string>());
+    const std::string name = file_name(c, j["file"], where + ".file");
+    std::filesystem::path p(name);
     if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
     std::error_code ec;
     if (!std::filesystem::exists(p, ec))
       fail(c,
            where + ".file: " + p.string() + ": no such file" +
-               (j["file"].get<std::string>() != p.string()
-                    ? " ('" + j["file"].get<std::string>() + "' is relative to the scene's folder)"
-                    : ""));
+               (name != p.string() ? " ('" + name + "' is relative to the scene's folder)" : ""));
     ObjLoadOptions o;
     o.transform = t;
     o.override_material = mat;

@@ -247,7 +247,7 @@ Sequence read_sequence(const Ctx& c, const json& mesh, const std::string& where)
   check_keys(c, j, w, {"first", "last", "fps"});
   if (!mesh.contains("file") || !mesh["file"].is_string())
     fail(c, w + " needs \"file\": an OBJ path with the frame number, such as wave-%03d.obj");
-  q.pattern = mesh["file"].get<std::string>();
+  q.pattern = file_name(c, mesh["file"], where + ".file");
   bool numbered = false;
   try {
     numbered = has_frame_number(q.pattern, where + ".file");

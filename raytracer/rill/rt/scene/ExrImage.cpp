@@ -92,21 +92,6 @@ std::string encode(int width, int height, const std::vector<ExrChannel>& channel
   return out.bytes();
 }
 
-// Writes bytes to tmp; throws SceneError naming `path` on any error, the close included.
-void write_bytes(const std::string& tmp, const std::string& path, const std::string& bytes) {
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) throw SceneError("cannot write " + path + ": " + std::strerror(errno));
-  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-  int err = ok ? 0 : errno;
-  if (std::fclose(f) != 0 && ok) {
-    ok = false;
-    err = errno;
-  }
-  if (!ok)
-    throw SceneError("cannot write " + path +
-                     (err != 0 ? ": " + std::string(std::strerror(err)) : ""));
-}
-
 }  // namespace
 
 void write_exr(const std::string& path, int width, int height,
@@ -131,7 +116,7 @@ void write_exr(const std::string& path, int width, int height,
   } catch (const std::exception& e) {
     throw SceneError("cannot write " + path + ": " + e.what());
   }
-  write_output_file(path, [&](const std::string& tmp) { write_bytes(tmp, path, bytes); });
+  write_output_file(path, bytes);
 }
 
 const ExrImage::Channel* ExrImage::find(const std::string& name) const {

@@ -42,41 +42,47 @@ void write_png_rgb8(const std::string& path, int w, int h, const std::vector<uns
   image.width = static_cast<png_uint_32>(w);
   image.height = static_cast<png_uint_32>(h);
   image.format = PNG_FORMAT_RGB;
-  write_output_file(path, [&](const std::string& tmp) {
-    if (!png_image_write_to_file(&image, tmp.c_str(), 0, px.data(), 0, nullptr))
-      throw std::runtime_error("cannot write " + path + ": " + image.message);
-  });
+  // Encoded in memory, then written through the checked writer: libpng's own file writer
+  // removes the file it could not write, which in place is the device itself (as root,
+  // --out /dev/full deleted /dev/full).
+  png_alloc_size_t size = 0;
+  if (!png_image_write_get_memory_size(image, size, 0, px.data(), 0, nullptr))
+    throw std::runtime_error("cannot write " + path + ": " + image.message);
+  std::string bytes(size, '\0');
+  if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, px.data(), 0, nullptr))
+    throw std::runtime_error("cannot write " + path + ": " + image.message);
+  bytes.resize(size);
+  write_output_file(path, bytes);
 }
 
 namespace {
 
-void write_pfm_to(const std::string& tmp, const std::string& path, int w, int h, int channels,
-                  const float* data) {
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-  std::fprintf(f, "%s\n%d %d\n-1.0\n", channels == 3 ? "PF" : "Pf", w, h);
+void write_pfm_raw(const std::string& path, int w, int h, int channels, const float* data,
+                   size_t floats) {
+  if (w < 1 || h < 1 ||
+      floats != static_cast<size_t>(w) * static_cast<size_t>(h) * static_cast<size_t>(channels))
+    throw std::runtime_error("cannot write " + path + ": " + std::to_string(floats) +
+                             " values for a " + std::to_string(w) + "x" + std::to_string(h) +
+                             " image of " + std::to_string(channels) + " channel(s)");
+  const std::string header = std::string(channels == 3 ? "PF" : "Pf") + "\n" + std::to_string(w) +
+                             " " + std::to_string(h) + "\n-1.0\n";
   const size_t row = static_cast<size_t>(w) * static_cast<size_t>(channels);
-  bool ok = true;
-  for (int y = h - 1; y >= 0; --y)
-    ok = ok && std::fwrite(data + static_cast<size_t>(y) * row, sizeof(float), row, f) == row;
-  ok = std::fclose(f) == 0 && ok;
-  if (!ok) throw std::runtime_error("cannot write " + path);
-}
-
-void write_pfm_raw(const std::string& path, int w, int h, int channels, const float* data) {
-  write_output_file(path,
-                    [&](const std::string& tmp) { write_pfm_to(tmp, path, w, h, channels, data); });
+  write_output_file(path, [&](OutputSink& out) {
+    out.write(header);
+    for (int y = h - 1; y >= 0; --y)  // rows bottom to top
+      out.write(data + static_cast<size_t>(y) * row, row * sizeof(float));
+  });
 }
 
 }  // namespace
 
 void write_pfm(const std::string& path, int w, int h, const std::vector<glm::vec3>& rgb) {
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-  write_pfm_raw(path, w, h, 3, reinterpret_cast<const float*>(rgb.data()));
+  write_pfm_raw(path, w, h, 3, reinterpret_cast<const float*>(rgb.data()), rgb.size() * 3);
 }
 
 void write_pfm(const std::string& path, int w, int h, const std::vector<float>& grey) {
-  write_pfm_raw(path, w, h, 1, grey.data());
+  write_pfm_raw(path, w, h, 1, grey.data(), grey.size());
 }
 
 std::vector<float> parse_pfm(const std::string& bytes, const std::string& path, int& w, int& h,

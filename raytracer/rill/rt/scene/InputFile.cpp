@@ -21,7 +21,17 @@ std::string megabytes(uint64_t bytes) {
   return s.str();
 }
 
+thread_local InputFileLog* t_log = nullptr;  // the innermost log of this thread
+
 }  // namespace
+
+InputFileLog::InputFileLog() : outer_(t_log) {
+  t_log = this;
+}
+
+InputFileLog::~InputFileLog() {
+  t_log = outer_;
+}
 
 uint64_t max_input_bytes() {
   constexpr uint64_t kDefault = uint64_t{4} << 30;
@@ -37,6 +47,10 @@ uint64_t max_input_bytes() {
 
 uint64_t check_input_file(const std::string& path, const std::string& kind) {
   namespace fs = std::filesystem;
+  if (const size_t nul = path.find('\0'); nul != std::string::npos)
+    throw SceneError(clipped(path) + ": a file name with a NUL character (at byte " +
+                     std::to_string(nul) + "); the system would read it as '" +
+                     clipped(path.substr(0, nul)) + "', another file");
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
   if (ec || !fs::exists(st)) throw SceneError(path + ": no such file");
@@ -62,6 +76,7 @@ std::string read_input_file(const std::string& path, const std::string& kind) {
   // A file that changed size while being read: keep what was there.
   text.resize(static_cast<size_t>(in.gcount()));
   if (in.bad()) throw SceneError(path + ": read error");
+  for (InputFileLog* log = t_log; log != nullptr; log = log->outer_) log->paths_.push_back(path);
   return text;
 }
 

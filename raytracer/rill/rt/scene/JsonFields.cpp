@@ -20,6 +20,15 @@ void check_keys(const Ctx& c, const json& j, const std::string& where,
   }
 }
 
+std::string file_name(const Ctx& c, const json& j, const std::string& where) {
+  if (!j.is_string()) fail(c, where + " must be a path");
+  std::string name = j.get<std::string>();
+  if (const size_t nul = name.find('\0'); nul != std::string::npos)
+    fail(c, where + " has a NUL character (at byte " + std::to_string(nul) +
+                "): a file name cannot; the system would read it as '" + name.substr(0, nul) + "'");
+  return name;
+}
+
 float num(const Ctx& c, const json& j, const std::string& where) {
   if (!j.is_number()) fail(c, where + " must be a number");
   double v = j.get<double>();

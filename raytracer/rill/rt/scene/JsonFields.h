@@ -27,6 +27,10 @@ struct Ctx {
 // j is an object whose keys are all in `allowed`.
 void check_keys(const Ctx& c, const json& j, const std::string& where,
                 std::initializer_list<const char*> allowed);
+// A string that names a file (a mesh's OBJ, a texture's PNG, a sequence's pattern), as
+// written. A NUL character in it (JSON's \u0000) is an error naming the key: the system would
+// read the name only up to it, and load another file.
+std::string file_name(const Ctx& c, const json& j, const std::string& where);
 float num(const Ctx& c, const json& j, const std::string& where);          // finite, float range
 double num_double(const Ctx& c, const json& j, const std::string& where);  // finite
 int integer(const Ctx& c, const json& j, const std::string& where, int lo, int hi);

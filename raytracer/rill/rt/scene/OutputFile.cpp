@@ -1,9 +1,14 @@
-// Whole-or-nothing output files (OutputFile.h).
+// Whole-or-nothing, checked output files (OutputFile.h).
 #include "rill/rt/scene/OutputFile.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -36,32 +41,121 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Where a write to `path` should land: a symbolic link is followed (the link stays, its target
-// is replaced), up to the system's limit on a chain of links.
-fs::path final_target(const fs::path& path) {
-  fs::path p = path;
-  for (int hops = 0; hops < 40; ++hops) {
-    std::error_code ec;
-    if (!fs::is_symlink(fs::symlink_status(p, ec))) return p;
-    const fs::path link = fs::read_symlink(p, ec);
-    if (ec) return p;
-    p = link.is_absolute() ? link : p.parent_path() / link;
+[[noreturn]] void fail(const std::string& path, const std::string& why) {
+  throw std::runtime_error("cannot write " + path + ": " + why);
+}
+
+[[noreturn]] void fail_errno(const std::string& path, int err) {
+  fail(path, std::strerror(err));
+}
+
+// A write to a pipe whose reader has gone raises SIGPIPE, which ends the process without a
+// word about the file. Blocked while a device or FIFO is written, the write fails with EPIPE
+// instead and the error names the file; a SIGPIPE raised meanwhile is then taken off the
+// thread's pending signals, so that unblocking it does not end the process after all.
+class SigpipeBlocked {
+ public:
+  SigpipeBlocked() {
+    sigemptyset(&pipe_);
+    sigaddset(&pipe_, SIGPIPE);
+    sigset_t pending;
+    was_pending_ = sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE) == 1;
+    pthread_sigmask(SIG_BLOCK, &pipe_, &old_);
   }
-  throw std::runtime_error("cannot write " + path.string() + ": too many levels of symbolic links");
+  ~SigpipeBlocked() {
+    sigset_t pending;
+    if (!was_pending_ && sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE) == 1) {
+      const timespec now{};
+      sigtimedwait(&pipe_, nullptr, &now);
+    }
+    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+  }
+  SigpipeBlocked(const SigpipeBlocked&) = delete;
+  SigpipeBlocked& operator=(const SigpipeBlocked&) = delete;
+
+ private:
+  sigset_t pipe_{}, old_{};
+  bool was_pending_ = false;
+};
+
+// Opens a device or FIFO that exists under the name, to write it in place. A FIFO is opened
+// without blocking first: with no reader that fails with ENXIO at once, where a blocking open
+// would wait for one without end; the writes that follow block as usual.
+int open_in_place(const std::string& target, const std::string& asked, bool fifo) {
+  const int fd = ::open(target.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY | (fifo ? O_NONBLOCK : 0));
+  if (fd < 0 && fifo && errno == ENXIO)
+    throw std::runtime_error("no process is reading FIFO " + asked +
+                             ": start its reader first (nothing was written)");
+  if (fd < 0) fail_errno(asked, errno);
+  if (fifo) {
+    const int flags = ::fcntl(fd, F_GETFL);
+    if (flags < 0 || ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) < 0) {
+      const int err = errno;
+      ::close(fd);
+      fail_errno(asked, err);
+    }
+  }
+  return fd;
+}
+
+// Closes fd, an error naming the file (a close can report what an earlier write deferred).
+void close_checked(int fd, const std::string& asked) {
+  if (::close(fd) != 0 && errno != EINTR) fail_errno(asked, errno);
+}
+
+// Writes through a sink on fd and closes it; fd is closed whatever happens.
+void write_and_close(int fd, const std::string& asked,
+                     const std::function<void(OutputSink&)>& write) {
+  try {
+    OutputSink sink(fd, asked);
+    write(sink);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  close_checked(fd, asked);
 }
 
 }  // namespace
 
-void write_output_file(const std::string& asked,
-                       const std::function<void(const std::string&)>& write) {
-  const std::string path = final_target(asked).string();
+void OutputSink::write(const void* data, size_t bytes) {
+  const char* p = static_cast<const char*>(data);
+  while (bytes > 0) {
+    const ssize_t n = ::write(fd_, p, std::min(bytes, size_t{1} << 30));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail_errno(path_, errno);
+    if (n == 0) fail(path_, "the write made no progress");
+    p += n;
+    bytes -= static_cast<size_t>(n);
+  }
+}
+
+std::string output_target(const std::string& path) {
+  fs::path p = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(p, ec))) return p.string();
+    const fs::path link = fs::read_symlink(p, ec);
+    if (ec) return p.string();
+    p = link.is_absolute() ? link : p.parent_path() / link;
+  }
+  throw std::runtime_error("cannot write " + path + ": too many levels of symbolic links");
+}
+
+void write_output_file(const std::string& asked, const std::function<void(OutputSink&)>& write) {
+  const std::string path = output_target(asked);
   // A device or a FIFO (/dev/null, /dev/stdout, a pipe) is written in place: renaming a
   // regular file over it would replace the device itself.
-  std::error_code st_ec;
-  const fs::file_status st = fs::status(path, st_ec);
-  if (!st_ec && fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st)) {
-    write(path);
-    return;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) fail(asked, "is a directory");
+    if (!S_ISREG(st.st_mode)) {
+      SigpipeBlocked quiet;
+      // Opened without O_CREAT: a device removed meanwhile is an error, never a regular file
+      // made in its place.
+      write_and_close(open_in_place(path, asked, S_ISFIFO(st.st_mode)), asked, write);
+      return;
+    }
   }
   const std::string tmp = path + ".partial-" + std::to_string(::getpid());
   // One file at a time is tracked for the signal handler (the first writer claims it).
@@ -79,20 +173,25 @@ void write_output_file(const std::string& asked,
     }
   };
   try {
-    write(tmp);
+    // A stale temporary file of this name (a pid reused after a crash) goes first; O_EXCL
+    // then never writes through a link planted under the temporary name.
+    ::unlink(tmp.c_str());
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0) fail_errno(asked, errno);
+    write_and_close(fd, asked, write);
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) fail(asked, ec.message());
   } catch (...) {
-    std::remove(tmp.c_str());
+    ::unlink(tmp.c_str());
     done();
     throw;
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    done();
-    throw std::runtime_error("cannot write " + asked + ": " + ec.message());
-  }
   done();
+}
+
+void write_output_file(const std::string& path, std::string_view bytes) {
+  write_output_file(path, [&](OutputSink& out) { out.write(bytes); });
 }
 
 void remove_partial_output_on_interrupt() {
