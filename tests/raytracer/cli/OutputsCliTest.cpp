@@ -197,6 +197,11 @@ TEST(CliOutputs, AFifoWithoutAReaderIsAnErrorAtOnce) {
       trace("render builtin:thesis-a --size 8x6 --quiet --out /dev/null --pfm f.pfm", dir).status,
       0);
   EXPECT_EQ(got, testing::read_text(dir.path("f.pfm")));
+  // /dev/stdout on a pipe: written in place through it (its link names no path: 'pipe:[N]').
+  const testing::Run piped = trace(
+      "render builtin:thesis-a --size 8x6 --quiet --out /dev/null --pfm /dev/stdout | cat", dir);
+  ASSERT_EQ(piped.status, 0) << piped.err;
+  EXPECT_EQ(piped.out.rfind(got, 0), 0u) << "the PFM, then the stats line";
 }
 
 // Every option that takes a value, of every subcommand (as --help lists them), refuses an

@@ -81,8 +81,8 @@ class SigpipeBlocked {
 // Opens a device or FIFO that exists under the name, to write it in place. A FIFO is opened
 // without blocking first: with no reader that fails with ENXIO at once, where a blocking open
 // would wait for one without end; the writes that follow block as usual.
-int open_in_place(const std::string& target, const std::string& asked, bool fifo) {
-  const int fd = ::open(target.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY | (fifo ? O_NONBLOCK : 0));
+int open_in_place(const std::string& asked, bool fifo) {
+  const int fd = ::open(asked.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY | (fifo ? O_NONBLOCK : 0));
   if (fd < 0 && fifo && errno == ENXIO)
     throw std::runtime_error("no process is reading FIFO " + asked +
                              ": start its reader first (nothing was written)");
@@ -143,20 +143,21 @@ std::string output_target(const std::string& path) {
 }
 
 void write_output_file(const std::string& asked, const std::function<void(OutputSink&)>& write) {
-  const std::string path = output_target(asked);
   // A device or a FIFO (/dev/null, /dev/stdout, a pipe) is written in place: renaming a
-  // regular file over it would replace the device itself.
+  // regular file over it would replace the device itself. Opened by the name as given, which
+  // the system resolves (/dev/stdout's /proc/self/fd/1 names a pipe no path reaches).
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0) {
+  if (::stat(asked.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) fail(asked, "is a directory");
     if (!S_ISREG(st.st_mode)) {
       SigpipeBlocked quiet;
       // Opened without O_CREAT: a device removed meanwhile is an error, never a regular file
       // made in its place.
-      write_and_close(open_in_place(path, asked, S_ISFIFO(st.st_mode)), asked, write);
+      write_and_close(open_in_place(asked, S_ISFIFO(st.st_mode)), asked, write);
       return;
     }
   }
+  const std::string path = output_target(asked);
   const std::string tmp = path + ".partial-" + std::to_string(::getpid());
   // One file at a time is tracked for the signal handler (the first writer claims it).
   bool expected = false;
