@@ -15,6 +15,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "rill/rt/scene/Scene.h"
+
 namespace rt {
 
 namespace {
@@ -42,7 +44,7 @@ namespace {
 namespace fs = std::filesystem;
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
-  throw std::runtime_error("cannot write " + path + ": " + why);
+  throw SceneError("cannot write " + path + ": " + why);
 }
 
 [[noreturn]] void fail_errno(const std::string& path, int err) {
@@ -84,8 +86,8 @@ class SigpipeBlocked {
 int open_in_place(const std::string& asked, bool fifo) {
   const int fd = ::open(asked.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY | (fifo ? O_NONBLOCK : 0));
   if (fd < 0 && fifo && errno == ENXIO)
-    throw std::runtime_error("no process is reading FIFO " + asked +
-                             ": start its reader first (nothing was written)");
+    throw SceneError("no process is reading FIFO " + asked +
+                     ": start its reader first (nothing was written)");
   if (fd < 0) fail_errno(asked, errno);
   if (fifo) {
     const int flags = ::fcntl(fd, F_GETFL);
@@ -139,7 +141,7 @@ std::string output_target(const std::string& path) {
     if (ec) return p.string();
     p = link.is_absolute() ? link : p.parent_path() / link;
   }
-  throw std::runtime_error("cannot write " + path + ": too many levels of symbolic links");
+  throw SceneError("cannot write " + path + ": too many levels of symbolic links");
 }
 
 void write_output_file(const std::string& asked, const std::function<void(OutputSink&)>& write) {

@@ -20,7 +20,7 @@
 namespace rt {
 
 // Where an output's bytes go (write_output_file): every write is checked, and an error throws
-// std::runtime_error "cannot write PATH: REASON", PATH as the caller spelled it.
+// SceneError (a std::runtime_error) "cannot write PATH: REASON", PATH as the caller spelled it.
 class OutputSink {
  public:
   OutputSink(int fd, std::string path) : fd_(fd), path_(std::move(path)) {}
@@ -43,7 +43,7 @@ void write_output_file(const std::string& path, const std::function<void(OutputS
 void write_output_file(const std::string& path, std::string_view bytes);
 
 // The file a write to `path` replaces or writes in place: a chain of symbolic links followed
-// (the links stay), as written. Throws std::runtime_error on a loop of links.
+// (the links stay), as written. Throws SceneError on a loop of links.
 std::string output_target(const std::string& path);
 
 // Installs SIGINT and SIGTERM handlers that remove the temporary file being written (if any)
