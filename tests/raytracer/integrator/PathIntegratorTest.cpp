@@ -692,14 +692,23 @@ class PathRender : public ::testing::TestWithParam<std::string> {};
 
 // Point and area lights (one two-sided), every built-in shader's BSDF (glass's delta lobes and
 // its diffuse part, a mirror, ggx rough and at roughness 0 with a diffuse base, phong with
-// reflection), and MIS on and off.
-Scene mixed_scene(bool mis) {
+// reflection), MIS on and off, and with `textured` the lamp's emission through a noise texture.
+Scene mixed_scene(bool mis, bool textured = false) {
   Scene s;
   const int floor = s.add_material(diffuse("floor", glm::vec3(0.6f, 0.5f, 0.4f)));
   add_quad(s, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3}, floor);
   add_quad(s, {-3, 0, -2}, {3, 0, -2}, {3, 3, -2}, {-3, 3, -2}, floor);
   Material lamp = diffuse("lamp", glm::vec3(0.2f), glm::vec3(4.0f, 3.5f, 3.0f));
   lamp.two_sided = true;
+  if (textured) {
+    Texture noise;
+    noise.name = "noise";
+    noise.type = "noise";
+    noise.color1 = glm::vec3(0.2f);
+    noise.scale = 3.0f;
+    s.textures.push_back(noise);
+    lamp.emission_texture = 0;
+  }
   add_quad(s, {-0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, 0.5f}, {-0.5f, 2.5f, 0.5f},
            s.add_material(lamp));
   Material glass = with_shader("glass", "glass");
@@ -745,6 +754,9 @@ TEST_P(PathRender, ImagesAreTheCpuBackendsBits) {
         0)
         << "albedo";
   }
+  testing::expect_identical(render(mixed_scene(true, true), 3, GetParam(), {}, true),
+                            render(mixed_scene(true, true), 3, "cpu", {}, true),
+                            GetParam() + " textured lamp");
   Scene cornell = builtin_scene("cornell-path");
   cornell.width = cornell.height = 16;
   testing::expect_identical(render(cornell, 2, GetParam(), {}, true),
