@@ -97,7 +97,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   rs.outputs.prim = !o.prim.empty() || exr;
   rs.outputs.normal = !o.normal.empty() || exr;
   // The albedo is the path integrator's, read back for --albedo (--exr then adds its channels
-  // too; a distributed render, which does not gather it, writes the same EXR as one process).
+  // too, in one process and under mpirun alike: the tiles carry it, and the variance).
   rs.outputs.albedo = scene.options.integrator == rt::Integrator::Path && !o.albedo.empty();
   rs.outputs.variance = o.variance;
   return p;

@@ -121,6 +121,9 @@ RenderResult blank_image(int width, int height, const FrameOutputs& o) {
   if (o.depth) r.depth.assign(n, std::numeric_limits<float>::infinity());
   if (o.prim) r.prim.assign(n, -1);
   if (o.normal) r.normal.assign(n, glm::vec3(0.0f));
+  // The albedo and variance are left to the first tile that brings them (place): the tracer
+  // leaves them out where it has none (the albedo under Whitted), and the image must hold the
+  // channels a single-process render would, no more.
   return r;
 }
 
@@ -136,6 +139,10 @@ std::string misfit(const RenderResult& p, const Tile& t, const FrameOutputs& o) 
   if (!sized(o.color, p.color.size(), 1) || !sized(o.rgb8, p.rgb8.size(), 3) ||
       !sized(o.depth, p.depth.size(), 1) || !sized(o.prim, p.prim.size(), 1) ||
       !sized(o.normal, p.normal.size(), 1))
+    return "other outputs than were asked for";
+  // Asked for, the albedo and variance may still be absent (place), but never cut short.
+  if ((!p.albedo.empty() && !sized(o.albedo, p.albedo.size(), 1)) ||
+      (!p.variance.empty() && !sized(o.variance, p.variance.size(), 1)))
     return "other outputs than were asked for";
   return {};
 }
@@ -155,6 +162,12 @@ void place(RenderResult& image, const Tile& t, const RenderResult& p) {
   rows(image.depth, p.depth, 1);
   rows(image.prim, p.prim, 1);
   rows(image.normal, p.normal, 1);
+  // The albedo and variance come with the first tile that has them (blank_image).
+  const size_t n = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+  if (!p.albedo.empty() && image.albedo.empty()) image.albedo.assign(n, glm::vec3(0.0f));
+  if (!p.variance.empty() && image.variance.empty()) image.variance.assign(n, glm::vec3(0.0f));
+  rows(image.albedo, p.albedo, 1);
+  rows(image.variance, p.variance, 1);
   image.rays += p.rays;
 }
 

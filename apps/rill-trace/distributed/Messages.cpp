@@ -123,6 +123,8 @@ Bytes pack(const TileDone& m) {
       .put(p.depth)
       .put(p.prim)
       .put(p.normal)
+      .put(p.albedo)
+      .put(p.variance)
       .take();
 }
 void unpack(const Bytes& b, TileDone& m) {
@@ -138,6 +140,8 @@ void unpack(const Bytes& b, TileDone& m) {
       .get(p.depth)
       .get(p.prim)
       .get(p.normal)
+      .get(p.albedo)
+      .get(p.variance)
       .end();
 }
 

@@ -40,8 +40,10 @@ struct Hello {
 
 struct TileDone {
   int id = 0;
-  double busy_ms = 0;   // rendering it, on the worker
-  RenderResult pixels;  // the tile's size; rays, and the outputs asked for
+  double busy_ms = 0;  // rendering it, on the worker
+  // The tile's size; rays, and the outputs asked for: colour, 8-bit, depth, prim, normal,
+  // and the path integrator's albedo and variance (--albedo, --variance).
+  RenderResult pixels;
 };
 
 // Abort, Failed: a message for the user.
