@@ -16,6 +16,7 @@
 #include "Prepare.h"
 #include "Progressive.h"
 #include "distributed/Launch.h"
+#include "rill/CompileProgressLine.h"
 #include "rill/Stopwatch.h"
 #include "rill/rt/scene/Pose.h"
 
@@ -47,6 +48,11 @@ int render(RenderOptions o) {
         "--distribute: not started by an MPI launcher as one of several processes; run "
         "'mpirun -np N rill-trace render ...' with N >= 2 (docs/distributed.md)");
   rt::distributed::use_device(o.backend, rt::distributed::rank_device(o.device, 0));
+  // "compiling 7 kernels for opencl (PoCL)... 3/7" on stderr while a compile that has run
+  // for a second goes on: through the first render, which compiles (later frames' compiles
+  // are reported by the frame line). Nothing when stderr is not a terminal.
+  std::optional<rill::CompileProgressLine> compile_line;
+  if (!o.quiet) compile_line.emplace(stderr);
   std::unique_ptr<Prepared> prepared = prepare(o);
   Prepared& p = *prepared;
   const rt::Scene& scene = p.scene;
@@ -81,6 +87,7 @@ int render(RenderOptions o) {
   rt::RenderResult r =
       progressive_path ? render_progressive(o, p, first_camera) : tracer.render(rs, first_camera);
   const double render_ms = ms_since(t_render);
+  compile_line.reset();
   const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
   // Of that, the compile() calls (about 0 from a kernel cache); the rest is set-up: uploading
   // the scene and grid, and the warm-up launch (Megakernel::render).

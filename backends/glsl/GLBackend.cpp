@@ -17,6 +17,12 @@ bool GLBackend::runs_on_gpu() const {
          !is_software_renderer(const_cast<GLBackend*>(this)->context().renderer);
 }
 
+std::string GLBackend::driver_label() const {
+  if (!unavailable_reason().empty()) return {};
+  const std::string& r = driver_.renderer;
+  return r.substr(0, r.find(" ("));
+}
+
 const GL& GLBackend::current() {
   GLContext& c = context_locked();
   c.make_current();

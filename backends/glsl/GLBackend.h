@@ -25,6 +25,8 @@ class GLBackend : public Backend, public SessionOwner {
   bool supports(Accuracy a) const override { return a != Accuracy::Double; }
   // A hardware renderer (not llvmpipe or softpipe).
   bool runs_on_gpu() const override;
+  // GL_RENDERER up to its details: "llvmpipe" of "llvmpipe (LLVM 15.0.7, 256 bits)".
+  std::string driver_label() const override;
   // GL contexts are current on one thread at a time: launches go one after another.
   bool single_threaded() const override { return true; }
 

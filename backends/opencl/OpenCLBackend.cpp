@@ -30,6 +30,13 @@ class OpenCLBackend : public Backend {
     }
   }
 
+  // "PoCL", or the device's name on another platform.
+  std::string driver_label() const override {
+    if (!unavailable_reason().empty()) return {};
+    const Device& d = const_cast<OpenCLBackend*>(this)->device();
+    return is_pocl(d) ? "PoCL" : d.info.device_name;
+  }
+
   std::string description() const override {
     std::string why = unavailable_reason();
     if (!why.empty()) return "opencl: unavailable: " + why;

@@ -9,6 +9,7 @@
 
 #include <exception>
 
+#include "CompileProgress.h"
 #include "rill/Kernel.h"
 
 namespace rill {
@@ -16,12 +17,28 @@ namespace rill {
 std::vector<Kernel> compile_all(const std::vector<CompileRequest>& requests) {
   std::vector<Kernel> kernels(requests.size());
   std::vector<std::exception_ptr> errors(requests.size());
+  // One batch for the compile observer (Kernel.h): every request counts as done when its
+  // compile returns or fails, whether it was built or came from a cache.
+  std::string driver;
+  if (!requests.empty()) {
+    try {
+      driver = backend(requests[0].backend).driver_label();
+    } catch (...) {  // an unknown backend fails below, as a compile
+    }
+  }
+  detail::CompileBatch batch(requests.empty() ? std::string() : requests[0].backend, driver,
+                             static_cast<int>(requests.size()));
   auto one = [&](size_t i) {
+    bool& in_batch = detail::in_compile_batch();
+    const bool outer = in_batch;
+    in_batch = true;
     try {
       kernels[i] = compile(requests[i].program, requests[i].backend, requests[i].options);
     } catch (...) {
       errors[i] = std::current_exception();
     }
+    in_batch = outer;
+    batch.done();
   };
   // Backends are looked up here, on one thread, so an unknown name fails like a compile.
   std::vector<size_t> here;
@@ -32,6 +49,7 @@ std::vector<Kernel> compile_all(const std::vector<CompileRequest>& requests) {
       single_threaded = backend(requests[i].backend).single_threaded();
     } catch (...) {
       errors[i] = std::current_exception();
+      batch.done();
       continue;
     }
     if (single_threaded)
@@ -41,6 +59,7 @@ std::vector<Kernel> compile_all(const std::vector<CompileRequest>& requests) {
   }
   for (size_t i : here) one(i);
   tasks.wait();
+  batch.finish();
 
   for (size_t i = 0; i < requests.size(); ++i) {
     if (!errors[i]) continue;

@@ -4,8 +4,10 @@
 #include <future>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <tuple>
 
+#include "CompileProgress.h"
 #include "rill/Parameters.h"
 #include "rill/Stopwatch.h"
 #include "rill/ir/Printer.h"
@@ -132,8 +134,13 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
   c.entries.emplace(key, entry);
   lock.unlock();
 
+  // A build is a batch of one for the compile observer, unless compile_all() reports this
+  // compile as part of its own batch. Ends (finished) when this scope does, error or not.
+  std::optional<detail::CompileBatch> batch;
+  if (!detail::in_compile_batch()) batch.emplace(be.name(), be.driver_label(), 1);
   try {
     k.shared_ = build(p, be, options);
+    if (batch) batch->done();
   } catch (...) {
     // Waiters get the error; the next compile() tries again.
     promise.set_exception(std::current_exception());

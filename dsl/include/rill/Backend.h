@@ -109,6 +109,9 @@ class Backend {
   virtual std::string unavailable_reason() const { return {}; }
   // Device and driver in one line, for `info` listings.
   virtual std::string description() const { return name(); }
+  // The driver in a word or two ("PoCL", "llvmpipe"), for progress lines such as
+  // "compiling 7 kernels for opencl (PoCL)"; empty where the backend's name says it all.
+  virtual std::string driver_label() const { return {}; }
   virtual bool supports(Accuracy a) const { return a != Accuracy::Double; }
   // How a supported accuracy mode runs where it differs from the backend's other modes (simd's
   // double: scalar C, not in lanes), for `info` listings; empty when it does not.

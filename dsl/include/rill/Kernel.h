@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -162,6 +163,24 @@ struct CompileRequest {
 // If any fails, every other still finishes, and the first failure in request order is
 // thrown, naming its program and backend.
 std::vector<Kernel> compile_all(const std::vector<CompileRequest>& requests);
+
+// How far a compile has got, for a progress line (CompileProgressLine.h draws one on a
+// terminal). A batch is one compile_all() call, or one compile() that missed the in-process
+// kernel cache (compile() served from it reports nothing). The observer is called at the
+// batch's start (done == 0), as each kernel is ready (built, or served from a cache), and
+// once more with finished set. Calls come from the compiling threads, one at a time.
+struct CompileProgress {
+  std::string backend;  // the backend's name (the first request's in a mixed compile_all)
+  std::string driver;   // Backend::driver_label(): "PoCL", "llvmpipe"; may be empty
+  int done = 0;         // kernels ready so far
+  int total = 0;        // kernels in the batch
+  bool finished = false;
+  double elapsed_ms = 0;  // since the batch started
+};
+using CompileObserver = std::function<void(const CompileProgress&)>;
+// Installs a process-wide observer (an empty one removes it) and returns the one it replaces,
+// so a scope can restore it. Embedders show their own progress through it.
+CompileObserver set_compile_observer(CompileObserver observer);
 
 // Writes the optimized IR (ir()): std::cout << kernel;
 inline std::ostream& operator<<(std::ostream& os, const Kernel& k) {

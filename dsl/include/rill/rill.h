@@ -9,6 +9,7 @@
 
 #include "rill/Algebra.h"
 #include "rill/Backend.h"
+#include "rill/CompileProgressLine.h"
 #include "rill/ControlFlow.h"
 #include "rill/Kernel.h"
 #include "rill/Math.h"
