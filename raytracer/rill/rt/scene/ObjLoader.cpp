@@ -1,6 +1,6 @@
-// The OBJ + MTL loader (tinyobjloader): triangles in file order (polygons fanned), vertex
-// normals, colours and texture coordinates where the file has them, materials from the MTL
-// files it names, with their map_Kd PNGs as bitmap textures.
+// The OBJ + MTL loader (tinyobjloader): triangles in file order (polygons triangulated by
+// Triangulate.h: convex ones fanned), vertex normals, colours and texture coordinates where the
+// file has them, materials from the MTL files it names, with their map_Kd PNGs as bitmap textures.
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -17,6 +17,7 @@
 #include "rill/rt/scene/NameList.h"
 #include "rill/rt/scene/ObjSyntax.h"
 #include "rill/rt/scene/Scene.h"
+#include "rill/rt/scene/Triangulate.h"
 
 namespace rt {
 
@@ -161,7 +162,8 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
   // this text, so that it counts the faces tinyobjloader kept.
   const std::string parsed = without_lines(text, lines.issues);
   std::istringstream in(parsed);
-  // triangulate = false: we fan polygons ourselves (tinyobjloader's triangulation does not).
+  // triangulate = false: we triangulate polygons ourselves (Triangulate.h), fanning convex ones
+  // as Rill always did; tinyobjloader's triangulation does not fan (docs/primitive-ids.md).
   bool ok = tinyobj::LoadObj(&attrib, &shapes, &mtls, &warn, &err, &in, &mtl_reader,
                              /*triangulate=*/false, /*default_vcols_fallback=*/false);
   if (!ok)
@@ -282,6 +284,16 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
     if (ix.normal_index < -1) throw SceneError(where() + " has an invalid normal index");
   };
 
+  // Triangles first (each polygon triangulated, Triangulate.h), then the scene's triangles in
+  // order.
+  struct Tri {
+    tinyobj::index_t ix[3];
+    int mat;
+  };
+  std::vector<Tri> tris;
+  std::vector<std::string> bad_polygons;  // warnings, one per polygon
+  size_t bad_polygon_count = 0;
+  std::vector<glm::vec3> poly;
   for (const tinyobj::shape_t& sh : shapes) {
     size_t offset = 0;
     const auto& mesh = sh.mesh;
@@ -298,60 +310,70 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
                   ? mat_index[static_cast<size_t>(id)]
                   : default_mat();
       }
-      auto pos = [&](size_t k) {
-        int vi = mesh.indices[offset + k].vertex_index;
-        glm::vec3 p(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1],
-                    attrib.vertices[3 * vi + 2]);
-        return opt.transform.apply_point(p);
-      };
-      auto col = [&](size_t k) {
-        int vi = mesh.indices[offset + k].vertex_index;
-        return glm::vec3(attrib.colors[3 * vi], attrib.colors[3 * vi + 1],
-                         attrib.colors[3 * vi + 2]);
-      };
-      bool all_normals = true;
-      for (size_t k = 0; k < fv; ++k)
-        all_normals = all_normals && mesh.indices[offset + k].normal_index >= 0;
-      bool all_uv = true;
-      for (size_t k = 0; k < fv; ++k)
-        all_uv = all_uv && mesh.indices[offset + k].texcoord_index >= 0;
-      auto tex = [&](size_t k) {
-        int ti = mesh.indices[offset + k].texcoord_index;
-        return glm::vec2(attrib.texcoords[2 * ti], attrib.texcoords[2 * ti + 1]);
-      };
-      auto nrm = [&](size_t k) {
-        int ni = mesh.indices[offset + k].normal_index;
-        glm::vec3 n(attrib.normals[3 * ni], attrib.normals[3 * ni + 1], attrib.normals[3 * ni + 2]);
-        return opt.transform.apply_normal(n);
-      };
-      // Fan: (v0, vk, vk+1).
-      for (size_t k = 1; k + 1 < fv; ++k) {
-        glm::vec3 n[3], c[3];
-        glm::vec2 t[3];
-        if (all_normals) {
-          n[0] = nrm(0);
-          n[1] = nrm(k);
-          n[2] = nrm(k + 1);
-        }
-        if (has_colors) {
-          c[0] = col(0);
-          c[1] = col(k);
-          c[2] = col(k + 1);
-        }
-        if (all_uv) {
-          t[0] = tex(0);
-          t[1] = tex(k);
-          t[2] = tex(k + 1);
-        }
-        s.add_triangle(pos(0), pos(k), pos(k + 1), mat, all_normals ? n : nullptr,
-                       has_colors ? c : nullptr, all_uv ? t : nullptr);
-        if (opt.corners != nullptr)
-          for (size_t c3 : {size_t{0}, k, k + 1})
-            opt.corners->push_back(mesh.indices[offset + c3].vertex_index);
+      poly.clear();
+      for (size_t k = 0; k < fv; ++k) {
+        const int vi = mesh.indices[offset + k].vertex_index;
+        poly.emplace_back(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1],
+                          attrib.vertices[3 * vi + 2]);
       }
+      // In the file's own coordinates: the transform cannot make a polygon convex or not.
+      const Triangulation cut = fv >= 3 ? triangulate(poly) : Triangulation{};
+      if (cut.shape != PolygonShape::Ok && ++bad_polygon_count <= 3) {
+        const char* why = cut.shape == PolygonShape::SelfIntersecting ? "its edges cross"
+                          : cut.shape == PolygonShape::TooLarge
+                              ? "it is concave with more than 4096 vertices"
+                              : "it has no area (or no ear left to cut)";
+        bad_polygons.push_back(path + ":" + std::to_string(face_line(parsed, faces_before + f)) +
+                               ": a polygon of " + std::to_string(fv) + " vertices that " +
+                               "cannot be cut into triangles as drawn (" + why +
+                               "); it is fanned from its first vertex");
+      }
+      for (const auto& t : cut.triangles)
+        tris.push_back(Tri{
+            {mesh.indices[offset + t[0]], mesh.indices[offset + t[1]], mesh.indices[offset + t[2]]},
+            mat});
       offset += fv;
     }
     faces_before += mesh.num_face_vertices.size();
+  }
+  for (std::string& w : bad_polygons) s.warnings.push_back(std::move(w));
+  if (bad_polygon_count > 3)
+    s.warnings.push_back(path + ": " + grouped(bad_polygon_count - 3) +
+                         " more polygons fanned because they cannot be cut (" +
+                         grouped(bad_polygon_count) + " in all)");
+
+  auto pos = [&](const tinyobj::index_t& ix) {
+    const int vi = ix.vertex_index;
+    glm::vec3 p(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1], attrib.vertices[3 * vi + 2]);
+    return opt.transform.apply_point(p);
+  };
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const Tri& tri = tris[i];
+    bool all_normals = true, all_uv = true;
+    for (const tinyobj::index_t& ix : tri.ix) {
+      all_normals = all_normals && ix.normal_index >= 0;
+      all_uv = all_uv && ix.texcoord_index >= 0;
+    }
+    glm::vec3 p[3], n[3], c[3];
+    glm::vec2 t[3];
+    for (int k = 0; k < 3; ++k) {
+      const tinyobj::index_t& ix = tri.ix[k];
+      p[k] = pos(ix);
+      if (all_normals)
+        n[k] = opt.transform.apply_normal(glm::vec3(attrib.normals[3 * ix.normal_index],
+                                                    attrib.normals[3 * ix.normal_index + 1],
+                                                    attrib.normals[3 * ix.normal_index + 2]));
+      if (has_colors)
+        c[k] = glm::vec3(attrib.colors[3 * ix.vertex_index], attrib.colors[3 * ix.vertex_index + 1],
+                         attrib.colors[3 * ix.vertex_index + 2]);
+      if (all_uv)
+        t[k] = glm::vec2(attrib.texcoords[2 * ix.texcoord_index],
+                         attrib.texcoords[2 * ix.texcoord_index + 1]);
+    }
+    s.add_triangle(p[0], p[1], p[2], tri.mat, all_normals ? n : nullptr, has_colors ? c : nullptr,
+                   all_uv ? t : nullptr);
+    if (opt.corners != nullptr)
+      for (const tinyobj::index_t& ix : tri.ix) opt.corners->push_back(ix.vertex_index);
   }
   if (s.materials.empty()) default_mat();
   return s;
