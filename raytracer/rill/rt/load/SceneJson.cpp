@@ -280,7 +280,7 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     mat = &it->second;
   }
   if (j.contains("file")) {
-    check_keys(c, j, where, {"file", "material", "transform"});
+    check_keys(c, j, where, {"file", "material", "transform", "smooth"});
     const std::string name = file_name(c, j["file"], where + ".file");
     std::filesystem::path p(name);
     if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
@@ -293,6 +293,19 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     o.transform = t;
     o.override_material = mat;
     o.input = c.input;
+    // "smooth": true (the default crease angle), false, or the crease angle in degrees.
+    if (j.contains("smooth")) {
+      const json& sm = j["smooth"];
+      if (sm.is_number()) {
+        o.crease_degrees = num(c, sm, where + ".smooth");
+        if (!(o.crease_degrees >= 0 && o.crease_degrees <= 180))
+          fail(c, where + ".smooth must be true, false or a crease angle in degrees (0..180)");
+      } else if (sm.is_boolean()) {
+        o.smooth = sm.get<bool>();
+      } else {
+        fail(c, where + ".smooth must be true, false or a crease angle in degrees (0..180)");
+      }
+    }
     const size_t first = s.materials.size();
     s.append(load_obj(p.string(), o));
     // append() renumbers the OBJ's texture indices as its own; the override's already refer

@@ -1,6 +1,7 @@
 // The OBJ + MTL loader (tinyobjloader): triangles in file order (polygons triangulated by
-// Triangulate.h: convex ones fanned), vertex normals, colours and texture coordinates where the
-// file has them, materials from the MTL files it names, with their map_Kd PNGs as bitmap textures.
+// Triangulate.h: convex ones fanned), vertex normals (the file's, else computed by
+// VertexNormals.h), colours and texture coordinates where the file has them, materials from the MTL
+// files it names, with their map_Kd PNGs as bitmap textures.
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include "rill/rt/scene/ObjSyntax.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/scene/Triangulate.h"
+#include "rill/rt/scene/VertexNormals.h"
 
 namespace rt {
 
@@ -284,11 +286,12 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
     if (ix.normal_index < -1) throw SceneError(where() + " has an invalid normal index");
   };
 
-  // Triangles first (each polygon triangulated, Triangulate.h), then the scene's triangles in
-  // order.
+  // Triangles first (each polygon triangulated, Triangulate.h), then vertex normals for a file
+  // without `vn` (they need every triangle at a vertex), then the scene's triangles in order.
   struct Tri {
     tinyobj::index_t ix[3];
     int mat;
+    uint32_t group;  // smoothing group
   };
   std::vector<Tri> tris;
   std::vector<std::string> bad_polygons;  // warnings, one per polygon
@@ -310,6 +313,7 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
                   ? mat_index[static_cast<size_t>(id)]
                   : default_mat();
       }
+      const uint32_t group = f < mesh.smoothing_group_ids.size() ? mesh.smoothing_group_ids[f] : 0;
       poly.clear();
       for (size_t k = 0; k < fv; ++k) {
         const int vi = mesh.indices[offset + k].vertex_index;
@@ -331,7 +335,8 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
       for (const auto& t : cut.triangles)
         tris.push_back(Tri{
             {mesh.indices[offset + t[0]], mesh.indices[offset + t[1]], mesh.indices[offset + t[2]]},
-            mat});
+            mat,
+            group});
       offset += fv;
     }
     faces_before += mesh.num_face_vertices.size();
@@ -347,6 +352,25 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
     glm::vec3 p(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1], attrib.vertices[3 * vi + 2]);
     return opt.transform.apply_point(p);
   };
+  // Computed normals (VertexNormals.h), in world space: a file without `vn`, smoothing on.
+  std::vector<glm::vec3> computed;
+  if (nn == 0 && opt.smooth && !tris.empty()) {
+    std::vector<glm::vec3> corner_pos;
+    std::vector<int32_t> corner_vertex;
+    std::vector<uint32_t> groups;
+    corner_pos.reserve(3 * tris.size());
+    corner_vertex.reserve(3 * tris.size());
+    for (const Tri& t : tris) {
+      for (const tinyobj::index_t& ix : t.ix) {
+        corner_pos.push_back(pos(ix));
+        corner_vertex.push_back(ix.vertex_index);
+      }
+      // Without any `s` line every face is in one group; with them, `s off` (0) is flat.
+      groups.push_back(lines.smoothing_groups ? t.group : 1u);
+    }
+    computed = vertex_normals({corner_pos, corner_vertex, groups}, opt.crease_degrees);
+  }
+
   for (size_t i = 0; i < tris.size(); ++i) {
     const Tri& tri = tris[i];
     bool all_normals = true, all_uv = true;
@@ -369,6 +393,18 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
       if (all_uv)
         t[k] = glm::vec2(attrib.texcoords[2 * ix.texcoord_index],
                          attrib.texcoords[2 * ix.texcoord_index + 1]);
+    }
+    if (!computed.empty()) {
+      // A triangle whose corners all get its own face normal (a face of a box, a flat one)
+      // stays a flat triangle: a mesh of hard edges only loads as it did without smoothing,
+      // and renders with the same kernel and bits.
+      const glm::vec3 face = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+      bool flat = true;
+      for (int k = 0; k < 3; ++k) {
+        n[k] = computed[3 * i + k];
+        flat = flat && (n[k] == glm::vec3(0.0f) || glm::dot(n[k], face) > 1.0f - 1e-6f);
+      }
+      all_normals = !flat;
     }
     s.add_triangle(p[0], p[1], p[2], tri.mat, all_normals ? n : nullptr, has_colors ? c : nullptr,
                    all_uv ? t : nullptr);

@@ -217,8 +217,9 @@ ObjLines check_obj_lines(const std::string& text) {
                             "sp",    "end",      "con",      "lod",        "usemap",    "maplib",
                             "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj", "ctech",
                             "stech", "call",     "csh",      "t",          "vw"})) {
-      // Names, smoothing groups, lines and points, and the free-form statements: valid OBJ
-      // that a triangle renderer leaves out.
+      // Names, smoothing groups (noted for the vertex normals), lines and points, and the
+      // free-form statements: valid OBJ that a triangle renderer leaves out.
+      if (key == "s") r.smoothing_groups = true;
     } else {
       malformed("unknown statement '" + clipped(key, 20) + "'");
     }

@@ -29,6 +29,9 @@ struct LineIssue {
 struct ObjLines {
   std::vector<LineIssue> issues;
   size_t lines = 0, vertices = 0, faces = 0;  // what the text holds, for messages
+  // Whether the file has an `s` (smoothing group) line: only then is group 0 (`s off`, or
+  // no `s` yet) a flat face.
+  bool smoothing_groups = false;
   // Each usemtl's line and name, in file order.
   std::vector<std::pair<size_t, std::string>> usemtl;
 };

@@ -19,6 +19,7 @@
 
 #include "rill/rt/scene/Animation.h"
 #include "rill/rt/scene/Texture.h"
+#include "rill/rt/scene/VertexNormals.h"
 
 namespace rt {
 
@@ -242,6 +243,10 @@ struct ObjLoadOptions {
   // When set, receives each triangle's three OBJ vertex numbers (0-based, in the order of
   // its corners): an OBJ sequence compares them to check that its topology stays the same.
   std::vector<int32_t>* corners = nullptr;
+  // Vertex normals for a file without `vn` (VertexNormals.h): off, or on with faces that meet
+  // at more than crease_degrees keeping a hard edge. A file with `vn` keeps its own.
+  bool smooth = true;
+  float crease_degrees = kDefaultCreaseDegrees;
 };
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
 

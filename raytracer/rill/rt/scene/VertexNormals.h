@@ -1,0 +1,36 @@
+// Vertex normals for a mesh that has none (an OBJ file without `vn`): each corner of a
+// triangle gets the angle-weighted mean of the face normals of the triangles that share its
+// vertex and bend from its own face by at most the crease angle, so curved surfaces shade
+// smooth and hard edges stay hard.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace rt {
+
+// The default crease angle in degrees: faces meeting at a larger angle keep a hard edge
+// between them. 60 smooths coarse curved meshes (a 12-sided cylinder's faces meet at 30
+// degrees) and keeps a box's 90-degree edges sharp.
+inline constexpr float kDefaultCreaseDegrees = 60.0f;
+
+struct NormalMesh {
+  // Three corners per triangle, in the triangles' order.
+  std::span<const glm::vec3> positions;
+  // Per corner: the vertex it is (the OBJ vertex index); corners with the same one share.
+  std::span<const int32_t> vertex;
+  // Per triangle: its smoothing group; triangles of different groups never share, and group
+  // 0 stays flat (OBJ `s off`). Empty: all in one group.
+  std::span<const uint32_t> group;
+};
+
+// Unit normals, three per triangle (the corners' order). A corner that shares with no other
+// face gets its own face's normal; a triangle with no area (or a non-finite vertex) gets
+// (0, 0, 0) at its corners and adds nothing to its neighbours'.
+std::vector<glm::vec3> vertex_normals(const NormalMesh& mesh,
+                                      float crease_degrees = kDefaultCreaseDegrees);
+
+}  // namespace rt
