@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "Interrupt.h"
 #include "ProgressBar.h"
 #include "distributed/SceneHash.h"
 #include "rill/Stopwatch.h"
@@ -84,7 +85,8 @@ rt::RenderResult render_progressive(const RenderOptions& o, Prepared& p, const r
   rs.after_pass = [&](int done) {
     progress.update(done);
     out_of_time = o.time_limit > 0 && progress.seconds() >= o.time_limit;
-    return !out_of_time;
+    // SIGINT or SIGTERM: the sums of the passes done are saved below, as for --time-limit.
+    return !out_of_time && interrupted() == 0;
   };
   const bool chunks = o.save_every > 0;
   rt::RenderResult total;
@@ -102,11 +104,11 @@ rt::RenderResult render_progressive(const RenderOptions& o, Prepared& p, const r
       sums = std::move(total.accumulation);
       if (!o.save.empty()) rt::write_accumulation(o.save, *sums, key);
     }
-  } while (chunks && !out_of_time && sums && sums->samples < target);
+  } while (chunks && !out_of_time && interrupted() == 0 && sums && sums->samples < target);
   progress.finish();
   total.rays = rays;
   total.trace_ms = trace_ms;
-  if (!o.quiet && (o.time_limit > 0 || first > 0))
+  if (!o.quiet && (o.time_limit > 0 || first > 0) && interrupted() == 0)
     std::printf("path: %d samples per pixel%s%s in %.1f s\n", total.spp,
                 first > 0 ? (" (" + std::to_string(first) + " resumed)").c_str() : "",
                 out_of_time ? ", stopped by --time-limit" : "", progress.seconds());

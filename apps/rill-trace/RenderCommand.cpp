@@ -12,6 +12,7 @@
 #include "Doing.h"
 #include "FramePlan.h"
 #include "FrameReport.h"
+#include "Interrupt.h"
 #include "Outputs.h"
 #include "Prepare.h"
 #include "Progressive.h"
@@ -84,8 +85,34 @@ int render(RenderOptions o) {
     throw rt::SceneError(
         "--time-limit, --save and --resume render one still frame (not with "
         "--frames, --bench-frames or an animated scene)");
-  rt::RenderResult r =
-      progressive_path ? render_progressive(o, p, first_camera) : tracer.render(rs, first_camera);
+  // SIGINT and SIGTERM from here on stop the render between passes, launches and frames
+  // (Interrupt.h); before, while the scene loads and the kernels compile, they end the process
+  // at once. Ended after the last frame: the video is ffmpeg's, which gets the terminal's
+  // SIGINT itself.
+  std::optional<InterruptGuard> interrupts(std::in_place);
+  // Says that a signal stopped the render, what was done and what is on disk; the exit status.
+  auto stopped = [](const std::string& what) {
+    const int sig = interrupted();
+    std::fprintf(stderr, "rill-trace: interrupted by %s %s\n", signal_name(sig), what.c_str());
+    return interrupted_status(sig);
+  };
+  // Each frame's render stops after the pass in flight (render_progressive checks the same).
+  rt::RenderSettings frame_rs = rs;
+  frame_rs.after_pass = [](int) { return interrupted() == 0; };
+  rt::RenderResult r = progressive_path ? render_progressive(o, p, first_camera)
+                                        : tracer.render(frame_rs, first_camera);
+  if (interrupted() != 0) {
+    // An image of fewer samples than asked for, or of a frame cut short, is not written: it
+    // would pass for the whole one.
+    const std::string frame = span.count() > 1 ? " of frame " + std::to_string(span.first) : "";
+    if (!progressive_path) return stopped("after the launch" + frame + "; nothing written");
+    const std::string done = "after " + std::to_string(r.spp) + " of " +
+                             std::to_string(p.scene.options.spp) + " samples per pixel" + frame;
+    if (o.save.empty())
+      return stopped(done + "; nothing written (--save keeps the sums, to resume from)");
+    return stopped(done + "; saved the sums to " + o.save + " (--resume " + o.save +
+                   " goes on from them); no image written");
+  }
   const double render_ms = ms_since(t_render);
   compile_line.reset();
   const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
@@ -99,6 +126,9 @@ int render(RenderOptions o) {
   std::vector<rt::FrameTimes> frame_times;
   rt::RenderResult frame;  // one result for every frame: its image memory is reused
   for (int f = 0; f < o.bench_frames; ++f) {
+    if (interrupted() != 0)
+      return stopped("after " + std::to_string(f) + " of " + std::to_string(o.bench_frames) +
+                     " --bench-frames repeats; nothing written");
     const auto t_frame = Clock::now();
     tracer.render(rs, first_camera, frame);
     frame_ms.push_back(ms_since(t_frame));
@@ -131,7 +161,16 @@ int render(RenderOptions o) {
   // grid and the static arrays stay; Tracer::set_time moves the objects and their BVH).
   Progress progress(span.count(), o.quiet);
   progress.update(1, r.trace_ms);
+  // A frame stopped by a signal is dropped; those before it are written and stay.
+  auto stopped_in_frame = [&](int k, bool in_flight) {
+    progress.finish();
+    return stopped((in_flight ? "in frame " : "before frame ") + std::to_string(k) + " of " +
+                   std::to_string(span.first) + ".." + std::to_string(span.last) + "; frames " +
+                   std::to_string(span.first) + ".." + std::to_string(k - 1) + " are written" +
+                   (in_flight ? ", frame " + std::to_string(k) + " (in flight) is not" : ""));
+  };
   for (int k = span.first + 1; k <= span.last; ++k) {
+    if (interrupted() != 0) return stopped_in_frame(k, false);
     FrameStats fs;
     fs.frame = k;
     fs.time = animated ? scene.animation.time.time_of(k) : 0.0;
@@ -140,7 +179,8 @@ int render(RenderOptions o) {
     if (animated) fs.update = tracer.set_time(fs.time, bvh_update);
     const rt::Camera camera = rt::camera_at(scene, fs.time);
     rt::check_camera(camera, frame_camera_where(o.scene, scene, k));
-    tracer.render(rs, camera, frame);
+    tracer.render(frame_rs, camera, frame);
+    if (interrupted() != 0) return stopped_in_frame(k, true);
     fs.trace_ms = frame.trace_ms;
     fs.compile_ms = frame.compile_ms;
     fs.compiles = rill::kernel_cache_stats().misses - misses;
@@ -152,6 +192,10 @@ int render(RenderOptions o) {
     progress.update(k - span.first + 1, fs.trace_ms);
   }
   progress.finish();
+  if (interrupted() != 0)
+    return stopped(
+        "after the last frame was written; the video, --source and --stats-json are not");
+  interrupts.reset();
   if (!o.video.empty()) {
     g_doing = "writing the video";
     write_video(p.out, span.first, scene.animation.time.fps, o.video);

@@ -2,12 +2,16 @@
 // command line in a test's folder, bounded by a timeout, with its exit status and output.
 #pragma once
 
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "TestUtil.h"
 
@@ -38,6 +42,74 @@ inline Run run_command(const std::string& command, const TempDir& dir, int timeo
   r.err = read_text(err);
   r.out = read_text(out);
   return r;
+}
+
+// A command line started in the background in dir (its stdout and stderr kept as
+// run_command's), for a test that signals it while it runs. The process is the command
+// itself (the shell execs it), so a signal sent to pid reaches it.
+struct Started {
+  pid_t pid = -1;
+  std::string out, err;  // the files its stdout and stderr go to
+  Started() = default;
+  Started(Started&& o) noexcept
+      : pid(std::exchange(o.pid, -1)), out(std::move(o.out)), err(std::move(o.err)) {}
+  Started(const Started&) = delete;
+  Started& operator=(const Started&) = delete;
+  // Whether it has ended (its Run then in `ended`), without waiting.
+  bool poll(Run& ended) {
+    int rc = 0;
+    if (pid < 0 || waitpid(pid, &rc, WNOHANG) != pid) return false;
+    pid = -1;
+    ended.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    ended.err = read_text(err);
+    ended.out = read_text(out);
+    return true;
+  }
+  // Waits up to timeout_s for it to end; a hang is killed (SIGKILL) and gives status -2, so
+  // that it fails the test instead of blocking the suite.
+  Run wait(double timeout_s) {
+    Run r;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (!poll(r)) {
+      if (std::chrono::steady_clock::now() > until) {
+        ::kill(pid, SIGKILL);
+        waitpid(pid, nullptr, 0);
+        pid = -1;
+        r.status = -2;
+        r.err = read_text(err);
+        return r;
+      }
+      ::usleep(10000);
+    }
+    return r;
+  }
+  ~Started() {
+    if (pid > 0) {  // a test that failed before its wait: no process outlives it
+      ::kill(pid, SIGKILL);
+      waitpid(pid, nullptr, 0);
+    }
+  }
+};
+
+inline Started start_command(const std::string& command, const TempDir& dir) {
+  Started s;
+  s.out = dir.path("stdout.txt");
+  s.err = dir.path("stderr.txt");
+  const std::string cmd =
+      "cd '" + dir.dir() + "' && exec " + command + " > '" + s.out + "' 2> '" + s.err + "'";
+  s.pid = fork();
+  if (s.pid == 0) {
+    // As a user's shell starts it: SIGINT and SIGTERM at their defaults, whatever the test
+    // runner had (a runner in the background ignores SIGINT, and exec keeps that).
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, nullptr);
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return s;
 }
 
 }  // namespace rt::testing

@@ -15,6 +15,7 @@
 #include "Commands.h"
 #include "Doing.h"
 #include "FramePlan.h"
+#include "Interrupt.h"
 #include "Outputs.h"
 #include "Prepare.h"
 #include "distributed/Farm.h"
@@ -276,9 +277,12 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
     // First the message: when mpirun ends the job, SIGKILL follows SIGTERM within a second,
     // at times within milliseconds.
     const std::string why =
-        R.interrupted ? "stopped by a signal: mpirun ends the job when a rank dies, and names the "
-                        "rank and its host (mpirun --enable-recovery goes on without it)"
-                      : "every rank was lost";
+        !R.interrupted ? "every rank was lost"
+        : R.by_launcher
+            ? "stopped by a signal: mpirun ends the job when a rank dies, and names the rank "
+              "and its host (mpirun --enable-recovery goes on without it)"
+            : std::string("interrupted by ") + signal_name(R.signal) +
+                  " sent to rank 0; the other ranks were stopped";
     std::string frames_note;
     if (R.frames > 1)
       frames_note = "; " + std::to_string(R.frames_done) + " of " + std::to_string(R.frames) +
@@ -295,7 +299,11 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
         written.push_back(w);
     print_notes(o, p, written);
     std::fflush(stdout);
-    if (R.interrupted) std::_Exit(1);  // mpirun is ending the job
+    if (R.interrupted && R.by_launcher) std::_Exit(1);  // mpirun is ending the job
+    // Interrupted: every rank was stopped and rank 0's lane is idle, so the job ends through
+    // MPI_Finalize with the signal's status; else a tile of rank 0's may still be rendering.
+    if (R.interrupted && !R.must_abort) return interrupted_status(R.signal);
+    if (R.interrupted) std::_Exit(interrupted_status(R.signal));
     mpi.abort(1);
   }
   std::vector<std::string> written = frames.written;

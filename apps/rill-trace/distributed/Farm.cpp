@@ -48,7 +48,14 @@ std::string seconds_text(double s) {
 }
 
 volatile std::sig_atomic_t g_signal = 0;
-void on_signal(int sig) {
+// Whether it came from this process's parent: mpirun (or its daemon) ending the job, as it
+// does when a rank dies or when mpirun itself is interrupted. Otherwise someone signalled
+// rank 0 itself (kill, a scheduler): an interrupt, after which the other ranks are stopped.
+volatile std::sig_atomic_t g_from_launcher = 0;
+void on_signal(int sig, siginfo_t* info, void*) {
+  if (g_signal != 0) return;
+  // getppid is async-signal-safe; si_pid is the sender for a kill() (0 from the kernel).
+  g_from_launcher = info != nullptr && info->si_pid != 0 && info->si_pid == getppid();
   g_signal = sig;
 }
 
@@ -58,8 +65,10 @@ class SignalGuard {
  public:
   SignalGuard() {
     g_signal = 0;
+    g_from_launcher = 0;
     struct sigaction sa {};
-    sa.sa_handler = on_signal;
+    sa.sa_sigaction = on_signal;
+    sa.sa_flags = SA_SIGINFO;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGTERM, &sa, &term_);
     sigaction(SIGINT, &sa, &int_);
@@ -384,7 +393,9 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
     while (!jobs.empty() && jobs.front().result.ready()) {
       Job job = std::move(jobs.front());
       jobs.pop_front();
-      if (failed) continue;  // after a failure the rest only drain
+      // After a failure the rest only drain; after rank 0's stop too (an interrupted rank 0
+      // takes no more tiles, and a tile it would not receive would keep this rank waiting).
+      if (failed || stopped) continue;
       try {
         auto [pixels, ms] = job.result.take();
         TileDone d;
@@ -546,6 +557,8 @@ FarmResult Farm::render_master(const FarmJob& job,
   while (!queue.complete() && !output_error) {
     if (g_signal != 0) {
       R.interrupted = true;
+      R.signal = g_signal;
+      R.by_launcher = g_from_launcher != 0;
       break;
     }
     while (!own.empty() && own.front().result.ready()) {
@@ -628,7 +641,23 @@ FarmResult Farm::render_master(const FarmJob& job,
   draw_progress(true);
   R.wall_ms = (now_s() - t0) * 1e3;
   report(R, queue, frames);
-  if (R.interrupted) return R;            // mpirun is ending the job: no time for goodbyes
+  if (R.interrupted && R.by_launcher) return R;  // mpirun is ending the job: no time for goodbyes
+  if (R.interrupted) {
+    // Rank 0 itself was interrupted: the workers are told to stop (they drop the tiles in
+    // hand), and rank 0's own tiles in flight end, so that MPI_Finalize ends the job cleanly.
+    // Those take a launch each (kAhead at most); further signals meanwhile are only noted.
+    while (!own.empty() && own.front().result.ready()) own.pop_front();
+    const double until = now_s() + std::min(o_.rank_timeout, 30.0);
+    while (!own.empty() && now_s() < until) {
+      lane_->wait_for_a_job(kPoll);
+      while (!own.empty() && own.front().result.ready()) own.pop_front();
+    }
+    if (!own.empty()) R.must_abort = true;
+    for (int r = 1; r < mpi_.size(); ++r)
+      if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kStop);
+    mpi_.flush(std::min(o_.rank_timeout, 5.0));
+    return R;
+  }
   if (!own.empty()) R.must_abort = true;  // rank 0's lane still has tiles of a lost rank 0
   for (int r = 1; r < mpi_.size(); ++r)
     if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kStop);

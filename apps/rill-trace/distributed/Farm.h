@@ -16,14 +16,16 @@
 // image so far on disk while it renders (checkpoints, every FarmOptions::checkpoint seconds),
 // and answers SIGTERM (and SIGINT) by returning what it has at once
 // (FarmResult::interrupted), for main to write as a partial image with a note if it still
-// can. Started with `mpirun --enable-recovery`, the job goes on without the
-// dead rank: rank 0 hears from every rank at least every half second (heartbeats from each
-// rank's main thread, which never renders), declares a rank lost after rank_timeout of
-// silence, or when a tile takes longer than tile_timeout (a hung device), or when it reports
-// a failure, and hands its tiles to the others; the image completes with a warning. A lost
-// rank may still be alive (hung), and MPI_Finalize would wait for it forever, so the job
-// then ends with MPI_Abort once the outputs are written (FarmResult::must_abort). Workers
-// time out on rank 0 the same way and end.
+// can. A signal sent to rank 0 by another process than its launcher (kill, a scheduler) is an
+// interrupt: rank 0 stops the other ranks, waits for its own tiles in flight, and the job
+// ends through MPI_Finalize (FarmResult::by_launcher tells the two apart). Started with `mpirun
+// --enable-recovery`, the job goes on without the dead rank: rank 0 hears from every rank at least
+// every half second (heartbeats from each rank's main thread, which never renders), declares a rank
+// lost after rank_timeout of silence, or when a tile takes longer than tile_timeout (a hung
+// device), or when it reports a failure, and hands its tiles to the others; the image completes
+// with a warning. A lost rank may still be alive (hung), and MPI_Finalize would wait for it
+// forever, so the job then ends with MPI_Abort once the outputs are written
+// (FarmResult::must_abort). Workers time out on rank 0 the same way and end.
 #pragma once
 
 #include <cstdint>
@@ -89,10 +91,14 @@ struct FarmResult {
   std::vector<FramePart> unfinished;  // frames begun and not complete, in frame order
   std::vector<RankReport> ranks;
   std::vector<std::string> warnings;
-  bool interrupted = false;  // SIGTERM or SIGINT (mpirun ending the job): a partial render
-  bool must_abort = false;   // a lost rank may be alive: end with MpiSession::abort
-  double wall_ms = 0;        // from the first tile handed out to the last one back
-  double imbalance = 0;      // busiest rank's busy time over the mean, less 1 (ranks not lost)
+  bool interrupted = false;  // SIGTERM or SIGINT: a partial render
+  int signal = 0;            // which
+  // Sent by the launcher (rank 0's parent: mpirun ending the job, as when a rank dies), so
+  // that rank 0 ends at once; otherwise rank 0 itself was interrupted, and stopped the others.
+  bool by_launcher = false;
+  bool must_abort = false;  // a lost rank may be alive: end with MpiSession::abort
+  double wall_ms = 0;       // from the first tile handed out to the last one back
+  double imbalance = 0;     // busiest rank's busy time over the mean, less 1 (ranks not lost)
   // Each tile done: its id, the rank that rendered it and that rank's time for it (the
   // tile-cost distribution, for models of larger farms).
   struct TileTime {

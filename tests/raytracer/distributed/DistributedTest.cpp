@@ -322,6 +322,41 @@ TEST_F(KilledWorker, EndsWithAClearErrorAndAPartialImage) {
   EXPECT_TRUE(has(note, "missing tiles (x y width height):\n")) << note;
 }
 
+// SIGINT sent to rank 0 itself (not by mpirun): rank 0 says it was interrupted (not that a
+// rank died), writes the tiles done as partial outputs, stops the other ranks, and the job
+// ends with 130 (128 + SIGINT), no temporary file (NAME.partial-PID) left. On main, rank 0
+// said "stopped by a signal: mpirun ends the job when a rank dies" and left the worker to
+// mpirun's kill.
+TEST_F(Distributed, SigintToRankZeroStopsTheJobAndSaysInterrupted) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string scene =
+      " render builtin:glass --size 160x120 --spp 512 --threads 1 --tile 16 --out g.png "
+      "--pfm g.pfm --checkpoint 0.2";
+  // Rank 0 records its pid; the signal is sent once its first checkpoint is on disk (the
+  // render under way), from this shell, which is not rank 0's parent.
+  dir.file("rank0.sh", "echo $$ > rank0.pid\nexec " + kExe + " \"$@\"\n");
+  dir.file("interrupt.sh",
+           kMpirun + " -np 1 sh rank0.sh" + scene + " : -np 1 " + kExe + scene +
+               " &\nm=$!\nn=0\nwhile [ ! -e g.partial.png ] && [ ! -e g.png ] && [ $n -lt 1200 ]; "
+               "do sleep 0.05; n=$((n + 1)); done\nkill -INT $(cat rank0.pid)\nwait $m\n");
+  const auto t0 = std::chrono::steady_clock::now();
+  Result r = run_command("sh interrupt.sh", dir, 180);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_NE(r.status, 124) << "hung: " << r.err;
+  ASSERT_FALSE(std::filesystem::exists(dir.path("g.png"))) << "ended before the signal";
+  EXPECT_EQ(r.status, 130) << r.err;
+  EXPECT_TRUE(has(r.err, "interrupted by SIGINT sent to rank 0; the other ranks were stopped"))
+      << r.err;
+  EXPECT_FALSE(has(r.err, "when a rank dies")) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("g.partial.png"))) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("g.partial.txt"))) << r.err;
+  for (const auto& e : std::filesystem::directory_iterator(dir.dir()))
+    EXPECT_EQ(e.path().filename().string().find(".partial-"), std::string::npos)
+        << e.path().filename();
+  std::printf("interrupted job: %.1f s in all\n", s);
+}
+
 // With mpirun --enable-recovery the job goes on: rank 0 finds the rank silent, gives its
 // tiles to the others, and the image is the single-process one.
 TEST_F(KilledWorker, WithRecoveryTheImageCompletes) {
