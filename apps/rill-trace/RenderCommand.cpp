@@ -14,6 +14,7 @@
 #include "FrameReport.h"
 #include "Interrupt.h"
 #include "Outputs.h"
+#include "PartialName.h"
 #include "Prepare.h"
 #include "Progressive.h"
 #include "distributed/Launch.h"
@@ -102,16 +103,26 @@ int render(RenderOptions o) {
   rt::RenderResult r = progressive_path ? render_progressive(o, p, first_camera)
                                         : tracer.render(frame_rs, first_camera);
   if (interrupted() != 0) {
-    // An image of fewer samples than asked for, or of a frame cut short, is not written: it
-    // would pass for the whole one.
+    // An image of fewer samples than asked for never takes the whole one's name: a still is
+    // written as its partial outputs (x.png -> x.partial.png), the mean of the samples done;
+    // a sequence's frame cut short is dropped (the frames before it are the sequence's).
     const std::string frame = span.count() > 1 ? " of frame " + std::to_string(span.first) : "";
-    if (!progressive_path) return stopped("after the launch" + frame + "; nothing written");
-    const std::string done = "after " + std::to_string(r.spp) + " of " +
-                             std::to_string(p.scene.options.spp) + " samples per pixel" + frame;
-    if (o.save.empty())
-      return stopped(done + "; nothing written (--save keeps the sums, to resume from)");
+    std::string done = "after " + std::to_string(r.spp) + " of " +
+                       std::to_string(std::max(p.scene.options.spp, 1)) + " samples per pixel" +
+                       frame;
+    if (span.count() == 1 && r.spp > 0) {
+      g_doing = "writing the partial outputs";
+      const std::vector<std::string> partial = write_outputs(o, p, r, partial_name);
+      if (!partial.empty())
+        done += "; wrote the image of " + std::to_string(r.spp) + " samples as " + partial.front() +
+                (partial.size() > 1 ? " and the other partial outputs" : "");
+    } else {
+      done += "; no image written";
+    }
+    if (!progressive_path || o.save.empty())
+      return stopped(done + (progressive_path ? " (--save keeps the sums, to resume from)" : ""));
     return stopped(done + "; saved the sums to " + o.save + " (--resume " + o.save +
-                   " goes on from them); no image written");
+                   " goes on from them)");
   }
   const double render_ms = ms_since(t_render);
   compile_line.reset();

@@ -200,15 +200,6 @@ Farm::Farm(MpiSession& mpi, const FarmOptions& options)
     : mpi_(mpi), o_(options), lane_(std::make_unique<Lane>()) {}
 Farm::~Farm() = default;
 
-std::string partial_name(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  const size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) ||
-      dot == (slash == std::string::npos ? 0 : slash + 1))
-    return path + ".partial";
-  return path.substr(0, dot) + ".partial" + path.substr(dot);
-}
-
 void Farm::beat() {
   const double t = now_s();
   if (t - last_beat_ < o_.heartbeat) return;

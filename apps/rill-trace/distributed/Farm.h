@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "JobThread.h"
+#include "PartialName.h"
 #include "distributed/Messages.h"
 #include "distributed/MpiSession.h"
 #include "distributed/TileQueue.h"
@@ -170,8 +171,6 @@ class Farm {
   std::unique_ptr<Lane> lane_;
 };
 
-// A partial output's name: x.png -> x.partial.png (a partial image never takes the name of a
-// whole one).
-std::string partial_name(const std::string& path);
+using trace_cli::partial_name;  // PartialName.h
 
 }  // namespace rt::distributed

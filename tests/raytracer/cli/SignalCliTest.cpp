@@ -61,12 +61,15 @@ void interrupt_a_render(int sig, const char* name, int status) {
   EXPECT_LT(seconds, 5.0);
   std::smatch m;
   const std::regex said(std::string("rill-trace: interrupted by ") + name +
-                        " after (\\d+) of 1000000 samples per pixel; saved the sums to s\\.acc");
+                        " after (\\d+) of 1000000 samples per pixel; wrote the image of \\d+ "
+                        "samples as o\\.partial\\.png; saved the sums to s\\.acc");
   ASSERT_TRUE(std::regex_search(r.err, m, said)) << r.err;
   const int done = std::stoi(m[1].str());
   EXPECT_GE(done, 1);
-  // The image of a few samples is not written as if it were the million asked for.
+  // The image of a few samples is not written as if it were the million asked for: it is the
+  // partial output, an image of the samples done.
   EXPECT_FALSE(std::filesystem::exists(dir.path("o.png")));
+  EXPECT_GT(std::filesystem::file_size(dir.path("o.partial.png")), 0u);
   EXPECT_TRUE(temporaries(dir).empty()) << temporaries(dir).front();
 
   // The sums hold exactly the samples the message names: resumed to one more, it renders the
