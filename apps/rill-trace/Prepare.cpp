@@ -50,6 +50,7 @@ std::unique_ptr<Prepared> prepare(const RenderOptions& o, bool say) {
   if (o.variance && o.exr.empty()) throw rt::SceneError("--variance needs --exr FILE");
   if (!o.albedo.empty() && !path)
     throw rt::SceneError("--albedo is the path integrator's AOV (--integrator path)");
+  apply_camera_options(scene, o.camera);
   scene.validate();
   // An animated scene's camera as it is at the start (Pose.h): frame 0, for every path that
   // renders one frame; --frames moves it per frame.

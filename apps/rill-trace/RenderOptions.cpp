@@ -26,6 +26,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       },
       "image size WxH (default: the scene's)")
       ->check(non_empty());
+  add_camera_options(r, o.camera);
   r->add_option("--out", o.out, "PNG output (sRGB)")->check(file_name());
   r->add_option("--pfm", o.pfm, "linear colour as PFM")->check(file_name());
   r->add_option("--depth", o.depth, "hit distance AOV as PFM (+inf: miss)")->check(file_name());

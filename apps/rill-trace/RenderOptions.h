@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "CameraOptions.h"
 #include "rill/rt/Tracer.h"
 
 namespace trace_cli {
@@ -18,10 +19,11 @@ struct RenderOptions {
   rill::Accuracy accuracy = rill::Accuracy::Strict;
   int width = 0, height = 0;  // --size; 0: the scene's
   std::string out, pfm, depth, prim, normal, stats_json, source;
-  std::string exr;  // --exr: the linear colour and every AOV in one OpenEXR file
-  std::string albedo;  // --albedo: the path integrator's first-hit albedo AOV (PFM)
+  std::string exr;        // --exr: the linear colour and every AOV in one OpenEXR file
+  std::string albedo;     // --albedo: the path integrator's first-hit albedo AOV (PFM)
   bool variance = false;  // --variance: the pixels' variance as channels of --exr
   int max_depth = -1;
+  CameraOptions camera;  // --eye, --look-at, --up, --fov, --camera, --up-axis
   int spp = 0;
   // The scene's accelerator options where the command line gives them (Scene.h,
   // SceneOptions: grid 0 is auto, the others' special values as parse_* give them).

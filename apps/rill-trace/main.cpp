@@ -87,6 +87,9 @@ int main(int argc, char** argv) {
     if (*nz) rc = noise(no);
     if (*d) rc = demo(dm);
     if (*in) rc = info();
+  } catch (const CommandLineError& e) {
+    std::fprintf(stderr, "rill-trace: %s (see --help)\n", e.what());
+    rc = 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "rill-trace: out of memory while %s\n", g_doing.c_str());
     rc = 1;

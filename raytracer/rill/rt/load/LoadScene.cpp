@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "rill/rt/load/SceneFile.h"
+#include "rill/rt/scene/Framing.h"
 #include "rill/rt/scene/InputFile.h"
 
 namespace rt {
@@ -27,7 +28,10 @@ Scene load_scene(const std::string& spec, const InputOptions& input) {
     Scene s = load_obj(spec, o);
     s.camera = default_camera(s);
     s.has_camera = true;
-    s.lights.push_back(Light{s.camera.eye, glm::vec3(1.0f)});
+    s.camera_framed = true;
+    // One white light, off the view axis so that the shapes' shadows show (Framing.h).
+    s.framing_light = static_cast<int>(s.lights.size());
+    s.lights.push_back(Light{framing_light_position(s.camera), glm::vec3(1.0f)});
     return s;
   }
   throw SceneError(spec + ": unknown scene type '" + ext + "' (expected .json or .obj)");

@@ -593,6 +593,7 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     if (!s.has_camera) {
       s.camera = default_camera(s);
       s.has_camera = true;
+      s.camera_framed = true;
     }
     try {
       s.validate();

@@ -373,53 +373,6 @@ bool scene_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi) {
   return any;
 }
 
-Camera default_camera(const Scene& s) {
-  Camera c;
-  glm::vec3 lo, hi;
-  if (!scene_bounds(s, lo, hi)) return c;
-  glm::dvec3 center = (glm::dvec3(lo) + glm::dvec3(hi)) * 0.5;
-  double radius = glm::length(glm::dvec3(hi) - glm::dvec3(lo)) * 0.5;
-  // A scene of no extent (every vertex at one point) has no view to frame: the eye would sit
-  // on the point it looks at.
-  if (!(radius > 0))
-    throw SceneError("the scene has no extent (every vertex is at " + vec_str(lo) +
-                     "): the default camera cannot frame it; give the scene a camera (a JSON "
-                     "scene's \"camera\")");
-  const double t = std::tan(c.fov_y * 0.5 * 3.14159265358979323846 / 180.0) * 0.95;
-  const glm::dvec3 dir = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
-  const glm::dvec3 right = glm::normalize(glm::cross(-dir, glm::dvec3(0, 1, 0)));
-  const glm::dvec3 up = glm::cross(right, -dir);
-  // The nearest eye (along dir) from which all 8 corners of the box are within 95% of the
-  // field of view (square images; wider ones see more).
-  auto fits = [&](double dist) {
-    const glm::dvec3 eye = center + dir * dist;
-    for (int k = 0; k < 8; ++k) {
-      glm::dvec3 p((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
-      glm::dvec3 v = p - eye;
-      double z = glm::dot(v, -dir);
-      if (z <= 0 || std::fabs(glm::dot(v, right)) > t * z || std::fabs(glm::dot(v, up)) > t * z)
-        return false;
-    }
-    return true;
-  };
-  double far = radius / std::sin(std::atan(t)) * 1.05, near = 0.0;
-  for (int i = 0; i < 60; ++i) {
-    double mid = 0.5 * (near + far);
-    if (fits(mid))
-      far = mid;
-    else
-      near = mid;
-  }
-  c.look_at = glm::vec3(center);
-  c.eye = glm::vec3(center + dir * far);
-  if (!std::isfinite(c.eye.x) || !std::isfinite(c.eye.y) || !std::isfinite(c.eye.z) ||
-      c.eye == c.look_at)
-    throw SceneError("the scene's box, " + vec_str(lo) + " to " + vec_str(hi) +
-                     ", is too large or too far out for the default camera to frame in floats; "
-                     "give the scene a camera (a JSON scene's \"camera\")");
-  return c;
-}
-
 // ---- Transform -----------------------------------------------------------------------------
 
 glm::vec3 Transform::apply_point(const glm::vec3& p) const {

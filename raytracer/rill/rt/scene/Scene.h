@@ -152,6 +152,12 @@ struct Scene {
   std::vector<std::string> warnings;
   Camera camera;
   bool has_camera = false;  // false: frame the geometry (default_camera)
+  // The camera is the framing camera (Framing.h; the scene set none), made for the image
+  // size the scene had when loaded: rill-trace makes it again for --size and --up-axis.
+  bool camera_framed = false;
+  // The index in lights of the light placed for the framing camera (an OBJ rendered alone),
+  // or -1: rill-trace moves it with the camera (framing_light_position).
+  int framing_light = -1;
   int width = 512, height = 512;
 
   // Three vertices per triangle, in primitive-id order.
@@ -210,8 +216,8 @@ void validate_material(const Material& m, size_t texture_count);
 // Bounding box of the finite triangles; returns false if there are none.
 bool scene_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi);
 
-// A camera framing the scene's bounding box (looking along -z from in front, slightly above),
-// and a light at the eye. Used for an OBJ rendered without a scene file.
+// The framing camera of an image of the scene's size (Framing.h, framing_camera), for a
+// scene that sets no camera. Defined in Framing.cpp.
 Camera default_camera(const Scene& s);
 
 // Placement of a mesh: scale, then rotate about x, y, z (degrees), then translate.
