@@ -176,7 +176,11 @@ TEST(Scene, ObjAloneGetsCameraAndLight) {
   Scene s = load_scene(obj);
   EXPECT_TRUE(s.has_camera);
   ASSERT_EQ(s.lights.size(), 1u);
-  EXPECT_EQ(s.lights[0].position, s.camera.eye);
+  // The light stands above the eye and to its left (scene/Framing.h), off the view axis, so
+  // that shapes cast shadows the camera sees.
+  const glm::vec3 off = s.lights[0].position - s.camera.eye;
+  EXPECT_GT(glm::dot(off, s.camera.up), 0.0f);
+  EXPECT_GT(glm::length(glm::cross(off, s.camera.look_at - s.camera.eye)), 0.0f);
   // Every vertex is in view.
   CameraFrame f = camera_frame(s.camera, s.width, s.height);
   for (const glm::vec3& p : s.positions) {
