@@ -778,7 +778,8 @@ class Bench {
       rt::Grid grid = rt::build_grid_for(scene);
       rt::Tracer special(scene, grid), generic(scene, grid, all);
       for (const auto& be : bes) {
-        const rt::FrameOutputs images{};  // colour and AOVs, compared below
+        // Colour and AOVs, compared below.
+        const rt::FrameOutputs images{.color = true, .depth = true, .prim = true, .normal = true};
         const auto strict = rill::Accuracy::Strict;
         rt::RenderResult a = special.render(settings(be, scene, -1, strict, images), scene.camera);
         rt::RenderResult b = generic.render(settings(be, scene, -1, strict, images), scene.camera);

@@ -235,6 +235,8 @@ int accuracy_bench(const AccuracyBenchOptions& o) {
       rs.height = o.height;
       rs.max_depth = c.depth;
       rs.spp = c.spp;
+      // The first-hit AOVs too: the holes and dark-floor counts compare primitive ids.
+      rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;
       return tracer(c.knobs).render(rs, s.camera);
     };
     // The deep references: cpu, double, watertight, scaled offset, depth 8; one sample

@@ -52,6 +52,8 @@ int demo(const DemoOptions& o) {
     rs.backend = b->name();
     rs.width = scene.width;
     rs.height = scene.height;
+    // The first-hit AOVs too: the backends' images are compared by primitive id below.
+    rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;
     const auto t = Clock::now();
     rt::RenderResult r = tracer.render(rs, scene.camera);
     const double total = ms_since(t);

@@ -60,6 +60,7 @@ int main(int argc, char** argv) try {
   rt::Tracer tracer(scene, rt::build_grid_for(scene));
   rt::RenderSettings settings;  // cpu, megakernel, strict
   settings.width = settings.height = size;
+  settings.outputs.prim = true;  // which material each pixel shows, counted below
   rt::RenderResult image = tracer.render(settings, scene.camera);
   rt::write_png(out, image.width, image.height, image.color);
 

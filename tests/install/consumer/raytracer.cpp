@@ -35,6 +35,7 @@ int main() try {
     }
   rt::Tracer tracer(scene, rt::build_grid_for(scene));
   rt::RenderSettings rs;
+  rs.outputs.prim = true;  // which pixels hit, read below
   rs.backend = "cpu";
   rs.width = rs.height = 32;
   rs.spp = 1;

@@ -359,6 +359,7 @@ TEST_P(LightBufferRender, ImagesEqualTheGridsAlone) {
     if (std::string(name) == "thesis-b") s.lights.resize(1);  // fewer passes
     const Grid g = build_grid(s, 0);
     RenderSettings rs;
+    rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
     rs.backend = GetParam();
     rs.width = 24;
     rs.height = 16;

@@ -188,6 +188,7 @@ TEST_P(FilmTest, RendersReadBackOnlyWhatIsAskedFor) {
   Grid g = build_grid(s, 8);
   Tracer t(s, g);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = GetParam();
   // The 8-bit image comes back 4 pixels to an element: sizes with 0 to 3 pixels over a
   // multiple of 4, rows of 1 to 3 pixels (a group spans several rows), one sample (the
@@ -201,7 +202,7 @@ TEST_P(FilmTest, RendersReadBackOnlyWhatIsAskedFor) {
       rs.height = size_spp.y;
       rs.spp = size_spp.z;
       rs.strategy = strategy;
-      rs.outputs = FrameOutputs{};
+      rs.outputs = FrameOutputs{true, false, true, true, true};  // colour and the AOVs
       const RenderResult all = t.render(rs, s.camera);
       rs.outputs = FrameOutputs{false, true, false, false, false};
       t.render(rs, s.camera, png);

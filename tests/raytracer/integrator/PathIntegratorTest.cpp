@@ -39,6 +39,7 @@ RenderResult render(const Scene& scene, int spp, const std::string& backend = "c
   Grid grid = build_grid_for(scene, backend);
   Tracer tracer(scene, grid, options);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = backend;
   rs.width = scene.width;
   rs.height = scene.height;
@@ -52,6 +53,7 @@ RenderResult render_with_variance(const Scene& scene, int spp) {
   Grid grid = build_grid_for(scene);
   Tracer tracer(scene, grid);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = scene.width;
   rs.height = scene.height;
   rs.spp = spp;
@@ -357,6 +359,7 @@ TEST(PathProgressive, ResumedAndStoppedRendersAreTheRendersOfTheirSamples) {
   for (const Strategy& strategy : {Strategy::Megakernel, Strategy::Wavefront}) {
     SCOPED_TRACE(strategy.name);
     RenderSettings rs;
+    rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
     rs.strategy = strategy;
     rs.width = s.width;
     rs.height = s.height;
@@ -591,6 +594,7 @@ TEST(PathAovs, TheAlbedoIsTheFirstHitsReflectance) {
   Tracer tracer(s, grid);
   for (const Strategy& strategy : {Strategy::Megakernel, Strategy::Wavefront}) {
     RenderSettings rs;
+    rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
     rs.strategy = strategy;
     rs.width = s.width;
     rs.height = s.height;

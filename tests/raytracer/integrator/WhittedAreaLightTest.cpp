@@ -66,6 +66,7 @@ RenderResult render(const Scene& scene, const std::string& backend = "cpu",
   Tracer tracer(scene, grid);
   EXPECT_TRUE(tracer.features().area_lights);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = backend;
   rs.width = scene.width;
   rs.height = scene.height;
@@ -200,6 +201,7 @@ TEST(WhittedAreaLight, ASmallDistantEmitterLightsLikeThePointLightOfMatchingColo
   Grid grid = build_grid_for(point, "cpu");
   Tracer pt(point, grid);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = rs.height = 16;
   const RenderResult rp = pt.render(rs, point.camera);
   for (size_t p = 0; p < ra.color.size(); ++p) {
@@ -259,6 +261,7 @@ TEST(WhittedAreaLight, TheMultipassStrategyRefusesEmittersNamingWhy) {
   const Scene s = cornell_area(false);
   Tracer t(s, build_grid(s, 0));
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = s.width;
   rs.height = s.height;
   rs.strategy = Strategy::Multipass;

@@ -670,6 +670,7 @@ RenderResult render_with_offset(const Scene& s, const Grid& g, SelfIntersection 
   k.offset = off;
   Tracer tracer(s, g, k);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = backend;
   rs.accuracy = a;
   rs.width = w;
@@ -804,6 +805,7 @@ TEST_P(HardCases, RefractionAtTheCriticalAngleStaysFinite) {
       k.triangle = tt;
       Tracer tracer(s, grid, k);
       RenderSettings rs;
+      rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
       rs.backend = GetParam();
       rs.accuracy = a;
       rs.width = 33;

@@ -74,6 +74,7 @@ TEST_P(KnobsOnBackend, StrictIsIdenticalAcrossBackendsAndStrategies) {
     SCOPED_TRACE(k.str());
     Tracer t(s, g, k);
     RenderSettings rs;
+    rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
     rs.width = 20;
     rs.height = 16;
     rs.max_depth = 2;

@@ -93,6 +93,7 @@ TEST_P(MegakernelLoopRender, RayAndSegmentGiveTheSameBits) {
     // Two different programs, or the comparison below would prove nothing.
     ASSERT_NE(t.program(MegakernelLoop::Ray).hash(), t.program(MegakernelLoop::Segment).hash());
     RenderSettings rs;
+    rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
     rs.backend = GetParam();
     rs.width = 24;
     rs.height = 18;

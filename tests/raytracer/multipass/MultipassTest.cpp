@@ -35,6 +35,7 @@ TEST_P(Multipass, MaskingAndThresholdsKeepTheBitsAndStatsAreConsistent) {
   Grid g = build_grid(s, 0);
   Tracer t(s, g);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = GetParam();
   rs.width = 20;
   rs.height = 14;

@@ -17,6 +17,7 @@
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/render/ResultFiles.h"
 #include "rill/rt/scene/ExrImage.h"
+#include "rill/rt/scene/Image.h"
 #include "rill/rt/scene/Texture.h"
 
 namespace rt {
@@ -64,7 +65,9 @@ TEST_F(ResultFiles, ThePngIsThe8BitImageEitherWay) {
 }
 
 TEST_F(ResultFiles, TheExrHoldsTheColourAndEveryAovReadBack) {
-  const RenderResult r = tracer_->render(RenderSettings{}, scene_.camera);
+  RenderSettings aovs;
+  aovs.outputs = {.color = true, .depth = true, .prim = true, .normal = true};
+  const RenderResult r = tracer_->render(aovs, scene_.camera);
   write_exr(dir_.path("all.exr"), r);
   const ExrImage e = read_exr(dir_.path("all.exr"));
   ASSERT_EQ(e.width, 12);
@@ -99,6 +102,48 @@ TEST_F(ResultFiles, ARenderWithoutWhatTheFileNeedsIsAnError) {
                 ": the render read back no colour (RenderSettings::outputs.color)");
   EXPECT_FALSE(std::filesystem::exists(dir_.path("x.png")));
   EXPECT_FALSE(std::filesystem::exists(dir_.path("x.exr")));
+}
+
+// rt::save picks the writer by the extension, in any case: the same bytes as write_png,
+// write_pfm (the colour) and write_exr; the default outputs (the colour alone) are enough for
+// each of the three.
+TEST_F(ResultFiles, SaveChoosesTheFormatByTheExtension) {
+  const RenderResult r = tracer_->render(RenderSettings{}, scene_.camera);
+  save(r, dir_.path("a.png"));
+  save(r, dir_.path("b.PNG"));
+  write_png(dir_.path("ref.png"), r);
+  EXPECT_EQ(testing::read_text(dir_.path("a.png")), testing::read_text(dir_.path("ref.png")));
+  EXPECT_EQ(testing::read_text(dir_.path("b.PNG")), testing::read_text(dir_.path("ref.png")));
+  save(r, dir_.path("a.pfm"));
+  write_pfm(dir_.path("ref.pfm"), r.width, r.height, r.color);
+  EXPECT_EQ(testing::read_text(dir_.path("a.pfm")), testing::read_text(dir_.path("ref.pfm")));
+  save(r, dir_.path("a.exr"));
+  write_exr(dir_.path("ref.exr"), r);
+  EXPECT_EQ(testing::read_text(dir_.path("a.exr")), testing::read_text(dir_.path("ref.exr")));
+  EXPECT_EQ(read_exr(dir_.path("a.exr")).channels.size(), 3u);
+}
+
+// An extension rt::save does not write, or none, is an error naming it and the formats, and
+// nothing is written; a PFM of a render without the colour names the setting.
+TEST_F(ResultFiles, SaveRefusesAnUnknownExtension) {
+  const RenderResult r = tracer_->render(RenderSettings{}, scene_.camera);
+  EXPECT_EQ(error_of([&] { save(r, dir_.path("x.jpg")); }),
+            "cannot save " + dir_.path("x.jpg") +
+                ": unknown extension .jpg (rt::save writes .png 8-bit sRGB, .pfm linear colour, "
+                ".exr linear colour and the AOVs read back)");
+  EXPECT_EQ(error_of([&] { save(r, dir_.path("x")); }),
+            "cannot save " + dir_.path("x") +
+                ": no extension (rt::save writes .png 8-bit sRGB, .pfm linear colour, .exr "
+                "linear colour and the AOVs read back)");
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("x.jpg")));
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("x")));
+  RenderSettings png_only;
+  png_only.outputs = {.color = false, .rgb8 = true};
+  const RenderResult p = tracer_->render(png_only, scene_.camera);
+  EXPECT_EQ(error_of([&] { save(p, dir_.path("x.pfm")); }),
+            "cannot write " + dir_.path("x.pfm") +
+                ": the render read back no colour (RenderSettings::outputs.color)");
+  EXPECT_FALSE(std::filesystem::exists(dir_.path("x.pfm")));
 }
 
 }  // namespace

@@ -207,6 +207,7 @@ TEST(Shaders, ReplaceChangesTheTracersBuiltAfterIt) {
   replace_shader(flat_shader("test_replaced", green));
   Tracer after(s, grid);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = rs.height = 16;
   // The hits' colours of a render: one colour where the shader is flat.
   auto hit_colors = [&](Tracer& t, MegakernelLoop loop) {
@@ -233,6 +234,7 @@ TEST(Shaders, ReplacingABuiltInByNameGivesTheSameImage) {
   Scene s = builtin_scene("glass");  // phong, mirror reflection and glass
   const Grid grid = build_grid_for(s);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = 24;
   rs.height = 18;
   Tracer before(s, grid);
@@ -358,6 +360,7 @@ TEST_P(ShaderRender, BitmapTexelsLandWhereTheyShould) {
   s.background = glm::vec3(0.5f);
   Tracer tracer(s, build_grid(s, 2));
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = GetParam();
   rs.width = rs.height = 8;
   RenderResult r = tracer.render(rs, s.camera);
@@ -375,6 +378,7 @@ TEST_P(ShaderRender, TexturedUserShadersMatchCpuWithBothStrategies) {
   const std::vector<std::string> used = t.shaders();
   EXPECT_EQ(used.size(), 3u);  // phong, test_toon, mirror
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = 40;
   rs.height = 30;
   RenderResult cpu = t.render(rs, s.camera);

@@ -90,6 +90,7 @@ TEST(Strategies, AProgramRegistersItsOwn) {
   Scene scene = builtin_scene("cornell");
   Tracer tracer(scene, build_grid_for(scene));
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = 12;
   rs.height = 8;
   rs.spp = 2;

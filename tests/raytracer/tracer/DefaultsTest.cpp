@@ -7,6 +7,7 @@
 // depth matters) at a size, depth and sample count of its own (so that "the scene's" is seen).
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
 
 #include "RenderCompare.h"
@@ -157,28 +158,34 @@ TEST_F(Defaults, NoResumeAndNoPassCallback) {
   EXPECT_EQ(render(rs).spp, 2);
 }
 
-// FrameOutputs: "color, depth, prim, normal" come back; rgb8, albedo, variance and the
-// accumulation only when asked for.
-TEST_F(Defaults, TheOutputsAreColourAndTheFirstHitAovs) {
+// FrameOutputs: "the colour image alone" comes back, the linear colour; rgb8, the AOVs,
+// albedo, variance and the accumulation only when asked for. The colour is the one a render
+// asking for the AOVs too gets, bit for bit.
+TEST_F(Defaults, TheOutputsAreTheColourImageAlone) {
   const FrameOutputs o;
   EXPECT_TRUE(o.color);
   EXPECT_FALSE(o.rgb8);
-  EXPECT_TRUE(o.depth);
-  EXPECT_TRUE(o.prim);
-  EXPECT_TRUE(o.normal);
+  EXPECT_FALSE(o.depth);
+  EXPECT_FALSE(o.prim);
+  EXPECT_FALSE(o.normal);
   EXPECT_FALSE(o.albedo);
   EXPECT_FALSE(o.variance);
   EXPECT_FALSE(o.accumulation);
   const RenderResult r = render(RenderSettings{});
   const size_t n = 12 * 8;
   EXPECT_EQ(r.color.size(), n);
-  EXPECT_EQ(r.depth.size(), n);
-  EXPECT_EQ(r.prim.size(), n);
-  EXPECT_EQ(r.normal.size(), n);
+  EXPECT_TRUE(r.depth.empty());
+  EXPECT_TRUE(r.prim.empty());
+  EXPECT_TRUE(r.normal.empty());
   EXPECT_TRUE(r.rgb8.empty());
   EXPECT_TRUE(r.albedo.empty());
   EXPECT_TRUE(r.variance.empty());
   EXPECT_TRUE(r.accumulation.sum.empty());
+  RenderSettings with_aovs;
+  with_aovs.outputs.depth = with_aovs.outputs.prim = with_aovs.outputs.normal = true;
+  const RenderResult a = render(with_aovs);
+  ASSERT_EQ(a.prim.size(), n);
+  EXPECT_EQ(0, std::memcmp(a.color.data(), r.color.data(), n * sizeof(glm::vec3)));
 }
 
 // TracerOptions: "The defaults are the recommended settings": Moller-Trumbore, the scaled

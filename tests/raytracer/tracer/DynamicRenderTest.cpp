@@ -51,6 +51,7 @@ const char* kDynamicScene = R"({
 
 RenderSettings settings(const std::string& backend, Strategy strategy) {
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = backend;
   rs.strategy = strategy;
   rs.width = 40;

@@ -304,6 +304,7 @@ RenderResult render_checked(const Scene& s, const std::string& backend, int W, i
   Grid g = build_grid(s, s.options.grid);
   Tracer tracer(s, g);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = backend;
   rs.width = W;
   rs.height = H;
@@ -343,6 +344,7 @@ TEST_P(Render, AovsMatchReferenceAndImagesMatchCpu) {
       Grid g = build_grid(s, s.options.grid);
       Tracer cpu(s, g);
       RenderSettings rs;
+      rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
       rs.width = W;
       rs.height = H;
       expect_identical(cpu.render(rs, s.camera), r, s.name + ": cpu vs " + GetParam());
@@ -359,6 +361,7 @@ TEST_P(Render, OptionsKeepBackendsIdentical) {
   Grid g = build_grid(s, 9);
   Tracer t(s, g);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = 16;
   rs.height = 12;
   rs.spp = 3;
@@ -377,6 +380,7 @@ TEST_P(Render, FramesBackToBackEqualFreshFrames) {
   Scene s = builtin_scene("glass");
   Grid g = build_grid(s, 9);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = GetParam();
   rs.width = 16;
   rs.height = 12;
@@ -402,6 +406,7 @@ TEST_P(Render, KernelTimeIsPartOfTheLaunch) {
   Grid g = build_grid(s, 8);
   Tracer t(s, g);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = GetParam();
   rs.width = 32;
   rs.height = 24;
@@ -446,6 +451,7 @@ TEST_P(Render, BadGeometryAndEmptyScenes) {
     Grid g = build_grid(e, 0);
     Tracer t(e, g);
     RenderSettings rs;
+    rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
     rs.backend = GetParam();
     rs.width = 8;
     rs.height = 4;
@@ -474,6 +480,7 @@ TEST_P(Render, MultipassMatchesMegakernel) {
     }
     Tracer t(s, g);
     RenderSettings rs;
+    rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
     rs.backend = GetParam();
     rs.width = 20;
     rs.height = 14;
@@ -489,6 +496,7 @@ TEST_P(Render, MultipassMatchesMegakernel) {
   Grid g = build_grid(glass, 0);
   Tracer t(glass, g);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = GetParam();
   rs.width = rs.height = 4;
   rs.strategy = Strategy::Multipass;
@@ -510,6 +518,7 @@ TEST_P(Render, SkippedPixelsKeepHitsJustBeyondAnEdge) {
   const Grid g = build_grid(s, 0);
   Tracer t(s, g);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = GetParam();
   rs.width = 2000;
   rs.height = 2000;
@@ -541,6 +550,7 @@ TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
     Grid g = build_grid(s, 0);
     Tracer t(s, g);
     RenderSettings rs;
+    rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
     rs.backend = GetParam();
     rs.width = 40;
     rs.height = 26;
@@ -598,7 +608,9 @@ TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
   Scene s = builtin_scene("thesis-a");
   Grid g = build_grid(s, 0);
   Tracer t(s, g);
-  EXPECT_NE(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto).find("normal_"),
+  EXPECT_NE(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
+                     FrameOutputs{true, false, true, true, true})
+                .find("normal_"),
             std::string::npos);
   EXPECT_EQ(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
                      FrameOutputs{false, true, false, false, false})

@@ -63,6 +63,7 @@ void expect_tiles_match(Tracer& t, const Scene& s, RenderSettings rs, int tw, in
 TEST_P(Window, TilesEqualTheWholeRender) {
   RT_REQUIRE_BACKEND(GetParam());
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = GetParam();
   rs.width = 23;
   rs.height = 17;
@@ -110,6 +111,7 @@ TEST(WindowBad, OutsideTheImageIsAnError) {
   Grid g = build_grid(s, 0);
   Tracer t(s, g);
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = 8;
   rs.height = 6;
   for (RenderSettings::Window w :

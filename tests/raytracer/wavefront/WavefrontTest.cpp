@@ -28,6 +28,7 @@ class Wavefront : public ::testing::TestWithParam<std::string> {};
 
 RenderSettings settings(const std::string& backend, int width, int height, int spp) {
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.backend = backend;
   rs.width = width;
   rs.height = height;
@@ -129,6 +130,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, Wavefront, ::testing::ValuesIn(testing::backe
 std::string refusal(const Scene& s, const Strategy& strategy) {
   Tracer t(s, build_grid_for(s));
   RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
   rs.width = 4;
   rs.height = 4;
   rs.strategy = strategy;

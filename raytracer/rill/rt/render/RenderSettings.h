@@ -46,12 +46,17 @@ MegakernelLoop megakernel_loop_for(MegakernelLoop loop, const std::string& backe
 
 // What a render reads back to the host (RenderResult): everything else stays on the device.
 // A PNG needs only `rgb8`; a PFM needs `color`; the AOVs only when asked for.
+//
+// By default the colour image alone: the linear colour, which every format rt::save writes
+// takes (a PNG encodes it on the host to the bytes the device's rgb8 would have:
+// ResultFiles.h), and no AOV, a third of the megakernel's writes that most renders never
+// look at. `rgb8` stays off: with `color` on it would be a second read-back of the same image.
 struct FrameOutputs {
   bool color = true;      // RenderResult::color: the linear mean colour, 3 floats per pixel
   bool rgb8 = false;      // RenderResult::rgb8: the 8-bit sRGB encoding, encoded on the device
-  bool depth = true;      // RenderResult::depth
-  bool prim = true;       // RenderResult::prim
-  bool normal = true;     // RenderResult::normal
+  bool depth = false;     // RenderResult::depth
+  bool prim = false;      // RenderResult::prim
+  bool normal = false;    // RenderResult::normal
   bool albedo = false;    // RenderResult::albedo (the path integrator's; empty under Whitted)
   bool variance = false;  // RenderResult::variance (2 samples or more; resumed: if it kept squares)
   bool accumulation = false;  // RenderResult::accumulation: the running sums, to resume from
