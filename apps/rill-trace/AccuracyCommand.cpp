@@ -11,7 +11,7 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& o) {
   acc->add_option("--backends", o.backends, "comma-separated (default: every available)");
   acc->add_option("--scenes", o.scenes,
                   "comma-separated subset of closed,inside,floor-far,floor-tiny,cornell,glass");
-  acc->add_option("--size", o.size, "image size WxH (default 64x48)");
+  add_parsed_option(acc, "--size", o.size, checked_size, "image size WxH (default 64x48)");
   acc->add_option("--repeats", o.bench.repeats, "timing repeats (median)")
       ->check(number_in(1, 100, true));
   acc->add_flag(

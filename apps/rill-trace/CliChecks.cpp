@@ -67,6 +67,12 @@ void parse_size(const std::string& s, int& w, int& h) {
   h = static_cast<int>(b);
 }
 
+std::string checked_size(const std::string& s) {
+  int w = 0, h = 0;
+  parse_size(s, w, h);
+  return s;
+}
+
 int parse_grid(const std::string& s) {
   if (s.empty() || s == "auto") return 0;
   char* end = nullptr;

@@ -20,6 +20,9 @@ void refuse_empty_values(CLI::App& app);
 
 // "WxH" (1..16384 per side, at most 2^25 pixels) into w and h; throws rt::SceneError.
 void parse_size(const std::string& s, int& w, int& h);
+// `s` itself where parse_size takes it, else its error: with add_parsed_option, a bad size is
+// a command-line error (exit status 2) for every command, as the command line is read.
+std::string checked_size(const std::string& s);
 // --grid: "auto" (or empty) is 0, else voxels per axis in 1..512; throws rt::SceneError.
 int parse_grid(const std::string& s);
 // "a,b,,c" -> {a, b, c}.

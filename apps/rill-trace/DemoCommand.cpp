@@ -24,7 +24,7 @@ CLI::App* add_demo_command(CLI::App& app, DemoOptions& o) {
   CLI::App* d =
       app.add_subcommand("demo", "render the flagship scene on every backend and compare");
   d->add_option("--scene", o.scene, "scene to render")->default_str("builtin:glass");
-  d->add_option("--size", o.size, "image size WxH");
+  add_parsed_option(d, "--size", o.size, checked_size, "image size WxH");
   d->add_option("--out-dir", o.out_dir, "where the PNGs go");
   return d;
 }

@@ -16,7 +16,7 @@ CLI::App* add_noise_command(CLI::App& app, NoiseCommandOptions& o) {
   n->add_option("--backends", o.backends, "comma-separated (default: every available)");
   n->add_option("--variants", o.variants, "comma-separated of nee+mis,nee,bsdf (default: all)");
   n->add_option("--modes", o.modes, "comma-separated of strict,fast,double (default: strict,fast)");
-  n->add_option("--size", o.size, "image size WxH (default 32x32)");
+  add_parsed_option(n, "--size", o.size, checked_size, "image size WxH (default 32x32)");
   n->add_option("--max-spp", o.bench.max_spp, "spp runs over 1, 2, 4, ... up to this (default 256)")
       ->check(number_in(1, 1 << 20, true));
   n->add_option("--repeats", o.bench.repeats, "timed renders per point (median; default 3)")

@@ -54,6 +54,27 @@ TEST(Cli, AnUnknownBackendFromTheEnvironmentIsNamed) {
       << r.err;
 }
 
+// docs/cli.md: every bad command line is exit status 2 with "(see --help)", whichever command
+// and option: a range error as much as a word that is not a value. `accuracy`, `noise` and
+// `demo --size` were read after parsing (status 1).
+TEST(Cli, EveryCommandLineErrorExitsTwo) {
+  for (const std::string args :
+       {"render builtin:thesis-a --spp 0", "render builtin:thesis-a --size 0x8",
+        "render builtin:thesis-a --size 20000x20000", "render builtin:thesis-a --grid 0",
+        "render builtin:thesis-a --grid 99999", "render builtin:thesis-a --threads 0",
+        "render builtin:thesis-a --strategy quantum", "render builtin:thesis-a --no-such-option",
+        "accuracy --size 0x5", "accuracy --size abc", "noise --size 0x0", "demo --size 5",
+        "demo --size 99999x2"}) {
+    testing::TempDir dir;
+    const testing::Run r = run(args, dir);
+    SCOPED_TRACE(args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("rill-trace: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("(see --help)\n"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
+  }
+}
+
 TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("");
   expect_clean_failure("render");
