@@ -176,7 +176,8 @@ TEST(Animation, JsonErrorsNameTheFileAndTheKey) {
   EXPECT_EQ(err(R"({"meshes": [{)" + box + R"("animate": {"keys": [{"time": 0, "scale": 0}]}}]})"),
             "anim.json: meshes[0].animate.keys[0].scale must not be 0");
   EXPECT_EQ(err(R"({"meshes": [{)" + box + R"("animate": {"keys": [{"time": 0, "spin": 3}]}}]})"),
-            "anim.json: meshes[0].animate.keys[0]: unknown key 'spin'");
+            "anim.json: meshes[0].animate.keys[0]: unknown key 'spin' (time, translate, "
+            "rotate, quaternion, scale)");
   EXPECT_EQ(err(R"({"meshes": [{)" + box + R"("name": "a"}, {)" + box + R"("name": "a"}]})"),
             "anim.json: meshes[1].name 'a' is used twice");
   EXPECT_EQ(err(R"({"camera": {"keys": [{"time": 0}, {"time": 0, "fov_y": 30}]}})"),

@@ -141,11 +141,22 @@ TEST(BadInput, MtllibResolvesOneWayAndMissingOnesAreWarnings) {
   const std::string missing = dir.file("missing.obj", "mtllib gone.mtl\n" + tri);
   Scene s = load_obj(missing);
   ASSERT_EQ(s.warnings.size(), 1u);
-  EXPECT_NE(s.warnings[0].find(dir.path("gone.mtl") + ": no such file"), std::string::npos)
-      << s.warnings[0];
+  EXPECT_EQ(s.warnings[0], missing + ": mtllib " + dir.path("gone.mtl") +
+                               ": no such file (its materials are missing; faces that use them "
+                               "get the default grey)");
   // They reach a JSON scene that names the OBJ.
   const std::string json = dir.file("w.json", R"({"meshes": [{"file": "missing.obj"}]})");
-  EXPECT_EQ(load_json(json).warnings.size(), 1u);
+  EXPECT_EQ(load_json(json).warnings, s.warnings);
+  // A mesh given its material by the scene file: no face is grey, and the warning says so.
+  const std::string own = dir.file("own.json", R"({"materials": {"blue": {"diffuse": [0, 0, 1]}},
+                      "meshes": [{"file": "missing.obj", "material": "blue"}]})");
+  const Scene o = load_json(own);
+  ASSERT_EQ(o.warnings.size(), 1u);
+  EXPECT_EQ(o.warnings[0], missing + ": mtllib " + dir.path("gone.mtl") +
+                               ": no such file (its materials are missing, but no face uses them: "
+                               "the scene file gives this mesh its material)");
+  EXPECT_EQ(color_of(o.materials[static_cast<size_t>(o.material[0])], "diffuse"),
+            glm::vec3(0, 0, 1));
 }
 
 // Errors name the exact place (an array element, a file's line and shape), and quote long
@@ -725,7 +736,13 @@ TEST(BadInput, MalformedJson) {
   EXPECT_NE(err("{").find("invalid JSON"), std::string::npos);
   EXPECT_NE(err("{\"camera\": {\"eye\": [0, 1,").find("invalid JSON"), std::string::npos);
   EXPECT_NE(err("[]").find("must be an object"), std::string::npos);
-  EXPECT_NE(err("{\"camrea\": {}}").find("unknown key 'camrea'"), std::string::npos);
+  // Every unknown key's error lists the keys its object takes, the top level's too.
+  EXPECT_NE(err("{\"camrea\": {}}").find("unknown key 'camrea' (builtin, "), std::string::npos)
+      << err("{\"camrea\": {}}");
+  EXPECT_NE(err("{\"camera\": {\"fov\": 30}}").find("camera: unknown key 'fov' ("),
+            std::string::npos)
+      << err("{\"camera\": {\"fov\": 30}}");
+  EXPECT_NE(err("{\"camera\": {\"fov\": 30}}").find("fov_y"), std::string::npos);
   EXPECT_NE(err("{\"camera\": 5}").find("camera must be an object"), std::string::npos);
   EXPECT_NE(err("{\"camera\": {\"eye\": [0, 1]}}").find("array of 3 numbers"), std::string::npos);
   EXPECT_NE(err("{\"camera\": {\"eye\": [0, \"1\", 2]}}").find("must be a number"),

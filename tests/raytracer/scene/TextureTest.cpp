@@ -578,7 +578,7 @@ TEST(BadInputTextures, JsonTextures) {
                 ": textures.w.type: unknown texture type 'plaid' (bitmap, checker, noise, "
                 "marble, wood)");
   EXPECT_HAS(err(R"({"w": {"type": "checker", "file": "x.png"}})"),
-             scene + ": textures.w: unknown key 'file'");
+             scene + ": textures.w: unknown key 'file' (type, color1, color2, scale)");
   EXPECT_HAS(err(R"({"w": {"type": "marble", "scale": 0}})"),
              scene + ": textures.w.scale must be in (0, 1e6]");
   // A scale of 1e20 gave NaN pixels; negative colours negative radiance.

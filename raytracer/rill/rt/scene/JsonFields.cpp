@@ -16,7 +16,13 @@ void check_keys(const Ctx& c, const json& j, const std::string& where,
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool ok = false;
     for (const char* a : allowed) ok = ok || it.key() == a;
-    if (!ok) fail(c, where + ": unknown key '" + clipped(it.key()) + "'");
+    if (!ok) {
+      // The keys this object takes, as a material's error lists its shader's: a misspelt key
+      // is fixed from the message, without the docs.
+      std::string keys;
+      for (const char* a : allowed) keys += (keys.empty() ? "" : ", ") + std::string(a);
+      fail(c, where + ": unknown key '" + clipped(it.key()) + "' (" + keys + ")");
+    }
   }
 }
 

@@ -56,12 +56,15 @@ void report_lines(const std::string& file, const std::vector<LineIssue>& all,
 // lines are checked like the OBJ's (report_lines).
 class MtlReader : public tinyobj::MaterialReader {
  public:
+  // `overridden`: every face gets the scene file's material (ObjLoadOptions::override_material),
+  // so a missing MTL file changes no face, and its warning must not say that one turns grey.
   MtlReader(const std::string& obj_path, const InputOptions& input,
-            std::vector<std::string>& warnings)
+            std::vector<std::string>& warnings, bool overridden)
       : obj_(obj_path),
         dir_(fs::path(obj_path).parent_path()),
         input_(input),
-        warnings_(warnings) {}
+        warnings_(warnings),
+        overridden_(overridden) {}
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* by_name, std::string* warn,
                   std::string* err) override {
@@ -69,9 +72,11 @@ class MtlReader : public tinyobj::MaterialReader {
     if (file.is_relative()) file = dir_ / file;
     std::error_code ec;
     if (!fs::exists(file, ec)) {
-      warnings_.push_back(obj_ + ": mtllib " + clipped(file.string()) +
-                          ": no such file (its materials are missing; faces that use them get "
-                          "the default grey)");
+      warnings_.push_back(obj_ + ": mtllib " + clipped(file.string()) + ": no such file " +
+                          (overridden_ ? "(its materials are missing, but no face uses them: the "
+                                         "scene file gives this mesh its material)"
+                                       : "(its materials are missing; faces that use them get "
+                                         "the default grey)"));
       missing_ = true;
       return false;
     }
@@ -92,6 +97,7 @@ class MtlReader : public tinyobj::MaterialReader {
   fs::path dir_;
   InputOptions input_;
   std::vector<std::string>& warnings_;
+  bool overridden_;
   bool missing_ = false;
 };
 
@@ -159,7 +165,7 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> mtls;
   std::string warn, err;
-  MtlReader mtl_reader(path, opt.input, s.warnings);
+  MtlReader mtl_reader(path, opt.input, s.warnings, opt.override_material != nullptr);
   // What tinyobjloader reads: malformed lines emptied (line numbers kept). face_line scans
   // this text, so that it counts the faces tinyobjloader kept.
   const std::string parsed = without_lines(text, lines.issues);
