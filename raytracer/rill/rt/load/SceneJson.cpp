@@ -280,7 +280,7 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     mat = &it->second;
   }
   if (j.contains("file")) {
-    check_keys(c, j, where, {"file", "material", "transform", "smooth"});
+    check_keys(c, j, where, {"file", "material", "transform", "smooth", "normal_weighting"});
     const std::string name = file_name(c, j["file"], where + ".file");
     std::filesystem::path p(name);
     if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
@@ -292,6 +292,7 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     ObjLoadOptions o;
     o.transform = t;
     o.override_material = mat;
+    o.override_textures = &s.textures;
     o.input = c.input;
     // "smooth": true (the default crease angle), false, or the crease angle in degrees.
     if (j.contains("smooth")) {
@@ -304,6 +305,15 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
         o.smooth = sm.get<bool>();
       } else {
         fail(c, where + ".smooth must be true, false or a crease angle in degrees (0..180)");
+      }
+    }
+    if (j.contains("normal_weighting")) {
+      const json& w = j["normal_weighting"];
+      try {
+        if (!w.is_string()) throw std::invalid_argument("it is not a string");
+        o.normal_weighting = parse_normal_weighting(w.get<std::string>());
+      } catch (const std::invalid_argument&) {
+        fail(c, where + ".normal_weighting must be \"angle\", \"area\" or \"area_angle\"");
       }
     }
     const size_t first = s.materials.size();

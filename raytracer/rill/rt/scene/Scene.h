@@ -249,10 +249,15 @@ struct ObjLoadOptions {
   // When set, receives each triangle's three OBJ vertex numbers (0-based, in the order of
   // its corners): an OBJ sequence compares them to check that its topology stays the same.
   std::vector<int32_t>* corners = nullptr;
-  // Vertex normals for a file without `vn` (VertexNormals.h): off, or on with faces that meet
-  // at more than crease_degrees keeping a hard edge. A file with `vn` keeps its own.
+  // Vertex normals for the faces of a file that give no `vn` (VertexNormals.h): off, or on
+  // with faces that meet at more than crease_degrees keeping a hard edge. Faces with `vn`
+  // keep their own.
   bool smooth = true;
   float crease_degrees = kDefaultCreaseDegrees;
+  NormalWeighting normal_weighting = NormalWeighting::Angle;
+  // The textures override_material's texture parameters refer to (the scene it comes from),
+  // so that faces without `vt` on a material that reads texture coordinates get a warning.
+  const std::vector<Texture>* override_textures = nullptr;
 };
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
 
