@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,6 +19,7 @@
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/JsonFields.h"
 #include "rill/rt/scene/NameList.h"
+#include "rill/rt/scene/RemoveTriangles.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/shaders/Registry.h"
 
@@ -440,6 +442,11 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
       }
     }
     MeshNames mesh_names;
+    struct Prototype {
+      std::string name, where;
+      MeshRange range;
+    };
+    std::vector<Prototype> prototypes;
     if (j.contains("meshes")) {
       if (!j["meshes"].is_array()) fail(c, "meshes must be an array");
       check_room_for_shapes(c, s, j["meshes"]);
@@ -460,6 +467,17 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
           animate = m["animate"];
           m.erase("animate");
         }
+        // A prototype renders only through its instances: loaded like any mesh, for them to
+        // copy, and taken out after them.
+        bool prototype = false;
+        if (m.is_object() && m.contains("prototype")) {
+          prototype = boolean(c, m["prototype"], where + ".prototype");
+          m.erase("prototype");
+          if (prototype && name.empty())
+            fail(c, where + ": a prototype needs a \"name\", for instances to copy it");
+          if (prototype && !animate.is_null())
+            fail(c, where + ".animate: a prototype is not rendered itself; animate its instances");
+        }
         // An OBJ sequence: the mesh is its first file, and every file is a shape of it.
         json sequence_of;
         if (m.is_object() && m.contains("sequence")) {
@@ -472,6 +490,7 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
         check_room(c, s, 0, where);  // an OBJ file: the next mesh is not read past the limit
         const MeshRange range{first, s.triangle_count() - first};
         if (!name.empty()) mesh_names[name] = range;
+        if (prototype) prototypes.push_back({name, where, range});
         if (!animate.is_null() || !sequence_of.is_null()) {
           AnimatedObject o;
           o.name = name.empty() ? where : name;
@@ -486,7 +505,18 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
         }
       }
     }
-    if (j.contains("instances")) instances(c, s, j["instances"], mesh_names);
+    std::set<std::string> instanced;
+    if (j.contains("instances")) instanced = instances(c, s, j["instances"], mesh_names, materials);
+    if (!prototypes.empty()) {
+      std::vector<TriangleRange> ranges;
+      for (const Prototype& p : prototypes) {
+        ranges.push_back({p.range.first, p.range.count});
+        if (instanced.count(p.name) == 0)
+          s.warnings.push_back(c.file + ": " + p.where + ": prototype '" + clipped(p.name) +
+                               "' has no instances, so nothing of it is rendered");
+      }
+      remove_triangles(s, ranges);
+    }
     if (j.contains("lights")) {
       if (!j["lights"].is_array()) fail(c, "lights must be an array");
       s.lights.clear();

@@ -206,6 +206,8 @@ void validate_animation(const Animation& a, size_t triangles) {
                        std::to_string(o.first + o.count) + " are not in the scene (" +
                        std::to_string(triangles) + " triangles)");
     if (o.track.keys.empty()) throw SceneError(where + " has no keys");
+    if (!std::isfinite(o.pivot.x) || !std::isfinite(o.pivot.y) || !std::isfinite(o.pivot.z))
+      throw SceneError(where + ": the pivot must be finite");
     if (!o.shape_normals.empty() && o.shape_normals.size() != o.shapes.size())
       throw SceneError(where + ": " + std::to_string(o.shapes.size()) + " shapes but " +
                        std::to_string(o.shape_normals.size()) + " sets of normals");
