@@ -137,6 +137,35 @@ std::unique_ptr<Scene> posed_at_start(const Scene& scene, const Features& f) {
   return posed;
 }
 
+// Grows [lo, hi] by a dynamic scene's moving triangles, or by its static ones, each counted as
+// scene_bounds counts them (three finite corners); returns whether it counted any. Both
+// together are scene_bounds (min and max do not depend on the order), so a frame's ray offset
+// (Shading::set_eps) is that of the scene baked at its time.
+bool grow_bounds(const Scene& s, bool moving, glm::vec3& lo, glm::vec3& hi) {
+  std::vector<bool> in_object(moving ? 0 : s.triangle_count(), false);
+  std::vector<std::pair<size_t, size_t>> ranges;
+  for (const AnimatedObject& o : s.animation.objects) {
+    if (moving) ranges.emplace_back(o.first, o.first + o.count);
+    for (size_t t = o.first; !moving && t < o.first + o.count; ++t) in_object[t] = true;
+  }
+  if (!moving) ranges.emplace_back(0, s.triangle_count());
+  bool any = false;
+  auto finite = [](const glm::vec3& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  };
+  for (const auto& range : ranges)
+    for (size_t t = range.first; t < range.second; ++t) {
+      const glm::vec3* p = &s.positions[3 * t];
+      if ((!moving && in_object[t]) || !finite(p[0]) || !finite(p[1]) || !finite(p[2])) continue;
+      for (int k = 0; k < 3; ++k) {
+        lo = glm::min(lo, p[k]);
+        hi = glm::max(hi, p[k]);
+      }
+      any = true;
+    }
+  return any;
+}
+
 using rill::ms_since;
 
 }  // namespace
@@ -162,6 +191,7 @@ struct Tracer::Impl {
     if (posed) {
       bvh = build_bvh(*posed, moving_triangles(*posed));
       device.bvh.upload(bvh);
+      static_any = grow_bounds(*posed, false, static_lo, static_hi);
     }
   }
 
@@ -175,6 +205,9 @@ struct Tracer::Impl {
   // triangles; null / empty for a static scene.
   std::unique_ptr<Scene> rest, posed;
   Bvh bvh;
+  // The bounds of the static triangles (whether there are any), for each frame's ray offset.
+  bool static_any = false;
+  glm::vec3 static_lo{INFINITY}, static_hi{-INFINITY};
   DeviceScene device;
   // The strategies made so far, by name: the megakernel with the tracer, the others at their
   // first frame (StrategyRegistry).
@@ -241,6 +274,11 @@ FrameUpdate Tracer::set_time(double time, BvhUpdate how) {
   if (!I.rest) return u;
   auto t = std::chrono::steady_clock::now();
   pose_objects(*I.rest, time, *I.posed);
+  // Secondary rays leave surfaces by an offset relative to the scene's size, which moving
+  // triangles change: the size now, as the scene baked at this time has it.
+  glm::vec3 lo = I.static_lo, hi = I.static_hi;
+  const bool any = grow_bounds(*I.posed, true, lo, hi) || I.static_any;
+  I.device.shading.set_eps(any, lo, hi);
   u.pose_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   const std::vector<int32_t> ids = moving_triangles(*I.posed);

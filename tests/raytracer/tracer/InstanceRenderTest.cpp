@@ -19,6 +19,9 @@ using testing::expect_identical;
 // (static: in the grid), and a blue copy that spins about its pivot while it moves (in the
 // BVH). The red and blue materials have no highlight and no reflection, so that every pixel
 // of a copy is exactly its colour times its lighting: g = b = 0 on red, r = g = 0 on blue.
+// The blue copy rises above the scene's bounds at rest, which sets how far secondary rays
+// start off surfaces: the floor's reflections differed from the baked scene's until
+// Tracer::set_time took the offset from the posed scene.
 const char* kInstances = R"({
   "animation": {"start": 0, "end": 2, "fps": 12},
   "materials": {

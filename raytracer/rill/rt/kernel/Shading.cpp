@@ -23,18 +23,23 @@ void Lights::upload(const Scene& scene) {
 }
 
 void Shading::upload(const Scene& scene) {
+  glm::vec3 lo, hi;
+  const bool any = scene_bounds(scene, lo, hi);
+  set_eps(any, lo, hi);
+  background.set(scene.background);
+}
+
+void Shading::set_eps(bool any, const glm::vec3& lo, const glm::vec3& hi) {
   // Secondary rays start a little off the surface: 2e-5 of the scene's size (and at least
   // a few ulps of its coordinates).
-  glm::vec3 lo, hi;
   float e = 1e-4f;
-  if (scene_bounds(scene, lo, hi)) {
+  if (any) {
     double diag = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
     double mag = std::max(glm::length(glm::dvec3(lo)), glm::length(glm::dvec3(hi)));
     e = static_cast<float>(std::max(2e-5 * diag, 1e-6 * mag));
     if (!(e > 0)) e = 1e-4f;
   }
   eps.set(e);
-  background.set(scene.background);
 }
 
 // Wachter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection" (Ray Tracing

@@ -107,6 +107,10 @@ class Shading {
   rill::Uniform<Int> max_depth{5, "max_depth"};
   // Sets eps from the scene's size, and the background.
   void upload(const Scene& scene);
+  // Sets eps for triangles within [lo, hi] (any: there are some): what upload() sets for a
+  // scene of those bounds. A dynamic scene's frame sets it from its posed triangles, so that
+  // it equals the scene baked at that time.
+  void set_eps(bool any, const glm::vec3& lo, const glm::vec3& hi);
   // Area lights (F.area_lights): the samples per surface and the random sequence's seed.
   rill::Uniform<Int> light_samples{16, "light_samples"};
   rill::Uniform<Int> seed{0, "whitted_seed"};
