@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "TestUtil.h"
 #include "rill/rt/load/SceneFile.h"
@@ -34,7 +35,7 @@ void expect_near(const glm::vec3& got, const glm::dvec3& want, double tol, const
 // The rotations of a transform in double, as docs/scene-format.md defines them: about x, then
 // y, then z (right-handed).
 glm::dmat3 rotation_of(double rx, double ry, double rz) {
-  const double k = M_PI / 180.0;
+  const double k = 3.14159265358979323846 / 180.0;
   const double cx = std::cos(rx * k), sx = std::sin(rx * k), cy = std::cos(ry * k),
                sy = std::sin(ry * k), cz = std::cos(rz * k), sz = std::sin(rz * k);
   // Column-major: glm::dmat3(col0, col1, col2).
@@ -159,7 +160,8 @@ TEST(Instances, PrototypesRenderOnlyThroughTheirInstances) {
         {"shape": "box", "min": [-4, -1, -4], "max": [4, -0.5, 4]},
         {"name": "ball", "shape": "sphere", "radius": 0.5, "slices": 6, "stacks": 3)" +
                                 flag + R"(},
-        {"shape": "quad", "vertices": [[-1, 0, -3], [1, 0, -3], [1, 2, -3], [-1, 2, -3]]}],
+        {"shape": "quad", "vertices": [[-1, 0, -3], [1, 0, -3], [1, 2, -3], [-1, 2, -3]],
+         "animate": {"keys": [{"time": 0}, {"time": 1, "translate": [0, 1, 0]}]}}],
       "instances": [{"mesh": "ball", "transform": {"translate": [1, 0, 0]}},
                     {"mesh": "ball", "transform": {"translate": [-1, 0, 0]}}]})",
                             ".", "p.json");
@@ -178,6 +180,11 @@ TEST(Instances, PrototypesRenderOnlyThroughTheirInstances) {
   EXPECT_EQ(proto.normals, without_ball(plain.normals));
   EXPECT_EQ(proto.texcoords, without_ball(plain.texcoords));
   EXPECT_TRUE(proto.warnings.empty());
+  // The moving quad after the prototype is renumbered with its triangles.
+  ASSERT_EQ(proto.animation.objects.size(), 1u);
+  EXPECT_EQ(plain.animation.objects[0].first, 12 + ball);
+  EXPECT_EQ(proto.animation.objects[0].first, 12u);
+  EXPECT_EQ(bake(proto, 0.5).positions, without_ball(bake(plain, 0.5).positions));
   // "prototype": false is an ordinary mesh.
   EXPECT_EQ(scene(R"(, "prototype": false)").positions, plain.positions);
 }
