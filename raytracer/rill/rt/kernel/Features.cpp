@@ -2,6 +2,7 @@
 #include "rill/rt/kernel/Features.h"
 
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/kernel/LightShape.h"
 #include "rill/rt/kernel/Shader.h"
 #include "rill/rt/scene/Scene.h"
 
@@ -17,6 +18,7 @@ std::string Features::str() const {
   add(geometry, "geometry");
   add(lights, "lights");
   add(area_lights, "area-lights");
+  add(light_shapes, "light-shapes");
   add(shadows, "shadows");
   add(specular, "specular");
   add(reflection, "reflection");
@@ -48,6 +50,7 @@ Features scene_features(const Scene& s, const MaterialShaders& shaders) {
   for (bool u : used) f.geometry = f.geometry || u;
   for (const AnimatedObject& o : s.animation.objects) f.dynamic = f.dynamic || o.count > 0;
   f.lights = !s.lights.empty() && f.geometry;
+  f.light_shapes = f.lights && any_light_shaped(s);
   if (s.options.integrator == Integrator::Whitted)
     for (size_t m = 0; m < s.materials.size(); ++m)
       f.area_lights = f.area_lights || (used[m] && s.materials[m].emits());

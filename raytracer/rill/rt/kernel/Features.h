@@ -21,6 +21,9 @@ struct Features {
   // on them per shaded point (kernel/Shading.h, loop_light); with neither these nor point
   // lights, the headlight.
   bool area_lights = false;
+  // Spot or directional lights, or (Whitted) a point light with inverse-square falloff:
+  // the lights' shapes (kernel/LightShape.h). Without, point lights' code alone.
+  bool light_shapes = false;
   bool shadows = false;         // shadow rays (lights or area lights, and options.shadows)
   bool specular = false;        // any used material with a Phong highlight, and lights
   bool reflection = false;      // any used material that reflects (shader lobes)

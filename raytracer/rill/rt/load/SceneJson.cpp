@@ -13,6 +13,7 @@
 
 #include "rill/rt/kernel/Shader.h"
 #include "rill/rt/load/JsonStructure.h"
+#include "rill/rt/load/LightJson.h"
 #include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/AnimationJson.h"
 #include "rill/rt/scene/ClassicMaterial.h"
@@ -522,13 +523,7 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
       s.lights.clear();
       for (size_t i = 0; i < j["lights"].size(); ++i) {
         const std::string where = "lights[" + std::to_string(i) + "]";
-        const json& l = j["lights"][i];
-        check_keys(c, l, where, {"position", "color"});
-        Light light;
-        if (!l.contains("position")) fail(c, where + " needs a position");
-        light.position = vec3(c, l["position"], where + ".position");
-        if (l.contains("color")) light.color = vec3_or_scalar(c, l["color"], where + ".color");
-        s.lights.push_back(light);
+        s.lights.push_back(read_light(c, j["lights"][i], where));
       }
     }
     if (j.contains("background")) s.background = vec3_or_scalar(c, j["background"], "background");

@@ -295,6 +295,24 @@ void validate_material(const Material& m, size_t texture_count) {
   }
 }
 
+namespace {
+// What a spot or directional light asks beyond a point light's (Light).
+void validate_light_shape(const Light& l) {
+  const std::string where =
+      std::string(light_type_name(l.type)) + " light at " + vec_str(l.position) + ": ";
+  if (l.type != LightType::Point &&
+      (!finite3(l.direction) || !(glm::length(glm::dvec3(l.direction)) > 0.0)))
+    throw SceneError(where + "direction " + vec_str(l.direction) + " must be finite and not zero");
+  if (l.type == LightType::Spot && !(l.outer_deg > 0.0f && l.outer_deg <= kMaxSpotDeg &&
+                                     l.inner_deg >= 0.0f && l.inner_deg <= l.outer_deg))
+    throw SceneError(where + "cone angles inner " + std::to_string(l.inner_deg) + ", outer " +
+                     std::to_string(l.outer_deg) +
+                     " must have 0 <= inner <= outer and 0 < outer <= 90 degrees");
+  if (l.type == LightType::Directional && l.falloff != Falloff::None)
+    throw SceneError(where + "a directional light has no distance falloff");
+}
+}  // namespace
+
 void Scene::validate() const {
   const size_t n = triangle_count();
   if (positions.size() != 3 * n) throw SceneError("internal: positions and materials disagree");
@@ -323,6 +341,7 @@ void Scene::validate() const {
     if (l.color.x < 0.0f || l.color.y < 0.0f || l.color.z < 0.0f)
       throw SceneError("light at " + vec_str(l.position) + ": colour " + vec_str(l.color) +
                        " has a negative component; colours must be >= 0");
+    validate_light_shape(l);
   }
   if (!finite3(background)) throw SceneError("background must be finite");
   if (background.x < 0.0f || background.y < 0.0f || background.z < 0.0f)
@@ -347,6 +366,14 @@ void Scene::validate() const {
                      "]");
   if (options.grid < 0 || options.grid > 512)
     throw SceneError("options: grid must be 'auto' (0) or 1..512 cells per axis");
+}
+
+const char* light_type_name(LightType t) {
+  return t == LightType::Spot ? "spot" : t == LightType::Directional ? "directional" : "point";
+}
+
+const char* falloff_name(Falloff f) {
+  return f == Falloff::InverseSquare ? "inverse_square" : "none";
 }
 
 const char* integrator_name(Integrator i) {

@@ -84,10 +84,28 @@ struct Material {
   }
 };
 
+// Lights (docs/scene-format.md, "lights"): a point light shines from `position` in every
+// direction; a spot light from `position` into a cone about `direction`, full within
+// inner_deg of the axis, nothing beyond outer_deg, and pbrt's smoothstep of the cosine
+// between (kernel/LightShape.h); a directional light from infinitely far away along
+// `direction`. Under Whitted, `color` is what a surface facing the light receives, without
+// falloff unless `falloff` says inverse_square (point and spot lights); under the path
+// integrator it is a point or spot light's intensity (always falling off as 1/r^2) and a
+// directional light's irradiance on a surface facing it.
+enum class LightType { Point, Spot, Directional };
+enum class Falloff { None, InverseSquare };
+const char* light_type_name(LightType t);  // "point", "spot", "directional"
+const char* falloff_name(Falloff f);       // "none", "inverse_square"
 struct Light {
   glm::vec3 position{0.0f};
   glm::vec3 color{1.0f};
+  LightType type = LightType::Point;
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot: the cone's axis; directional: where light goes
+  float inner_deg = 25.0f, outer_deg = 30.0f;  // spot: 0 <= inner <= outer, 0 < outer <= 90
+  Falloff falloff = Falloff::None;             // Whitted, point and spot lights
 };
+// The spot cone's widest half-angle (degrees): a hemisphere.
+constexpr float kMaxSpotDeg = 90.0f;
 
 // Pinhole camera (docs/camera.md): vertical field of view in degrees.
 struct Camera {
