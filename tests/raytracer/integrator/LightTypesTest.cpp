@@ -194,6 +194,54 @@ TEST(LightTypes, ADirectionalLightOnALambertianFloorGivesECosOverPiTimesAlbedo) 
   }
 }
 
+// Among other lights, a delta light is chosen with probability below 1 and its sample divided
+// by it; the area light's samples then weigh against BSDF samples by MIS while the delta
+// lights' weigh 1. So the image of a spot, a directional light and an area light together is,
+// in expectation, the image of the two delta lights (exact, as above) plus that of the area
+// light alone. Per pixel d = all - deltas - area has mean 0; pixels are independent (their own
+// Philox counters), so over 1024 pixels the mean of d is normal to a good approximation and
+// 5 standard errors (from d's spread) fail a correct integrator with probability below 6e-7.
+// A delta light weighted by MIS, or not divided by its probability, moves the mean by a large
+// fraction of the delta lights' image.
+TEST(LightTypes, DeltaLightsAmongAreaLightsAddUpUnderPath) {
+  auto scene = [](bool deltas, bool area) {
+    Scene s = floor_scene(Integrator::Path, 32);
+    s.options.spp = 16;
+    // The lamp (its front facing down) is there in all three, black where it does not emit:
+    // it hides and shadows the same floor in each.
+    Material lamp;
+    lamp.name = "lamp";
+    lamp.shader = "diffuse";
+    lamp.set("diffuse", glm::vec3(0.0f));
+    lamp.emission = glm::vec3(area ? 4.0f : 0.0f);
+    const int m = s.add_material(lamp);
+    add_quad(s, {-1.0f, 1.2f, -0.3f}, {-0.4f, 1.2f, -0.3f}, {-0.4f, 1.2f, 0.3f},
+             {-1.0f, 1.2f, 0.3f}, m);
+    if (deltas) {
+      Light sun;
+      sun.type = LightType::Directional;
+      sun.direction = glm::vec3(0.3f, -1.0f, 0.2f);
+      sun.color = glm::vec3(0.5f);
+      s.lights = {spot(20.0f, 30.0f), sun};
+    }
+    return s;
+  };
+  const RenderResult all = render(scene(true, true)), deltas = render(scene(true, false)),
+                     area = render(scene(false, true));
+  double sum = 0.0, sum2 = 0.0, delta_sum = 0.0;
+  const double n = static_cast<double>(all.color.size());
+  for (size_t p = 0; p < all.color.size(); ++p) {
+    const double d = double(all.color[p].x) - deltas.color[p].x - area.color[p].x;
+    sum += d;
+    sum2 += d * d;
+    delta_sum += deltas.color[p].x;
+  }
+  const double mean = sum / n, se = std::sqrt(std::max(sum2 / n - mean * mean, 0.0) / (n - 1));
+  EXPECT_LT(std::fabs(mean), 5.0 * se) << "mean " << mean << ", standard error " << se;
+  // The test has power: the delta lights' image is far above the bound.
+  EXPECT_GT(delta_sum / n, 20.0 * se);
+}
+
 // Whitted's point light with inverse-square falloff: the pixel right under it (the centre of
 // an odd-sized image) at heights h and 2h gives 4 times the light (Kd C / h^2); without
 // falloff (the default, today's images) the same at both.
