@@ -10,8 +10,10 @@
 // backend and strategy giving the cpu's bits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "RenderCompare.h"
