@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 
+#include "RunCommand.h"
 #include "TestUtil.h"
 #include "rill/rt/kernel/LightShape.h"
 #include "rill/rt/load/SceneFile.h"
@@ -159,6 +161,32 @@ TEST(LightJson, TheSpotConeIsPbrtsSmoothstep) {
   EXPECT_EQ(spot_cone_factor(l, co + 1e-6), 1.0);
   EXPECT_EQ(spot_cone_factor(l, co - 1e-6), 0.0);
 }
+
+#ifdef RILL_TRACE_EXE
+// rill-trace takes the lights from a scene file (it has no light option of its own): a scene
+// with a spot and a directional light renders; a bad one is exit status 1 (a bad scene, as
+// docs/cli.md says) with the file and the key on stderr.
+TEST(LightJson, RillTraceRendersTheNewLightsAndNamesABadKey) {
+  testing::TempDir dir;
+  const std::string good = dir.file("good.json", R"({"builtin": "thesis-a", "lights": [
+      {"type": "spot", "position": [0, 6, 3], "look_at": [0, 0, 0], "outer_angle": 25},
+      {"type": "directional", "direction": [1, -1, -1], "color": 0.3},
+      {"position": [2, 4, 3], "falloff": "inverse_square", "color": 20}]})");
+  const testing::Run ok = testing::run_command(
+      "'" RILL_TRACE_EXE "' render '" + good + "' --size 16x12 --quiet --out good.png", dir);
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.path("good.png")));
+  const std::string bad = dir.file("bad.json", R"({"builtin": "thesis-a", "lights": [
+      {"type": "spot", "position": [0, 6, 3], "direction": [0, -1, 0], "inner_angle": 40,
+       "outer_angle": 30}]})");
+  const testing::Run r = testing::run_command(
+      "'" RILL_TRACE_EXE "' render '" + bad + "' --size 16x12 --quiet --out bad.png", dir);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("bad.json: lights[0].inner_angle 40.0 must be <= outer_angle 30.0"),
+            std::string::npos)
+      << r.err;
+}
+#endif
 
 }  // namespace
 }  // namespace light_json_test
