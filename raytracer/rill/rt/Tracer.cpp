@@ -259,11 +259,8 @@ std::vector<std::string> Tracer::shaders() const {
 }
 
 std::string Tracer::source(const std::string& backend, Accuracy a, MegakernelLoop loop,
-                           const FrameOutputs& outputs, int spp) {
-  return d_->megakernel()
-      .kernel(backend, a, megakernel_loop_for(loop, backend),
-              MegakernelOutputs::for_frame(outputs, spp))
-      .source();
+                           const FrameOutputs&, int) {
+  return d_->megakernel().kernel(backend, a, megakernel_loop_for(loop, backend)).source();
 }
 
 FrameUpdate Tracer::set_time(double time, BvhUpdate how) {

@@ -112,9 +112,9 @@ class Tracer {
   // The same into `result`, whose image memory is reused: frame after frame into one
   // RenderResult allocates nothing on the host.
   void render(const RenderSettings& settings, const Camera& camera, RenderResult& result);
-  // The megakernel's generated source on a backend (compiles if needed): the variant a
-  // render with these outputs and samples per pixel runs (without AOV outputs when none is
-  // asked for; encoding the 8-bit image itself for one sample without the linear colour).
+  // The megakernel's generated source on a backend (compiles if needed). Outputs and samples
+  // per pixel select no variant: every render on that backend, accuracy and loop runs this
+  // one kernel (megakernel/Megakernel.h); the two arguments are kept for existing callers.
   std::string source(const std::string& backend, rill::Accuracy a = rill::Accuracy::Strict,
                      MegakernelLoop loop = MegakernelLoop::Auto,
                      const FrameOutputs& outputs = FrameOutputs{}, int spp = 1);
