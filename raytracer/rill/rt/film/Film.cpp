@@ -141,8 +141,7 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
                  const Accumulation* resume, bool summing, bool squares) {
   const std::string key = backend_key(backend, a);
   auto it = buffers_.find(key);
-  if (it == buffers_.end())
-    it = buffers_.emplace(key, std::make_unique<Buffers>(backend, a)).first;
+  if (it == buffers_.end()) it = buffers_.emplace(key, std::make_unique<Buffers>(backend, a)).first;
   now_ = it->second.get();
   summing_ = spp > 1 || summing || resume != nullptr || squares;
   if (summing_) {

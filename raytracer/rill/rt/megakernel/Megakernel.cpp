@@ -450,7 +450,8 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
 }
 
 // "backend/accuracy/loop": a compiled kernel's key, and its warm-up's.
-std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a, MegakernelLoop loop) {
+std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a,
+                                   MegakernelLoop loop) {
   return backend_key(backend_name, a) + "/" + megakernel_loop_name(loop);
 }
 
