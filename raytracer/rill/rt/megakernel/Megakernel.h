@@ -12,8 +12,9 @@
 // host (FrameOutputs) and how many samples a pixel takes are launch-time choices, read back or
 // looped over by render(), never compile-time ones. So one kernel per backend, accuracy and
 // loop serves every render of a tracer: a render that adds --depth or --spp 2 compiles
-// nothing (docs/raytracer.md, "What compiles a kernel"). The AOV writes cost a few percent of
-// a frame on a GPU; a second compile costs seconds.
+// nothing (docs/raytracer.md, "What compiles a kernel"). The AOV writes and the film's
+// encoding pass cost a frame little (docs/benchmarks/2026-12-07-first-image.md); a second
+// compile costs seconds.
 //
 // Under the path integrator (SceneOptions::integrator, integrator/PathIntegrator.h) the kernel
 // is another: each instance follows one path of its pixel for the launch's sample index, and
