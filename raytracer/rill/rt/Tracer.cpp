@@ -62,6 +62,16 @@ StrategyFactory strategy_factory(const std::string& name) {
   throw std::invalid_argument("--strategy expects " + names + " (got '" + name + "')");
 }
 
+// The kernels generate one kind of camera ray, the scene's camera's (Features::camera).
+void check_camera_kind(const Features& F, const Camera& camera) {
+  const CameraKind k = camera_kind(camera);
+  if (k != F.camera)
+    throw std::runtime_error(std::string("render: a ") + camera_kind_name(k) +
+                             " camera, and this tracer's kernels were made for the scene's " +
+                             camera_kind_name(F.camera) +
+                             " camera: make the tracer from a scene with that kind of camera");
+}
+
 }  // namespace
 
 void register_strategy(const std::string& name, StrategyFactory make) {
@@ -336,7 +346,13 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   std::optional<Aabb> moving;
   if (!I.bvh.nodes.empty()) moving = Aabb{I.bvh.nodes.front().lo, I.bvh.nodes.front().hi};
   // Widened by the triangle test's rounding as seen from this eye (hit_margin).
-  const float margin = hit_margin(I.static_boxes, moving ? &*moving : nullptr, camera.eye);
+  // (From the farthest a ray's origin lies: an orthographic or thin-lens ray's is off the eye.)
+  check_camera_kind(I.device.F, camera);
+  const CameraFrame view = camera_frame(camera, width, height);
+  const glm::vec3 from = view.kind == CameraKind::Pinhole
+                             ? camera.eye
+                             : glm::vec3(camera_origin_reach(view), 0.0f, 0.0f);
+  const float margin = hit_margin(I.static_boxes, moving ? &*moving : nullptr, from);
   I.frame_boxes.resize(I.static_boxes.size());
   std::transform(I.static_boxes.begin(), I.static_boxes.end(), I.frame_boxes.begin(),
                  [&](const Aabb& b) { return widened(b, margin); });
@@ -364,21 +380,33 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
 }
 
 std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Camera& camera,
-                                           int width, int height, glm::vec2 offset) {
+                                           int width, int height, glm::vec2 offset,
+                                           std::vector<glm::vec3>* origins, int sample) {
   Impl& I = *d_;
+  check_camera_kind(I.device.F, camera);
   if (!I.camera_program.valid())
     I.camera_program = rill::program("rill_camera_rays", [&] {
+      Output<Float3> o("origin");
       Output<Float3> dir("direction");
-      dir = I.device.camera.direction(element_coord());
+      Ray r{I.device.camera.eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)};
+      I.device.camera.aim(r, element_coord());
+      o = r.o;
+      dir = r.d;
     });
   I.device.camera.set(camera, width, height);
   I.device.camera.offset.set(offset);
+  I.device.camera.lens_sample.set(sample);
   Kernel k = compile(I.camera_program, backend);
-  Stream<Float3> dirs(width, height);
-  k.outputs(dirs);
+  Stream<Float3> origin_stream(width, height), dirs(width, height);
+  k.outputs(origin_stream, dirs);
   k.execute();
+  const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
   std::vector<glm::vec3> d = dirs.download();
-  d.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+  d.resize(n);
+  if (origins) {
+    *origins = origin_stream.download();
+    origins->resize(n);
+  }
   return d;
 }
 

@@ -4,6 +4,7 @@
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/kernel/LightShape.h"
 #include "rill/rt/kernel/Shader.h"
+#include "rill/rt/scene/Camera.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt {
@@ -27,6 +28,8 @@ std::string Features::str() const {
   add(vertex_colors, "vertex-colors");
   add(texcoords, "texcoords");
   add(dynamic, "dynamic");
+  add(camera == CameraKind::Orthographic, "orthographic");
+  add(camera == CameraKind::ThinLens, "thin-lens");
   if (stack > 0) s += " stack=" + std::to_string(stack);
   return s.empty() ? "none" : s;
 }
@@ -78,6 +81,7 @@ Features scene_features(const Scene& s, const MaterialShaders& shaders) {
   f.vertex_normals = f.geometry && !s.normals.empty() && s.options.smooth_normals;
   f.vertex_colors = f.geometry && !s.colors.empty();
   f.texcoords = f.texcoords && f.geometry && !s.texcoords.empty();
+  f.camera = camera_kind(s.camera);
   return f;
 }
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "rill/rt/scene/Scene.h"
+
 namespace rt {
 
 struct Scene;
@@ -33,7 +35,9 @@ struct Features {
   bool texcoords = false;       // per-vertex texture coordinates (a used texture needs them)
   bool dynamic = false;         // animated objects: the BVH beside the grid (accel/Bvh.h)
   int stack = 0;                // ray stack entries (refraction: reflected branch)
-  std::string str() const;      // "geometry lights shadows ..." for logs and stats
+  // The camera's rays (the scene's camera: a tracer renders cameras of this kind only).
+  CameraKind camera = CameraKind::Pinhole;
+  std::string str() const;  // "geometry lights shadows ..." for logs and stats
 };
 
 constexpr int kRayStack = 3;

@@ -16,6 +16,7 @@
 #include "rill/rt/load/LightJson.h"
 #include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/AnimationJson.h"
+#include "rill/rt/scene/CameraJson.h"
 #include "rill/rt/scene/ClassicMaterial.h"
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/JsonFields.h"
@@ -610,12 +611,15 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     }
     if (j.contains("camera")) {
       const json& cam = j["camera"];
-      check_keys(c, cam, "camera", {"eye", "look_at", "up", "fov_y", "keys", "interpolation"});
+      check_keys(c, cam, "camera",
+                 {"eye", "look_at", "up", "fov_y", "type", "height", "aperture", "focus_distance",
+                  "keys", "interpolation"});
       Camera k = s.camera;
       if (cam.contains("eye")) k.eye = vec3(c, cam["eye"], "camera.eye");
       if (cam.contains("look_at")) k.look_at = vec3(c, cam["look_at"], "camera.look_at");
       if (cam.contains("up")) k.up = vec3(c, cam["up"], "camera.up");
       if (cam.contains("fov_y")) k.fov_y = num(c, cam["fov_y"], "camera.fov_y");
+      camera_projection(c, cam, k);
       s.camera = k;
       s.has_camera = true;
       if (cam.contains("keys") || cam.contains("interpolation"))

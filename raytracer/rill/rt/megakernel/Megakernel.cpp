@@ -104,7 +104,7 @@ Program Megakernel::capture_path() const {
       (void)P.shade(path, Hit{Float(0.0f), Float2(0.0f), Int(-1)}, pix);
     }
     RILL_ELSE_IF(max_iter_ > 0) {
-      path.ray.d = S_.camera.direction(pix);
+      S_.camera.aim(path.ray, pix);
       const Int2 image_pix = pix + S_.camera.origin;
       Int iter = 0;
       RILL_DO {
@@ -150,7 +150,7 @@ Program Megakernel::capture(MegakernelLoop loop) const {
       miss(L);
     }
     RILL_ELSE_IF(max_iter_ > 0) {
-      L.ray.d = S_.camera.direction(pix);
+      S_.camera.aim(L.ray, pix);
       RILL_DO {
         L.path_done = false;
         if (loop == MegakernelLoop::Segment) {
@@ -538,6 +538,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   Stopwatch trace, step;
   for (int s = frame.first_sample; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
+    S_.camera.lens_sample.set(s);
     if (path_) path_->sample_index.set(s);
     if (S_.F.area_lights) S_.shading.sample_index.set(s);
     step.lap();

@@ -248,12 +248,26 @@ void validate_animation(const Animation& a, size_t triangles) {
 
 }  // namespace
 
+void check_lens(const Camera& camera, const std::string& where) {
+  if (!std::isfinite(camera.ortho_height) || !std::isfinite(camera.aperture) ||
+      !std::isfinite(camera.focus_distance))
+    throw SceneError(where + ": values must be finite numbers");
+  if (camera.projection == Projection::Orthographic && !(camera.ortho_height > 0.0f))
+    throw SceneError(where + ": height must be > 0 (the orthographic view's height)");
+  if (!(camera.aperture >= 0.0f))
+    throw SceneError(where + ": aperture must be >= 0 (the lens's radius; 0 is a pinhole)");
+  if (!(camera.focus_distance >= 0.0f)) throw SceneError(where + ": focus_distance must be > 0");
+  if (camera.projection == Projection::Orthographic && camera.aperture > 0.0f)
+    throw SceneError(where + ": aperture is for a perspective camera, not an orthographic one");
+}
+
 void check_camera(const Camera& camera, const std::string& where) {
   if (!finite3(camera.eye) || !finite3(camera.look_at) || !finite3(camera.up) ||
       !std::isfinite(camera.fov_y))
     throw SceneError(where + ": values must be finite numbers");
   if (!(camera.fov_y > 0.0f && camera.fov_y < 180.0f))
     throw SceneError(where + ": fov_y must be between 0 and 180 degrees");
+  check_lens(camera, where);
   if (camera.eye == camera.look_at)
     throw SceneError(where + ": eye and look_at are the same point");
   glm::dvec3 f = glm::dvec3(camera.look_at) - glm::dvec3(camera.eye);
@@ -350,7 +364,12 @@ void Scene::validate() const {
   check_camera(camera, "camera");
   for (size_t k = 0; k < animation.camera.keys.size(); ++k) {
     const CameraPose& p = animation.camera.keys[k].camera;
-    check_camera(Camera{p.eye, p.look_at, p.up, p.fov_y}, "camera.keys[" + std::to_string(k) + "]");
+    Camera key = camera;  // the keys move the camera; its lens and projection stay
+    key.eye = p.eye;
+    key.look_at = p.look_at;
+    key.up = p.up;
+    key.fov_y = p.fov_y;
+    check_camera(key, "camera.keys[" + std::to_string(k) + "]");
   }
   if (!image_size_fits(width, height))
     throw SceneError("image size " + std::to_string(width) + "x" + std::to_string(height) +

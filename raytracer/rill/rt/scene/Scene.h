@@ -107,12 +107,22 @@ struct Light {
 // The spot cone's widest half-angle (degrees): a hemisphere.
 constexpr float kMaxSpotDeg = 90.0f;
 
-// Pinhole camera (docs/camera.md): vertical field of view in degrees.
+// The camera (docs/camera.md): a perspective camera with a vertical field of view in degrees,
+// a pinhole or, with aperture > 0, a thin lens focused at focus_distance; or an orthographic
+// camera whose view is ortho_height scene units tall.
+enum class Projection { Perspective, Orthographic };
+// What the kernels generate rays for (a kernel variant each): a perspective camera with
+// aperture 0 is the pinhole, with aperture > 0 the thin lens.
+enum class CameraKind { Pinhole, Orthographic, ThinLens };
 struct Camera {
   glm::vec3 eye{0.0f, 0.0f, 5.0f};
   glm::vec3 look_at{0.0f};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float fov_y = 45.0f;
+  Projection projection = Projection::Perspective;
+  float ortho_height = 2.0f;    // orthographic: the view's height in scene units
+  float aperture = 0.0f;        // perspective: the lens's radius in scene units; 0 = a pinhole
+  float focus_distance = 0.0f;  // thin lens: the focal plane's distance; 0 = |look_at - eye|
 };
 
 // The values of SceneOptions' accelerator settings, which the scene formats and the command
@@ -225,6 +235,9 @@ struct Scene {
 inline constexpr size_t kMaxTriangles = size_t{1} << 26;
 
 void check_camera(const Camera& camera, const std::string& where);
+// The projection's and lens's part of check_camera: finite values, an orthographic height > 0,
+// aperture and focus_distance >= 0 (0: the defaults), no aperture on an orthographic camera.
+void check_lens(const Camera& camera, const std::string& where);
 // A material's values whatever its shader: a shader named, every parameter finite, colours
 // >= 0, texture parameters within texture_count. Throws SceneError naming the material. What
 // a shader asks of its own parameters (reflect + transmit <= 1, the ranges of shininess and

@@ -20,7 +20,7 @@ Program Wavefront::capture_camera() const {
       (void)P.shade(path, Hit{Float(0.0f), Float2(0.0f), Int(-1)}, pix);
     }
     RILL_ELSE {
-      path.ray.d = S_.camera.direction(pix);
+      S_.camera.aim(path.ray, pix);
     }
     RILL_ENDIF;
     Output<PathRecord> out_path("path");

@@ -155,6 +155,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
   Stopwatch since_samples;
   for (int s = frame.first_sample; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
+    S_.camera.lens_sample.set(s);
     path_->sample_index.set(s);
     run(K.camera, kCamera, std::nullopt);
     capture_after(0, s);
