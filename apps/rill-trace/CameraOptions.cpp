@@ -52,6 +52,26 @@ float check_length(const std::string& name, double v, bool zero_allowed, const c
   return static_cast<float>(v);
 }
 
+// What a length option takes: "--aperture expects a radius in scene units (got 'x')", "--aperture
+// is the lens's radius in scene units (0: a pinhole), a finite number >= 0".
+struct LengthKind {
+  const char* noun;
+  const char* what;
+  bool zero_allowed;
+};
+
+void add_length_option(CLI::App* r, const std::string& name, std::optional<float>& out,
+                       LengthKind kind, const std::string& description) {
+  add_parsed_option(
+      r, name, out,
+      [name, kind](const std::string& s) {
+        const double v =
+            parse_number(name, s, (std::string(kind.noun) + " in scene units").c_str());
+        return check_length(name, v, kind.zero_allowed, kind.what);
+      },
+      description);
+}
+
 constexpr const char* kHeight = "the orthographic view's height in scene units";
 constexpr const char* kAperture = "the lens's radius in scene units (0: a pinhole)";
 constexpr const char* kFocus = "the distance from the eye to the plane in focus";
@@ -163,31 +183,15 @@ void add_camera_options(CLI::App* r, CameraOptions& o) {
         return check_fov("--fov", f);
       },
       "DEGREES: the vertical field of view, in (0, 180)");
-  add_parsed_option(
-      r, "--ortho-height", o.ortho_height,
-      [](const std::string& s) {
-        return check_length("--ortho-height",
-                            parse_number("--ortho-height", s, "a height in scene units"), false,
-                            kHeight);
-      },
-      "HEIGHT: an orthographic camera, its view HEIGHT scene units tall (rays along the view "
-      "direction)");
-  add_parsed_option(
-      r, "--aperture", o.aperture,
-      [](const std::string& s) {
-        return check_length("--aperture", parse_number("--aperture", s, "a radius in scene units"),
-                            true, kAperture);
-      },
+  add_length_option(r, "--ortho-height", o.ortho_height, {"a height", kHeight, false},
+                    "HEIGHT: an orthographic camera, its view HEIGHT scene units tall (rays "
+                    "along the view direction)");
+  add_length_option(
+      r, "--aperture", o.aperture, {"a radius", kAperture, true},
       "RADIUS: depth of field, a thin lens of this radius in scene units (0: a pinhole)");
-  add_parsed_option(
-      r, "--focus-distance", o.focus_distance,
-      [](const std::string& s) {
-        return check_length("--focus-distance",
-                            parse_number("--focus-distance", s, "a distance in scene units"), false,
-                            kFocus);
-      },
-      "DISTANCE: the thin lens's plane in focus, this far from the eye along the view "
-      "(default: the distance to the look-at point)");
+  add_length_option(r, "--focus-distance", o.focus_distance, {"a distance", kFocus, false},
+                    "DISTANCE: the thin lens's plane in focus, this far from the eye along the "
+                    "view (default: the distance to the look-at point)");
   add_parsed_option(r, "--up-axis", o.up_axis, rt::parse_up_axis,
                     "the framing camera's up axis (a scene without a camera): x, y, z, or auto "
                     "(y, unless the mesh stands tall in z: docs/camera.md)")

@@ -128,6 +128,17 @@ Camera lens_camera(glm::vec3 eye, glm::vec3 at, glm::vec3 up, float fov, float R
   return c;
 }
 
+// Orthographic and thin-lens cameras of odd views: a tiny height far from the origin, the
+// default focus distance, a wide lens focused close.
+std::vector<Camera> test_cameras() {
+  return {
+      ortho_camera({1.5f, 2.25f, 7.0f}, {-0.3f, 0.7f, 0.1f}, {0.1f, 1.0f, 0.05f}, 3.7f),
+      ortho_camera({-3e3f, 10.0f, 1e-3f}, {2.0f, -1.0f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1e-3f),
+      lens_camera({1.5f, 2.25f, 7.0f}, {-0.3f, 0.7f, 0.1f}, {0.1f, 1.0f, 0.05f}, 53.7f, 0.3f, 0),
+      lens_camera({0.1f, 0.2f, 0.3f}, {0.3f, 0.2f, 0.1f}, {1, 1, 1}, 170.0f, 2.5f, 0.7f),
+  };
+}
+
 // ---- host ---------------------------------------------------------------------------------
 
 // Random123's known-answer vectors for Philox4x32-10 (kat_vectors), then lens_point against
@@ -175,12 +186,7 @@ TEST(CameraTypes, LensPointsAreUniformOnTheDisk) {
 }
 
 TEST(CameraTypes, HostRaysMatchTheFormulas) {
-  const Camera cams[] = {
-      ortho_camera({1.5f, 2.25f, 7.0f}, {-0.3f, 0.7f, 0.1f}, {0.1f, 1.0f, 0.05f}, 3.7f),
-      ortho_camera({-3e3f, 10.0f, 1e-3f}, {2.0f, -1.0f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1e-3f),
-      lens_camera({1.5f, 2.25f, 7.0f}, {-0.3f, 0.7f, 0.1f}, {0.1f, 1.0f, 0.05f}, 53.7f, 0.3f, 0),
-      lens_camera({0.1f, 0.2f, 0.3f}, {0.3f, 0.2f, 0.1f}, {1, 1, 1}, 170.0f, 2.5f, 0.7f),
-  };
+  const std::vector<Camera> cams = test_cameras();
   const glm::vec2 offsets[] = {{0.5f, 0.5f}, {0.0f, 0.9999f}, {0.3125f, 0.7f}};
   for (const Camera& c : cams) {
     const CameraFrame f = camera_frame(c, 37, 23);
@@ -194,21 +200,6 @@ TEST(CameraTypes, HostRaysMatchTheFormulas) {
               << camera_kind_name(f.kind) << " pixel " << i << " " << j;
         }
   }
-}
-
-// Whether the ray o + t d, t >= 0, meets the box [lo, hi] (in double).
-bool ray_meets_box(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi) {
-  double t0 = 0, t1 = HUGE_VAL;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (o[a] < lo[a] || o[a] > hi[a]) return false;
-      continue;
-    }
-    const double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
-  }
-  return t0 <= t1;
 }
 
 // The megakernel skips the camera rays of pixels outside pixels_seeing_box: for these
@@ -237,8 +228,8 @@ TEST(CameraTypes, PixelsSeeingABoxHoldEveryRayThatMeetsIt) {
         for (int i = 0; i < W; ++i) {
           const glm::vec2 o = offsets[k % 3];
           const CameraRay ray = camera_ray(f, i, j, o.x, o.y, lens_point(1, i, j, k));
-          if (!ray_meets_box(glm::dvec3(ray.origin), glm::dvec3(ray.direction), glm::dvec3(lo),
-                             glm::dvec3(hi)))
+          if (!testing::ray_meets_box(glm::dvec3(ray.origin), glm::dvec3(ray.direction),
+                                      glm::dvec3(lo), glm::dvec3(hi)))
             continue;
           ++hits;
           ASSERT_TRUE(i >= r.first.x && i < r.end.x && j >= r.first.y && j < r.end.y)
@@ -312,12 +303,7 @@ Scene with_camera(const std::string& builtin, const Camera& c) {
 
 TEST_P(CameraTypesRender, RaysBitForBit) {
   RT_REQUIRE_BACKEND(GetParam());
-  const Camera cams[] = {
-      ortho_camera({1.5f, 2.25f, 7.0f}, {-0.3f, 0.7f, 0.1f}, {0.1f, 1.0f, 0.05f}, 3.7f),
-      ortho_camera({-3e3f, 10.0f, 1e-3f}, {2.0f, -1.0f, 0.5f}, {0.0f, 0.0f, 1.0f}, 1e-3f),
-      lens_camera({1.5f, 2.25f, 7.0f}, {-0.3f, 0.7f, 0.1f}, {0.1f, 1.0f, 0.05f}, 53.7f, 0.3f, 0),
-      lens_camera({0.1f, 0.2f, 0.3f}, {0.3f, 0.2f, 0.1f}, {1, 1, 1}, 170.0f, 2.5f, 0.7f),
-  };
+  const std::vector<Camera> cams = test_cameras();
   const glm::ivec2 sizes[] = {{32, 32}, {37, 23}, {1, 1}};
   int n = 0;
   for (const Camera& c : cams) {

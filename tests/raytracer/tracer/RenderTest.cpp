@@ -59,21 +59,6 @@ TEST(Camera, HostFrameMatchesTheFormula) {
             static_cast<float>(std::tan(static_cast<double>(53.7f * 0.5f * 0.0174532924f))));
 }
 
-// Whether the ray o + t d, t >= 0, meets the box [lo, hi] (in double).
-bool ray_meets_box(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi) {
-  double t0 = 0, t1 = HUGE_VAL;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (o[a] < lo[a] || o[a] > hi[a]) return false;
-      continue;
-    }
-    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
-  }
-  return t0 <= t1;
-}
-
 // pixels_seeing_box is what lets the megakernel skip a pixel's camera ray: every pixel whose
 // ray, at any sample offset, meets the box must lie inside its rectangle.
 TEST(Camera, PixelsSeeingABoxHoldEveryRayThatMeetsIt) {
@@ -101,7 +86,8 @@ TEST(Camera, PixelsSeeingABoxHoldEveryRayThatMeetsIt) {
       for (int i = 0; i < W; ++i)
         for (const glm::vec2 o : offsets) {
           const glm::vec3 d = camera_ray(f, i, j, o.x, o.y);
-          if (!ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d), glm::dvec3(lo), glm::dvec3(hi)))
+          if (!testing::ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d), glm::dvec3(lo),
+                                      glm::dvec3(hi)))
             continue;
           const bool inside = i >= r.first.x && i < r.end.x && j >= r.first.y && j < r.end.y;
           ASSERT_TRUE(inside) << "camera " << c << ": pixel (" << i << ", " << j
@@ -147,8 +133,8 @@ TEST(Camera, TilesSeeingBoxesHoldEveryRayThatMeetsOne) {
           const glm::vec3 d = camera_ray(f, i, j, o.x, o.y);
           bool meets = false;
           for (const Aabb& b : boxes)
-            meets = meets || ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d), glm::dvec3(b.lo),
-                                           glm::dvec3(b.hi));
+            meets = meets || testing::ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d),
+                                                    glm::dvec3(b.lo), glm::dvec3(b.hi));
           if (!meets) continue;
           ++hits;
           ASSERT_EQ(m.seen[static_cast<size_t>((j >> m.shift) * m.tiles.x + (i >> m.shift))], 1)
