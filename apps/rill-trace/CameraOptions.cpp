@@ -172,15 +172,7 @@ void add_camera_options(CLI::App* r, CameraOptions& o) {
   add_parsed_option(
       r, "--fov", o.fov_y,
       [](const std::string& s) {
-        size_t used = 0;
-        double f = NAN;
-        try {
-          f = std::stod(s, &used);
-        } catch (const std::exception&) {
-        }
-        if (used != s.size() || !std::isfinite(f))
-          throw std::invalid_argument("--fov expects a number of degrees (got '" + s + "')");
-        return check_fov("--fov", f);
+        return check_fov("--fov", parse_number("--fov", s, "a number of degrees"));
       },
       "DEGREES: the vertical field of view, in (0, 180)");
   add_length_option(r, "--ortho-height", o.ortho_height, {"a height", kHeight, false},
