@@ -15,14 +15,29 @@
 
 namespace trace_cli {
 
-namespace {
-
-// The key of a saved render: the scene as loaded with the command line's changes, and what
-// decides its pixels beyond the scene (the accuracy and the knobs).
+// The scene as loaded with the command line's changes, and what decides its pixels beyond the
+// scene (the accuracy and the knobs).
 rt::AccumulationKey accumulation_key(const RenderOptions& o, const Prepared& p) {
   const std::string settings = std::string(rill::accuracy_name(o.accuracy)) + " " + o.knobs.str();
   return {rt::distributed::accumulation_hash(p.scene, settings), p.scene.options.seed};
 }
+
+rt::Accumulation read_resume(const RenderOptions& o, const Prepared& p) {
+  rt::Accumulation sums =
+      rt::read_accumulation(o.resume, accumulation_key(o, p), p.scene.width, p.scene.height);
+  if (sums.samples > p.scene.options.spp)
+    throw rt::SceneError(o.resume + ": holds " + std::to_string(sums.samples) +
+                         " samples per pixel, more than the " +
+                         std::to_string(p.scene.options.spp) + " asked for (--spp)");
+  if (o.variance && sums.squares.empty())
+    throw rt::SceneError(o.resume +
+                         ": saved without --variance, so it holds no sums of squares and the "
+                         "variance of a render resumed from it cannot be known (save with "
+                         "--variance, or resume without it)");
+  return sums;
+}
+
+namespace {
 
 // "samples 12/64 [=====>     ] 18%, 35.2 samples/s, 1.5 s left" on stderr, where it is a
 // terminal and not --quiet.
@@ -65,18 +80,7 @@ rt::RenderResult render_progressive(const RenderOptions& o, Prepared& p, const r
   const rt::AccumulationKey key = accumulation_key(o, p);
   const int target = p.scene.options.spp;
   std::optional<rt::Accumulation> sums;
-  if (!o.resume.empty()) {
-    sums = rt::read_accumulation(o.resume, key, p.scene.width, p.scene.height);
-    if (sums->samples > target)
-      throw rt::SceneError(o.resume + ": holds " + std::to_string(sums->samples) +
-                           " samples per pixel, more than the " + std::to_string(target) +
-                           " asked for (--spp)");
-    if (o.variance && sums->squares.empty())
-      throw rt::SceneError(o.resume +
-                           ": saved without --variance, so it holds no sums of squares and the "
-                           "variance of a render resumed from it cannot be known (save with "
-                           "--variance, or resume without it)");
-  }
+  if (!o.resume.empty()) sums = read_resume(o, p);
   const int first = sums ? sums->samples : 0;
   SampleProgress progress(first, target, o.time_limit, o.quiet);
   bool out_of_time = false;

@@ -8,12 +8,22 @@
 
 #include "Prepare.h"
 #include "RenderOptions.h"
+#include "rill/rt/film/AccumulationFile.h"
 
 namespace trace_cli {
 
 // Whether the render is progressive (the path integrator with a time limit, --save or
 // --resume, or enough samples for a progress bar to help).
 bool progressive(const RenderOptions& o, const Prepared& p);
+
+// What a saved render belongs to (--save, --resume; one process or under mpirun): the scene
+// as loaded with the command line's changes, the accuracy and knobs, and the seed.
+rt::AccumulationKey accumulation_key(const RenderOptions& o, const Prepared& p);
+
+// --resume's file, read and checked against the render: its scene, settings, seed and size,
+// no more samples than the scene's spp (--spp), and the squares when --variance is asked for.
+// Throws SceneError naming the file.
+rt::Accumulation read_resume(const RenderOptions& o, const Prepared& p);
 
 // Renders p's frame through camera progressively; returns the result of the whole render
 // (its trace time and ray count summed over the chunks, r.spp the samples reached).

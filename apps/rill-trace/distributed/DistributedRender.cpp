@@ -1,6 +1,8 @@
 // rill-trace render under mpirun: one image, or the frames of --frames, over every rank of the
 // job (distributed/Farm.h, docs/distributed.md). Rank 0 hands out tiles and writes each frame
-// as it completes; a render cut short leaves partial outputs with a note.
+// as it completes; a render cut short leaves partial outputs with a note. A progressive render
+// (--time-limit, --save, --resume) goes in rounds, each a farm job over every tile that goes on
+// from the image's sums so far, which rank 0 keeps.
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -18,6 +20,7 @@
 #include "Interrupt.h"
 #include "Outputs.h"
 #include "Prepare.h"
+#include "Progressive.h"
 #include "distributed/Farm.h"
 #include "distributed/Launch.h"
 #include "distributed/MpiSession.h"
@@ -100,13 +103,123 @@ struct DistributedFrames {
   int width = 0, height = 0;
 };
 
+struct Rounds;
 int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& plan,
                        const rt::distributed::FarmResult& R, const DistributedFrames& frames,
-                       rt::distributed::MpiSession& mpi, Clock::time_point t_start);
+                       const Rounds& rounds, rt::distributed::MpiSession& mpi,
+                       Clock::time_point t_start);
 
 // --tail-tile: as given, or half of --tile (tiles under 16 pixels are not cut).
 int tail_tile_of(const RenderOptions& o) {
   return o.tail_tile >= 0 ? o.tail_tile : (o.tile >= 16 ? o.tile / 2 : 0);
+}
+
+// Whether the render goes in rounds: the path integrator's progressive options (prepare
+// refuses them for Whitted).
+bool in_rounds(const RenderOptions& o) {
+  return o.time_limit > 0 || !o.save.empty() || !o.resume.empty();
+}
+
+// Rank 0's record of a render in rounds.
+struct Rounds {
+  int first = 0;    // samples per pixel resumed from (--resume)
+  int reached = 0;  // samples per pixel in the image
+  bool out_of_time = false;
+  double seconds = 0;  // from the first round's start to the last one's end
+  struct Round {
+    int spp = 0;  // the samples per pixel it reached
+    double ms = 0;
+  };
+  std::vector<Round> done;  // the rounds complete, in order
+};
+
+// Rank 0: the image in rounds (docs/distributed.md, "Rounds"). Each round is a farm job over
+// every tile, from the sums of the rounds before (or --resume's) to a higher sample count: the
+// first round one sample per pixel, each next one twice the last under --time-limit (but no
+// more than the last round's rate fits in the time left, and at least one), at most
+// --save-every, and without either to --spp at once. After each round rank 0 looks at the
+// clock: past --time-limit, the round just done is the last. Each pixel adds its samples in
+// sample order into the very floats a single process would, so the image and the sums are
+// bitwise the single-process render of the samples reached. The sums go to --save after each
+// round with --save-every, and after the last; the image goes to on_frame. A round left
+// incomplete (a signal, every rank lost) ends the render: its result is that round's, and
+// --save keeps the sums of the rounds complete (unless mpirun is ending the job).
+rt::distributed::FarmResult render_rounds(
+    const RenderOptions& o, const Prepared& p, rt::distributed::Farm& farm,
+    rt::distributed::FarmJob job, const rt::distributed::Farm::RenderTile& render_tile,
+    const rt::distributed::Farm::FrameDone& on_frame,
+    const std::function<void(const rt::distributed::FarmResult&)>& checkpoint, Rounds& rounds) {
+  namespace dist = rt::distributed;
+  const rt::AccumulationKey key = accumulation_key(o, p);
+  const int target = p.scene.options.spp;
+  std::optional<rt::Accumulation> sums;
+  if (!o.resume.empty()) sums = read_resume(o, p);
+  rounds.first = sums ? sums->samples : 0;
+  job.outputs.accumulation = true;
+  rill::Stopwatch clock;
+  dist::FarmResult total;
+  rt::RenderResult image;
+  int64_t rays = 0;
+  int size = 1;  // the next round's samples under --time-limit
+  for (;;) {
+    const int done = sums ? sums->samples : 0;
+    int next = target - done;
+    if (o.time_limit > 0) next = std::min(next, size);
+    if (o.save_every > 0) next = std::min(next, o.save_every);
+    job.spp = done + next;
+    job.resume = sums ? &*sums : nullptr;
+    std::optional<rt::RenderResult> got;
+    const double start_ms = clock.ms();
+    dist::FarmResult R = *farm.render(
+        job, render_tile, [&](int, rt::RenderResult&& im) { got = std::move(im); }, checkpoint);
+    // The report of every round: the last round's counts and ranks (whose tiles and busy time
+    // the farm sums over the rounds), every round's tile times, gathering and wall time.
+    std::vector<dist::FarmResult::TileTime> times = std::move(total.tile_times);
+    times.insert(times.end(), R.tile_times.begin(), R.tile_times.end());
+    const double wall_ms = total.wall_ms + R.wall_ms;
+    const double gathered_bytes = total.gathered_bytes + R.gathered_bytes;
+    const double gather_ms = total.gather_ms + R.gather_ms;
+    const int gathered = total.gathered + R.gathered;
+    total = std::move(R);
+    total.tile_times = std::move(times);
+    total.wall_ms = wall_ms;
+    total.gathered = gathered;
+    total.gathered_bytes = gathered_bytes;
+    total.gather_ms = gather_ms;
+    if (!total.complete() || !got) {
+      if (!o.save.empty() && !rounds.done.empty() && !(total.interrupted && total.by_launcher)) {
+        rt::write_accumulation(o.save, *sums, key);
+        std::fprintf(stderr,
+                     "rill-trace: saved the sums of the %d samples per pixel of the rounds "
+                     "complete to %s (--resume %s goes on from them)\n",
+                     sums->samples, o.save.c_str(), o.save.c_str());
+      }
+      return total;
+    }
+    rays += got->rays;
+    sums = std::move(got->accumulation);
+    got->accumulation = rt::Accumulation{};
+    image = std::move(*got);
+    rounds.done.push_back({sums->samples, clock.ms() - start_ms});
+    const double s = clock.ms() * 1e-3;
+    rounds.out_of_time = o.time_limit > 0 && s >= o.time_limit;
+    const bool last = sums->samples >= target || rounds.out_of_time;
+    if (!o.save.empty() && (last || o.save_every > 0)) rt::write_accumulation(o.save, *sums, key);
+    if (last) break;
+    if (o.time_limit > 0) {
+      // Twice the last round, but no more than its rate fits in the time left.
+      const double rate = next / std::max((clock.ms() - start_ms) * 1e-3, 1e-6);
+      const double fits = std::min((o.time_limit - s) * rate, 1e9);
+      size = std::max(1, std::min(2 * std::max(next, 1), static_cast<int>(fits)));
+    }
+  }
+  farm.stop();
+  rounds.reached = sums->samples;
+  rounds.seconds = clock.ms() * 1e-3;
+  image.rays = rays;
+  image.spp = sums->samples;
+  on_frame(job.first_frame, std::move(image));
+  return total;
 }
 
 }  // namespace
@@ -117,16 +230,9 @@ int render_distributed(const RenderOptions& o) {
   namespace dist = rt::distributed;
   if (o.bench_frames > 0)
     throw rt::SceneError("--bench-frames times one process; it does not run under mpirun");
-  // --albedo and --variance come back with each tile (Messages.h). A time limit needs rank 0
-  // to pick the stopping pass for every tile, and --save/--resume need the whole image's sums
-  // on rank 0: the farm renders each tile once, to the scene's spp, and has neither
-  // (docs/distributed.md, "What is not distributed").
-  for (const auto& [given, name] : {std::pair{o.time_limit > 0, "--time-limit"},
-                                    {!o.save.empty(), "--save"},
-                                    {!o.resume.empty(), "--resume"}})
-    if (given)
-      throw rt::SceneError(std::string(name) +
-                           " is not supported under mpirun yet: render in one process");
+  // --albedo and --variance come back with each tile (Messages.h); --time-limit, --save and
+  // --resume render in rounds (render_rounds).
+  const bool rounds = in_rounds(o);
   dist::MpiSession mpi;
   const bool root = mpi.rank() == 0;
   const std::string who = "rank " + std::to_string(mpi.rank()) + " on " + mpi.host();
@@ -135,12 +241,13 @@ int render_distributed(const RenderOptions& o) {
   FramePlan plan;
   DistributedFrames frames;
   std::optional<dist::FarmResult> result;
+  Rounds round_report;
   // What the farm's render thread uses, here rather than in the try block: after a signal
   // that thread may still be in a tile while rank 0 writes the partial outputs.
   rt::RenderSettings rs;
   int posed = -1;  // the frame the scene is posed at
   rt::Camera camera;
-  std::function<rt::RenderResult(const dist::Tile&)> render_tile;
+  dist::Farm::RenderTile render_tile;
   try {
     dist::use_device(o.backend, dist::rank_device(o.device, mpi.local_rank()));
     dist::FarmOptions fo;
@@ -155,6 +262,10 @@ int render_distributed(const RenderOptions& o) {
         [&] {
           prepared = prepare(o, root);
           plan = plan_frames(o, *prepared, root);  // ffmpeg for --video: rank 0's
+          if (rounds && (plan.span.count() > 1 || plan.animated))
+            throw rt::SceneError(
+                "--time-limit, --save and --resume render one still frame (not with "
+                "--frames or an animated scene)");
           // Every camera of the sequence, before any tile: a bad one stops the start.
           const rt::Scene& scene = prepared->scene;
           for (int k = plan.span.first; plan.animated && k <= plan.span.last; ++k)
@@ -171,7 +282,8 @@ int render_distributed(const RenderOptions& o) {
     }
     // A tile of another frame than the one posed moves the scene there first (on the farm's
     // render thread, the only one that calls this).
-    render_tile = [&](const dist::Tile& t) {
+    render_tile = [&](const dist::Assign& a) {
+      const dist::Tile& t = a.tile;
       const rt::Scene& scene = prepared->scene;
       if (plan.animated && t.frame != posed) {
         const double time = scene.animation.time.time_of(t.frame);
@@ -181,6 +293,10 @@ int render_distributed(const RenderOptions& o) {
       }
       rt::RenderSettings s = rs;
       s.window = {t.x, t.y, t.width, t.height};
+      // A round's tile: up to the round's sample, from its slice of the sums so far.
+      if (a.spp > 0) s.spp = a.spp;
+      s.outputs.accumulation = a.accumulation;
+      s.resume = a.resume.samples > 0 ? &a.resume : nullptr;
       return prepared->tracer->render(s, camera);
     };
     // Rank 0: each frame written as it completes; the frames begun kept on disk as partial
@@ -219,7 +335,13 @@ int render_distributed(const RenderOptions& o) {
     job.first_frame = plan.span.first;
     job.frames = plan.span.count();
     job.outputs = rs.outputs;
-    result = farm.render(job, render_tile, on_frame, checkpoint);
+    if (root && rounds) {
+      result =
+          render_rounds(o, *prepared, farm, job, render_tile, on_frame, checkpoint, round_report);
+    } else {
+      result = farm.render(job, render_tile, on_frame, checkpoint);  // workers: every round
+      if (result && result->complete()) farm.stop();
+    }
     // mpirun may send SIGTERM again while the frames in hand are written: they and the partial
     // outputs go through it (finish_distributed).
     if (result && result->interrupted) {
@@ -250,7 +372,14 @@ int render_distributed(const RenderOptions& o) {
 
   const dist::FarmResult& R = *result;
   try {
-    return finish_distributed(o, *prepared, plan, R, frames, mpi, t_start);
+    if (rounds && R.complete() && !o.quiet && (o.time_limit > 0 || round_report.first > 0))
+      std::printf("path: %d samples per pixel%s%s in %.1f s, %zu rounds\n", round_report.reached,
+                  round_report.first > 0
+                      ? (" (" + std::to_string(round_report.first) + " resumed)").c_str()
+                      : "",
+                  round_report.out_of_time ? ", stopped by --time-limit" : "", round_report.seconds,
+                  round_report.done.size());
+    return finish_distributed(o, *prepared, plan, R, frames, round_report, mpi, t_start);
   } catch (const std::exception& e) {
     if (!R.must_abort) throw;  // main reports it; MPI_Finalize finds every rank
     std::fprintf(stderr, "rill-trace: %s\n", e.what());
@@ -265,7 +394,8 @@ namespace {
 // frames not complete, the video and the stats, and reports.
 int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& plan,
                        const rt::distributed::FarmResult& R, const DistributedFrames& frames,
-                       rt::distributed::MpiSession& mpi, Clock::time_point t_start) {
+                       const Rounds& rounds, rt::distributed::MpiSession& mpi,
+                       Clock::time_point t_start) {
   namespace dist = rt::distributed;
   if (!R.complete()) {
     // mpirun may send SIGTERM more than once while it ends the job: the partial outputs are
@@ -341,6 +471,13 @@ int finish_distributed(const RenderOptions& o, Prepared& p, const FramePlan& pla
         {"warnings", R.warnings},
         {"tail_tile", tail_tile_of(o)},
         {"gather", {{"tiles", R.gathered}, {"bytes", R.gathered_bytes}, {"ms", R.gather_ms}}}};
+    if (!rounds.done.empty()) {
+      // A render in rounds: each round's samples per pixel reached and wall time.
+      nlohmann::json list = nlohmann::json::array();
+      for (const Rounds::Round& r : rounds.done) list.push_back({{"spp", r.spp}, {"ms", r.ms}});
+      j["distributed"]["rounds"] = list;
+      j["spp_reached"] = rounds.reached;
+    }
     j["time_ms"] = {{"load", p.load_ms},
                     {"grid_build", p.grid.build_ms},
                     {"render", wall_ms},

@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "ProgressBar.h"
+#include "distributed/AccumulationSlice.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt::distributed {
@@ -132,12 +133,19 @@ RenderResult blank_image(int width, int height, const FrameOutputs& o) {
   if (o.normal) r.normal.assign(n, glm::vec3(0.0f));
   // The albedo and variance are left to the first tile that brings them (place): the tracer
   // leaves them out where it has none (the albedo under Whitted), and the image must hold the
-  // channels a single-process render would, no more.
+  // channels a single-process render would, no more. So are the sums' squares.
+  if (o.accumulation) {
+    r.accumulation.width = width;
+    r.accumulation.height = height;
+    r.accumulation.sum.assign(n, glm::vec3(0.0f));
+    r.accumulation.carry.assign(n, glm::vec3(0.0f));
+  }
   return r;
 }
 
-// Why a tile's pixels do not fit the tile (empty if they do).
-std::string misfit(const RenderResult& p, const Tile& t, const FrameOutputs& o) {
+// Why a tile's pixels do not fit the tile (empty if they do): a round's tile must also bring
+// its sums of the round's samples (spp; 0: any).
+std::string misfit(const RenderResult& p, const Tile& t, const FrameOutputs& o, int spp) {
   const size_t n = static_cast<size_t>(t.width) * static_cast<size_t>(t.height);
   auto sized = [&](bool wanted, size_t got, size_t per_pixel) {
     return got == (wanted ? n * per_pixel : 0);
@@ -153,6 +161,11 @@ std::string misfit(const RenderResult& p, const Tile& t, const FrameOutputs& o) 
   if ((!p.albedo.empty() && !sized(o.albedo, p.albedo.size(), 1)) ||
       (!p.variance.empty() && !sized(o.variance, p.variance.size(), 1)))
     return "other outputs than were asked for";
+  const Accumulation& a = p.accumulation;
+  if (o.accumulation &&
+      (a.width != t.width || a.height != t.height || a.sum.size() != n || a.carry.size() != n ||
+       (!a.squares.empty() && a.squares.size() != n) || (spp > 0 && a.samples != spp)))
+    return "no sums, or sums that do not fit the tile";
   return {};
 }
 
@@ -177,6 +190,11 @@ void place(RenderResult& image, const Tile& t, const RenderResult& p) {
   if (!p.variance.empty() && image.variance.empty()) image.variance.assign(n, glm::vec3(0.0f));
   rows(image.albedo, p.albedo, 1);
   rows(image.variance, p.variance, 1);
+  if (!p.accumulation.sum.empty()) {
+    place_slice(image.accumulation, t, p.accumulation);
+    image.accumulation.samples = p.accumulation.samples;
+  }
+  image.spp = p.spp;
   image.rays += p.rays;
 }
 
@@ -342,8 +360,7 @@ void Farm::start_master(const std::function<uint64_t()>& load) {
   }
 }
 
-std::optional<FarmResult> Farm::render(const FarmJob& job,
-                                       const std::function<RenderResult(const Tile&)>& render_tile,
+std::optional<FarmResult> Farm::render(const FarmJob& job, const RenderTile& render_tile,
                                        const FrameDone& on_frame,
                                        const std::function<void(const FarmResult&)>& checkpoint) {
   if (mpi_.rank() == 0) return render_master(job, render_tile, on_frame, checkpoint);
@@ -351,7 +368,15 @@ std::optional<FarmResult> Farm::render(const FarmJob& job,
   return std::nullopt;
 }
 
-void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_tile) {
+void Farm::stop() {
+  if (mpi_.rank() != 0 || stopped_) return;
+  stopped_ = true;
+  for (int r = 1; r < mpi_.size(); ++r)
+    if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kStop);
+  mpi_.flush(std::min(o_.rank_timeout, 5.0));
+}
+
+void Farm::render_worker(const RenderTile& render_tile) {
   // Every tile in hand is posted to the lane at once: the lane renders them back to back, so
   // it never waits for this loop's next poll between tiles (at tiles of 64 that wait was a
   // fifth of the time). Results come back in order; each job times its own render.
@@ -368,16 +393,16 @@ void Farm::render_worker(const std::function<RenderResult(const Tile&)>& render_
       heard0_ = now_s();
       if (tag == kStop) stopped = true;
       if (tag != kAssign) continue;
-      Tile t;
-      unpack(bytes, t);
+      auto a = std::make_shared<Assign>();  // shared: the lane's job is a copyable function
+      unpack(bytes, *a);
       if (failed) {
         if (!loaded_) mpi_.post(0, kFailed, pack(Text{"got tiles without a scene"}));
         continue;
       }
-      jobs.push_back(Job{t, {}});
-      jobs.back().result.start(*lane_, [render_tile, t] {
+      jobs.push_back(Job{a->tile, {}});
+      jobs.back().result.start(*lane_, [render_tile, a] {
         const double start = now_s();
-        RenderResult r = render_tile(t);
+        RenderResult r = render_tile(*a);
         return std::make_pair(std::move(r), (now_s() - start) * 1e3);
       });
     }
@@ -452,8 +477,7 @@ void Farm::report(FarmResult& R, const TileQueue& queue, const Frames& frames) c
   R.warnings = warnings_;
 }
 
-FarmResult Farm::render_master(const FarmJob& job,
-                               const std::function<RenderResult(const Tile&)>& render_tile,
+FarmResult Farm::render_master(const FarmJob& job, const RenderTile& render_tile,
                                const FrameDone& on_frame,
                                const std::function<void(const FarmResult&)>& checkpoint) {
   const double t0 = now_s();
@@ -485,7 +509,7 @@ FarmResult Farm::render_master(const FarmJob& job,
     if (id < 0 || id >= queue.total())
       return lose(rank, "sent tile " + std::to_string(id) + ", which does not exist", true, &queue);
     const Tile& t = queue.tile(id);
-    if (const std::string why = misfit(pixels, t, job.outputs); !why.empty())
+    if (const std::string why = misfit(pixels, t, job.outputs, job.spp); !why.empty())
       return lose(rank, "sent " + why, true, &queue);
     if (!queue.finish(rank, id)) return;
     auto [it, begun] = frames.open.try_emplace(t.frame);
@@ -509,6 +533,15 @@ FarmResult Farm::render_master(const FarmJob& job,
         }
     }
   };
+  // A tile as it is handed out: in a round, with its slice of the sums so far.
+  auto assign = [&](const Tile& t) {
+    auto a = std::make_shared<Assign>();
+    a->tile = t;
+    a->spp = job.spp;
+    a->accumulation = job.outputs.accumulation;
+    if (job.resume != nullptr) a->resume = slice_of(*job.resume, t);
+    return a;
+  };
   // Tiles for a worker, up to kAhead in hand.
   auto feed = [&](int rank) {
     Peer& p = peers_[static_cast<size_t>(rank)];
@@ -516,7 +549,7 @@ FarmResult Farm::render_master(const FarmJob& job,
       std::optional<Tile> t = queue.next(rank);
       if (!t) return;
       if (p.in_flight++ == 0) p.progress_at = now_s();
-      mpi_.post(rank, kAssign, pack(*t));
+      mpi_.post(rank, kAssign, pack(*assign(*t)));
     }
   };
   auto draw_progress = [&, last = 0.0](bool final) mutable {
@@ -574,9 +607,9 @@ FarmResult Farm::render_master(const FarmJob& job,
       if (!t) break;
       if (own.empty()) own_front_since = now_s();
       own.push_back(OwnJob{*t, {}});
-      own.back().result.start(*lane_, [render_tile, t = *t] {
+      own.back().result.start(*lane_, [render_tile, a = assign(*t)] {
         const double start = now_s();
-        RenderResult r = render_tile(t);
+        RenderResult r = render_tile(*a);
         return std::make_pair(std::move(r), (now_s() - start) * 1e3);
       });
     }
@@ -644,15 +677,12 @@ FarmResult Farm::render_master(const FarmJob& job,
       while (!own.empty() && own.front().result.ready()) own.pop_front();
     }
     if (!own.empty()) R.must_abort = true;
-    for (int r = 1; r < mpi_.size(); ++r)
-      if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kStop);
-    mpi_.flush(std::min(o_.rank_timeout, 5.0));
+    stop();
     return R;
   }
   if (!own.empty()) R.must_abort = true;  // rank 0's lane still has tiles of a lost rank 0
-  for (int r = 1; r < mpi_.size(); ++r)
-    if (peers_[static_cast<size_t>(r)].responsive) mpi_.post(r, kStop);
-  mpi_.flush(std::min(o_.rank_timeout, 5.0));
+  // Complete, the workers wait for the next job (a round) or the caller's stop().
+  if (!R.complete() || output_error) stop();
   if (output_error) std::rethrow_exception(output_error);
   return R;
 }

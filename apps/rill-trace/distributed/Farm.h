@@ -26,6 +26,12 @@
 // with a warning. A lost rank may still be alive (hung), and MPI_Finalize would wait for it
 // forever, so the job then ends with MPI_Abort once the outputs are written
 // (FarmResult::must_abort). Workers time out on rank 0 the same way and end.
+//
+// Rounds. One start may be followed by several jobs before the workers' Stop: a progressive
+// render (--time-limit, --save, --resume) runs in rounds, each a job over every tile that
+// renders up to a sample count from the image's sums so far, which rank 0 keeps and sends
+// with each tile (FarmJob::spp, resume; Messages.h). The workers do not know where one round
+// ends: they render what they are assigned until rank 0 says stop (Farm::stop).
 #pragma once
 
 #include <cstdint>
@@ -70,11 +76,16 @@ struct RankReport {
 };
 
 // What rank 0 renders: frames first_frame .. first_frame + frames - 1 (one, for a still), each
-// width x height with the outputs asked for.
+// width x height with the outputs asked for. A round of a progressive render (one frame):
+// samples up to `spp` (0: the scene's), going on from `resume` (the whole image's sums, of
+// which each tile gets its slice; null: from the first sample), the image's sums back in
+// RenderResult::accumulation when outputs.accumulation.
 struct FarmJob {
   int width = 0, height = 0;
   int first_frame = 0, frames = 1;
   FrameOutputs outputs;
+  int spp = 0;
+  const Accumulation* resume = nullptr;
 };
 
 // A frame that was begun and is not complete: the tiles so far, for checkpoints and partial
@@ -127,32 +138,35 @@ class Farm {
   // then ends the job); a worker waits for rank 0's verdict.
   void start(const std::function<uint64_t()>& load, const std::string& backend);
 
-  // Every rank: renders tiles with render_tile (on another thread) until every frame of the
-  // job is complete. Rank 0 hands each frame to on_frame as soon as it is complete (on this
-  // thread, which hands out no tiles meanwhile: on_frame should be quick; frames may complete
-  // out of order) and returns the report; a worker returns nothing
-  // once rank 0 says stop, and throws if rank 0 is lost. Only rank 0 reads the job. Rank 0
-  // calls checkpoint with the frames begun so far every options.checkpoint seconds while
-  // tiles come in, for main to keep on disk: mpirun may kill rank 0 at once when another rank
-  // dies, with no time to write anything then.
+  // Every rank: renders tiles with render_tile (on another thread). Rank 0 runs one job until
+  // every frame of it is complete, hands each frame to on_frame as soon as it is complete (on
+  // this thread, which hands out no tiles meanwhile: on_frame should be quick; frames may
+  // complete out of order) and returns the report; it may then run another job (a round), and
+  // calls stop() after the last. A render that ends incomplete (interrupted, every rank lost,
+  // on_frame failed) has stopped the workers already. A worker renders every job's tiles and
+  // returns nothing once rank 0 says stop, and throws if rank 0 is lost. Only rank 0 reads the
+  // job. Rank 0 calls checkpoint with the frames begun so far every options.checkpoint seconds
+  // while tiles come in, for main to keep on disk: mpirun may kill rank 0 at once when another
+  // rank dies, with no time to write anything then.
   using FrameDone = std::function<void(int frame, RenderResult&& image)>;
-  std::optional<FarmResult> render(const FarmJob& job,
-                                   const std::function<RenderResult(const Tile&)>& render_tile,
+  using RenderTile = std::function<RenderResult(const Assign&)>;
+  std::optional<FarmResult> render(const FarmJob& job, const RenderTile& render_tile,
                                    const FrameDone& on_frame,
                                    const std::function<void(const FarmResult&)>& checkpoint = {});
+  // Rank 0, after the last job: tells the workers to stop (once; later calls do nothing).
+  void stop();
 
  private:
   struct Peer;
   void start_master(const std::function<uint64_t()>& load);
   void start_worker(const std::function<uint64_t()>& load);
   struct Frames;  // rank 0: the frames begun and not complete
-  FarmResult render_master(const FarmJob& job,
-                           const std::function<RenderResult(const Tile&)>& render_tile,
+  FarmResult render_master(const FarmJob& job, const RenderTile& render_tile,
                            const FrameDone& on_frame,
                            const std::function<void(const FarmResult&)>& checkpoint);
   // Rank 0: the counts, unfinished frames and per-rank report of R, as they are now.
   void report(FarmResult& R, const TileQueue& queue, const Frames& open) const;
-  void render_worker(const std::function<RenderResult(const Tile&)>& render_tile);
+  void render_worker(const RenderTile& render_tile);
   // Rank 0: the rank is lost; its tiles go back to the queue (if there is one).
   void lose(int rank, const std::string& why, bool responsive, TileQueue* queue);
   // Rank 0: ranks silent for too long are lost. Workers: throws if rank 0 is.
@@ -167,6 +181,7 @@ class Farm {
   double heard0_ = 0;        // workers: when rank 0 was last heard
   double last_beat_ = 0;
   bool loaded_ = false;
+  bool stopped_ = false;  // rank 0: the workers were told to stop
   std::vector<std::string> warnings_;
   std::unique_ptr<Lane> lane_;
 };

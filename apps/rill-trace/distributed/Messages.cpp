@@ -103,11 +103,45 @@ void unpack(const Bytes& b, Hello& m) {
   Reader(b).get(m.ok).get(m.scene_hash).get(m.host).get(m.backend).get(m.message).end();
 }
 
-Bytes pack(const Tile& m) {
-  return Writer().put(m.id).put(m.frame).put(m.x).put(m.y).put(m.width).put(m.height).take();
+Bytes pack(const Assign& m) {
+  const Tile& t = m.tile;
+  const Accumulation& a = m.resume;
+  return Writer()
+      .put(t.id)
+      .put(t.frame)
+      .put(t.x)
+      .put(t.y)
+      .put(t.width)
+      .put(t.height)
+      .put(m.spp)
+      .put(m.accumulation)
+      .put(a.width)
+      .put(a.height)
+      .put(a.samples)
+      .put(a.sum)
+      .put(a.carry)
+      .put(a.squares)
+      .take();
 }
-void unpack(const Bytes& b, Tile& m) {
-  Reader(b).get(m.id).get(m.frame).get(m.x).get(m.y).get(m.width).get(m.height).end();
+void unpack(const Bytes& b, Assign& m) {
+  Tile& t = m.tile;
+  Accumulation& a = m.resume;
+  Reader(b)
+      .get(t.id)
+      .get(t.frame)
+      .get(t.x)
+      .get(t.y)
+      .get(t.width)
+      .get(t.height)
+      .get(m.spp)
+      .get(m.accumulation)
+      .get(a.width)
+      .get(a.height)
+      .get(a.samples)
+      .get(a.sum)
+      .get(a.carry)
+      .get(a.squares)
+      .end();
 }
 
 Bytes pack(const TileDone& m) {
@@ -125,6 +159,13 @@ Bytes pack(const TileDone& m) {
       .put(p.normal)
       .put(p.albedo)
       .put(p.variance)
+      .put(p.spp)
+      .put(p.accumulation.width)
+      .put(p.accumulation.height)
+      .put(p.accumulation.samples)
+      .put(p.accumulation.sum)
+      .put(p.accumulation.carry)
+      .put(p.accumulation.squares)
       .take();
 }
 void unpack(const Bytes& b, TileDone& m) {
@@ -142,6 +183,13 @@ void unpack(const Bytes& b, TileDone& m) {
       .get(p.normal)
       .get(p.albedo)
       .get(p.variance)
+      .get(p.spp)
+      .get(p.accumulation.width)
+      .get(p.accumulation.height)
+      .get(p.accumulation.samples)
+      .get(p.accumulation.sum)
+      .get(p.accumulation.carry)
+      .get(p.accumulation.squares)
       .end();
 }
 

@@ -190,18 +190,182 @@ TEST_F(Distributed, AlbedoAndVarianceAreTheSingleProcesss) {
   }
 }
 
-// What the farm does not do yet is refused at the start, by name, before any tile.
-TEST_F(Distributed, TimeLimitSaveAndResumeAreRefusedByName) {
+// The samples per pixel a progressive render reports on stdout ("path: N samples per pixel"),
+// or -1.
+int reported_spp(const std::string& out) {
+  const size_t at = out.find("path: ");
+  int spp = -1;
+  if (at == std::string::npos || std::sscanf(out.c_str() + at, "path: %d", &spp) != 1) return -1;
+  return spp;
+}
+
+// Every output of a path-traced render, the albedo and the variance (in the EXR) included.
+std::string path_outputs(const std::string& name) {
+  return outputs(name) + " --albedo " + name + "-albedo.pfm";
+}
+const char* const kPathSuffixes[] = {".png",        ".pfm", "-depth.pfm", "-prim.pfm",
+                                     "-normal.pfm", ".exr", "-albedo.pfm"};
+
+// A progressive render under mpirun goes in rounds (docs/distributed.md, "Rounds"): each
+// round a job over every tile, each tile going on from its slice of the sums rank 0 keeps.
+// The image, every AOV, the variance and the saved sums are the single-process render's of
+// the same spp, byte for byte: rounds of --save-every 2 (2, 4, 6, 7), and rounds doubling
+// under a time limit that is never reached (1, 3, 7), for 2 and 3 ranks and tiles of 7, which
+// divide neither side.
+TEST_F(Distributed, RoundsAreTheSingleProcesssRenderAndSums) {
   RT_REQUIRE_MPI();
   TempDir dir;
-  const std::string path = " render builtin:cornell-path --size 16x12 --spp 2 --quiet";
-  for (const std::string& option : {std::string("--time-limit 5"), std::string("--save s.acc")}) {
-    SCOPED_TRACE(option);
-    Result r = run_command(kMpirun + " -np 2 " + kExe + path + " " + option, dir, 60);
-    EXPECT_NE(r.status, 0);
-    const std::string name = option.substr(0, option.find(' '));
-    EXPECT_TRUE(has(r.err, name + " is not supported under mpirun yet")) << r.err;
+  const std::string path =
+      " render builtin:cornell-path --size 40x30 --spp 7 --threads 1 --quiet --variance";
+  Result ref = run_command(kExe + path + path_outputs("ref") + " --save ref.acc", dir);
+  ASSERT_EQ(ref.status, 0) << ref.err;
+  const std::string sums = read_text(dir.path("ref.acc"));
+  ASSERT_EQ(sums.substr(0, 8), "RILLACC2");  // with the squares, for the variance
+  for (auto [ranks, rounds] :
+       {std::pair{2, std::string("--save-every 2")}, {3, std::string("--time-limit 100000")}}) {
+    const std::string name = "np" + std::to_string(ranks);
+    SCOPED_TRACE(name + " " + rounds);
+    Result r = run_command(kMpirun + " -np " + std::to_string(ranks) + " " + kExe + path +
+                               path_outputs(name) + " --tile 7 --tail-tile 3 --save " + name +
+                               ".acc --stats-json " + name + ".json " + rounds,
+                           dir, 120);
+    ASSERT_EQ(r.status, 0) << r.err;
+    expect_same_files(dir, "ref", name, kPathSuffixes, std::size(kPathSuffixes));
+    EXPECT_TRUE(read_text(dir.path(name + ".acc")) == sums) << name << ".acc differs";
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir.path(name + ".json")));
+    std::vector<int> reached;
+    for (const nlohmann::json& round : j.at("distributed").at("rounds"))
+      reached.push_back(round.at("spp").get<int>());
+    EXPECT_EQ(reached, ranks == 2 ? std::vector<int>({2, 4, 6, 7}) : std::vector<int>({1, 3, 7}));
+    EXPECT_EQ(j.at("spp_reached"), 7);
   }
+}
+
+// A render saved by one process goes on under mpirun, and one saved under mpirun goes on in
+// one process: either way the image and the sums are those rendered at once, byte for byte.
+TEST_F(Distributed, ResumeAcrossOneAndManyProcessesIsBitwise) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string path = " render builtin:cornell-path --size 40x30 --threads 1 --variance";
+  ASSERT_EQ(run_command(kExe + path + " --spp 7 --quiet --save ref.acc" + path_outputs("ref"), dir)
+                .status,
+            0);
+  ASSERT_EQ(run_command(kExe + path + " --spp 3 --quiet --save one.acc", dir).status, 0);
+  Result many =
+      run_command(kMpirun + " -np 2 " + kExe + path +
+                      " --spp 7 --resume one.acc --save many.acc --tile 9" + path_outputs("many"),
+                  dir, 120);
+  ASSERT_EQ(many.status, 0) << many.err;
+  EXPECT_EQ(reported_spp(many.out), 7) << many.out;
+  EXPECT_TRUE(has(many.out, "(3 resumed)")) << many.out;
+  expect_same_files(dir, "ref", "many", kPathSuffixes, std::size(kPathSuffixes));
+  EXPECT_TRUE(read_text(dir.path("many.acc")) == read_text(dir.path("ref.acc")));
+
+  Result saved = run_command(
+      kMpirun + " -np 3 " + kExe + path + " --spp 3 --quiet --save three.acc --tile 9", dir, 120);
+  ASSERT_EQ(saved.status, 0) << saved.err;
+  EXPECT_TRUE(read_text(dir.path("three.acc")) == read_text(dir.path("one.acc")));
+  Result one = run_command(
+      kExe + path + " --spp 7 --quiet --resume three.acc --save again.acc" + path_outputs("again"),
+      dir);
+  ASSERT_EQ(one.status, 0) << one.err;
+  expect_same_files(dir, "ref", "again", kPathSuffixes, std::size(kPathSuffixes));
+  EXPECT_TRUE(read_text(dir.path("again.acc")) == read_text(dir.path("ref.acc")));
+}
+
+// --time-limit: rank 0 stops after the round that crosses it, says how many samples per
+// pixel the image has (fewer than the target, which no machine reaches in the limit), and the
+// image and its variance are the single-process render of that many, byte for byte.
+TEST_F(Distributed, TimeLimitStopsAfterARoundAtTheSingleProcesssImage) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string path = " render builtin:cornell-path --size 40x30 --threads 1 --variance";
+  for (int ranks : {2, 3}) {
+    const std::string name = "np" + std::to_string(ranks);
+    SCOPED_TRACE(name);
+    Result r = run_command(kMpirun + " -np " + std::to_string(ranks) + " " + kExe + path +
+                               " --spp 1048576 --time-limit 1 --tile 11 --save " + name +
+                               ".acc --stats-json " + name + ".json" + path_outputs(name),
+                           dir, 120);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(has(r.out, "stopped by --time-limit")) << r.out;
+    const int spp = reported_spp(r.out);
+    ASSERT_GE(spp, 1) << r.out;
+    ASSERT_LT(spp, 1048576) << r.out;
+    const nlohmann::json j = nlohmann::json::parse(read_text(dir.path(name + ".json")));
+    EXPECT_EQ(j.at("spp_reached"), spp);
+    EXPECT_EQ(j.at("distributed").at("rounds").back().at("spp"), spp);
+    Result ref = run_command(kExe + path + " --quiet --spp " + std::to_string(spp) + " --save ref" +
+                                 name + ".acc" + path_outputs("ref" + name),
+                             dir, 120);
+    ASSERT_EQ(ref.status, 0) << ref.err;
+    expect_same_files(dir, "ref" + name, name, kPathSuffixes, std::size(kPathSuffixes));
+    EXPECT_TRUE(read_text(dir.path(name + ".acc")) == read_text(dir.path("ref" + name + ".acc")));
+  }
+}
+
+// A worker killed with kill -9 in the middle of the rounds, under mpirun --enable-recovery:
+// rank 0 finds it silent, its tiles of the round in flight go to the other ranks, the rounds
+// after go on without it, and the image and the sums are still the single process's. It is
+// killed once the first round's sums are on disk (--save-every), so in a later round.
+TEST_F(Distributed, AWorkerKilledInARoundIsLostAndTheRoundsComplete) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string path = " render builtin:cornell-path --size 80x60 --spp 48 --threads 1";
+  ASSERT_EQ(
+      run_command(kExe + path + " --quiet --save ref.acc --out ref.png --pfm ref.pfm", dir, 120)
+          .status,
+      0);
+  const std::string job = path +
+                          " --save-every 4 --save g.acc --tile 8 --rank-timeout 2"
+                          " --out g.png --pfm g.pfm --stats-json g.json --quiet";
+  dir.file("kill.sh",
+           "(n=0; while [ ! -e g.acc ] && [ $n -lt 600 ]; do sleep 0.05; n=$((n + 1)); done; "
+           "kill -KILL $$) &\nexec " +
+               kExe + " \"$@\"\n");
+  Result r = run_command(kMpirun + " --enable-recovery -np 2 " + kExe + job + " : -np 1 sh " +
+                             dir.path("kill.sh") + job,
+                         dir, 180);
+  ASSERT_NE(r.status, 124) << "hung: " << r.err;
+  EXPECT_TRUE(has(r.err, "rill-trace: warning: rank 2 on ")) << r.err;
+  EXPECT_TRUE(has(r.err, "is lost (sent nothing for 2 s")) << r.err;
+  expect_same_files(dir, "ref", "g", kSuffixes, 2);
+  EXPECT_TRUE(read_text(dir.path("g.acc")) == read_text(dir.path("ref.acc")));
+  const nlohmann::json j = nlohmann::json::parse(read_text(dir.path("g.json")));
+  EXPECT_EQ(j.at("distributed").at("rounds").size(), 12u);
+  EXPECT_NE(j.at("distributed").at("per_rank").at(2).at("lost"), "");
+}
+
+// A --resume file that does not fit the render is refused by rank 0 before any tile, with the
+// single process's message naming the file (no rank prefix: rank 0 read it); so are rounds
+// of an image sequence.
+TEST_F(Distributed, AResumeFileThatDoesNotFitIsRefusedByRankZero) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string path = " render builtin:cornell-path --threads 1 --quiet";
+  ASSERT_EQ(run_command(kExe + path + " --size 16x12 --spp 2 --save s.acc", dir).status, 0);
+  for (auto [options, message] :
+       {std::pair{std::string(" --size 20x12 --spp 4"),
+                  std::string("s.acc: saved at 16x12, the render is 20x12")},
+        {" --size 16x12 --spp 4 --seed 9", "s.acc: saved with seed "},
+        {" --size 16x12 --spp 4 --max-depth 2", "s.acc: saved from another scene"},
+        {" --size 16x12 --spp 1", "s.acc: holds 2 samples per pixel, more than the 1"},
+        {" --size 16x12 --spp 4 --variance --exr v.exr", "s.acc: saved without --variance"}}) {
+    SCOPED_TRACE(options);
+    Result r = run_command(
+        kMpirun + " -np 2 " + kExe + path + options + " --resume s.acc --out o.png", dir, 60);
+    ASSERT_NE(r.status, 124) << "hung: " << r.err;
+    EXPECT_NE(r.status, 0);
+    EXPECT_TRUE(has(r.err, "rill-trace: " + message)) << r.err;  // rank 0's, unprefixed
+    EXPECT_FALSE(has(r.err, "rank 1 on")) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path("o.png")));
+  }
+  Result frames = run_command(kMpirun + " -np 2 " + kExe +
+                                  " render builtin:cornell-path --size 16x12 --quiet "
+                                  "--frames 0:1 --out f-%04d.png --save f.acc",
+                              dir, 60);
+  EXPECT_NE(frames.status, 0);
+  EXPECT_TRUE(has(frames.err, "render one still frame")) << frames.err;
 }
 
 // An image sequence (--frames) over the ranks: every frame's files are the single process's,
