@@ -310,17 +310,18 @@ TEST_F(Distributed, TimeLimitStopsAfterARoundAtTheSingleProcesssImage) {
 // A worker killed with kill -9 in the middle of the rounds, under mpirun --enable-recovery:
 // rank 0 finds it silent, its tiles of the round in flight go to the other ranks, the rounds
 // after go on without it, and the image and the sums are still the single process's. It is
-// killed once the first round's sums are on disk (--save-every), so in a later round.
+// killed once the first round's sums are on disk (--save-every), so in a later round (of
+// 12, which take a second or more).
 TEST_F(Distributed, AWorkerKilledInARoundIsLostAndTheRoundsComplete) {
   RT_REQUIRE_MPI();
   TempDir dir;
-  const std::string path = " render builtin:cornell-path --size 80x60 --spp 48 --threads 1";
+  const std::string path = " render builtin:cornell-path --size 120x90 --spp 96 --threads 1";
   ASSERT_EQ(
       run_command(kExe + path + " --quiet --save ref.acc --out ref.png --pfm ref.pfm", dir, 120)
           .status,
       0);
   const std::string job = path +
-                          " --save-every 4 --save g.acc --tile 8 --rank-timeout 2"
+                          " --save-every 8 --save g.acc --tile 8 --rank-timeout 2"
                           " --out g.png --pfm g.pfm --stats-json g.json --quiet";
   dir.file("kill.sh",
            "(n=0; while [ ! -e g.acc ] && [ $n -lt 600 ]; do sleep 0.05; n=$((n + 1)); done; "
@@ -341,7 +342,7 @@ TEST_F(Distributed, AWorkerKilledInARoundIsLostAndTheRoundsComplete) {
 
 // A --resume file that does not fit the render is refused by rank 0 before any tile, with the
 // single process's message naming the file (no rank prefix: rank 0 read it); so are rounds
-// of an image sequence.
+// of an image sequence or of an animated scene (one still frame only, as in one process).
 TEST_F(Distributed, AResumeFileThatDoesNotFitIsRefusedByRankZero) {
   RT_REQUIRE_MPI();
   TempDir dir;
@@ -363,12 +364,17 @@ TEST_F(Distributed, AResumeFileThatDoesNotFitIsRefusedByRankZero) {
     EXPECT_FALSE(has(r.err, "rank 1 on")) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.path("o.png")));
   }
-  Result frames = run_command(kMpirun + " -np 2 " + kExe +
-                                  " render builtin:cornell-path --size 16x12 --quiet "
-                                  "--frames 0:1 --out f-%04d.png --save f.acc",
-                              dir, 60);
-  EXPECT_NE(frames.status, 0);
-  EXPECT_TRUE(has(frames.err, "render one still frame")) << frames.err;
+  // builtin:bounce is animated: a still of it too renders one frame of many.
+  for (const std::string& frames :
+       {std::string(" --frames 0:1 --out f-%04d.png"), std::string(" --out f.png")}) {
+    Result r = run_command(kMpirun + " -np 2 " + kExe +
+                               " render builtin:bounce --size 16x12 --integrator path --quiet "
+                               "--save f.acc" +
+                               frames,
+                           dir, 60);
+    EXPECT_NE(r.status, 0);
+    EXPECT_TRUE(has(r.err, "render one still frame")) << r.err;
+  }
 }
 
 // An image sequence (--frames) over the ranks: every frame's files are the single process's,
