@@ -60,32 +60,6 @@ void on_signal(int sig, siginfo_t* info, void*) {
   g_signal = sig;
 }
 
-// Rank 0 answers SIGTERM and SIGINT by returning what it has (Farm.h); the handlers rill-trace
-// had before come back afterwards.
-class SignalGuard {
- public:
-  SignalGuard() {
-    g_signal = 0;
-    g_from_launcher = 0;
-    struct sigaction sa {};
-    sa.sa_sigaction = on_signal;
-    sa.sa_flags = SA_SIGINFO;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGTERM, &sa, &term_);
-    sigaction(SIGINT, &sa, &int_);
-  }
-  ~SignalGuard() {
-    sigaction(SIGTERM, &term_, nullptr);
-    sigaction(SIGINT, &int_, nullptr);
-  }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
-
- private:
-  struct sigaction term_ {
-  }, int_{};
-};
-
 // A function's result, computed on the farm's lane (below), polled by the main thread.
 template <class T>
 class Background {
@@ -216,6 +190,31 @@ struct Farm::Peer {
 
 Farm::Farm(MpiSession& mpi, const FarmOptions& options)
     : mpi_(mpi), o_(options), lane_(std::make_unique<Lane>()) {}
+// Rank 0 answers SIGTERM and SIGINT by returning what it has (Farm.h); the handlers rill-trace
+// had before come back afterwards.
+struct Farm::Signals {
+  Signals() {
+    g_signal = 0;
+    g_from_launcher = 0;
+    struct sigaction sa {};
+    sa.sa_sigaction = on_signal;
+    sa.sa_flags = SA_SIGINFO;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGTERM, &sa, &term_);
+    sigaction(SIGINT, &sa, &int_);
+  }
+  ~Signals() {
+    sigaction(SIGTERM, &term_, nullptr);
+    sigaction(SIGINT, &int_, nullptr);
+  }
+  Signals(const Signals&) = delete;
+  Signals& operator=(const Signals&) = delete;
+
+ private:
+  struct sigaction term_ {
+  }, int_{};
+};
+
 Farm::~Farm() = default;
 
 void Farm::beat() {
@@ -369,6 +368,7 @@ std::optional<FarmResult> Farm::render(const FarmJob& job, const RenderTile& ren
 }
 
 void Farm::stop() {
+  signals_.reset();  // rill-trace's own handlers again
   if (mpi_.rank() != 0 || stopped_) return;
   stopped_ = true;
   for (int r = 1; r < mpi_.size(); ++r)
@@ -500,7 +500,7 @@ FarmResult Farm::render_master(const FarmJob& job, const RenderTile& render_tile
   TileQueue queue(std::move(tiles));
   R.tiles = queue.total();
   R.frames = job.frames;
-  SignalGuard signals;
+  if (!signals_) signals_ = std::make_unique<Signals>();
   std::exception_ptr output_error;  // on_frame failed
 
   // The tile back from a rank: into its frame's image, once; a frame complete goes to the
@@ -665,7 +665,10 @@ FarmResult Farm::render_master(const FarmJob& job, const RenderTile& render_tile
   draw_progress(true);
   R.wall_ms = (now_s() - t0) * 1e3;
   report(R, queue, frames);
-  if (R.interrupted && R.by_launcher) return R;  // mpirun is ending the job: no time for goodbyes
+  if (R.interrupted && R.by_launcher) {
+    signals_.reset();  // the caller ignores the signals that follow while it writes
+    return R;          // mpirun is ending the job: no time for goodbyes
+  }
   if (R.interrupted) {
     // Rank 0 itself was interrupted: the workers are told to stop (they drop the tiles in
     // hand), and rank 0's own tiles in flight end, so that MPI_Finalize ends the job cleanly.

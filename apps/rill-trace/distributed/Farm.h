@@ -184,6 +184,10 @@ class Farm {
   bool stopped_ = false;  // rank 0: the workers were told to stop
   std::vector<std::string> warnings_;
   std::unique_ptr<Lane> lane_;
+  // Rank 0's SIGTERM and SIGINT handlers, from the first job to stop(): a signal between two
+  // rounds interrupts the next one at its start.
+  struct Signals;
+  std::unique_ptr<Signals> signals_;
 };
 
 using trace_cli::partial_name;  // PartialName.h

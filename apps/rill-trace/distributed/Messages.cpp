@@ -25,6 +25,13 @@ class Writer {
     b_.insert(b_.end(), p, p + v.size() * sizeof(T));
     return *this;
   }
+  Writer& put(const Tile& t) {
+    return put(t.id).put(t.frame).put(t.x).put(t.y).put(t.width).put(t.height);
+  }
+  // Running sums (a round's slice): size, samples, then the sum, carry and squares.
+  Writer& put(const Accumulation& a) {
+    return put(a.width).put(a.height).put(a.samples).put(a.sum).put(a.carry).put(a.squares);
+  }
   Bytes take() { return std::move(b_); }
 
  private:
@@ -51,6 +58,12 @@ class Reader {
     v.resize(n);
     if (n > 0) std::memcpy(v.data(), take(n * sizeof(T)), n * sizeof(T));
     return *this;
+  }
+  Reader& get(Tile& t) {
+    return get(t.id).get(t.frame).get(t.x).get(t.y).get(t.width).get(t.height);
+  }
+  Reader& get(Accumulation& a) {
+    return get(a.width).get(a.height).get(a.samples).get(a.sum).get(a.carry).get(a.squares);
   }
   void end() const {
     if (at_ != b_.size()) throw std::runtime_error("distributed: a message has trailing bytes");
@@ -104,44 +117,10 @@ void unpack(const Bytes& b, Hello& m) {
 }
 
 Bytes pack(const Assign& m) {
-  const Tile& t = m.tile;
-  const Accumulation& a = m.resume;
-  return Writer()
-      .put(t.id)
-      .put(t.frame)
-      .put(t.x)
-      .put(t.y)
-      .put(t.width)
-      .put(t.height)
-      .put(m.spp)
-      .put(m.accumulation)
-      .put(a.width)
-      .put(a.height)
-      .put(a.samples)
-      .put(a.sum)
-      .put(a.carry)
-      .put(a.squares)
-      .take();
+  return Writer().put(m.tile).put(m.spp).put(m.accumulation).put(m.resume).take();
 }
 void unpack(const Bytes& b, Assign& m) {
-  Tile& t = m.tile;
-  Accumulation& a = m.resume;
-  Reader(b)
-      .get(t.id)
-      .get(t.frame)
-      .get(t.x)
-      .get(t.y)
-      .get(t.width)
-      .get(t.height)
-      .get(m.spp)
-      .get(m.accumulation)
-      .get(a.width)
-      .get(a.height)
-      .get(a.samples)
-      .get(a.sum)
-      .get(a.carry)
-      .get(a.squares)
-      .end();
+  Reader(b).get(m.tile).get(m.spp).get(m.accumulation).get(m.resume).end();
 }
 
 Bytes pack(const TileDone& m) {
@@ -160,12 +139,7 @@ Bytes pack(const TileDone& m) {
       .put(p.albedo)
       .put(p.variance)
       .put(p.spp)
-      .put(p.accumulation.width)
-      .put(p.accumulation.height)
-      .put(p.accumulation.samples)
-      .put(p.accumulation.sum)
-      .put(p.accumulation.carry)
-      .put(p.accumulation.squares)
+      .put(p.accumulation)
       .take();
 }
 void unpack(const Bytes& b, TileDone& m) {
@@ -184,12 +158,7 @@ void unpack(const Bytes& b, TileDone& m) {
       .get(p.albedo)
       .get(p.variance)
       .get(p.spp)
-      .get(p.accumulation.width)
-      .get(p.accumulation.height)
-      .get(p.accumulation.samples)
-      .get(p.accumulation.sum)
-      .get(p.accumulation.carry)
-      .get(p.accumulation.squares)
+      .get(p.accumulation)
       .end();
 }
 

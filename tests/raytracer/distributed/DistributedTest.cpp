@@ -340,6 +340,34 @@ TEST_F(Distributed, AWorkerKilledInARoundIsLostAndTheRoundsComplete) {
   EXPECT_NE(j.at("distributed").at("per_rank").at(2).at("lost"), "");
 }
 
+// SIGINT to rank 0 in a round: the job stops as any interrupted render does (exit 130,
+// partial outputs), and --save keeps the sums of the rounds complete, from which one process
+// goes on to the image rendered at once, bitwise. The signal comes once the first round's sums
+// are on disk (--save-every), so in a later round.
+TEST_F(Distributed, SigintInARoundSavesTheRoundsComplete) {
+  RT_REQUIRE_MPI();
+  TempDir dir;
+  const std::string path = " render builtin:cornell-path --size 120x90 --spp 96 --threads 1";
+  ASSERT_EQ(run_command(kExe + path + " --quiet --out ref.png --pfm ref.pfm", dir, 120).status, 0);
+  const std::string job =
+      path + " --save-every 8 --save s.acc --tile 8 --out g.png --pfm g.pfm --quiet";
+  dir.file("rank0.sh", "echo $$ > rank0.pid\nexec " + kExe + " \"$@\"\n");
+  dir.file("interrupt.sh",
+           kMpirun + " -np 1 sh rank0.sh" + job + " : -np 1 " + kExe + job +
+               " &\nm=$!\nn=0\nwhile [ ! -e s.acc ] && [ $n -lt 1200 ]; "
+               "do sleep 0.05; n=$((n + 1)); done\nkill -INT $(cat rank0.pid)\nwait $m\n");
+  Result r = run_command("sh interrupt.sh", dir, 180);
+  ASSERT_NE(r.status, 124) << "hung: " << r.err;
+  ASSERT_FALSE(std::filesystem::exists(dir.path("g.png"))) << "ended before the signal";
+  EXPECT_EQ(r.status, 130) << r.err;
+  EXPECT_TRUE(has(r.err, "interrupted by SIGINT sent to rank 0")) << r.err;
+  EXPECT_TRUE(has(r.err, "rounds complete to s.acc")) << r.err;
+  Result resumed =
+      run_command(kExe + path + " --quiet --resume s.acc --out g.png --pfm g.pfm", dir, 120);
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  expect_same_files(dir, "ref", "g", kSuffixes, 2);
+}
+
 // A --resume file that does not fit the render is refused by rank 0 before any tile, with the
 // single process's message naming the file (no rank prefix: rank 0 read it); so are rounds
 // of an image sequence or of an animated scene (one still frame only, as in one process).
