@@ -168,6 +168,9 @@ rt::distributed::FarmResult render_rounds(
     if (o.save_every > 0) next = std::min(next, o.save_every);
     job.spp = done + next;
     job.resume = sums ? &*sums : nullptr;
+    job.label = "round " + std::to_string(rounds.done.size() + 1) + ": samples " +
+                std::to_string(done + 1) + ".." + std::to_string(job.spp) + " of " +
+                std::to_string(target);
     std::optional<rt::RenderResult> got;
     const double start_ms = clock.ms();
     dist::FarmResult R = *farm.render(

@@ -559,6 +559,7 @@ FarmResult Farm::render_master(const FarmJob& job, const RenderTile& render_tile
                  trace_cli::progress_bar(queue.done(), queue.total()).c_str(), queue.done(),
                  queue.total());
     if (job.frames > 1) std::fprintf(stderr, ", %d/%d frames", frames.complete, job.frames);
+    if (!job.label.empty()) std::fprintf(stderr, ", %s", job.label.c_str());
     std::fprintf(stderr, "; per rank");
     for (size_t r = 0; r < peers_.size() && r < 16; ++r)
       std::fprintf(stderr, " %d%s", peers_[r].tiles, peers_[r].alive ? "" : "(lost)");

@@ -86,6 +86,7 @@ struct FarmJob {
   FrameOutputs outputs;
   int spp = 0;
   const Accumulation* resume = nullptr;
+  std::string label;  // after the progress bar's tiles (a round: its samples)
 };
 
 // A frame that was begun and is not complete: the tiles so far, for checkpoints and partial
