@@ -2,10 +2,13 @@
 #include "rill/rt/scene/AssimpFile.h"
 
 #include <assimp/MemoryIOWrapper.h>
+#include <assimp/DefaultLogger.hpp>
 #include <assimp/IOSystem.hpp>
+#include <assimp/LogStream.hpp>
 
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <new>
 
 #include "rill/rt/scene/InputFile.h"
@@ -42,9 +45,57 @@ class InputFileSystem : public Assimp::IOSystem {
   std::string refusal;
 };
 
+// assimp's log lines at warning level and above, without its "Warn,  T0: " prefix.
+class LogLines : public Assimp::LogStream {
+ public:
+  explicit LogLines(std::vector<std::string>& lines) : lines_(lines) {}
+  void write(const char* message) override {
+    std::string m = message;
+    const size_t colon = m.find(": ");
+    if (colon != std::string::npos && colon < 16) m.erase(0, colon + 2);
+    while (!m.empty() && (m.back() == '\n' || m.back() == '\r')) m.pop_back();
+    if (!m.empty()) lines_.push_back(m);
+  }
+
+ private:
+  std::vector<std::string>& lines_;
+};
+
+// assimp's log is one per process (DefaultLogger): reads take turns, each listening to it
+// while it reads. A program that made its own logger keeps it (ours is attached beside it).
+std::mutex& log_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+class Listening {
+ public:
+  explicit Listening(std::vector<std::string>& lines) : lock_(log_mutex()), stream_(lines) {
+    if (Assimp::DefaultLogger::isNullLogger()) {
+      Assimp::DefaultLogger::create(nullptr, Assimp::Logger::NORMAL, 0);
+      made_ = true;
+    }
+    Assimp::DefaultLogger::get()->attachStream(&stream_,
+                                               Assimp::Logger::Warn | Assimp::Logger::Err);
+  }
+  ~Listening() {
+    Assimp::DefaultLogger::get()->detachStream(&stream_,
+                                               Assimp::Logger::Warn | Assimp::Logger::Err);
+    if (made_) Assimp::DefaultLogger::kill();
+  }
+  Listening(const Listening&) = delete;
+  Listening& operator=(const Listening&) = delete;
+
+ private:
+  std::lock_guard<std::mutex> lock_;
+  LogLines stream_;
+  bool made_ = false;
+};
+
 }  // namespace
 
 AssimpFile::AssimpFile(const std::string& path, const std::string& kind) {
+  Listening listening(log_);
   auto* io = new InputFileSystem;
   importer_.SetIOHandler(io);  // the importer owns it from here
   try {

@@ -166,6 +166,20 @@ void warn_common(Scene& s, const Walk& w) {
                          w.first_bad);
 }
 
+// assimp's log of the read: faces it dropped for out-of-range indices are an error (as an OBJ
+// file's are), anything else a warning naming the file (the first 3, then a count).
+void check_log(Scene& s, const AssimpFile& file, const std::string& path) {
+  size_t shown = 0;
+  for (const std::string& line : file.log()) {
+    if (line.find("out-of-range indices") != std::string::npos)
+      throw SceneError(path + ": faces refer to vertices that are not there (assimp: " +
+                       clipped(line, 200) + ")");
+    if (++shown <= 3) s.warnings.push_back(path + ": assimp: " + clipped(line, 200));
+  }
+  if (shown > 3)
+    s.warnings.push_back(path + ": " + grouped(shown - 3) + " more warnings from assimp");
+}
+
 void check_not_empty(const Scene& s, const std::string& path, const ObjLoadOptions& opt) {
   if (s.triangle_count() == 0 && !opt.input.allow_empty)
     throw SceneError(path + ": no triangles in the file (--allow-empty loads it as no triangles)");
@@ -199,6 +213,7 @@ Scene load_ply(const std::string& path, const ObjLoadOptions& opt) {
   AssimpFile file(path, "PLY");
   const aiScene& as = file.scene();
   Scene s;
+  check_log(s, file, path);
   s.name = fs::path(path).stem().string();
   const int mat = s.add_material(opt.override_material ? *opt.override_material : default_grey());
   Walk w(path, opt);
@@ -226,6 +241,7 @@ Scene load_gltf(const std::string& path, const ObjLoadOptions& opt) {
   AssimpFile file(path, "glTF 2.0");
   const aiScene& as = file.scene();
   Scene s;
+  check_log(s, file, path);
   s.name = fs::path(path).stem().string();
   std::vector<std::string> ignored;
   // What the file has that Rill does not map, counted from the JSON (assimp drops some).

@@ -33,7 +33,6 @@ bool have_assimp() {
 
 Scene load_mesh_file(const std::string& path, const ObjLoadOptions& opt) {
   const std::string ext = extension(path);
-  if (ext == ".obj") return load_obj(path, opt);
   if (ext == ".ply" || ext == ".gltf" || ext == ".glb") {
     if (!have_assimp())
       throw SceneError(path + ": this Rill was built without assimp, which reads " +
@@ -41,8 +40,8 @@ Scene load_mesh_file(const std::string& path, const ObjLoadOptions& opt) {
                        " files (install libassimp-dev and configure again)");
     return ext == ".ply" ? load_ply(path, opt) : load_gltf(path, opt);
   }
-  throw SceneError(path + ": unknown mesh file type '" + ext +
-                   "' (expected .obj, .ply, .gltf or .glb)");
+  // Any other name is an OBJ file, as a JSON mesh's file always was (whatever its extension).
+  return load_obj(path, opt);
 }
 
 #ifndef RILL_HAVE_ASSIMP

@@ -14,10 +14,11 @@ bool is_mesh_file(const std::string& path);
 // True when this build reads PLY and glTF (assimp was found at configure time).
 bool have_assimp();
 
-// The mesh file at `path`, by its extension (case-insensitive). The options are OBJ's
+// The mesh file at `path`, by its extension (case-insensitive): .ply, .gltf and .glb, and any
+// other name an OBJ file (as JSON meshes' files always were). The options are OBJ's
 // (ObjLoadOptions): the transform, a material that overrides the file's, the input rules and
-// the computed normals. Throws SceneError naming the file: an unknown extension, a PLY or glTF
-// file in a build without assimp, or whatever its loader finds.
+// the computed normals. Throws SceneError naming the file: a PLY or glTF file in a build
+// without assimp, or whatever its loader finds.
 Scene load_mesh_file(const std::string& path, const ObjLoadOptions& opt = {});
 
 // PLY (ASCII or binary): its faces in file order, polygons triangulated as OBJ's are
