@@ -362,15 +362,28 @@ std::string replaced(std::string s, const std::string& from, const std::string& 
   return s.replace(at, from.size(), to);
 }
 
+struct BadFile {
+  std::string name, text, message;
+};
+
+// Each file, written as NAME + ext, is an error starting with its path and holding message.
+void expect_errors(const testing::TempDir& dir, const std::vector<BadFile>& cases,
+                   const std::string& ext) {
+  for (const BadFile& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string file = dir.file(c.name + ext, c.text);
+    const std::string e = testing::error_of([&] { load_scene(file); });
+    EXPECT_EQ(e.find(file + ": "), 0u) << e;
+    EXPECT_NE(e.find(c.message), std::string::npos) << e;
+  }
+}
+
 TEST(MeshFile, BadPlyIsAnErrorNamingFileAndPlace) {
   RT_REQUIRE_ASSIMP();
   testing::TempDir dir;
   const std::string ascii = ply_text(PlyFormat::Ascii);
   const std::string binary = ply_text(PlyFormat::Little);
-  struct Case {
-    std::string name, text, message;
-  };
-  const Case cases[] = {
+  const std::vector<BadFile> cases = {
       {"more-vertices", replaced(ascii, "element vertex 14", "element vertex 15"),
        "the file ends in element 'face' number 2 (of 4 declared, counting from 0): truncated, "
        "or the header's counts are wrong"},
@@ -394,13 +407,7 @@ TEST(MeshFile, BadPlyIsAnErrorNamingFileAndPlace) {
                 "property list uchar int vertex_indices\n", ""),
        "no triangles in the file (--allow-empty loads it as no triangles)"},
   };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.name);
-    const std::string file = dir.file(c.name + ".ply", c.text);
-    const std::string e = testing::error_of([&] { load_scene(file); });
-    EXPECT_EQ(e.find(file + ": "), 0u) << e;
-    EXPECT_NE(e.find(c.message), std::string::npos) << e;
-  }
+  expect_errors(dir, cases, ".ply");
   // --allow-empty: a file without faces is no triangles.
   InputOptions empty;
   empty.allow_empty = true;
@@ -413,10 +420,7 @@ TEST(MeshFile, BadGltfIsAnErrorNamingFileAndWhat) {
   RT_REQUIRE_ASSIMP();
   testing::TempDir dir;
   const std::string good = gltf_embedded();
-  struct Case {
-    std::string name, text, message;
-  };
-  const Case cases[] = {
+  const std::vector<BadFile> cases = {
       {"index",
        gltf_json("data:application/octet-stream;base64," + base64(gltf_buffer({0, 1, 2, 0, 2, 9})),
                  ""),
@@ -432,22 +436,17 @@ TEST(MeshFile, BadGltfIsAnErrorNamingFileAndWhat) {
        "material 't' baseColorTexture: " + dir.path("gone.png")},
       {"version", replaced(good, R"("version": "2.0")", R"("version": "1.0")"),
        "glTF version '1.0': Rill reads glTF 2.0"},
-      {"truncated", good.substr(0, good.size() / 2), "assimp cannot read it as glTF 2.0"},
+      {"truncated", good.substr(0, good.size() / 2), "not a glTF file: invalid JSON: "},
+      {"deep", std::string(100000, '[') + std::string(100000, ']'),
+       "JSON nested deeper than 256 levels (objects and arrays): not a glTF file"},
+      {"not-gltf", R"({"meshes": []})", "not a glTF file: no \"asset\" object"},
       {"short-buffer",
        gltf_json("data:application/octet-stream;base64," + base64(gltf_buffer().substr(0, 100))),
        "assimp cannot read it as glTF 2.0"},
   };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.name);
-    const std::string file = dir.file(c.name + ".gltf", c.text);
-    const std::string e = testing::error_of([&] { load_scene(file); });
-    EXPECT_EQ(e.find(file + ": "), 0u) << e;
-    EXPECT_NE(e.find(c.message), std::string::npos) << e;
-  }
+  expect_errors(dir, cases, ".gltf");
   const std::string bin = glb(gltf_json(""), gltf_buffer());
-  const std::string file = dir.file("cut.glb", bin.substr(0, bin.size() - 20));
-  const std::string e = testing::error_of([&] { load_scene(file); });
-  EXPECT_EQ(e.find(file + ": "), 0u) << e;
+  expect_errors(dir, {{"cut", bin.substr(0, bin.size() - 20), "glTF"}}, ".glb");
 }
 
 // ---- rendering -------------------------------------------------------------------------

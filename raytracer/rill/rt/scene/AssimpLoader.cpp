@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -191,18 +192,68 @@ Material default_grey() {
   return grey;
 }
 
-// The glTF JSON (a .gltf file, or a .glb's first chunk); null when it cannot be found or
-// parsed, which assimp then reports.
-nlohmann::json gltf_json(const std::string& bytes) {
-  std::string text = bytes;
-  if (bytes.size() >= 20 && bytes.compare(0, 4, "glTF") == 0) {
-    uint32_t length = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);  // little-endian, as x86 and ARM are
-    if (bytes.compare(16, 4, "JSON") != 0 || length > bytes.size() - 20) return nullptr;
-    text = bytes.substr(20, length);
+// How deeply a glTF file's JSON may nest objects and arrays (real files nest under 10):
+// assimp's JSON parser recurses once per level, so a small file of brackets would overflow
+// its stack.
+constexpr int kMaxGltfJsonDepth = 256;
+
+// The deepest nesting of objects and arrays in JSON text (strings skipped).
+int json_depth(const std::string& t) {
+  int depth = 0, deepest = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < t.size(); ++i) {
+    const char c = t[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
   }
-  nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  return j.is_discarded() || !j.is_object() ? nlohmann::json(nullptr) : j;
+  return deepest;
+}
+
+// The glTF JSON of a .gltf file, or of a .glb's first chunk, checked before assimp reads the
+// file: an object with an "asset" of version 2.x. assimp would otherwise try its other
+// importers on a file its glTF reader refuses (a .gltf that is an MD5 or X file loads as one).
+nlohmann::json gltf_json(const std::string& bytes, const std::string& path, bool binary) {
+  auto fail = [&](const std::string& why) { throw SceneError(path + ": " + why); };
+  std::string text = bytes;
+  if (binary) {
+    uint32_t header[5] = {0, 0, 0, 0, 0};  // magic, version, length, chunk length, chunk type
+    if (bytes.size() < sizeof header || bytes.compare(0, 4, "glTF") != 0)
+      fail("not a .glb file (it does not start with the magic \"glTF\")");
+    std::memcpy(header, bytes.data(), sizeof header);  // little-endian, as x86 and ARM are
+    if (header[1] != 2)
+      fail("a .glb of version " + std::to_string(header[1]) + ": Rill reads glTF 2.0");
+    if (bytes.compare(16, 4, "JSON") != 0 || header[3] > bytes.size() - sizeof header)
+      fail("its first chunk is not a JSON chunk within the file: truncated, or not a .glb");
+    text = bytes.substr(sizeof header, header[3]);
+  }
+  if (json_depth(text) > kMaxGltfJsonDepth)
+    fail("JSON nested deeper than " + std::to_string(kMaxGltfJsonDepth) +
+         " levels (objects and arrays): not a glTF file");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    fail("not a glTF file: invalid JSON: " + clipped(e.what(), 200));
+  }
+  if (!j.is_object() || !j.contains("asset") || !j["asset"].is_object())
+    fail("not a glTF file: no \"asset\" object");
+  const nlohmann::json& version = j["asset"].contains("version") ? j["asset"]["version"] : j;
+  if (!version.is_string() || version.get<std::string>().rfind("2.", 0) != 0)
+    fail("glTF version " +
+         (version.is_string() ? "'" + clipped(version.get<std::string>()) + "'"
+                              : std::string("missing")) +
+         ": Rill reads glTF 2.0");
+  return j;
 }
 
 }  // namespace
@@ -232,12 +283,10 @@ Scene load_ply(const std::string& path, const ObjLoadOptions& opt) {
 
 Scene load_gltf(const std::string& path, const ObjLoadOptions& opt) {
   const std::string bytes = read_input_file(path, "a glTF file");
-  const nlohmann::json j = gltf_json(bytes);
-  if (j.is_object() && j.contains("asset") && j["asset"].is_object() &&
-      j["asset"].contains("version") && j["asset"]["version"].is_string() &&
-      j["asset"]["version"].get<std::string>().rfind("2.", 0) != 0)
-    throw SceneError(path + ": glTF version '" + clipped(j["asset"]["version"].get<std::string>()) +
-                     "': Rill reads glTF 2.0");
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool binary = ext == ".glb";
+  const nlohmann::json j = gltf_json(bytes, path, binary);
   AssimpFile file(path, "glTF 2.0");
   const aiScene& as = file.scene();
   Scene s;
@@ -245,7 +294,7 @@ Scene load_gltf(const std::string& path, const ObjLoadOptions& opt) {
   s.name = fs::path(path).stem().string();
   std::vector<std::string> ignored;
   // What the file has that Rill does not map, counted from the JSON (assimp drops some).
-  if (j.is_object()) {
+  {
     for (const char* key : {"animations", "skins", "cameras"})
       if (j.contains(key) && j[key].is_array() && !j[key].empty())
         ignored.push_back(std::to_string(j[key].size()) + " " + key);

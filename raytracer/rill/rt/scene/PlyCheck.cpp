@@ -4,7 +4,6 @@
 #include "rill/rt/scene/PlyCheck.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -37,6 +36,10 @@ int type_size(const std::string& t) {
     return 4;
   if (t == "double" || t == "float64") return 8;
   return 0;
+}
+
+bool blank(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
 }
 
 bool has_prop(const Element& e, const char* name) {
@@ -178,11 +181,12 @@ PlyLayout check_ply(const std::string& bytes, const std::string& path) {
           pos += static_cast<size_t>(n) * static_cast<size_t>(p.size);
         }
   } else {
-    // ASCII: values separated by blanks; each a number.
+    // ASCII: values separated by blanks (space, tab, line ends: what assimp's reader takes
+    // too, so that both split a line the same way); each a number.
     auto token = [&](std::string& t) {
-      while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
+      while (pos < bytes.size() && blank(bytes[pos])) ++pos;
       const size_t start = pos;
-      while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
+      while (pos < bytes.size() && !blank(bytes[pos])) ++pos;
       t.assign(bytes, start, pos - start);
       return !t.empty();
     };
@@ -213,7 +217,7 @@ PlyLayout check_ply(const std::string& bytes, const std::string& path) {
   }
   // What follows the last element: blanks only (a writer's final newline).
   for (; pos < bytes.size(); ++pos)
-    if (!std::isspace(static_cast<unsigned char>(bytes[pos])))
+    if (!blank(bytes[pos]))
       fail("data after the last element (at byte " + std::to_string(pos) +
            "): the header's counts are wrong");
   return layout;
