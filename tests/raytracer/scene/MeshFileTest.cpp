@@ -199,6 +199,13 @@ glm::vec3 face_normal(const Scene& s, size_t t) {
   return glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
 }
 
+// s with its first `from` (which must be there) replaced by `to`.
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
 // ---- PLY -------------------------------------------------------------------------------
 
 // ASCII, little- and big-endian PLY files load as the same OBJ: the same triangles in the
@@ -340,6 +347,22 @@ TEST(MeshFile, GltfBaseColorTextureAndMetallicMix) {
   EXPECT_EQ(m.params.at("roughness").number, 1.0f);  // glTF's default
 }
 
+// A node that scales by 0 flattens its mesh: triangles of no area (kept, never hit) and no
+// normals, since its matrix has no inverse.
+TEST(MeshFile, GltfNodeOfScaleZeroLoadsFlat) {
+  RT_REQUIRE_ASSIMP();
+  testing::TempDir dir;
+  const std::string layout =
+      replaced(kSquare, R"({"mesh": 0})", R"({"mesh": 0, "scale": [0, 0, 0]})");
+  const Scene s = load_mesh_file(
+      dir.file("m.gltf", gltf_json("data:application/octet-stream;base64," + base64(gltf_buffer()),
+                                   "", R"("name": "q")", layout)));
+  ASSERT_EQ(s.triangle_count(), 2u);
+  EXPECT_TRUE(s.normals.empty());
+  for (const glm::vec3& p : s.positions) EXPECT_EQ(p, glm::vec3(0.0f));
+  s.validate();
+}
+
 // What Rill does not map is named in one warning: cameras, extensions.
 TEST(MeshFile, GltfWarnsOnceOfWhatItIgnores) {
   RT_REQUIRE_ASSIMP();
@@ -355,12 +378,6 @@ TEST(MeshFile, GltfWarnsOnceOfWhatItIgnores) {
 }
 
 // ---- bad input -------------------------------------------------------------------------
-
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-  const size_t at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return s.replace(at, from.size(), to);
-}
 
 struct BadFile {
   std::string name, text, message;

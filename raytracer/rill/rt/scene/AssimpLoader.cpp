@@ -77,8 +77,12 @@ void add_mesh(Walk& w, const aiMesh& m, unsigned index, const aiMatrix4x4& to_wo
   // Normals by the inverse transpose; a mirroring matrix turns the winding, which glTF says
   // to undo (the front face stays the counter-clockwise one in the world).
   aiMatrix3x3 normal_matrix(to_world);
-  const bool mirrored = normal_matrix.Determinant() < 0.0f;
-  normal_matrix.Inverse().Transpose();
+  const float det = normal_matrix.Determinant();
+  const bool mirrored = det < 0.0f;
+  // A node that scales by 0 flattens its mesh (triangles without area, never hit): its normals
+  // have no inverse transpose, and the triangles get none.
+  const bool invertible = std::isfinite(det) && det != 0.0f;
+  if (invertible) normal_matrix.Inverse().Transpose();
   auto point = [&](unsigned i) {
     const aiVector3D p = identity ? m.mVertices[i] : to_world * m.mVertices[i];
     return w.opt.transform.apply_point(vec(p));
@@ -115,7 +119,7 @@ void add_mesh(Walk& w, const aiMesh& m, unsigned index, const aiMatrix4x4& to_wo
     for (const auto& t : cut.triangles) {
       Tri tri{};
       tri.mat = mat;
-      tri.has_normals = m.mNormals != nullptr;
+      tri.has_normals = m.mNormals != nullptr && invertible;
       tri.has_uv = uv != nullptr;
       for (int k = 0; k < 3; ++k) {
         const unsigned i = face.mIndices[t[mirrored && k > 0 ? 3 - k : k]];
