@@ -1,5 +1,6 @@
 // `rill-trace render`'s camera options (docs/cli.md, "Aiming the camera"): --eye, --look-at,
-// --up, --fov and --camera FILE.json override the scene's camera or the framing camera;
+// --up, --fov, --ortho-height, --aperture, --focus-distance and --camera FILE.json override the
+// scene's camera or the framing camera;
 // --up-axis picks the framing camera's up axis. Values are typed as the command line is read
 // (a bad one is exit status 2, naming the option); the combined camera is checked once the
 // scene is loaded (CommandLineError, also status 2).
@@ -23,8 +24,15 @@ struct CameraOptions {
   // --camera's keys first, then each option on top of them.
   std::optional<glm::vec3> eye, look_at, up;
   std::optional<float> fov_y;
+  // The projection and the lens (docs/camera.md): --ortho-height makes the camera
+  // orthographic; --aperture and --focus-distance give a perspective camera a thin lens.
+  std::optional<rt::Projection> projection;
+  std::optional<float> ortho_height, aperture, focus_distance;
   rt::UpAxis up_axis = rt::UpAxis::Auto;
-  bool any() const { return eye || look_at || up || fov_y; }
+  bool any() const {
+    return eye || look_at || up || fov_y || projection || ortho_height || aperture ||
+           focus_distance;
+  }
 };
 
 void add_camera_options(CLI::App* render, CameraOptions& o);

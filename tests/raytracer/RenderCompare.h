@@ -22,6 +22,18 @@ inline bool same(float a, float b) {
   return std::bit_cast<uint32_t>(flush(a)) == std::bit_cast<uint32_t>(flush(b));
 }
 
+// The settings of a render that a test compares: the scene's size and samples per pixel, on
+// `backend`, with the AOVs read back (expect_identical compares them too).
+inline RenderSettings compared_settings(const Scene& scene, const std::string& backend) {
+  RenderSettings rs;
+  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;
+  rs.backend = backend;
+  rs.width = scene.width;
+  rs.height = scene.height;
+  rs.spp = scene.options.spp;
+  return rs;
+}
+
 inline void expect_identical(const RenderResult& a, const RenderResult& b,
                              const std::string& what) {
   ASSERT_EQ(a.color.size(), b.color.size());

@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -99,6 +100,21 @@ inline std::vector<std::string> backend_names() {
   std::vector<std::string> names;
   for (rill::Backend* b : rill::backends()) names.push_back(b->name());
   return names;
+}
+
+// Whether the ray o + t d, t >= 0, meets the box [lo, hi] (in double).
+inline bool ray_meets_box(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi) {
+  double t0 = 0, t1 = HUGE_VAL;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      continue;
+    }
+    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  }
+  return t0 <= t1;
 }
 
 // float32 operations in the kernel's order (this file is compiled with -ffp-contract=off).

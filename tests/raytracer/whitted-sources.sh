@@ -3,9 +3,12 @@
 # Whitted scene without emitters generates the same kernel source"): the cpu backend's
 # generated megakernel source (segment loop) of five built-in scenes, which between them take
 # every Whitted shader, textures, refraction with its ray stack and a dynamic scene's BVH, has
-# the sha256 recorded in data/whitted-sources.sha256 (from 6187a3b, the commit before the path
-# integrator). A change to the Whitted kernels that is meant fails here: regenerate the list
-# with the command in the loop below and say why in the commit.
+# the sha256 recorded in data/whitted-sources.sha256. They were 6187a3b's (the commit before
+# the path integrator) until one kernel came to serve every output (issue 50, item 8): since
+# then the list is that of 4d90ac4's variant with the colour and the AOVs (its `--pfm --depth`
+# render), which the one kernel is byte for byte, 4d90ac4's `--out` variant having been 6187a3b's.
+# A change to the Whitted kernels that is meant fails here: regenerate the list with the
+# command in the loop below and say why in the commit.
 #   whitted-sources.sh RILL_TRACE DATA_DIR WORK_DIR
 set -eu
 exe=$1; data=$2; work=$3

@@ -62,7 +62,13 @@ uint64_t hash(const Scene& s, const std::string& settings, bool with_spp) {
     }
   }
   h.add(s.lights.size());
-  for (const Light& l : s.lights) h.add(l.position), h.add(l.color);
+  for (const Light& l : s.lights) {
+    h.add(l.position), h.add(l.color);
+    // A point light without falloff hashes as before these keys existed (saved files stay
+    // valid).
+    if (l.type != LightType::Point || l.falloff != Falloff::None)
+      h.add(l.type), h.add(l.direction), h.add(l.inner_deg), h.add(l.outer_deg), h.add(l.falloff);
+  }
   h.add(s.background);
   const SceneOptions& o = s.options;
   h.add(o.shadows), h.add(o.ambient), h.add(o.max_depth), h.add(o.grid), h.add(o.subgrid_min);

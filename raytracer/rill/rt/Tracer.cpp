@@ -62,6 +62,16 @@ StrategyFactory strategy_factory(const std::string& name) {
   throw std::invalid_argument("--strategy expects " + names + " (got '" + name + "')");
 }
 
+// The kernels generate one kind of camera ray, the scene's camera's (Features::camera).
+void check_camera_kind(const Features& F, const Camera& camera) {
+  const CameraKind k = camera_kind(camera);
+  if (k != F.camera)
+    throw std::runtime_error(std::string("render: a ") + camera_kind_name(k) +
+                             " camera, and this tracer's kernels were made for the scene's " +
+                             camera_kind_name(F.camera) +
+                             " camera: make the tracer from a scene with that kind of camera");
+}
+
 }  // namespace
 
 void register_strategy(const std::string& name, StrategyFactory make) {
@@ -137,6 +147,35 @@ std::unique_ptr<Scene> posed_at_start(const Scene& scene, const Features& f) {
   return posed;
 }
 
+// Grows [lo, hi] by a dynamic scene's moving triangles, or by its static ones, each counted as
+// scene_bounds counts them (three finite corners); returns whether it counted any. Both
+// together are scene_bounds (min and max do not depend on the order), so a frame's ray offset
+// (Shading::set_eps) is that of the scene baked at its time.
+bool grow_bounds(const Scene& s, bool moving, glm::vec3& lo, glm::vec3& hi) {
+  std::vector<bool> in_object(moving ? 0 : s.triangle_count(), false);
+  std::vector<std::pair<size_t, size_t>> ranges;
+  for (const AnimatedObject& o : s.animation.objects) {
+    if (moving) ranges.emplace_back(o.first, o.first + o.count);
+    for (size_t t = o.first; !moving && t < o.first + o.count; ++t) in_object[t] = true;
+  }
+  if (!moving) ranges.emplace_back(0, s.triangle_count());
+  bool any = false;
+  auto finite = [](const glm::vec3& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  };
+  for (const auto& range : ranges)
+    for (size_t t = range.first; t < range.second; ++t) {
+      const glm::vec3* p = &s.positions[3 * t];
+      if ((!moving && in_object[t]) || !finite(p[0]) || !finite(p[1]) || !finite(p[2])) continue;
+      for (int k = 0; k < 3; ++k) {
+        lo = glm::min(lo, p[k]);
+        hi = glm::max(hi, p[k]);
+      }
+      any = true;
+    }
+  return any;
+}
+
 using rill::ms_since;
 
 }  // namespace
@@ -162,6 +201,7 @@ struct Tracer::Impl {
     if (posed) {
       bvh = build_bvh(*posed, moving_triangles(*posed));
       device.bvh.upload(bvh);
+      static_any = grow_bounds(*posed, false, static_lo, static_hi);
     }
   }
 
@@ -175,6 +215,9 @@ struct Tracer::Impl {
   // triangles; null / empty for a static scene.
   std::unique_ptr<Scene> rest, posed;
   Bvh bvh;
+  // The bounds of the static triangles (whether there are any), for each frame's ray offset.
+  bool static_any = false;
+  glm::vec3 static_lo{INFINITY}, static_hi{-INFINITY};
   DeviceScene device;
   // The strategies made so far, by name: the megakernel with the tracer, the others at their
   // first frame (StrategyRegistry).
@@ -226,11 +269,8 @@ std::vector<std::string> Tracer::shaders() const {
 }
 
 std::string Tracer::source(const std::string& backend, Accuracy a, MegakernelLoop loop,
-                           const FrameOutputs& outputs, int spp) {
-  return d_->megakernel()
-      .kernel(backend, a, megakernel_loop_for(loop, backend),
-              MegakernelOutputs::for_frame(outputs, spp))
-      .source();
+                           const FrameOutputs&, int) {
+  return d_->megakernel().kernel(backend, a, megakernel_loop_for(loop, backend)).source();
 }
 
 FrameUpdate Tracer::set_time(double time, BvhUpdate how) {
@@ -241,6 +281,11 @@ FrameUpdate Tracer::set_time(double time, BvhUpdate how) {
   if (!I.rest) return u;
   auto t = std::chrono::steady_clock::now();
   pose_objects(*I.rest, time, *I.posed);
+  // Secondary rays leave surfaces by an offset relative to the scene's size, which moving
+  // triangles change: the size now, as the scene baked at this time has it.
+  glm::vec3 lo = I.static_lo, hi = I.static_hi;
+  const bool any = grow_bounds(*I.posed, true, lo, hi) || I.static_any;
+  I.device.shading.set_eps(any, lo, hi);
   u.pose_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   const std::vector<int32_t> ids = moving_triangles(*I.posed);
@@ -301,7 +346,13 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   std::optional<Aabb> moving;
   if (!I.bvh.nodes.empty()) moving = Aabb{I.bvh.nodes.front().lo, I.bvh.nodes.front().hi};
   // Widened by the triangle test's rounding as seen from this eye (hit_margin).
-  const float margin = hit_margin(I.static_boxes, moving ? &*moving : nullptr, camera.eye);
+  // (From the farthest a ray's origin lies: an orthographic or thin-lens ray's is off the eye.)
+  check_camera_kind(I.device.F, camera);
+  const CameraFrame view = camera_frame(camera, width, height);
+  const glm::vec3 from = view.kind == CameraKind::Pinhole
+                             ? camera.eye
+                             : glm::vec3(camera_origin_reach(view), 0.0f, 0.0f);
+  const float margin = hit_margin(I.static_boxes, moving ? &*moving : nullptr, from);
   I.frame_boxes.resize(I.static_boxes.size());
   std::transform(I.static_boxes.begin(), I.static_boxes.end(), I.frame_boxes.begin(),
                  [&](const Aabb& b) { return widened(b, margin); });
@@ -329,21 +380,33 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
 }
 
 std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Camera& camera,
-                                           int width, int height, glm::vec2 offset) {
+                                           int width, int height, glm::vec2 offset,
+                                           std::vector<glm::vec3>* origins, int sample) {
   Impl& I = *d_;
+  check_camera_kind(I.device.F, camera);
   if (!I.camera_program.valid())
     I.camera_program = rill::program("rill_camera_rays", [&] {
+      Output<Float3> o("origin");
       Output<Float3> dir("direction");
-      dir = I.device.camera.direction(element_coord());
+      Ray r{I.device.camera.eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)};
+      I.device.camera.aim(r, element_coord());
+      o = r.o;
+      dir = r.d;
     });
   I.device.camera.set(camera, width, height);
   I.device.camera.offset.set(offset);
+  I.device.camera.lens_sample.set(sample);
   Kernel k = compile(I.camera_program, backend);
-  Stream<Float3> dirs(width, height);
-  k.outputs(dirs);
+  Stream<Float3> origin_stream(width, height), dirs(width, height);
+  k.outputs(origin_stream, dirs);
   k.execute();
+  const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
   std::vector<glm::vec3> d = dirs.download();
-  d.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+  d.resize(n);
+  if (origins) {
+    *origins = origin_stream.download();
+    origins->resize(n);
+  }
   return d;
 }
 

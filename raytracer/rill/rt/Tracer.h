@@ -107,21 +107,25 @@ class Tracer {
   // camera_at(scene, time) (scene/Pose.h). A new tracer starts at the time range's start.
   // Nothing to do for a static scene.
   FrameUpdate set_time(double time, BvhUpdate how = BvhUpdate::Rebuild);
-  // Compiles (cached per backend and accuracy) and renders through the camera.
+  // Compiles (cached per backend and accuracy) and renders through the camera, which must be
+  // of the scene camera's kind (pinhole, orthographic or thin lens: camera_kind, Camera.h), as
+  // the kernels generate that kind of ray; another kind throws std::runtime_error.
   RenderResult render(const RenderSettings& settings, const Camera& camera);
   // The same into `result`, whose image memory is reused: frame after frame into one
   // RenderResult allocates nothing on the host.
   void render(const RenderSettings& settings, const Camera& camera, RenderResult& result);
-  // The megakernel's generated source on a backend (compiles if needed): the variant a
-  // render with these outputs and samples per pixel runs (without AOV outputs when none is
-  // asked for; encoding the 8-bit image itself for one sample without the linear colour).
+  // The megakernel's generated source on a backend (compiles if needed). Outputs and samples
+  // per pixel select no variant: every render on that backend, accuracy and loop runs this
+  // one kernel (megakernel/Megakernel.h); the two arguments are kept for existing callers.
   std::string source(const std::string& backend, rill::Accuracy a = rill::Accuracy::Strict,
                      MegakernelLoop loop = MegakernelLoop::Auto,
                      const FrameOutputs& outputs = FrameOutputs{}, int spp = 1);
 
   // The camera rays the tracer casts (the kernel's own ray generation), for tests.
+  // origins (if given) gets each ray's origin; sample is the thin lens's sample index.
   std::vector<glm::vec3> camera_rays(const std::string& backend, const Camera& camera, int width,
-                                     int height, glm::vec2 offset = glm::vec2(0.5f));
+                                     int height, glm::vec2 offset = glm::vec2(0.5f),
+                                     std::vector<glm::vec3>* origins = nullptr, int sample = 0);
   // Traces explicit rays (origin, direction) with the closest-hit intersector only, for
   // tests: returns per ray the primitive id (-1: miss) and distance (+inf: miss).
   void intersect(const std::string& backend, const std::vector<glm::vec3>& origins,

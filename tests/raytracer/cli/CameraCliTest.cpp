@@ -92,10 +92,42 @@ TEST(CameraCli, OptionsOverrideTheCameraBitwise) {
   EXPECT_NE(a, testing::read_text(dir.path("d.pfm")));  // the options did move the camera
 }
 
+// The orthographic and thin-lens options are the scene file's keys: the same bits.
+TEST(CameraCli, ProjectionAndLensOptionsAreTheSceneFilesKeys) {
+  testing::TempDir dir;
+  dir.file("ortho.json", R"({"builtin": "cornell", "camera": {"eye": [0.3, 0.2, 2.5],
+               "look_at": [0, -0.1, 0], "type": "orthographic", "height": 1.7}})");
+  dir.file("lens.json", R"({"builtin": "cornell", "camera": {"eye": [0.3, 0.2, 2.5],
+               "look_at": [0, -0.1, 0], "aperture": 0.05, "focus_distance": 2.2}})");
+  dir.file("cam.json", R"({"type": "orthographic", "height": 1.7})");
+  const std::string common = " --size 40x30 --spp 2 --pfm ";
+  const std::string aim = "builtin:cornell --eye 0.3,0.2,2.5 --look-at 0,-0.1,0";
+  ASSERT_EQ(camera_trace("ortho.json" + common + "a.pfm", dir).status, 0);
+  testing::Run r = camera_trace(aim + " --ortho-height 1.7" + common + "b.pfm", dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = camera_trace(aim + " --camera cam.json" + common + "c.pfm", dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(camera_trace("lens.json" + common + "d.pfm", dir).status, 0);
+  r = camera_trace(aim + " --aperture 0.05 --focus-distance 2.2" + common + "e.pfm", dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(camera_trace(aim + common + "f.pfm", dir).status, 0);
+  const std::string a = testing::read_text(dir.path("a.pfm"));
+  EXPECT_EQ(a, testing::read_text(dir.path("b.pfm")));
+  EXPECT_EQ(a, testing::read_text(dir.path("c.pfm")));
+  const std::string d = testing::read_text(dir.path("d.pfm"));
+  EXPECT_EQ(d, testing::read_text(dir.path("e.pfm")));
+  const std::string f = testing::read_text(dir.path("f.pfm"));
+  EXPECT_NE(a, f);  // the options did change the camera
+  EXPECT_NE(d, f);
+}
+
 TEST(CameraCli, BadValuesNameTheOption) {
   testing::TempDir dir;
   dir.file("odd.json", R"({"eye": [0, 0, 5], "zoom": 2})");
   dir.file("list.json", R"([0, 0, 5])");
+  dir.file("fisheye.json", R"({"type": "fisheye"})");
+  dir.file("ortho.json", R"({"type": "orthographic"})");
+  dir.file("negative.json", R"({"aperture": -1})");
   const std::pair<std::string, std::string> cases[] = {
       {"--eye 1,2", "--eye expects X,Y,Z"},
       {"--eye 1,2,nan", "--eye expects X,Y,Z"},
@@ -105,7 +137,25 @@ TEST(CameraCli, BadValuesNameTheOption) {
       {"--fov 0", "--fov is the vertical field of view"},
       {"--fov wide", "--fov expects a number of degrees"},
       {"--camera none.json", "--camera"},
-      {"--camera odd.json", "unknown key 'zoom' (valid: eye, look_at, up, fov_y)"},
+      {"--camera odd.json",
+       "unknown key 'zoom' (valid: eye, look_at, up, fov_y, type, height, aperture, "
+       "focus_distance)"},
+      {"--camera fisheye.json", "type expects \"perspective\" or \"orthographic\""},
+      {"--camera ortho.json", "an orthographic camera (--camera's type) needs its view's height"},
+      {"--camera negative.json", "--camera negative.json: aperture is the lens's radius"},
+      {"--aperture -0.5",
+       "--aperture is the lens's radius in scene units (0: a pinhole), a "
+       "finite number >= 0"},
+      {"--aperture wide", "--aperture expects a radius in scene units"},
+      {"--aperture 1e39", "--aperture is the lens's radius"},
+      {"--focus-distance 0",
+       "--focus-distance is the distance from the eye to the plane in "
+       "focus, a finite number > 0"},
+      {"--focus-distance nan", "--focus-distance expects a distance"},
+      {"--ortho-height 0", "--ortho-height is the orthographic view's height in scene units"},
+      {"--ortho-height -1", "--ortho-height is the orthographic view's height"},
+      {"--ortho-height 2 --aperture 0.1",
+       "aperture is for a perspective camera, not an orthographic one"},
       {"--camera list.json", "expects a JSON object"},
       {"--up-axis w", "--up-axis expects auto, x, y or z"},
       // Degenerate views: check_camera's messages.

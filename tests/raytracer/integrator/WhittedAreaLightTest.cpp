@@ -65,12 +65,7 @@ RenderResult render(const Scene& scene, const std::string& backend = "cpu",
   const Grid grid = build_grid_for(scene, backend);
   Tracer tracer(scene, grid);
   EXPECT_TRUE(tracer.features().area_lights);
-  RenderSettings rs;
-  rs.outputs.depth = rs.outputs.prim = rs.outputs.normal = true;  // the AOVs compared
-  rs.backend = backend;
-  rs.width = scene.width;
-  rs.height = scene.height;
-  rs.spp = scene.options.spp;
+  RenderSettings rs = testing::compared_settings(scene, backend);
   rs.loop = loop;
   return tracer.render(rs, scene.camera);
 }

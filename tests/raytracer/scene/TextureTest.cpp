@@ -284,6 +284,45 @@ TEST(Texture, ObjTexcoordsAndMapKd) {
   EXPECT_EQ(bound, 2);
 }
 
+// Faces without vt on a material that reads texture coordinates show one texel: a warning per
+// material naming the first such face's line and counting the faces; none for faces with vt,
+// for untextured materials, or for solid textures (which read the point, not its uv).
+TEST(Texture, FacesWithoutVtOnATexturedMaterialWarn) {
+  TempDir dir;
+  write_raw_png(dir.path("tex.png"), 2, 2, PNG_FORMAT_RGB, kRgb);
+  dir.file("m.mtl", "newmtl a\nKd 1 1 1\nmap_Kd tex.png\nnewmtl plain\nKd 0.2 0.3 0.4\n");
+  const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n";
+  auto uv_warnings = [](const Scene& s) {
+    std::vector<std::string> found;
+    for (const std::string& w : s.warnings)
+      if (w.find("texture coordinates") != std::string::npos) found.push_back(w);
+    return found;
+  };
+  // Lines 11 and 12 lack vt (two faces, one a quad of two triangles); line 10 has them.
+  const Scene s = load_obj(dir.file("m.obj", "mtllib m.mtl\n" + quad +
+                                                 "usemtl a\nf 1/1 2/2 3/3\nf 1 2 3 4\nf 1 3 4\n"
+                                                 "usemtl plain\nf 1 2 3\n"));
+  const auto w = uv_warnings(s);
+  ASSERT_EQ(w.size(), 1u) << (w.empty() ? "" : w[0]);
+  EXPECT_NE(w[0].find("m.obj:11: 2 faces of material 'a'"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("'tex.png'"), std::string::npos) << w[0];
+  // With vt everywhere: no warning.
+  EXPECT_TRUE(uv_warnings(load_obj(dir.file("ok.obj",
+                                            "mtllib m.mtl\n" + quad + "usemtl a\nf 1/1 2/2 3/3\n")))
+                  .empty());
+  // A JSON material overriding the mesh's: a checker reads uv, a solid noise does not.
+  dir.file("bare.obj", quad + "f 1 2 3\n");
+  auto json = [&](const std::string& type) {
+    return load_json(dir.file("s.json", R"({"textures": {"t": {"type": ")" + type + R"("}},
+      "materials": {"m": {"diffuse": {"texture": "t"}}},
+      "meshes": [{"file": "bare.obj", "material": "m"}]})"));
+  };
+  const auto checker = uv_warnings(json("checker"));
+  ASSERT_EQ(checker.size(), 1u);
+  EXPECT_NE(checker[0].find("bare.obj:8: 1 face of material 'm'"), std::string::npos) << checker[0];
+  EXPECT_TRUE(uv_warnings(json("noise")).empty());
+}
+
 // ---- JSON: textures, shaders and parameters ---------------------------------------------------
 
 TEST(Texture, JsonTexturesAndShaders) {

@@ -9,6 +9,7 @@
 #include "TestUtil.h"
 #include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/Scene.h"
+#include "rill/rt/scene/VertexNormals.h"
 
 namespace rt {
 namespace {
@@ -136,6 +137,93 @@ TEST(VertexNormals, JsonSmoothKeySetsTheCreaseAngleOrTurnsItOff) {
   EXPECT_TRUE(load("false").normals.empty());
   EXPECT_THROW(load("\"yes\""), SceneError);
   EXPECT_THROW(load("200"), SceneError);
+}
+
+// Faces of a file that give `vn` keep theirs; the faces that give none get computed normals,
+// shared with their neighbours whether those have `vn` or not.
+TEST(VertexNormals, FacesWithoutVnInAFileWithSomeGetComputedOnes) {
+  TempDir dir;
+  // Two quads folded by 20 degrees along x = 0; the first gives vn (along y, on purpose).
+  const Scene s =
+      load_obj(dir.file("partial.obj",
+                        "v -1 0 0\nv 0 0 0\nv 0 1 0\nv -1 1 0\nv 1 0 0.364\nv 1 1 0.364\n"
+                        "vn 0 1 0\nf 1//1 2//1 3//1 4//1\nf 2 5 6 3\n"));
+  ASSERT_EQ(s.triangle_count(), 4u);
+  ASSERT_EQ(s.normals.size(), 12u);
+  for (int c = 0; c < 6; ++c) EXPECT_EQ(s.normals[c], glm::vec3(0, 1, 0)) << c;
+  // The second quad's corners on the fold (vertices 2 and 3) bend towards the first's face
+  // normal (0, 0, 1); its outer corners keep its own face normal.
+  const glm::vec3 own = glm::normalize(glm::vec3(-0.364f, 0, 1));
+  for (int c = 6; c < 12; ++c) {
+    const bool on_fold = s.positions[c].x == 0.0f;
+    EXPECT_NEAR(glm::length(s.normals[c]), 1.0f, 1e-6f) << c;
+    if (on_fold)
+      EXPECT_GT(glm::dot(s.normals[c], glm::vec3(0, 0, 1)), glm::dot(own, glm::vec3(0, 0, 1))) << c;
+    else
+      EXPECT_LT(glm::length(s.normals[c] - own), 1e-6f) << c;
+  }
+}
+
+// The three weightings against a normal computed here from the definitions: at a vertex shared
+// by a small face with a wide angle and a large face with a narrow one, within the crease angle.
+TEST(VertexNormals, WeightingsByAngleAreaAndBoth) {
+  // Face A: normal +z, area 0.5, angle 90 degrees at the origin. Face B: tilted 30 degrees
+  // about x, long and narrow at the origin.
+  const double c30 = std::cos(M_PI / 6), s30 = std::sin(M_PI / 6);
+  const glm::vec3 positions[6] = {{0, 0, 0},
+                                  {1, 0, 0},
+                                  {0, 1, 0},
+                                  {0, 0, 0},
+                                  {-0.5f, float(-4 * c30), float(-4 * s30)},
+                                  {0.5f, float(-4 * c30), float(-4 * s30)}};
+  const int32_t vertex[6] = {0, 1, 2, 0, 3, 4};
+  auto expected = [&](NormalWeighting w) {
+    glm::dvec3 sum(0.0);
+    for (int t = 0; t < 2; ++t) {
+      const glm::dvec3 p0(positions[3 * t]), p1(positions[3 * t + 1]), p2(positions[3 * t + 2]);
+      const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
+      const double area = glm::length(n) / 2;
+      const double angle = std::acos(glm::dot(glm::normalize(p1 - p0), glm::normalize(p2 - p0)));
+      const double weight = w == NormalWeighting::Angle  ? angle
+                            : w == NormalWeighting::Area ? area
+                                                         : area * angle;
+      sum += weight * glm::normalize(n);
+    }
+    return glm::vec3(glm::normalize(sum));
+  };
+  glm::vec3 at_origin[3];
+  int i = 0;
+  for (NormalWeighting w :
+       {NormalWeighting::Angle, NormalWeighting::Area, NormalWeighting::AreaAngle}) {
+    const auto n = vertex_normals({positions, vertex, {}}, kDefaultCreaseDegrees, w);
+    ASSERT_EQ(n.size(), 6u);
+    EXPECT_EQ(n[0], n[3]);  // both faces' corners at the shared vertex
+    EXPECT_LT(glm::length(n[0] - expected(w)), 1e-6f) << i;
+    at_origin[i++] = n[0];
+  }
+  // The tilted narrow face (area 2, angle 14 degrees) counts least by angle and most by area;
+  // the product (0.79 against 0.50) lies between: the normal leans from +z accordingly.
+  EXPECT_GT(at_origin[0].z, at_origin[2].z);
+  EXPECT_GT(at_origin[2].z, at_origin[1].z);
+  EXPECT_EQ(parse_normal_weighting("area_angle"), NormalWeighting::AreaAngle);
+  EXPECT_THROW(parse_normal_weighting("areas"), std::invalid_argument);
+}
+
+TEST(VertexNormals, JsonNormalWeightingKey) {
+  TempDir dir;
+  dir.file("fold.obj",
+           "v -1 0 0\nv 0 0 0\nv 0 1 0\nv -1 1 0\nv 3 0 1.092\nv 3 1 1.092\n"
+           "f 1 2 3 4\nf 2 5 6 3\n");
+  auto load = [&](const std::string& w) {
+    return load_scene(dir.file(
+        "w.json", "{\"meshes\": [{\"file\": \"fold.obj\", \"normal_weighting\": " + w + "}]}"));
+  };
+  // The faces have equal angles at the fold, unequal areas: angle and area weights differ.
+  const Scene angle = load("\"angle\""), area = load("\"area\"");
+  ASSERT_EQ(angle.normals.size(), 12u);
+  EXPECT_NE(angle.normals[1], area.normals[1]);
+  EXPECT_THROW(load("\"areas\""), SceneError);
+  EXPECT_THROW(load("1"), SceneError);
 }
 
 }  // namespace

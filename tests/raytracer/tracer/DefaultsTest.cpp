@@ -202,10 +202,13 @@ TEST_F(Defaults, TracerOptionsAreTheRecommendedKnobs) {
   EXPECT_EQ(tracer_.options().str(), "moller scaled incremental");
 }
 
-// Tracer::source: strict, the Auto loop, FrameOutputs{} and one sample per pixel by default.
+// Tracer::source: strict and the Auto loop by default; outputs and samples select no variant.
 TEST_F(Defaults, SourceIsTheDefaultRendersVariant) {
   EXPECT_EQ(tracer_.source("cpu"),
             tracer_.source("cpu", rill::Accuracy::Strict, MegakernelLoop::Auto, FrameOutputs{}, 1));
+  EXPECT_EQ(tracer_.source("cpu"),
+            tracer_.source("cpu", rill::Accuracy::Strict, MegakernelLoop::Auto,
+                           FrameOutputs{false, true, true, true, true}, 4));
   EXPECT_NE(tracer_.source("cpu"), tracer_.source("cpu", rill::Accuracy::Fast));
 }
 

@@ -59,21 +59,6 @@ TEST(Camera, HostFrameMatchesTheFormula) {
             static_cast<float>(std::tan(static_cast<double>(53.7f * 0.5f * 0.0174532924f))));
 }
 
-// Whether the ray o + t d, t >= 0, meets the box [lo, hi] (in double).
-bool ray_meets_box(glm::dvec3 o, glm::dvec3 d, glm::dvec3 lo, glm::dvec3 hi) {
-  double t0 = 0, t1 = HUGE_VAL;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (o[a] < lo[a] || o[a] > hi[a]) return false;
-      continue;
-    }
-    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-    t0 = std::max(t0, std::min(ta, tb));
-    t1 = std::min(t1, std::max(ta, tb));
-  }
-  return t0 <= t1;
-}
-
 // pixels_seeing_box is what lets the megakernel skip a pixel's camera ray: every pixel whose
 // ray, at any sample offset, meets the box must lie inside its rectangle.
 TEST(Camera, PixelsSeeingABoxHoldEveryRayThatMeetsIt) {
@@ -101,7 +86,8 @@ TEST(Camera, PixelsSeeingABoxHoldEveryRayThatMeetsIt) {
       for (int i = 0; i < W; ++i)
         for (const glm::vec2 o : offsets) {
           const glm::vec3 d = camera_ray(f, i, j, o.x, o.y);
-          if (!ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d), glm::dvec3(lo), glm::dvec3(hi)))
+          if (!testing::ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d), glm::dvec3(lo),
+                                      glm::dvec3(hi)))
             continue;
           const bool inside = i >= r.first.x && i < r.end.x && j >= r.first.y && j < r.end.y;
           ASSERT_TRUE(inside) << "camera " << c << ": pixel (" << i << ", " << j
@@ -147,8 +133,8 @@ TEST(Camera, TilesSeeingBoxesHoldEveryRayThatMeetsOne) {
           const glm::vec3 d = camera_ray(f, i, j, o.x, o.y);
           bool meets = false;
           for (const Aabb& b : boxes)
-            meets = meets || ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d), glm::dvec3(b.lo),
-                                           glm::dvec3(b.hi));
+            meets = meets || testing::ray_meets_box(glm::dvec3(f.eye), glm::dvec3(d),
+                                                    glm::dvec3(b.lo), glm::dvec3(b.hi));
           if (!meets) continue;
           ++hits;
           ASSERT_EQ(m.seen[static_cast<size_t>((j >> m.shift) * m.tiles.x + (i >> m.shift))], 1)
@@ -538,10 +524,10 @@ TEST_P(Render, SkippedPixelsKeepHitsJustBeyondAnEdge) {
   EXPECT_EQ(differ, 0u) << "of " << hits << " hits";
 }
 
-// The megakernel skips the camera rays of pixels outside the scene's box on screen, the AOV
-// outputs when no AOV is asked for, and encodes the 8-bit image itself when only that is read
-// back from one sample: none of it changes a bit. Multipass, which traces every
-// pixel, is the reference, at sizes and sample counts where the box covers part of the image.
+// The megakernel skips the camera rays of pixels outside the scene's box on screen, and a
+// render reads back only the outputs asked for: none of it changes a bit. Multipass, which
+// traces every pixel, is the reference, at sizes and sample counts where the box covers part
+// of the image.
 TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
   RT_REQUIRE_BACKEND(GetParam());
   for (const char* name : {"thesis-a", "cornell"}) {
@@ -579,7 +565,7 @@ TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
         << name;
     EXPECT_EQ(plain.rgb8, mega.rgb8) << name;
     EXPECT_EQ(plain.rays, mega.rays) << name;
-    // Only the 8-bit image: one sample encoded in the megakernel, two by the film.
+    // Only the 8-bit image, of two samples and of one.
     rs.outputs = {false, true, false, false, false};
     const RenderResult encoded2 = t.render(rs, s.camera);
     EXPECT_TRUE(encoded2.color.empty()) << name;
@@ -592,7 +578,7 @@ TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
     EXPECT_FALSE(encoded1.rgb8.empty()) << name;
     EXPECT_EQ(encoded1.rgb8, film1.rgb8) << name;
     EXPECT_EQ(encoded1.rays, film1.rays) << name;
-    // A window of the image, encoded in the megakernel: the whole image's pixels.
+    // A window of the image, only its 8-bit image read back: the whole image's pixels.
     rs.outputs = {false, true, false, false, false};
     rs.window = {3, 5, 29, 17};
     const RenderResult part = t.render(rs, s.camera);
@@ -603,29 +589,81 @@ TEST_P(Render, SkippedPixelsAndAovsChangeNothing) {
                 0)
           << name << ", window row " << y;
   }
-  // The variant without AOVs does not write them (the normal output's variables are named
-  // normal_<n>).
-  Scene s = builtin_scene("thesis-a");
-  Grid g = build_grid(s, 0);
-  Tracer t(s, g);
-  EXPECT_NE(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
-                     FrameOutputs{true, false, true, true, true})
-                .find("normal_"),
-            std::string::npos);
-  EXPECT_EQ(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
-                     FrameOutputs{false, true, false, false, false})
-                .find("normal_"),
-            std::string::npos);
-  // One sample that only wants the 8-bit image: encoded in the kernel (which reads the
-  // background's encoding).
-  EXPECT_NE(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
-                     FrameOutputs{false, true, false, false, false})
-                .find("background_rgb8"),
-            std::string::npos);
-  EXPECT_EQ(t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto,
-                     FrameOutputs{false, true, false, false, false}, 2)
-                .find("background_rgb8"),
-            std::string::npos);
+}
+
+// What a render reads back and how many samples it takes are launch-time choices: renders
+// that differ only in them run one compiled kernel. After a first render, the others compile
+// nothing at all (no miss of the in-process kernel cache: the megakernel, the film's kernels
+// and the ray count's reduction are all there), and each image is bitwise the one of a fresh
+// tracer that renders it first.
+TEST_P(Render, OutputsAndSamplesShareOneKernel) {
+  RT_REQUIRE_BACKEND(GetParam());
+  for (const char* name :
+       {"glass", "cornell-path"}) {  // Whitted with refraction; the path integrator
+    const Scene s = builtin_scene(name);
+    const Grid g = build_grid(s, 0);
+    RenderSettings rs;
+    rs.backend = GetParam();
+    rs.width = 24;
+    rs.height = 16;
+    rs.max_depth = 3;
+    // The film's kernels (sum, mean, 8-bit encoder) exist once any render has used them; a
+    // first tracer of the scene at 2 samples with every output makes them all.
+    {
+      Tracer first(s, g);
+      rs.spp = 2;
+      rs.outputs = {true, true, true, true, true, true};
+      (void)first.render(rs, s.camera);
+      rs.spp = 1;
+      (void)first.render(rs, s.camera);
+    }
+    struct Variant {
+      FrameOutputs outputs;
+      int spp;
+    };
+    const std::vector<Variant> variants = {
+        {FrameOutputs{}, 1},                                     // the library's default
+        {FrameOutputs{false, true, false, false, false}, 1},     // rill-trace --out
+        {FrameOutputs{false, true, true, false, false}, 1},      // --out --depth
+        {FrameOutputs{false, true, false, false, false}, 2},     // --out --spp 2
+        {FrameOutputs{true, false, true, true, true, true}, 3},  // --pfm and every AOV
+    };
+    Tracer t(s, g);
+    std::vector<std::string> sources;
+    for (size_t i = 0; i < variants.size(); ++i) {
+      rs.outputs = variants[i].outputs;
+      rs.spp = variants[i].spp;
+      const rill::CacheStats before = rill::kernel_cache_stats();
+      const RenderResult r = t.render(rs, s.camera);
+      const rill::CacheStats after = rill::kernel_cache_stats();
+      if (i > 0) {
+        EXPECT_EQ(after.misses, before.misses)
+            << name << ", variant " << i << ": compiled a kernel on " << GetParam();
+      }
+      sources.push_back(
+          t.source(GetParam(), rill::Accuracy::Strict, MegakernelLoop::Auto, rs.outputs, rs.spp));
+      // The same image as a tracer whose first render this is.
+      Tracer fresh(s, g);
+      const RenderResult want = fresh.render(rs, s.camera);
+      EXPECT_EQ(r.rgb8, want.rgb8) << name << ", variant " << i;
+      ASSERT_EQ(r.color.size(), want.color.size()) << name << ", variant " << i;
+      EXPECT_EQ(std::memcmp(r.color.data(), want.color.data(), r.color.size() * sizeof(glm::vec3)),
+                0)
+          << name << ", variant " << i;
+      EXPECT_EQ(r.depth.size(), want.depth.size()) << name << ", variant " << i;
+      EXPECT_EQ(std::memcmp(r.depth.data(), want.depth.data(), r.depth.size() * sizeof(float)), 0)
+          << name << ", variant " << i;
+      EXPECT_EQ(r.prim, want.prim) << name << ", variant " << i;
+      EXPECT_EQ(r.rays, want.rays) << name << ", variant " << i;
+      EXPECT_EQ(r.spp, rs.spp) << name << ", variant " << i;
+      // Each output is there exactly when asked for.
+      EXPECT_EQ(r.rgb8.empty(), !rs.outputs.rgb8) << name << ", variant " << i;
+      EXPECT_EQ(r.color.empty(), !rs.outputs.color) << name << ", variant " << i;
+      EXPECT_EQ(r.depth.empty(), !rs.outputs.depth) << name << ", variant " << i;
+    }
+    for (size_t i = 1; i < sources.size(); ++i)
+      EXPECT_EQ(sources[i], sources[0]) << name << ", variant " << i;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Render, ::testing::ValuesIn(testing::backend_names()),

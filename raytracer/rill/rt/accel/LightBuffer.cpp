@@ -199,6 +199,13 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
   // the static scene puts one farther.
   lb.reach = static_cast<float>(32.0 * scale);
   for (size_t li = 0; li < s.lights.size(); ++li) {
+    if (s.lights[li].type == LightType::Directional) {
+      // No position to look from: every cell sends its shadow rays to the grid.
+      for (size_t c = 0; c < per_light; ++c)
+        lb.cells[li * per_light + c] = {static_cast<int32_t>(lb.tris.size()), -1};
+      lb.fallback_cells += per_light;
+      continue;
+    }
     const glm::dvec3 L(s.lights[li].position);
     // Each chunk of triangles lists its (cell, entry) pairs; then a counting sort by cell.
     constexpr size_t kChunk = 1024;
@@ -361,6 +368,11 @@ LightBuffer build_light_buffer(const Scene& s, const Grid& grid, int res, int ma
 
 int light_buffer_res(const Scene& s) {
   if (s.options.light_buffer != kLightBufferAuto) return s.options.light_buffer;
+  // Directional lights have no cube of directions around a point (build_light_buffer): a
+  // scene of them alone has no use for one.
+  bool positioned = false;
+  for (const Light& l : s.lights) positioned = positioned || l.type != LightType::Directional;
+  if (!positioned) return 0;
   // Its build visits every triangle once per light (about 0.1-0.3 us each on one core):
   // beyond 2^26 pairs (seconds) auto leaves it off, and the shadow rays walk the grid.
   if (static_cast<uint64_t>(s.triangle_count()) * s.lights.size() > (1ull << 26)) return 0;

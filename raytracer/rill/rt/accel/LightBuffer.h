@@ -17,7 +17,8 @@
 // An entry's distance is a lower bound of the distance from the light of the triangle's part
 // that the cell's rays can reach. So the list holds every triangle the shadow ray could hit, and
 // "is something in the way" has the grid walk's answer: shadows are the same bits with or without
-// the light buffer.
+// the light buffer. A spot light's cube is a point light's; a directional light has no point
+// to look from, so each of its cells sends the shadow rays to the grid (count -1).
 //
 // Cells whose list would be longer than max_list (a dense mesh seen from far away) are
 // marked (start, -1): their shadow rays walk the grid as before. Face f = 2 * axis + (the

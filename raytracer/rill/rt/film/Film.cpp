@@ -20,11 +20,13 @@ using namespace rill;
 
 // One backend's kernels and the streams of its last frame size.
 struct Film::Buffers {
-  Buffers(const Film& film, const std::string& backend, Accuracy a)
-      : add(compile_for(film.add_, backend, a)),
-        mean(compile_for(film.mean_, backend, a)),
-        backend(backend),
-        accuracy(a) {}
+  Buffers(const std::string& backend, Accuracy a) : backend(backend), accuracy(a) {}
+  // The sum's kernels, compiled at the first frame that sums (not for a first image of one
+  // sample: each is another compiler run before it).
+  void summing(const Film& film) {
+    if (!add) add.emplace(compile_for(film.add_, backend, accuracy));
+    if (!mean) mean.emplace(compile_for(film.mean_, backend, accuracy));
+  }
   void resize(int w, int h) {
     if (w == width && h == height) return;
     width = w;
@@ -34,7 +36,7 @@ struct Film::Buffers {
     mean_color.emplace(w, h, "film_mean");
     squares.reset();
   }
-  Kernel add, mean;
+  std::optional<Kernel> add, mean;
   std::string backend;
   Accuracy accuracy;
   int width = 0, height = 0;  // of sum, carry and mean_color (made for frames of spp > 1)
@@ -133,24 +135,19 @@ Program Film::encode_program(const Stream<Float3>& color) const {
   });
 }
 
-Program Film::pack_program(const Stream<Int>& pixels) const {
-  return rgb8_program("rill_film_pack", width_, [&](const Int& x, const Int& y) {
-    Int p = pixels(x, y);
-    return std::array<Int, 3>{p & 255, (p >> 8) & 255, (p >> 16) & 255};
-  });
-}
-
 Film::~Film() = default;
 
 void Film::begin(const std::string& backend, Accuracy a, int width, int height, int spp,
                  const Accumulation* resume, bool summing, bool squares) {
   const std::string key = backend_key(backend, a);
   auto it = buffers_.find(key);
-  if (it == buffers_.end())
-    it = buffers_.emplace(key, std::make_unique<Buffers>(*this, backend, a)).first;
+  if (it == buffers_.end()) it = buffers_.emplace(key, std::make_unique<Buffers>(backend, a)).first;
   now_ = it->second.get();
   summing_ = spp > 1 || summing || resume != nullptr || squares;
-  if (summing_) now_->resize(width, height);
+  if (summing_) {
+    now_->summing(*this);
+    now_->resize(width, height);
+  }
   // The variance needs every sample's square: of a resumed render, only if its accumulation
   // kept them.
   squares_ = squares && (resume == nullptr || !resume->squares.empty());
@@ -180,7 +177,6 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
     now_->encode_source.reset();
   }
   single_.reset();
-  encoded_.reset();
   accumulate_ms_ = 0;
 }
 
@@ -192,8 +188,8 @@ void Film::add_sample(const Stream<Float3>& color, int s) {
   }
   Stopwatch add;
   first_.set(s == 0 ? 1 : 0);
-  now_->add.inputs(*now_->sum, *now_->carry, color).outputs(*now_->sum, *now_->carry);
-  now_->add.execute();
+  now_->add->inputs(*now_->sum, *now_->carry, color).outputs(*now_->sum, *now_->carry);
+  now_->add->execute();
   if (squares_) {
     now_->add_squares->inputs(*now_->squares, color).outputs(*now_->squares);
     now_->add_squares->execute();
@@ -201,18 +197,10 @@ void Film::add_sample(const Stream<Float3>& color, int s) {
   accumulate_ms_ += add.ms();
 }
 
-void Film::add_encoded(const Stream<Int>& pixels) {
-  if (summing_) throw std::logic_error("Film::add_encoded: a frame of one sample only");
-  ++samples_done_;
-  encoded_ = pixels;
-}
-
-Kernel& Film::encoder_for(StreamRef source, int width, int height, bool packed) {
-  if (!now_->encode || now_->encode_source != source.shared()) {
-    now_->encode.emplace(compile_for(
-        packed ? pack_program(Stream<Int>(source)) : encode_program(Stream<Float3>(source)),
-        now_->backend, now_->accuracy));
-    now_->encode_source = source.shared();
+Kernel& Film::encoder_for(const Stream<Float3>& source, int width, int height) {
+  if (!now_->encode || now_->encode_source != StreamRef(source).shared()) {
+    now_->encode.emplace(compile_for(encode_program(source), now_->backend, now_->accuracy));
+    now_->encode_source = StreamRef(source).shared();
     now_->encode_size = {width, height};
   }
   return *now_->encode;
@@ -220,16 +208,13 @@ Kernel& Film::encoder_for(StreamRef source, int width, int height, bool packed) 
 
 void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r) {
   Stopwatch step;
-  if (encoded_ && want.color)
-    throw std::logic_error("Film::finish: the colour is wanted but only its encoding was added");
-  // The colour stream (one sample's or the mean), unless the strategy encoded it itself.
-  std::optional<Stream<Float3>> color;
-  if (!encoded_) color = summing_ ? *now_->mean_color : *single_;
-  r.spp = encoded_ ? 1 : samples_done_;
+  // The colour stream: one sample's or the mean.
+  const Stream<Float3> color = summing_ ? *now_->mean_color : *single_;
+  r.spp = samples_done_;
   if (summing_) {
     samples_.set(static_cast<float>(samples_done_));
-    now_->mean.inputs(*now_->sum, *now_->carry).outputs(*color);
-    now_->mean.execute();
+    now_->mean->inputs(*now_->sum, *now_->carry).outputs(color);
+    now_->mean->execute();
     accumulate_ms_ += step.lap();
   }
   r.times.accumulate += accumulate_ms_;
@@ -240,8 +225,7 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     into.resize(static_cast<size_t>(stream.size()));
     stream.download_into(std::span(into));
   };
-  if (color) read(*color, r.color, want.color);
-  if (!color) r.color.clear();
+  read(color, r.color, want.color);
   read(aovs.depth, r.depth, want.depth);
   read(aovs.prim, r.prim, want.prim);
   read(aovs.normal, r.normal, want.normal);
@@ -250,14 +234,14 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
   else
     r.albedo.clear();
   r.variance.clear();
-  if (want.variance && squares_ && color) {
+  if (want.variance && squares_) {
     // (squares / n - mean^2) n / (n - 1) / n, in double on the host; 0 below 2 samples.
     std::vector<glm::vec3> sq, mean;
     read(*now_->squares, sq, true);
     if (want.color)
       mean = r.color;
     else
-      read(*color, mean, true);
+      read(color, mean, true);
     const double n = samples_done_;
     r.variance.resize(sq.size());
     for (size_t p = 0; p < sq.size(); ++p)
@@ -279,12 +263,11 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
   if (want.rgb8) {
     static_assert(std::endian::native == std::endian::little,
                   "the 8-bit image is read back as little-endian Ints");
-    const StreamRef source = encoded_ ? StreamRef(*encoded_) : StreamRef(*color);
-    const int64_t n = encoded_ ? encoded_->size() : color->size(), groups = (n + 3) / 4;
-    const int width = static_cast<int>(encoded_ ? encoded_->width() : color->width());
-    const int height = static_cast<int>(encoded_ ? encoded_->height() : color->height());
+    const int64_t n = color.size(), groups = (n + 3) / 4;
+    const int width = static_cast<int>(color.width());
+    const int height = static_cast<int>(color.height());
     if (!now_->packed || now_->packed->size() != groups) now_->packed.emplace(groups, "film_rgb8");
-    Kernel& encode = encoder_for(source, width, height, encoded_.has_value());
+    Kernel& encode = encoder_for(color, width, height);
     width_.set(static_cast<int32_t>(width));
     encode.outputs(*now_->packed);
     encode.execute();

@@ -6,12 +6,11 @@
 // sum and the rounding error it dropped, so many samples lose almost nothing). At the end,
 // the film makes the mean and reads back only what FrameOutputs asks for: the 8-bit image
 // is encoded on the device (Srgb8.h) into the very bytes of RenderResult::rgb8, so a PNG
-// costs 3 bytes per pixel to read back and nothing to unpack. A strategy may encode a frame
-// of one sample itself, where the colour is made (add_encoded): the film then only packs
-// its pixels' bytes.
+// costs 3 bytes per pixel to read back and nothing to unpack.
 //
 // Its buffers and kernels are kept per backend and accuracy and reused by later frames of
-// the same size: a frame allocates nothing and uploads nothing. They are never shared
+// the same size: a frame allocates nothing and uploads nothing. Each kernel is compiled at
+// the first frame that needs it: a first image of one sample compiles no sum. They are never shared
 // between backends, so a tracer that renders on several in turn moves no data between them.
 #pragma once
 
@@ -55,10 +54,6 @@ class Film {
              const Accumulation* resume = nullptr, bool summing = false, bool squares = false);
   // Sample s's colour, just written by the strategy on the frame's backend.
   void add_sample(const rill::Stream<rill::Float3>& color, int s);
-  // Instead, for a frame of one sample whose linear colour is not read back: the 8-bit image
-  // that the strategy encoded itself, one Int per pixel (R + 256 G + 65536 B, each byte as
-  // Srgb8Encoder gives it). The film packs it into RenderResult::rgb8's bytes.
-  void add_encoded(const rill::Stream<rill::Int>& pixels);
   // The mean of the samples added (and resumed), encoded and read back as `want` asks, with
   // the first sample's AOVs; r.spp is their count. Adds the time it took to r.times.
   void finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r);
@@ -67,11 +62,9 @@ class Film {
   struct Buffers;
   // The 8-bit encoder, gathering from one colour stream (the strategy's, or the mean).
   rill::Program encode_program(const rill::Stream<rill::Float3>& color) const;
-  // The same bytes from pixels encoded by add_encoded's strategy.
-  rill::Program pack_program(const rill::Stream<rill::Int>& pixels) const;
-  // The program that makes the 8-bit image from one of the two, compiled again when the
-  // stream it gathers from is another.
-  rill::Kernel& encoder_for(rill::StreamRef source, int width, int height, bool packed);
+  // That program for the frame's colour stream, compiled again when the stream it gathers
+  // from is another.
+  rill::Kernel& encoder_for(const rill::Stream<rill::Float3>& source, int width, int height);
 
   rill::Uniform<rill::Int> first_{0, "first_sample"};
   rill::Uniform<rill::Float> samples_{1.0f, "samples"};
@@ -84,7 +77,6 @@ class Film {
   bool squares_ = false;  // and the sum of the samples' squares (FrameOutputs::variance)
   int samples_done_ = 0;  // samples in the sums (resumed ones included)
   std::optional<rill::Stream<rill::Float3>> single_;  // spp == 1: the sample itself
-  std::optional<rill::Stream<rill::Int>> encoded_;    // or its 8-bit encoding (add_encoded)
   double accumulate_ms_ = 0;
 };
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "rill/Random.h"
+
 namespace rt {
 
 using namespace rill;
@@ -34,6 +36,8 @@ void CameraRays::set(const Camera& camera, int width, int height, glm::ivec2 lau
   right.set(f.right);
   up.set(f.up);
   tan_half.set(f.tan_half);
+  lens_radius.set(f.lens_radius);
+  lens_k.set(f.lens_k);
   aspect.set(f.aspect);
   size.set(glm::vec2(f.width, f.height));
   origin.set(launch_origin);
@@ -82,11 +86,58 @@ Bool CameraRays::may_see_scene(const Int2& launch_pix, bool moving) const {
 }
 
 // docs/camera.md: float32, in this order.
+// (Each value made where it is declared: a DSL variable declared first and assigned later would
+// add a declaration to the kernel, and the pinhole's kernels must stay as they were.)
+CameraRays::ScreenPoint CameraRays::screen(const Int2& pix) const {
+  return ScreenPoint{
+      ((to_float(pix.x()) + offset.x()) / size.x() * 2.0f - 1.0f) * tan_half * aspect,
+      (1.0f - (to_float(pix.y()) + offset.y()) / size.y() * 2.0f) * tan_half};
+}
+
 Float3 CameraRays::direction(const Int2& launch_pix) const {
   const Int2 pix = launch_pix + origin;
-  Float sx = ((to_float(pix.x()) + offset.x()) / size.x() * 2.0f - 1.0f) * tan_half * aspect;
-  Float sy = (1.0f - (to_float(pix.y()) + offset.y()) / size.y() * 2.0f) * tan_half;
-  return normalize(forward + sx * right + sy * up);
+  const ScreenPoint s = screen(pix);
+  return normalize(forward + s.x * right + s.y * up);
+}
+
+void CameraRays::aim(Ray& ray, const Int2& launch_pix) const {
+  if (kind == CameraKind::Pinhole) {
+    ray.d = direction(launch_pix);
+    return;
+  }
+  const Int2 pix = launch_pix + origin;
+  const ScreenPoint s = screen(pix);
+  if (kind == CameraKind::Orthographic) {
+    ray.o = eye + s.x * right + s.y * up;
+    ray.d = forward;
+    return;
+  }
+  // The thin lens (Camera.cpp's camera_ray says why these meet on the focal plane).
+  const Float2 l = lens_point(pix);
+  const Float ex = s.x - lens_k * l.x(), ey = s.y - lens_k * l.y();
+  ray.d = normalize(forward + ex * right + ey * up);
+  ray.o = eye + (lens_radius * l.x()) * right + (lens_radius * l.y()) * up;
+}
+
+// Philox4x32-10 of (pixel, sample, 0) under the key (seed, "Lens"), and the concentric mapping
+// with its sine and cosine polynomials (Camera.cpp's lens_disk, the same operations).
+Float2 CameraRays::lens_point(const Int2& pix) const {
+  const Int4 counter(pix.x(), pix.y(), lens_sample, Int(0));
+  const Float4 u = unit_float(philox4x32(counter, Int2(lens_seed, Int(int32_t(kLensKey)))));
+  const Float a = u.x() * 2.0f - 1.0f, b = u.y() * 2.0f - 1.0f;
+  const Bool wide = abs(a) > abs(b);
+  const Float r = select(wide, a, b);
+  const Float q = select(wide, b, a) / select(r == 0.0f, Float(1.0f), r);
+  const Float p = q * 0.785398185f;
+  const Float p2 = p * p;
+  const Float sin_p =
+      p * (1.0f + p2 * (-0.166666672f +
+                        p2 * (0.00833333377f + p2 * (-0.000198412701f + p2 * 2.75573188e-06f))));
+  const Float cos_p =
+      1.0f +
+      p2 * (-0.5f + p2 * (0.0416666679f +
+                          p2 * (-0.00138888892f + p2 * (2.48015876e-05f + p2 * -2.755732e-07f))));
+  return Float2(r * select(wide, cos_p, sin_p), r * select(wide, sin_p, cos_p));
 }
 
 }  // namespace rt

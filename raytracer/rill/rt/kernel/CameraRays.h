@@ -32,6 +32,13 @@ struct CameraRays {
   // tiles: that box changes from frame to frame, the tiles only with the view.
   rill::Uniform<Int2> moving_first{glm::ivec2(0), "moving_first"},
       moving_end{glm::ivec2(0), "moving_end"};
+  // The thin lens (kind ThinLens): its radius R and k = R / focus_distance; the lens point's
+  // Philox key (the scene's seed) and the launch's sample index within the pixel, set with the
+  // sample offset. (The pinhole's kernels read none of these.)
+  rill::Uniform<Float> lens_radius{0.0f, "lens_radius"}, lens_k{0.0f, "lens_k"};
+  rill::Uniform<Int> lens_seed{0, "lens_seed"}, lens_sample{0, "lens_sample"};
+  // The rays the kernels generate, fixed when they are captured (Features::camera).
+  CameraKind kind = CameraKind::Pinhole;
 
   CameraRays();
   // The camera for an image of width x height pixels, launched from pixel origin on. With
@@ -43,6 +50,12 @@ struct CameraRays {
   // The unit direction through the launch's pixel pix (the image's pixel pix + origin) at the
   // sample offset.
   Float3 direction(const Int2& pix) const;
+  // The camera ray of the launch's pixel pix at the sample offset (and, for the thin lens, the
+  // sample's lens point): sets ray.d, and ray.o where the kind's rays do not start at the eye
+  // (the pinhole's caller has set it to eye).
+  void aim(Ray& ray, const Int2& pix) const;
+  // The thin lens's point on the unit disk for the image's pixel pix (docs/camera.md).
+  Float2 lens_point(const Int2& pix) const;
   // Whether the launch's pixel pix may see anything: false only where its camera rays, at
   // every sample offset, miss every box given to set(). The moving box's rectangle is tested
   // only with `moving` (the kernel of a dynamic scene).
@@ -50,6 +63,11 @@ struct CameraRays {
 
  private:
   void use(TileMask mask);
+  // The screen point (sx, sy) of the image's pixel pix at the sample offset.
+  struct ScreenPoint {
+    Float x, y;
+  };
+  ScreenPoint screen(const Int2& pix) const;
   TileMask mask_;  // what the uniforms and seeing_tiles hold now
   // The view and boxes mask_ was made for, if it was made from boxes.
   std::optional<CameraFrame> seen_from_;

@@ -16,6 +16,8 @@ DeviceScene::DeviceScene(const Scene& scene, const Grid& g, const TracerOptions&
   shading.upload(scene);
   light_count = static_cast<int>(scene.lights.size());
   background = scene.background;
+  camera.kind = F.camera;
+  camera.lens_seed.set(static_cast<int32_t>(scene.options.seed));
   if (F.area_lights) {  // Whitted's area lights draw from the same table (Shading::loop_light)
     path_lights.upload(scene, tris, F, {}, materials.textures());
     shading.area_samples(scene.options);

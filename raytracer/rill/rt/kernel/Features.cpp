@@ -2,7 +2,9 @@
 #include "rill/rt/kernel/Features.h"
 
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/kernel/LightShape.h"
 #include "rill/rt/kernel/Shader.h"
+#include "rill/rt/scene/Camera.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt {
@@ -17,6 +19,7 @@ std::string Features::str() const {
   add(geometry, "geometry");
   add(lights, "lights");
   add(area_lights, "area-lights");
+  add(light_shapes, "light-shapes");
   add(shadows, "shadows");
   add(specular, "specular");
   add(reflection, "reflection");
@@ -25,6 +28,8 @@ std::string Features::str() const {
   add(vertex_colors, "vertex-colors");
   add(texcoords, "texcoords");
   add(dynamic, "dynamic");
+  add(camera == CameraKind::Orthographic, "orthographic");
+  add(camera == CameraKind::ThinLens, "thin-lens");
   if (stack > 0) s += " stack=" + std::to_string(stack);
   return s.empty() ? "none" : s;
 }
@@ -48,6 +53,7 @@ Features scene_features(const Scene& s, const MaterialShaders& shaders) {
   for (bool u : used) f.geometry = f.geometry || u;
   for (const AnimatedObject& o : s.animation.objects) f.dynamic = f.dynamic || o.count > 0;
   f.lights = !s.lights.empty() && f.geometry;
+  f.light_shapes = f.lights && any_light_shaped(s);
   if (s.options.integrator == Integrator::Whitted)
     for (size_t m = 0; m < s.materials.size(); ++m)
       f.area_lights = f.area_lights || (used[m] && s.materials[m].emits());
@@ -75,6 +81,7 @@ Features scene_features(const Scene& s, const MaterialShaders& shaders) {
   f.vertex_normals = f.geometry && !s.normals.empty() && s.options.smooth_normals;
   f.vertex_colors = f.geometry && !s.colors.empty();
   f.texcoords = f.texcoords && f.geometry && !s.texcoords.empty();
+  f.camera = camera_kind(s.camera);
   return f;
 }
 

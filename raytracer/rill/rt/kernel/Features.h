@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "rill/rt/scene/Scene.h"
+
 namespace rt {
 
 struct Scene;
@@ -21,6 +23,9 @@ struct Features {
   // on them per shaded point (kernel/Shading.h, loop_light); with neither these nor point
   // lights, the headlight.
   bool area_lights = false;
+  // Spot or directional lights, or (Whitted) a point light with inverse-square falloff:
+  // the lights' shapes (kernel/LightShape.h). Without, point lights' code alone.
+  bool light_shapes = false;
   bool shadows = false;         // shadow rays (lights or area lights, and options.shadows)
   bool specular = false;        // any used material with a Phong highlight, and lights
   bool reflection = false;      // any used material that reflects (shader lobes)
@@ -30,7 +35,9 @@ struct Features {
   bool texcoords = false;       // per-vertex texture coordinates (a used texture needs them)
   bool dynamic = false;         // animated objects: the BVH beside the grid (accel/Bvh.h)
   int stack = 0;                // ray stack entries (refraction: reflected branch)
-  std::string str() const;      // "geometry lights shadows ..." for logs and stats
+  // The camera's rays (the scene's camera: a tracer renders cameras of this kind only).
+  CameraKind camera = CameraKind::Pinhole;
+  std::string str() const;  // "geometry lights shadows ..." for logs and stats
 };
 
 constexpr int kRayStack = 3;

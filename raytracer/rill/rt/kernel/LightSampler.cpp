@@ -33,6 +33,27 @@ glm::vec3 mean_emission(const Scene& scene, const Material& m) {
                    mean_colour(scene.textures[static_cast<size_t>(m.emission_texture)]));
 }
 
+// A light's power, for the choice of light only (LightSampler.h).
+double light_power(const Scene& scene, const Light& l) {
+  const double lum = luminance(l.color);
+  switch (l.type) {
+    case LightType::Spot: {
+      const double ci = std::cos(l.inner_deg * (M_PI / 180.0));
+      const double co = std::cos(l.outer_deg * (M_PI / 180.0));
+      return 2.0 * M_PI * lum * (1.0 - 0.5 * (ci + co));
+    }
+    case LightType::Directional: {
+      glm::vec3 lo, hi;
+      const double r =
+          scene_bounds(scene, lo, hi) ? 0.5 * glm::length(glm::dvec3(hi) - glm::dvec3(lo)) : 1.0;
+      return M_PI * r * r * lum;
+    }
+    case LightType::Point:
+      break;
+  }
+  return 4.0 * M_PI * lum;
+}
+
 }  // namespace
 
 void LightSampler::upload(const Scene& scene, const Triangles& tris, const Features& F,
@@ -46,8 +67,10 @@ void LightSampler::upload(const Scene& scene, const Triangles& tris, const Featu
   for (const Light& l : scene.lights) {
     pos.push_back(l.position);
     col.push_back(l.color);
-    power.push_back(4.0 * M_PI * luminance(l.color));
+    power.push_back(light_power(scene, l));
   }
+  shaped_ = false;
+  for (const Light& l : scene.lights) shaped_ = shaped_ || l.type != LightType::Point;
   points_host_ = static_cast<int>(scene.lights.size());
   std::vector<int32_t> emitting, entry(F.geometry ? scene.triangle_count() : 0, -1);
   std::vector<double> material_area(scene.materials.size(), 0.0);
@@ -113,6 +136,7 @@ void LightSampler::upload(const Scene& scene, const Triangles& tris, const Featu
   upload_padded(point_pos_, pos);
   upload_padded(point_col_, col);
   upload_padded(material_, mat);
+  if (shaped_) shapes_.upload(scene.lights);
   if (textured_) {
     std::vector<int32_t> tex;
     for (const Material& m : scene.materials) tex.push_back(m.emission_texture);
@@ -200,6 +224,13 @@ LightDraw LightSampler::sample(const Float3& o, const Float3& u) const {
     out.radiance = point_col_[e] / select(d2 > 0.0f, d2, Float(1.0f));
     out.pdf = select(d2 > 0.0f, pick, Float(0.0f));
     out.delta = true;
+    if (shaped_) {  // a spot's cone; a directional light's fixed direction, without distance
+      const Bool directional = shapes_.directional(e);
+      out.wi = select(directional, -shapes_.axis[e], out.wi);
+      out.dist = select(directional, Float(kBig), out.dist);
+      out.radiance = select(directional, point_col_[e], out.radiance) * shapes_.cone(e, out.wi);
+      out.pdf = select(directional, pick, out.pdf);
+    }
   };
   auto area_light = [&] {
     const Int t = tri_[max(e - points_host_, Int(0))];

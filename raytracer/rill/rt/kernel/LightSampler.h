@@ -4,7 +4,14 @@
 // emitted radiance at a hit with the density with which light sampling would have chosen it
 // (for multiple importance sampling).
 //
-// Power, for the choice only: a point light of intensity I has 4 pi lum(I), a triangle of
+// Spot and directional lights (kernel/LightShape.h) are point lights with a shape: a spot of
+// intensity I on its axis sends I times its cone factor, over r^2; a directional light of
+// irradiance E sends E from its fixed direction, with no distance (its shadow ray has no end).
+// Both are delta lights, which only light sampling finds.
+//
+// Power, for the choice only: a point light of intensity I has 4 pi lum(I), a spot
+// 2 pi lum(I) (1 - (cos inner + cos outer) / 2) (pbrt's), a directional light of irradiance E
+// pi R^2 lum(E) with R the radius of the scene's bounding sphere (pbrt's), a triangle of
 // area A and radiance Le has pi A lum(Le) per side it emits from. Under an emission texture
 // (Material::emission_texture) Le is the scale times the texture's mean (a bitmap's texels',
 // a procedural texture's two colours'): the choice stays unbiased wherever the texture is,
@@ -21,6 +28,7 @@
 #include <rill/rill.h>
 
 #include "rill/rt/kernel/Features.h"
+#include "rill/rt/kernel/LightShape.h"
 #include "rill/rt/kernel/Records.h"
 #include "rill/rt/kernel/Textures.h"
 #include "rill/rt/kernel/Triangles.h"
@@ -32,9 +40,11 @@ namespace rt {
 struct LightDraw {
   Float3 wi;        // unit direction from the shading point to the light
   Float dist;       // distance to it
-  Float3 radiance;  // the light arriving along -wi: Le, or I / dist^2 for a point light
+  // The light arriving along -wi: Le, I / dist^2 for a point light (times a spot's cone), E
+  // for a directional light.
+  Float3 radiance;
   Float pdf;        // over solid angle at the shading point; a point light: its probability
-  Bool delta;       // a point light (no other strategy can find it)
+  Bool delta;       // a point, spot or directional light (no other strategy can find it)
 };
 
 // A point drawn on the emitting triangles alone (LightSampler::sample_area).
@@ -95,6 +105,8 @@ class LightSampler {
   rill::Array<Int> tri_{1, "light_tri"};              // entry -> triangle (areas)
   rill::Array<Int> entry_{1, "light_entry"};          // triangle -> entry, or -1
   rill::Array<Float3> point_pos_{1, "plight_pos"}, point_col_{1, "plight_col"};
+  bool shaped_ = false;  // host: spot or directional lights (LightShape.h)
+  LightShapes shapes_{"plight_shape", "plight_axis"};
   // Per material: Le in xyz, and in w 1 for two-sided plus 2 for a smooth lobe.
   rill::Array<Float4> material_{1, "mat_light"};
   rill::Array<Int> texture_{1, "mat_light_tex"};  // per material: its emission texture, or -1

@@ -20,21 +20,27 @@ void Lights::upload(const Scene& scene) {
   upload_padded(position, lp);
   upload_padded(color, lc);
   count.set(static_cast<int32_t>(scene.lights.size()));
+  if (any_light_shaped(scene)) shapes.upload(scene.lights);
 }
 
 void Shading::upload(const Scene& scene) {
+  glm::vec3 lo, hi;
+  const bool any = scene_bounds(scene, lo, hi);
+  set_eps(any, lo, hi);
+  background.set(scene.background);
+}
+
+void Shading::set_eps(bool any, const glm::vec3& lo, const glm::vec3& hi) {
   // Secondary rays start a little off the surface: 2e-5 of the scene's size (and at least
   // a few ulps of its coordinates).
-  glm::vec3 lo, hi;
   float e = 1e-4f;
-  if (scene_bounds(scene, lo, hi)) {
+  if (any) {
     double diag = glm::length(glm::dvec3(hi) - glm::dvec3(lo));
     double mag = std::max(glm::length(glm::dvec3(lo)), glm::length(glm::dvec3(hi)));
     e = static_cast<float>(std::max(2e-5 * diag, 1e-6 * mag));
     if (!(e > 0)) e = 1e-4f;
   }
   eps.set(e);
-  background.set(scene.background);
 }
 
 // Wachter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection" (Ray Tracing
@@ -95,8 +101,19 @@ Surface Shading::surface(const Ray& ray, const Hit& hit) const {
 }
 
 Float3 Shading::light(const Int& l, const Surface& s, const MaterialTable::Slots* slots) const {
-  Float3 L = normalize(lights_.position[l] - s.P);
-  return materials_.reflected(s, LightSample{L, lights_.color[l], false}, slots);
+  if (!F_.light_shapes) {
+    Float3 L = normalize(lights_.position[l] - s.P);
+    return materials_.reflected(s, LightSample{L, lights_.color[l], false}, slots);
+  }
+  const LightShapes& shapes = lights_.shapes;
+  const Float3 to = lights_.position[l] - s.P;
+  const Bool directional = shapes.directional(l);
+  const Float3 L = select(directional, -shapes.axis[l], normalize(to));
+  const Float d2 = dot(to, to);
+  const Float falloff = select(shapes.inverse_square(l) && d2 > 0.0f,
+                               1.0f / select(d2 > 0.0f, d2, Float(1.0f)), Float(1.0f));
+  const Float3 color = lights_.color[l] * (shapes.cone(l, L) * falloff);
+  return materials_.reflected(s, LightSample{L, color, false}, slots);
 }
 
 void Shading::area_samples(const SceneOptions& options) {
@@ -128,6 +145,11 @@ ShadowRay Shading::shadow_ray(const Int& l, const Surface& s) const {
   Float3 L = lights_.position[l] - so;
   Float dist = length(L);
   Float3 rd = L / dist;
+  if (F_.light_shapes) {  // a directional light's: towards it, as far as the scene goes
+    const Bool directional = lights_.shapes.directional(l);
+    rd = select(directional, -lights_.shapes.axis[l], rd);
+    dist = select(directional, Float(kBig), dist);
+  }
   Bool active = dist > 0.0f && dot(s.nf, rd) > 0.0f;
   // Stop short of the light by the same offset: a light on a surface (as on an area
   // light's quad) is not shadowed by that surface.

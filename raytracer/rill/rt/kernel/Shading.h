@@ -8,6 +8,7 @@
 
 #include "rill/rt/kernel/Features.h"
 #include "rill/rt/kernel/LightSampler.h"
+#include "rill/rt/kernel/LightShape.h"
 #include "rill/rt/kernel/MaterialTable.h"
 #include "rill/rt/kernel/Options.h"
 #include "rill/rt/kernel/Records.h"
@@ -17,10 +18,12 @@ namespace rt {
 
 constexpr float kMinWeight = 1.0e-3f;  // secondary rays below this weight are not traced
 
-// The point lights, in Rill arrays.
+// The lights, in Rill arrays: positions and colours, and where a scene has spot or
+// directional lights or inverse-square falloff (Features::light_shapes), their shapes.
 struct Lights {
   rill::Array<Float3> position{1, "light_pos"}, color{1, "light_col"};
   rill::Uniform<Int> count{0, "light_count"};
+  LightShapes shapes{"light_shape", "light_axis"};
   void upload(const Scene& scene);
 };
 
@@ -107,6 +110,10 @@ class Shading {
   rill::Uniform<Int> max_depth{5, "max_depth"};
   // Sets eps from the scene's size, and the background.
   void upload(const Scene& scene);
+  // Sets eps for triangles within [lo, hi] (any: there are some): what upload() sets for a
+  // scene of those bounds. A dynamic scene's frame sets it from its posed triangles, so that
+  // it equals the scene baked at that time.
+  void set_eps(bool any, const glm::vec3& lo, const glm::vec3& hi);
   // Area lights (F.area_lights): the samples per surface and the random sequence's seed.
   rill::Uniform<Int> light_samples{16, "light_samples"};
   rill::Uniform<Int> seed{0, "whitted_seed"};
@@ -121,13 +128,16 @@ class Shading {
   Float3 emitted(const Surface& s, const MaterialTable::Slots* slots = nullptr) const {
     return materials_.emitted(s, slots);
   }
-  // The light l sends towards the viewer through the shader, shadows aside.
+  // The light l sends towards the viewer through the shader, shadows aside. With
+  // F.light_shapes: a spot's colour times its cone factor (LightShape.h), a directional
+  // light's from its fixed direction, either times 1 / d^2 under inverse-square falloff (d
+  // the distance to the light); the same Phong terms as a point light's.
   Float3 light(const Int& l, const Surface& s, const MaterialTable::Slots* slots = nullptr) const;
   // Local light when there are no shadow rays: all lights, or the headlight. key: needed
   // with area lights.
   Float3 unshadowed_light(const Surface& s, const MaterialTable::Slots* slots = nullptr,
                           const LightKey* key = nullptr) const;
-  // The shadow ray towards light l.
+  // The shadow ray towards light l (a directional light's: along its direction without end).
   ShadowRay shadow_ray(const Int& l, const Surface& s) const;
 
   // The light loop: the point lights, then (F.area_lights) the area light samples.

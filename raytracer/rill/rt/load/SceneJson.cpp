@@ -7,18 +7,22 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "rill/rt/kernel/Shader.h"
 #include "rill/rt/load/JsonStructure.h"
+#include "rill/rt/load/LightJson.h"
 #include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/AnimationJson.h"
+#include "rill/rt/scene/CameraJson.h"
 #include "rill/rt/scene/ClassicMaterial.h"
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/JsonFields.h"
 #include "rill/rt/scene/MeshFile.h"
 #include "rill/rt/scene/NameList.h"
+#include "rill/rt/scene/RemoveTriangles.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/shaders/Registry.h"
 
@@ -281,7 +285,7 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     mat = &it->second;
   }
   if (j.contains("file")) {
-    check_keys(c, j, where, {"file", "material", "transform", "smooth"});
+    check_keys(c, j, where, {"file", "material", "transform", "smooth", "normal_weighting"});
     const std::string name = file_name(c, j["file"], where + ".file");
     std::filesystem::path p(name);
     if (p.is_relative()) p = std::filesystem::path(c.base_dir) / p;
@@ -293,6 +297,7 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
     ObjLoadOptions o;
     o.transform = t;
     o.override_material = mat;
+    o.override_textures = &s.textures;
     o.input = c.input;
     // "smooth": true (the default crease angle), false, or the crease angle in degrees.
     if (j.contains("smooth")) {
@@ -305,6 +310,15 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
         o.smooth = sm.get<bool>();
       } else {
         fail(c, where + ".smooth must be true, false or a crease angle in degrees (0..180)");
+      }
+    }
+    if (j.contains("normal_weighting")) {
+      const json& w = j["normal_weighting"];
+      try {
+        if (!w.is_string()) throw std::invalid_argument("it is not a string");
+        o.normal_weighting = parse_normal_weighting(w.get<std::string>());
+      } catch (const std::invalid_argument&) {
+        fail(c, where + ".normal_weighting must be \"angle\", \"area\" or \"area_angle\"");
       }
     }
     const size_t first = s.materials.size();
@@ -433,6 +447,11 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
       }
     }
     MeshNames mesh_names;
+    struct Prototype {
+      std::string name, where;
+      MeshRange range;
+    };
+    std::vector<Prototype> prototypes;
     if (j.contains("meshes")) {
       if (!j["meshes"].is_array()) fail(c, "meshes must be an array");
       check_room_for_shapes(c, s, j["meshes"]);
@@ -453,6 +472,17 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
           animate = m["animate"];
           m.erase("animate");
         }
+        // A prototype renders only through its instances: loaded like any mesh, for them to
+        // copy, and taken out after them.
+        bool prototype = false;
+        if (m.is_object() && m.contains("prototype")) {
+          prototype = boolean(c, m["prototype"], where + ".prototype");
+          m.erase("prototype");
+          if (prototype && name.empty())
+            fail(c, where + ": a prototype needs a \"name\", for instances to copy it");
+          if (prototype && !animate.is_null())
+            fail(c, where + ".animate: a prototype is not rendered itself; animate its instances");
+        }
         // An OBJ sequence: the mesh is its first file, and every file is a shape of it.
         json sequence_of;
         if (m.is_object() && m.contains("sequence")) {
@@ -465,6 +495,7 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
         check_room(c, s, 0, where);  // an OBJ file: the next mesh is not read past the limit
         const MeshRange range{first, s.triangle_count() - first};
         if (!name.empty()) mesh_names[name] = range;
+        if (prototype) prototypes.push_back({name, where, range});
         if (!animate.is_null() || !sequence_of.is_null()) {
           AnimatedObject o;
           o.name = name.empty() ? where : name;
@@ -479,19 +510,24 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
         }
       }
     }
-    if (j.contains("instances")) instances(c, s, j["instances"], mesh_names);
+    std::set<std::string> instanced;
+    if (j.contains("instances")) instanced = instances(c, s, j["instances"], mesh_names, materials);
+    if (!prototypes.empty()) {
+      std::vector<TriangleRange> ranges;
+      for (const Prototype& p : prototypes) {
+        ranges.push_back({p.range.first, p.range.count});
+        if (instanced.count(p.name) == 0)
+          s.warnings.push_back(c.file + ": " + p.where + ": prototype '" + clipped(p.name) +
+                               "' has no instances, so nothing of it is rendered");
+      }
+      remove_triangles(s, ranges);
+    }
     if (j.contains("lights")) {
       if (!j["lights"].is_array()) fail(c, "lights must be an array");
       s.lights.clear();
       for (size_t i = 0; i < j["lights"].size(); ++i) {
         const std::string where = "lights[" + std::to_string(i) + "]";
-        const json& l = j["lights"][i];
-        check_keys(c, l, where, {"position", "color"});
-        Light light;
-        if (!l.contains("position")) fail(c, where + " needs a position");
-        light.position = vec3(c, l["position"], where + ".position");
-        if (l.contains("color")) light.color = vec3_or_scalar(c, l["color"], where + ".color");
-        s.lights.push_back(light);
+        s.lights.push_back(read_light(c, j["lights"][i], where));
       }
     }
     if (j.contains("background")) s.background = vec3_or_scalar(c, j["background"], "background");
@@ -578,12 +614,15 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
     }
     if (j.contains("camera")) {
       const json& cam = j["camera"];
-      check_keys(c, cam, "camera", {"eye", "look_at", "up", "fov_y", "keys", "interpolation"});
+      check_keys(c, cam, "camera",
+                 {"eye", "look_at", "up", "fov_y", "type", "height", "aperture", "focus_distance",
+                  "keys", "interpolation"});
       Camera k = s.camera;
       if (cam.contains("eye")) k.eye = vec3(c, cam["eye"], "camera.eye");
       if (cam.contains("look_at")) k.look_at = vec3(c, cam["look_at"], "camera.look_at");
       if (cam.contains("up")) k.up = vec3(c, cam["up"], "camera.up");
       if (cam.contains("fov_y")) k.fov_y = num(c, cam["fov_y"], "camera.fov_y");
+      camera_projection(c, cam, k);
       s.camera = k;
       s.has_camera = true;
       if (cam.contains("keys") || cam.contains("interpolation"))

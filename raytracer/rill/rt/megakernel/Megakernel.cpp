@@ -8,8 +8,6 @@
 #include "rill/Reduce.h"
 #include "rill/Stopwatch.h"
 
-#include "rill/rt/scene/Image.h"
-
 namespace rt {
 
 using namespace rill;
@@ -18,31 +16,16 @@ using namespace rill;
 // Tracer's constructor (the other loop runs the same shader code); the other at its first use.
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
   if (path()) path_ = std::make_unique<PathIntegrator>(S_, S_.path_lights, S_.options);
-  // What a skipped pixel's colour is (miss(): 0 + 1 * background, in float) encodes to;
-  // to_srgb8 gives the device encoder's bytes (Srgb8.h).
-  const glm::vec3 bg = glm::vec3(0.0f) + 1.0f * S_.background;
-  background_rgb8_.set(to_srgb8(bg.x) + to_srgb8(bg.y) * 256 + to_srgb8(bg.z) * 65536);
   (void)program(MegakernelLoop::Segment);
 }
 
 Megakernel::~Megakernel() = default;
 
-MegakernelOutputs MegakernelOutputs::for_frame(const FrameOutputs& want, int spp) {
-  MegakernelOutputs o;
-  // The AOVs are a third of the kernel's writes: only for a render that reads one back.
-  o.aovs = want.depth || want.prim || want.normal || want.albedo;
-  // Encoded in the kernel: 4 bytes a pixel written instead of 12, and no encoding pass
-  // reading them again. Samples are added up as linear colours.
-  o.encoded = spp == 1 && want.rgb8 && !want.color;
-  return o;
-}
-
-const Program& Megakernel::program(MegakernelLoop loop, MegakernelOutputs outputs) const {
+const Program& Megakernel::program(MegakernelLoop loop) const {
   if (loop == MegakernelLoop::Auto)
     throw std::invalid_argument("Megakernel::program: resolve Auto first (megakernel_loop_for)");
-  auto it = programs_.find({loop, outputs});
-  if (it == programs_.end())
-    it = programs_.emplace(std::pair{loop, outputs}, capture(loop, outputs)).first;
+  auto it = programs_.find(loop);
+  if (it == programs_.end()) it = programs_.emplace(loop, capture(loop)).first;
   return it->second;
 }
 
@@ -89,12 +72,12 @@ struct Megakernel::Aovs {
 
 namespace {
 
-// Both programs' last outputs: the ray count, and the camera ray's AOVs where they are asked for.
-void write_rays_and_aovs(const Int& rays, bool aovs, const Float& depth, const Int& prim,
+// Both programs' last outputs: the ray count and the camera ray's AOVs, written whether or not
+// a render reads them back (Megakernel.h says why).
+void write_rays_and_aovs(const Int& rays, const Float& depth, const Int& prim,
                          const Float3& normal) {
   Output<Int> out_rays("rays");
   out_rays = rays;
-  if (!aovs) return;
   Output<Float> out_depth("depth");
   Output<Int> out_prim("prim");
   Output<Float3> out_normal("normal");
@@ -108,7 +91,7 @@ void write_rays_and_aovs(const Int& rays, bool aovs, const Float& depth, const I
 // The path integrator's kernel: one path per instance, for the launch's sample. Each
 // iteration traces the path's ray, shades what it found (PathIntegrator::shade) and traces the
 // light sample's shadow ray.
-Program Megakernel::capture_path(MegakernelOutputs outputs) const {
+Program Megakernel::capture_path() const {
   return rill::program("rill_path", [&] {
     const Int2 pix = element_coord();
     const PathIntegrator& P = *path_;
@@ -121,7 +104,7 @@ Program Megakernel::capture_path(MegakernelOutputs outputs) const {
       (void)P.shade(path, Hit{Float(0.0f), Float2(0.0f), Int(-1)}, pix);
     }
     RILL_ELSE_IF(max_iter_ > 0) {
-      path.ray.d = S_.camera.direction(pix);
+      S_.camera.aim(path.ray, pix);
       const Int2 image_pix = pix + S_.camera.origin;
       Int iter = 0;
       RILL_DO {
@@ -143,23 +126,20 @@ Program Megakernel::capture_path(MegakernelOutputs outputs) const {
     RILL_ENDIF;
     Output<Float3> out_color("color");
     out_color = path.radiance;
-    write_rays_and_aovs(path.rays, outputs.aovs, first.depth, first.prim, first.normal);
-    if (outputs.aovs) {
-      Output<Float3> albedo("albedo");
-      albedo = first.albedo;
-    }
+    write_rays_and_aovs(path.rays, first.depth, first.prim, first.normal);
+    Output<Float3> albedo("albedo");
+    albedo = first.albedo;
   });
 }
 
-Program Megakernel::capture(MegakernelLoop loop, MegakernelOutputs outputs) const {
-  if (path()) return capture_path(outputs);
+Program Megakernel::capture(MegakernelLoop loop) const {
+  if (path()) return capture_path();
   return rill::program("rill_trace", [&] {
     Aovs aovs;
 
     PathLoop L(S_.F.stack);
     L.ray.o = S_.camera.eye;
     const Int2 pix = element_coord();
-    Bool skipped = false;
     // max_iter = 0 skips all tracing: render() uses that for a warm-up launch.
     // (An empty scene's rays all miss anyway: its kernel reads no array.)
     const Bool sees = S_.F.geometry ? S_.camera.may_see_scene(pix, S_.F.dynamic) : Bool(true);
@@ -168,10 +148,9 @@ Program Megakernel::capture(MegakernelLoop loop, MegakernelOutputs outputs) cons
       // give (the same operations), without making the ray or walking it.
       L.rays += 1;
       miss(L);
-      skipped = true;
     }
     RILL_ELSE_IF(max_iter_ > 0) {
-      L.ray.d = S_.camera.direction(pix);
+      S_.camera.aim(L.ray, pix);
       RILL_DO {
         L.path_done = false;
         if (loop == MegakernelLoop::Segment) {
@@ -206,22 +185,9 @@ Program Megakernel::capture(MegakernelLoop loop, MegakernelOutputs outputs) cons
       RILL_UNTIL(L.finished);
     }
     RILL_ENDIF;
-    if (outputs.encoded) {
-      // A skipped pixel's colour is the background's: its encoding, made once on the host,
-      // saves the three table lookups where most of a sparse scene's pixels are skipped.
-      Int pixel = background_rgb8_;
-      RILL_IF(!skipped) {
-        pixel = srgb8_.encode(L.color.x()) + srgb8_.encode(L.color.y()) * 256 +
-                srgb8_.encode(L.color.z()) * 65536;
-      }
-      RILL_ENDIF;
-      Output<Int> out_pixel("rgb8_pixel");
-      out_pixel = pixel;
-    } else {
-      Output<Float3> out_color("color");
-      out_color = L.color;
-    }
-    write_rays_and_aovs(L.rays, outputs.aovs, aovs.depth, aovs.prim, aovs.normal);
+    Output<Float3> out_color("color");
+    out_color = L.color;
+    write_rays_and_aovs(L.rays, aovs.depth, aovs.prim, aovs.normal);
   });
 }
 
@@ -483,20 +449,18 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
   RILL_ENDIF;
 }
 
-// "backend/accuracy/loop/outputs": a compiled kernel's key, and its warm-up's.
-std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a, MegakernelLoop loop,
-                                   MegakernelOutputs outputs) {
-  return backend_key(backend_name, a) + "/" + megakernel_loop_name(loop) +
-         (outputs.encoded ? "/rgb8" : "/color") + (outputs.aovs ? "+aovs" : "");
+// "backend/accuracy/loop": a compiled kernel's key, and its warm-up's.
+std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a,
+                                   MegakernelLoop loop) {
+  return backend_key(backend_name, a) + "/" + megakernel_loop_name(loop);
 }
 
-Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a, MegakernelLoop loop,
-                           MegakernelOutputs outputs) {
+Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a, MegakernelLoop loop) {
   loop = megakernel_loop_for(loop, backend_name);
-  const std::string key = kernel_key(backend_name, a, loop, outputs);
+  const std::string key = kernel_key(backend_name, a, loop);
   auto it = kernels_.find(key);
   if (it != kernels_.end()) return it->second;
-  return kernels_.emplace(key, compile_for(program(loop, outputs), backend_name, a)).first->second;
+  return kernels_.emplace(key, compile_for(program(loop), backend_name, a)).first->second;
 }
 
 // One backend's output streams, kept for its next frame of the same size (Film.h says why
@@ -515,8 +479,7 @@ struct Megakernel::Buffers {
   Stream<Float3> color, normal;
   Stream<Float> dist;
   Stream<Int> prim, rays;
-  Stream<Float3> albedo;              // the path program's
-  std::optional<Stream<Int>> pixels;  // the encoded variant's, made at its first use
+  Stream<Float3> albedo;  // the path program's
 };
 
 void Megakernel::render(const Frame& frame, RenderResult& r) {
@@ -529,10 +492,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   const MegakernelLoop loop = megakernel_loop_for(rs.loop, rs.backend);
   r.loop = megakernel_loop_name(loop);
   Stopwatch since_start;
-  MegakernelOutputs outputs = MegakernelOutputs::for_frame(rs.outputs, spp);
-  // The path kernel writes linear colour only; running sums need it too.
-  if (path() || frame.summing()) outputs.encoded = false;
-  Kernel& k = kernel(rs.backend, rs.accuracy, loop, outputs);
+  Kernel& k = kernel(rs.backend, rs.accuracy, loop);
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
   add_stages(r, k.info());
 
@@ -554,15 +514,9 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   const std::string key = backend_key(rs.backend, rs.accuracy);
   Stopwatch setup;
   Buffers& out = buffers_for(buffers_, key, width, height);
-  k.bind("rays", out.rays);
-  if (outputs.encoded) {
-    if (!out.pixels) out.pixels.emplace(width, height, "rgb8_pixel");
-    k.bind("rgb8_pixel", *out.pixels);
-  } else {
-    k.bind("color", out.color);
-  }
-  if (outputs.aovs) k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
-  if (outputs.aovs && path()) k.bind("albedo", out.albedo);
+  k.bind("rays", out.rays).bind("color", out.color);
+  k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
+  if (path()) k.bind("albedo", out.albedo);
   film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing(),
              rs.outputs.variance);
   r.times.setup = setup.ms();
@@ -570,7 +524,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
   // below is tracing alone. The ray count's reduction kernels compile here too.
   const auto warm_key =
-      std::make_pair(kernel_key(rs.backend, rs.accuracy, loop, outputs), int64_t{width} * height);
+      std::make_pair(kernel_key(rs.backend, rs.accuracy, loop), int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
     max_iter_.set(0);
     k.execute();
@@ -584,6 +538,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   Stopwatch trace, step;
   for (int s = frame.first_sample; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
+    S_.camera.lens_sample.set(s);
     if (path_) path_->sample_index.set(s);
     if (S_.F.area_lights) S_.shading.sample_index.set(s);
     step.lap();
@@ -593,10 +548,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
     r.times.add_kernel(k.last_launch().device_ms);
     r.rays += rill::sum(out.rays);  // on the device: only the total comes back
     r.times.reduce += step.lap();
-    if (outputs.encoded)
-      film.add_encoded(*out.pixels);
-    else
-      film.add_sample(out.color, s);
+    film.add_sample(out.color, s);
     if (!frame.more_after(s)) break;
   }
   film.finish(AovStreams{out.dist, out.prim, out.normal, path() ? &out.albedo : nullptr},

@@ -7,10 +7,14 @@
 // finishes. A camera ray whose pixel lies outside the scene's box on screen
 // (CameraRays::may_see_scene) is a miss without being made or walked.
 //
-// The kernel writes the ray count and what the render reads back, each variant compiled at
-// its first use (MegakernelOutputs): the linear colour, or, for a frame of one sample that
-// only wants the 8-bit image, the pixel's encoding (Srgb8Encoder, the film's bytes); and the
-// camera ray's AOVs (depth, primitive, normal) only when one of them is asked for.
+// The kernel writes the ray count, the linear colour and the camera ray's AOVs (depth,
+// primitive, normal; and the path integrator's albedo) in every render: what comes back to the
+// host (FrameOutputs) and how many samples a pixel takes are launch-time choices, read back or
+// looped over by render(), never compile-time ones. So one kernel per backend, accuracy and
+// loop serves every render of a tracer: a render that adds --depth or --spp 2 compiles
+// nothing (docs/raytracer.md, "What compiles a kernel"). The AOV writes and the film's
+// encoding pass cost a frame little (docs/benchmarks/2026-12-07-first-image.md); a second
+// compile costs seconds.
 //
 // Under the path integrator (SceneOptions::integrator, integrator/PathIntegrator.h) the kernel
 // is another: each instance follows one path of its pixel for the launch's sample index, and
@@ -37,7 +41,6 @@
 #include <string>
 
 #include "rill/rt/film/Film.h"
-#include "rill/rt/film/Srgb8.h"
 #include "rill/rt/integrator/PathIntegrator.h"
 #include "rill/rt/kernel/Compile.h"
 #include "rill/rt/kernel/DeviceScene.h"
@@ -46,37 +49,27 @@
 
 namespace rt {
 
-// What a megakernel variant writes besides the ray count.
-struct MegakernelOutputs {
-  bool aovs = true;      // depth, prim and normal
-  bool encoded = false;  // rgb8_pixel (the 8-bit encoding) instead of color
-  // The variant a render with these settings and samples per pixel runs.
-  static MegakernelOutputs for_frame(const FrameOutputs& want, int spp);
-  auto operator<=>(const MegakernelOutputs&) const = default;
-};
-
 class Megakernel final : public RenderStrategy {
  public:
   explicit Megakernel(DeviceScene& scene);
   ~Megakernel() override;
-  // The program with loop Ray or Segment and the given outputs (Segment's with colour and
-  // AOVs captured by the constructor, the others at their first use).
-  const rill::Program& program(MegakernelLoop loop, MegakernelOutputs outputs = {}) const;
-  // Compiled once per backend, accuracy, loop (Auto: the backend's, megakernel_loop_for) and
-  // outputs.
+  // The program with loop Ray or Segment (Segment's captured by the constructor, Ray's at its
+  // first use).
+  const rill::Program& program(MegakernelLoop loop) const;
+  // Compiled once per backend, accuracy and loop (Auto: the backend's, megakernel_loop_for),
+  // whatever the render's outputs and samples per pixel.
   rill::Kernel& kernel(const std::string& backend, rill::Accuracy a,
-                       MegakernelLoop loop = MegakernelLoop::Auto, MegakernelOutputs outputs = {});
+                       MegakernelLoop loop = MegakernelLoop::Auto);
   void render(const Frame& frame, RenderResult& r) override;
 
  private:
   struct PathLoop;
   struct Aovs;
   struct Buffers;  // a backend's output streams (PerBackend.h: buffers_for)
-  rill::Program capture(MegakernelLoop loop, MegakernelOutputs outputs) const;
-  rill::Program capture_path(MegakernelOutputs outputs) const;
+  rill::Program capture(MegakernelLoop loop) const;
+  rill::Program capture_path() const;
   bool path() const { return S_.options.integrator == Integrator::Path; }
-  static std::string kernel_key(const std::string& backend, rill::Accuracy a, MegakernelLoop loop,
-                                MegakernelOutputs outputs);
+  static std::string kernel_key(const std::string& backend, rill::Accuracy a, MegakernelLoop loop);
   // The loop body's steps (Megakernel.cpp). Ray: trace, camera_or_secondary_ray or
   // shadow_ray_back, next_ray once the lights are done, pop_or_finish.
   Hit trace(PathLoop& L) const;
@@ -101,9 +94,7 @@ class Megakernel final : public RenderStrategy {
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
   // Captured on demand, from const accessors (Tracer::program is const): a GPU never needs
   // Segment's program beyond the constructor's, a CPU backend never Ray's.
-  mutable std::map<std::pair<MegakernelLoop, MegakernelOutputs>, rill::Program> programs_;
-  Srgb8Encoder srgb8_;  // the encoded variant's, with the film's bytes
-  rill::Uniform<Int> background_rgb8_{0, "background_rgb8"};  // a skipped pixel's encoding
+  mutable std::map<MegakernelLoop, rill::Program> programs_;
   std::map<std::string, rill::Kernel> kernels_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
   std::set<std::pair<std::string, int64_t>> warmed_;         // kernels launched at a size before

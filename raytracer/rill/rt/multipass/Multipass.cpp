@@ -225,6 +225,7 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
   Stopwatch since_samples;
   for (int sample = frame.first_sample; sample < spp; ++sample) {
     S_.camera.offset.set(sample_offset(sample));
+    S_.camera.lens_sample.set(sample);
     run(K.raygen, kRaygen, std::nullopt);
     const rill::StateMask with_surface = where(path_state, kPathSurface);
     for (int bounce = 0; bounce <= depth; ++bounce) {

@@ -16,7 +16,13 @@ Program Multipass::capture_raygen() const {
     Output<Aov> aov("aov");
     Output<Int> ts("tr.state");
     Float3 eye = S_.camera.eye;
-    ray = Ray{eye, S_.camera.direction(element_coord()), Float(kBig)};
+    if (S_.camera.kind == CameraKind::Pinhole) {
+      ray = Ray{eye, S_.camera.direction(element_coord()), Float(kBig)};
+    } else {
+      Ray r{eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)};
+      S_.camera.aim(r, element_coord());
+      ray = r;
+    }
     path = PathState{Int(kPathAlive), Int(0), Int(1), Float(1.0f), Float3(0.0f)};
     aov = Aov{as_float(Int(0x7f800000)), Int(-1), Float3(0.0f)};
     ts = kPending;

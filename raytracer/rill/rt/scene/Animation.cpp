@@ -29,6 +29,11 @@ glm::vec3 Pose::apply_point(const glm::vec3& p) const {
   return glm::vec3(translate + rotation * (scale * glm::dvec3(p)));
 }
 
+glm::vec3 Pose::apply_point(const glm::vec3& p, const glm::dvec3& pivot) const {
+  if (pivot == glm::dvec3(0.0)) return apply_point(p);
+  return glm::vec3(translate + pivot + rotation * (scale * (glm::dvec3(p) - pivot)));
+}
+
 glm::vec3 Pose::apply_normal(const glm::vec3& n) const {
   const glm::dvec3 m = rotation * (glm::dvec3(n) / scale);
   const double l = glm::length(m);

@@ -41,6 +41,10 @@ struct Pose {
   glm::dquat rotation{1.0, 0.0, 0.0, 0.0};  // unit (w, x, y, z)
   glm::dvec3 scale{1.0};
   glm::vec3 apply_point(const glm::vec3& p) const;
+  // The same motion with its rotation and scale about `pivot`:
+  // p -> translate + pivot + rotation * (scale * (p - pivot)). A zero pivot is apply_point(p),
+  // bit for bit (the sums with 0 would turn a -0 into +0).
+  glm::vec3 apply_point(const glm::vec3& p, const glm::dvec3& pivot) const;
   // The normal of a surface moved by the pose, normalized (inverse transpose: rotation of
   // n / scale).
   glm::vec3 apply_normal(const glm::vec3& n) const;
@@ -83,6 +87,9 @@ struct AnimatedObject {
   std::string name;  // for messages and stats: the mesh's or instance's name, or its place
   size_t first = 0, count = 0;
   PoseTrack track;
+  // The point (in the scene, as the triangles stand at rest) that the track's rotations and
+  // scales act about: an instance's "pivot" as its "transform" placed it. Zero for a mesh.
+  glm::dvec3 pivot{0.0};
   std::vector<std::vector<glm::vec3>> shapes, shape_normals;
   double shape_fps = 0;  // 0: the time range's fps
   // The shape shown at `time` for a time range starting at `start` at `fps` frames per second.

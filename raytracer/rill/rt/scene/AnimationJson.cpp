@@ -72,6 +72,34 @@ glm::dquat rotation(const Ctx& c, const json& key, const std::string& where) {
   return glm::dquat(1.0, 0.0, 0.0, 0.0);
 }
 
+// An instance's point p placed by its transform about its pivot: T(translate) T(pivot) R S
+// T(-pivot) p, in binary32 as rotate((p - pivot) * scale) + translate + pivot. Without a pivot
+// it is Transform::apply_point, bit for bit.
+glm::vec3 placed(const Transform& t, const glm::vec3& pivot, const glm::vec3& p) {
+  if (pivot == glm::vec3(0.0f)) return t.apply_point(p);
+  return t.apply_point(p - pivot) + pivot;
+}
+
+// An instance's "material": the index of the named material in the scene, added the first
+// time an instance names it.
+int instance_material(const Ctx& c, Scene& s, const json& j, const std::string& where,
+                      const std::map<std::string, Material>& materials,
+                      std::map<std::string, int>& added) {
+  if (!j.is_string()) fail(c, where + " must be a material name");
+  const std::string name = j.get<std::string>();
+  if (auto it = added.find(name); it != added.end()) return it->second;
+  auto it = materials.find(name);
+  if (it == materials.end()) {
+    std::vector<std::string> known;
+    for (const auto& named : materials) known.push_back(named.first);
+    fail(c, where + ": unknown material '" + clipped(name) + "' (" +
+                (known.empty() ? std::string("the file defines no materials")
+                               : "materials: " + name_list(known)) +
+                ")");
+  }
+  return added[name] = s.add_material(it->second);
+}
+
 }  // namespace
 
 TimeRange time_range(const Ctx& c, const json& j) {
@@ -143,12 +171,15 @@ CameraTrack camera_track(const Ctx& c, const json& camera, const Camera& base) {
   return track;
 }
 
-void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
+std::set<std::string> instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes,
+                                const std::map<std::string, Material>& materials) {
   if (!j.is_array()) fail(c, "instances must be an array");
+  std::set<std::string> used;
+  std::map<std::string, int> added;  // materials named by instances: name -> index
   for (size_t i = 0; i < j.size(); ++i) {
     const std::string where = "instances[" + std::to_string(i) + "]";
     const json& inst = j[i];
-    check_keys(c, inst, where, {"mesh", "name", "transform", "animate"});
+    check_keys(c, inst, where, {"mesh", "name", "transform", "pivot", "material", "animate"});
     if (!inst.contains("mesh") || !inst["mesh"].is_string())
       fail(c, where + " needs \"mesh\": the name of a mesh of \"meshes\"");
     const std::string name = inst["mesh"].get<std::string>();
@@ -159,8 +190,15 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
       fail(c, where + ".mesh: unknown object '" + clipped(name) + "' (named meshes: " +
                   (known.empty() ? "none; give a mesh a \"name\"" : name_list(known)) + ")");
     }
+    used.insert(name);
     Transform t;
     if (inst.contains("transform")) t = transform(c, inst["transform"], where + ".transform");
+    const glm::vec3 pivot =
+        inst.contains("pivot") ? vec3(c, inst["pivot"], where + ".pivot") : glm::vec3(0.0f);
+    const int material =
+        inst.contains("material")
+            ? instance_material(c, s, inst["material"], where + ".material", materials, added)
+            : -1;
     const MeshRange r = it->second;
     check_room(c, s, r.count, where);  // before copying
     const size_t first = s.triangle_count();
@@ -169,13 +207,14 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
       glm::vec2 uv[3];
       for (int v = 0; v < 3; ++v) {
         const size_t at = 3 * k + static_cast<size_t>(v);
-        p[v] = t.apply_point(s.positions[at]);
+        p[v] = placed(t, pivot, s.positions[at]);
         if (!s.normals.empty()) n[v] = t.apply_normal(s.normals[at]);
         if (!s.colors.empty()) col[v] = s.colors[at];
         if (!s.texcoords.empty()) uv[v] = s.texcoords[at];
       }
-      s.add_triangle(p[0], p[1], p[2], s.material[k], s.normals.empty() ? nullptr : n,
-                     s.colors.empty() ? nullptr : col, s.texcoords.empty() ? nullptr : uv);
+      s.add_triangle(p[0], p[1], p[2], material >= 0 ? material : s.material[k],
+                     s.normals.empty() ? nullptr : n, s.colors.empty() ? nullptr : col,
+                     s.texcoords.empty() ? nullptr : uv);
     }
     // A deforming mesh's copies deform too: its shapes, moved by the instance's transform.
     const AnimatedObject* deforming = nullptr;
@@ -190,6 +229,9 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
       }
       o.first = first;
       o.count = r.count;
+      // The keys turn and scale the copy about its pivot where the transform put it; without
+      // a pivot, about the scene's origin, as before instances had pivots.
+      if (inst.contains("pivot")) o.pivot = glm::dvec3(placed(t, pivot, pivot));
       if (inst.contains("animate"))
         o.track = pose_track(c, inst["animate"], where + ".animate");
       else
@@ -199,7 +241,7 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
         for (size_t k = 0; k < deforming->shapes.size(); ++k) {
           std::vector<glm::vec3> p(deforming->shapes[k].size()), n(p.size());
           for (size_t v = 0; v < p.size(); ++v) {
-            p[v] = t.apply_point(deforming->shapes[k][v]);
+            p[v] = placed(t, pivot, deforming->shapes[k][v]);
             n[v] = t.apply_normal(deforming->shape_normals[k][v]);
           }
           o.shapes.push_back(std::move(p));
@@ -209,6 +251,7 @@ void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes) {
       s.animation.objects.push_back(std::move(o));
     }
   }
+  return used;
 }
 
 TimeRange keys_time_range(const Animation& a) {

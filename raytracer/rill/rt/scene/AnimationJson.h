@@ -5,6 +5,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 
 #include "rill/rt/scene/Animation.h"
@@ -24,9 +25,13 @@ TimeRange time_range(const Ctx& c, const json& j);
 PoseTrack pose_track(const Ctx& c, const json& j, const std::string& where);
 // The camera's "keys" (and "interpolation"): a key's missing fields are `base`'s.
 CameraTrack camera_track(const Ctx& c, const json& camera, const Camera& base);
-// Appends the instances of "instances": copies of a named mesh's triangles, moved by the
-// instance's "transform", and animated by its "animate".
-void instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes);
+// Appends the instances of "instances": copies of a named mesh's triangles, placed by the
+// instance's "transform" about its "pivot" (T(translate) T(pivot) R S T(-pivot)), with its
+// "material" (a name of `materials`) on every face if it gives one, and animated by its
+// "animate" (about the pivot as placed, when it gives one). Returns the names of the meshes
+// it copied.
+std::set<std::string> instances(const Ctx& c, Scene& s, const json& j, const MeshNames& meshes,
+                                const std::map<std::string, Material>& materials);
 // The time range of an animated scene whose file gives none: from its first key to its last
 // (and to the end of its OBJ sequences), at 24 frames per second.
 TimeRange keys_time_range(const Animation& a);

@@ -137,7 +137,8 @@ void add_mesh(Walk& w, const aiMesh& m, unsigned index, const aiMatrix4x4& to_wo
 // The triangles into the scene: the file's normals, else (compute) normals computed as for an
 // OBJ file without `vn`, keeping flat the triangles they leave flat (ObjLoader.cpp does the
 // same, so that the same mesh renders with the same bits from either file).
-void add_triangles(Scene& s, const std::vector<Tri>& tris, bool compute, float crease) {
+void add_triangles(Scene& s, const std::vector<Tri>& tris, bool compute,
+                   const ObjLoadOptions& opt) {
   std::vector<glm::vec3> computed;
   if (compute && !tris.empty()) {
     std::vector<glm::vec3> pos;
@@ -147,7 +148,7 @@ void add_triangles(Scene& s, const std::vector<Tri>& tris, bool compute, float c
         pos.push_back(t.p[k]);
         ids.push_back(t.vertex[k]);
       }
-    computed = vertex_normals({pos, ids, {}}, crease);
+    computed = vertex_normals({pos, ids, {}}, opt.crease_degrees, opt.normal_weighting);
   }
   for (size_t i = 0; i < tris.size(); ++i) {
     const Tri& t = tris[i];
@@ -275,7 +276,7 @@ Scene load_ply(const std::string& path, const ObjLoadOptions& opt) {
   // assimp's PLY reader gives one mesh at the root; a file without faces may give none.
   for (unsigned i = 0; i < as.mNumMeshes; ++i)
     if (as.mMeshes[i] != nullptr) add_mesh(w, *as.mMeshes[i], i, aiMatrix4x4(), mat);
-  add_triangles(s, w.tris, !layout.normals && opt.smooth, opt.crease_degrees);
+  add_triangles(s, w.tris, !layout.normals && opt.smooth, opt);
   warn_common(s, w);
   if (layout.colors)
     s.warnings.push_back(path +
@@ -351,7 +352,7 @@ Scene load_gltf(const std::string& path, const ObjLoadOptions& opt) {
         stack.push_back({v.node->mChildren[c], v.to_world * v.node->mChildren[c]->mTransformation});
   }
   // glTF: a primitive without normals is flat shaded (the specification says so).
-  add_triangles(s, w.tris, /*compute=*/false, opt.crease_degrees);
+  add_triangles(s, w.tris, /*compute=*/false, opt);
   if (s.materials.empty()) material(as.mNumMaterials);
   warn_common(s, w);
   if (colours) ignored.push_back("vertex colours (COLOR_0)");

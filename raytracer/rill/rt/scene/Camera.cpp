@@ -2,6 +2,7 @@
 #include "rill/rt/scene/Camera.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace rt {
@@ -19,6 +20,23 @@ glm::vec3 normalize3(const glm::vec3& v) {
   return glm::vec3(v.x / l, v.y / l, v.z / l);
 }
 
+CameraKind camera_kind(const Camera& c) {
+  if (c.projection == Projection::Orthographic) return CameraKind::Orthographic;
+  return c.aperture > 0.0f ? CameraKind::ThinLens : CameraKind::Pinhole;
+}
+
+const char* camera_kind_name(CameraKind k) {
+  switch (k) {
+    case CameraKind::Orthographic:
+      return "orthographic";
+    case CameraKind::ThinLens:
+      return "thin lens";
+    case CameraKind::Pinhole:
+      break;
+  }
+  return "pinhole";
+}
+
 CameraFrame camera_frame(const Camera& c, int width, int height) {
   CameraFrame f;
   f.eye = c.eye;
@@ -28,8 +46,19 @@ CameraFrame camera_frame(const Camera& c, int width, int height) {
   f.width = static_cast<float>(width);
   f.height = static_cast<float>(height);
   f.aspect = f.width / f.height;
+  f.kind = camera_kind(c);
+  if (f.kind == CameraKind::Orthographic) {
+    f.tan_half = c.ortho_height * 0.5f;
+    return f;
+  }
   const float arg = c.fov_y * 0.5f * 0.0174532924f;
   f.tan_half = static_cast<float>(std::tan(static_cast<double>(arg)));
+  if (f.kind == CameraKind::ThinLens) {
+    const glm::vec3 v = c.look_at - c.eye;
+    const float focus = c.focus_distance > 0.0f ? c.focus_distance : std::sqrt(dot3(v, v));
+    f.lens_radius = c.aperture;
+    f.lens_k = c.aperture / focus;
+  }
   return f;
 }
 
@@ -39,6 +68,77 @@ glm::vec3 camera_ray(const CameraFrame& f, int i, int j, float ox, float oy) {
   glm::vec3 d = f.forward + sx * f.right;
   d = d + sy * f.up;
   return normalize3(d);
+}
+
+CameraRay camera_ray(const CameraFrame& f, int i, int j, float ox, float oy, glm::vec2 lens) {
+  if (f.kind == CameraKind::Pinhole) return CameraRay{f.eye, camera_ray(f, i, j, ox, oy)};
+  const float sx = ((static_cast<float>(i) + ox) / f.width * 2.0f - 1.0f) * f.tan_half * f.aspect;
+  const float sy = (1.0f - (static_cast<float>(j) + oy) / f.height * 2.0f) * f.tan_half;
+  if (f.kind == CameraKind::Orthographic) {
+    glm::vec3 o = f.eye + sx * f.right;
+    o = o + sy * f.up;
+    return CameraRay{o, f.forward};
+  }
+  // The thin lens: the pinhole's ray through the screen point moved against the lens point
+  // by k = R / focus meets the pinhole's own ray on the focal plane.
+  const float ex = sx - f.lens_k * lens.x, ey = sy - f.lens_k * lens.y;
+  glm::vec3 d = f.forward + ex * f.right;
+  d = d + ey * f.up;
+  glm::vec3 o = f.eye + (f.lens_radius * lens.x) * f.right;
+  o = o + (f.lens_radius * lens.y) * f.up;
+  return CameraRay{o, normalize3(d)};
+}
+
+namespace {
+
+// Philox4x32-10 (rill/Random.h) on the host, for lens_point.
+std::array<uint32_t, 4> philox(std::array<uint32_t, 4> c, uint32_t k0, uint32_t k1) {
+  for (int round = 0; round < 10; ++round) {
+    if (round > 0) {
+      k0 += 0x9E3779B9u;
+      k1 += 0xBB67AE85u;
+    }
+    const uint64_t p0 = uint64_t{0xD2511F53u} * c[0], p1 = uint64_t{0xCD9E8D57u} * c[2];
+    c = {static_cast<uint32_t>(p1 >> 32) ^ c[1] ^ k0, static_cast<uint32_t>(p1),
+         static_cast<uint32_t>(p0 >> 32) ^ c[3] ^ k1, static_cast<uint32_t>(p0)};
+  }
+  return c;
+}
+
+}  // namespace
+
+glm::vec2 lens_disk(glm::vec2 u) {
+  const float a = u.x * 2.0f - 1.0f, b = u.y * 2.0f - 1.0f;
+  const bool wide = std::fabs(a) > std::fabs(b);
+  const float r = wide ? a : b;
+  const float q = (wide ? b : a) / (r == 0.0f ? 1.0f : r);
+  const float p = q * 0.785398185f;  // pi/4 in float32
+  const float p2 = p * p;
+  const float sin_p =
+      p * (1.0f + p2 * (-0.166666672f +
+                        p2 * (0.00833333377f + p2 * (-0.000198412701f + p2 * 2.75573188e-06f))));
+  const float cos_p =
+      1.0f +
+      p2 * (-0.5f + p2 * (0.0416666679f +
+                          p2 * (-0.00138888892f + p2 * (2.48015876e-05f + p2 * -2.755732e-07f))));
+  return wide ? glm::vec2(r * cos_p, r * sin_p) : glm::vec2(r * sin_p, r * cos_p);
+}
+
+glm::vec2 lens_point(uint32_t seed, int i, int j, int k) {
+  const std::array<uint32_t, 4> bits =
+      philox({static_cast<uint32_t>(i), static_cast<uint32_t>(j), static_cast<uint32_t>(k), 0u},
+             seed, kLensKey);
+  auto unit = [](uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; };
+  return lens_disk(glm::vec2(unit(bits[0]), unit(bits[1])));
+}
+
+float camera_origin_reach(const CameraFrame& f) {
+  const double eye = glm::length(glm::dvec3(f.eye));
+  double spread = 0;
+  if (f.kind == CameraKind::ThinLens) spread = f.lens_radius;
+  if (f.kind == CameraKind::Orthographic)
+    spread = double(f.tan_half) * std::sqrt(1.0 + double(f.aspect) * f.aspect);
+  return static_cast<float>((eye + spread) * (1.0 + 1e-6));
 }
 
 PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm::vec3& hi) {
@@ -58,28 +158,45 @@ PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm
   // never hit.
   // One pass over the corners: their projections, and whether each is clearly in front or
   // clearly behind; a corner on neither side makes the whole image.
+  // An orthographic camera's rays start on the eye's plane and run along forward: a corner's
+  // (sx, sy) is its place on that plane, whatever its depth, and only a box wholly behind the
+  // plane is never hit. A thin lens's ray from lens point R (lx, ly) through screen point
+  // (sx, sy) is at R lx + z (sx - k lx) at depth z: a point at x / z on the pinhole's screen is
+  // seen from sx within R |1/focus - 1/z| of it, widest at the box's nearest or farthest
+  // corner (lens_widen).
+  const bool ortho = f.kind == CameraKind::Orthographic;
   int behind = 0;
   bool near_plane = false;
+  double lens_widen = 0, z_far = 0;
   for (int c = 0; c < 8; ++c) {
     const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
     const glm::dvec3 v = p - eye;
     const double z = glm::dot(v, fw), clear = 1e-3 * std::max(size, glm::length(v));
+    z_far = std::max(z_far, std::fabs(z));
     if (z < -clear) {
       ++behind;
-      continue;
+      if (!ortho) continue;
     }
-    if (!(z > clear)) {
+    if (!ortho && !(z > clear)) {
       near_plane = true;
       continue;
     }
-    const double sx = glm::dot(v, rt) / z, sy = glm::dot(v, up) / z;
+    const double depth = ortho ? 1.0 : z;
+    const double sx = glm::dot(v, rt) / depth, sy = glm::dot(v, up) / depth;
+    if (f.kind == CameraKind::ThinLens)
+      lens_widen = std::max(lens_widen, std::fabs(double(f.lens_k) - f.lens_radius / z));
     sx_min = std::min(sx_min, sx);
     sx_max = std::max(sx_max, sx);
     sy_min = std::min(sy_min, sy);
     sy_max = std::max(sy_max, sy);
   }
   if (behind == 8) return PixelRect{};
-  if (behind > 0 || near_plane) return all;
+  if (!ortho && (behind > 0 || near_plane)) return all;
+  lens_widen *= 1.0 + 1e-5;
+  sx_min -= lens_widen;
+  sx_max += lens_widen;
+  sy_min -= lens_widen;
+  sy_max += lens_widen;
   // sx = ((i + ox) / W * 2 - 1) t a and sy = (1 - (j + oy) / H * 2) t, solved for i and j;
   // ox, oy in [0, 1) widen each range by one pixel, and two more cover rounding. A float ray
   // is off its exact direction by a few 1e-7 radians whatever the field of view (the frame
@@ -95,8 +212,12 @@ PixelRect pixels_seeing_box(const CameraFrame& f, const glm::vec3& lo, const glm
   const double sx_far = std::max(std::fabs(sx_min), std::fabs(sx_max));
   const double sy_far = std::max(std::fabs(sy_min), std::fabs(sy_max));
   const double s2 = sx_far * sx_far + sy_far * sy_far;
-  const double mx = 3.0 + 1e-6 * (1.0 + s2) * f.width / (2.0 * t * a);
-  const double my = 3.0 + 1e-6 * (1.0 + s2) * f.height / (2.0 * t);
+  // An orthographic ray's origin rounds by a few ulps of |eye| + |s|, and forward is
+  // orthogonal to right and up only to rounding, a drift of 1e-7 per unit of depth.
+  const double slack = ortho ? 1e-5 * (glm::length(eye) + std::sqrt(s2) + z_far)
+                             : 1e-6 * (1.0 + s2) * (1.0 + f.lens_radius);
+  const double mx = 3.0 + slack * f.width / (2.0 * t * a);
+  const double my = 3.0 + slack * f.height / (2.0 * t);
   PixelRect r;
   r.first.x = clamp_to(std::floor(column(sx_min)) - mx, w);
   r.end.x = clamp_to(std::ceil(column(sx_max)) + mx, w);

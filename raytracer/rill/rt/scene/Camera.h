@@ -22,10 +22,18 @@ namespace rt {
 
 struct CameraFrame {
   glm::vec3 eye, forward, right, up;
-  float tan_half = 0;  // t
+  float tan_half = 0;  // t; an orthographic camera's half height h = height * 0.5f
   float aspect = 0;    // a = W / H
   float width = 0, height = 0;
+  CameraKind kind = CameraKind::Pinhole;
+  float lens_radius = 0;  // thin lens: R, the aperture
+  float lens_k = 0;       // thin lens: k = R / focus_distance
 };
+
+// The kernel variant a camera needs.
+CameraKind camera_kind(const Camera& c);
+// "pinhole", "orthographic" or "thin lens", for messages.
+const char* camera_kind_name(CameraKind k);
 
 // float32 helpers with the DSL's evaluation order.
 float dot3(const glm::vec3& a, const glm::vec3& b);
@@ -35,6 +43,25 @@ glm::vec3 normalize3(const glm::vec3& v);
 CameraFrame camera_frame(const Camera& c, int width, int height);
 // The ray through pixel (i, j) at sub-pixel offset (ox, oy) (0.5, 0.5 = the centre).
 glm::vec3 camera_ray(const CameraFrame& f, int i, int j, float ox = 0.5f, float oy = 0.5f);
+
+// A camera ray of any kind: its origin and unit direction. lens is the thin lens's point on
+// the unit disk (lens_point); the other kinds ignore it.
+struct CameraRay {
+  glm::vec3 origin, direction;
+};
+CameraRay camera_ray(const CameraFrame& f, int i, int j, float ox, float oy, glm::vec2 lens);
+// The thin lens's point for pixel (i, j) of the image and the pixel's sample k, on the unit
+// disk (docs/camera.md, "The thin lens"): Philox4x32-10 of counter (i, j, k, 0) and key
+// (seed, 0x4c656e73), its first two words as floats on the grid of 2^-24, mapped by the
+// concentric mapping (lens_disk).
+glm::vec2 lens_point(uint32_t seed, int i, int j, int k);
+inline constexpr uint32_t kLensKey = 0x4c656e73;  // "Lens": the key's second word
+// The concentric mapping of (u, v) in [0, 1)^2 onto the unit disk, with its sine and cosine
+// polynomials, in float32 and in the documented order.
+glm::vec2 lens_disk(glm::vec2 u);
+// The farthest a camera ray's origin lies from the world's origin (bounded above): |eye| for a
+// pinhole, plus the lens's radius or the orthographic view's half diagonal.
+float camera_origin_reach(const CameraFrame& f);
 
 // The pixels whose camera rays may meet the box [lo, hi], at any sample offset in [0, 1)^2:
 // columns [first.x, end.x) and rows [first.y, end.y), within the image. Conservative by three

@@ -298,6 +298,7 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
     tinyobj::index_t ix[3];
     int mat;
     uint32_t group;  // smoothing group
+    size_t face;     // the face it comes from, counted over the file (for face_line)
   };
   std::vector<Tri> tris;
   std::vector<std::string> bad_polygons;  // warnings, one per polygon
@@ -342,7 +343,8 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
         tris.push_back(Tri{
             {mesh.indices[offset + t[0]], mesh.indices[offset + t[1]], mesh.indices[offset + t[2]]},
             mat,
-            group});
+            group,
+            faces_before + f});
       offset += fv;
     }
     faces_before += mesh.num_face_vertices.size();
@@ -358,9 +360,14 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
     glm::vec3 p(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1], attrib.vertices[3 * vi + 2]);
     return opt.transform.apply_point(p);
   };
-  // Computed normals (VertexNormals.h), in world space: a file without `vn`, smoothing on.
+  auto has_normals = [](const Tri& t) {
+    return t.ix[0].normal_index >= 0 && t.ix[1].normal_index >= 0 && t.ix[2].normal_index >= 0;
+  };
+  // Computed normals (VertexNormals.h), in world space, for the triangles whose face gives no
+  // `vn` (all of a file without any), smoothing on. Faces with `vn` share in them too: a
+  // face's normal is geometry whatever the file says at its corners.
   std::vector<glm::vec3> computed;
-  if (nn == 0 && opt.smooth && !tris.empty()) {
+  if (opt.smooth && !std::all_of(tris.begin(), tris.end(), has_normals)) {
     std::vector<glm::vec3> corner_pos;
     std::vector<int32_t> corner_vertex;
     std::vector<uint32_t> groups;
@@ -374,7 +381,8 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
       // Without any `s` line every face is in one group; with them, `s off` (0) is flat.
       groups.push_back(lines.smoothing_groups ? t.group : 1u);
     }
-    computed = vertex_normals({corner_pos, corner_vertex, groups}, opt.crease_degrees);
+    computed = vertex_normals({corner_pos, corner_vertex, groups}, opt.crease_degrees,
+                              opt.normal_weighting);
   }
 
   for (size_t i = 0; i < tris.size(); ++i) {
@@ -400,13 +408,51 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
         t[k] = glm::vec2(attrib.texcoords[2 * ix.texcoord_index],
                          attrib.texcoords[2 * ix.texcoord_index + 1]);
     }
-    if (!computed.empty()) all_normals = !keeps_flat(p, &computed[3 * i], n);
+    if (!computed.empty() && !all_normals) all_normals = !keeps_flat(p, &computed[3 * i], n);
     s.add_triangle(p[0], p[1], p[2], tri.mat, all_normals ? n : nullptr, has_colors ? c : nullptr,
                    all_uv ? t : nullptr);
     if (opt.corners != nullptr)
       for (const tinyobj::index_t& ix : tri.ix) opt.corners->push_back(ix.vertex_index);
   }
   if (s.materials.empty()) default_mat();
+  // A face without `vt` on a material that reads texture coordinates shows the texture at
+  // (0, 0), one flat colour (docs/scene-format.md): a warning per material, naming the first
+  // such face's line and counting the faces.
+  const Material* const shared = opt.override_material;
+  const std::vector<Texture>* textures = shared != nullptr ? opt.override_textures : &s.textures;
+  auto uv_texture = [&](const Material& m) -> const Texture* {
+    if (textures == nullptr) return nullptr;
+    auto read = [&](int i) {
+      return i >= 0 && static_cast<size_t>(i) < textures->size() &&
+             reads_texture_coordinates((*textures)[static_cast<size_t>(i)]);
+    };
+    for (const auto& [param, value] : m.params)
+      if (value.kind == ParamValue::Kind::Texture && read(value.texture))
+        return &(*textures)[static_cast<size_t>(value.texture)];
+    return read(m.emission_texture) ? &(*textures)[static_cast<size_t>(m.emission_texture)]
+                                    : nullptr;
+  };
+  struct Uvless {
+    size_t first_face, faces = 0, last_face;
+  };
+  std::map<int, Uvless> uvless;  // by material
+  for (const Tri& t : tris) {
+    if (t.ix[0].texcoord_index >= 0 && t.ix[1].texcoord_index >= 0 && t.ix[2].texcoord_index >= 0)
+      continue;
+    auto [it, first] = uvless.try_emplace(t.mat, Uvless{t.face, 0, t.face});
+    if (first || it->second.last_face != t.face) ++it->second.faces;
+    it->second.last_face = t.face;
+  }
+  for (const auto& [mat, u] : uvless) {
+    const Material& m = shared != nullptr ? *shared : s.materials[static_cast<size_t>(mat)];
+    const Texture* tex = uv_texture(m);
+    if (tex == nullptr) continue;
+    s.warnings.push_back(path + ":" + std::to_string(face_line(parsed, u.first_face)) + ": " +
+                         grouped(u.faces) + (u.faces == 1 ? " face" : " faces") + " of material '" +
+                         clipped(m.name) + "' give no texture coordinates " +
+                         "(vt), so its texture '" + clipped(tex->name) +
+                         "' shows one flat colour on them (its value at (0, 0))");
+  }
   return s;
 }
 

@@ -38,7 +38,7 @@ void pose_objects(const Scene& rest, double time, Scene& posed) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, 3 * o.count, 4096),
                       [&](const tbb::blocked_range<size_t>& r) {
                         for (size_t i = r.begin(); i != r.end(); ++i) {
-                          posed.positions[3 * o.first + i] = pose.apply_point(from[i]);
+                          posed.positions[3 * o.first + i] = pose.apply_point(from[i], o.pivot);
                           if (from_n != nullptr)
                             posed.normals[3 * o.first + i] = pose.apply_normal(from_n[i]);
                         }

@@ -206,6 +206,8 @@ void validate_animation(const Animation& a, size_t triangles) {
                        std::to_string(o.first + o.count) + " are not in the scene (" +
                        std::to_string(triangles) + " triangles)");
     if (o.track.keys.empty()) throw SceneError(where + " has no keys");
+    if (!std::isfinite(o.pivot.x) || !std::isfinite(o.pivot.y) || !std::isfinite(o.pivot.z))
+      throw SceneError(where + ": the pivot must be finite");
     if (!o.shape_normals.empty() && o.shape_normals.size() != o.shapes.size())
       throw SceneError(where + ": " + std::to_string(o.shapes.size()) + " shapes but " +
                        std::to_string(o.shape_normals.size()) + " sets of normals");
@@ -246,12 +248,26 @@ void validate_animation(const Animation& a, size_t triangles) {
 
 }  // namespace
 
+void check_lens(const Camera& camera, const std::string& where) {
+  if (!std::isfinite(camera.ortho_height) || !std::isfinite(camera.aperture) ||
+      !std::isfinite(camera.focus_distance))
+    throw SceneError(where + ": values must be finite numbers");
+  if (camera.projection == Projection::Orthographic && !(camera.ortho_height > 0.0f))
+    throw SceneError(where + ": height must be > 0 (the orthographic view's height)");
+  if (!(camera.aperture >= 0.0f))
+    throw SceneError(where + ": aperture must be >= 0 (the lens's radius; 0 is a pinhole)");
+  if (!(camera.focus_distance >= 0.0f)) throw SceneError(where + ": focus_distance must be > 0");
+  if (camera.projection == Projection::Orthographic && camera.aperture > 0.0f)
+    throw SceneError(where + ": aperture is for a perspective camera, not an orthographic one");
+}
+
 void check_camera(const Camera& camera, const std::string& where) {
   if (!finite3(camera.eye) || !finite3(camera.look_at) || !finite3(camera.up) ||
       !std::isfinite(camera.fov_y))
     throw SceneError(where + ": values must be finite numbers");
   if (!(camera.fov_y > 0.0f && camera.fov_y < 180.0f))
     throw SceneError(where + ": fov_y must be between 0 and 180 degrees");
+  check_lens(camera, where);
   if (camera.eye == camera.look_at)
     throw SceneError(where + ": eye and look_at are the same point");
   glm::dvec3 f = glm::dvec3(camera.look_at) - glm::dvec3(camera.eye);
@@ -293,6 +309,24 @@ void validate_material(const Material& m, size_t texture_count) {
   }
 }
 
+namespace {
+// What a spot or directional light asks beyond a point light's (Light).
+void validate_light_shape(const Light& l) {
+  const std::string where =
+      std::string(light_type_name(l.type)) + " light at " + vec_str(l.position) + ": ";
+  if (l.type != LightType::Point &&
+      (!finite3(l.direction) || !(glm::length(glm::dvec3(l.direction)) > 0.0)))
+    throw SceneError(where + "direction " + vec_str(l.direction) + " must be finite and not zero");
+  if (l.type == LightType::Spot && !(l.outer_deg > 0.0f && l.outer_deg <= kMaxSpotDeg &&
+                                     l.inner_deg >= 0.0f && l.inner_deg <= l.outer_deg))
+    throw SceneError(where + "cone angles inner " + std::to_string(l.inner_deg) + ", outer " +
+                     std::to_string(l.outer_deg) +
+                     " must have 0 <= inner <= outer and 0 < outer <= 90 degrees");
+  if (l.type == LightType::Directional && l.falloff != Falloff::None)
+    throw SceneError(where + "a directional light has no distance falloff");
+}
+}  // namespace
+
 void Scene::validate() const {
   const size_t n = triangle_count();
   if (positions.size() != 3 * n) throw SceneError("internal: positions and materials disagree");
@@ -321,6 +355,7 @@ void Scene::validate() const {
     if (l.color.x < 0.0f || l.color.y < 0.0f || l.color.z < 0.0f)
       throw SceneError("light at " + vec_str(l.position) + ": colour " + vec_str(l.color) +
                        " has a negative component; colours must be >= 0");
+    validate_light_shape(l);
   }
   if (!finite3(background)) throw SceneError("background must be finite");
   if (background.x < 0.0f || background.y < 0.0f || background.z < 0.0f)
@@ -329,7 +364,12 @@ void Scene::validate() const {
   check_camera(camera, "camera");
   for (size_t k = 0; k < animation.camera.keys.size(); ++k) {
     const CameraPose& p = animation.camera.keys[k].camera;
-    check_camera(Camera{p.eye, p.look_at, p.up, p.fov_y}, "camera.keys[" + std::to_string(k) + "]");
+    Camera key = camera;  // the keys move the camera; its lens and projection stay
+    key.eye = p.eye;
+    key.look_at = p.look_at;
+    key.up = p.up;
+    key.fov_y = p.fov_y;
+    check_camera(key, "camera.keys[" + std::to_string(k) + "]");
   }
   if (!image_size_fits(width, height))
     throw SceneError("image size " + std::to_string(width) + "x" + std::to_string(height) +
@@ -345,6 +385,14 @@ void Scene::validate() const {
                      "]");
   if (options.grid < 0 || options.grid > 512)
     throw SceneError("options: grid must be 'auto' (0) or 1..512 cells per axis");
+}
+
+const char* light_type_name(LightType t) {
+  return t == LightType::Spot ? "spot" : t == LightType::Directional ? "directional" : "point";
+}
+
+const char* falloff_name(Falloff f) {
+  return f == Falloff::InverseSquare ? "inverse_square" : "none";
 }
 
 const char* integrator_name(Integrator i) {

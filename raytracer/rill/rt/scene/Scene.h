@@ -84,17 +84,45 @@ struct Material {
   }
 };
 
+// Lights (docs/scene-format.md, "lights"): a point light shines from `position` in every
+// direction; a spot light from `position` into a cone about `direction`, full within
+// inner_deg of the axis, nothing beyond outer_deg, and pbrt's smoothstep of the cosine
+// between (kernel/LightShape.h); a directional light from infinitely far away along
+// `direction`. Under Whitted, `color` is what a surface facing the light receives, without
+// falloff unless `falloff` says inverse_square (point and spot lights); under the path
+// integrator it is a point or spot light's intensity (always falling off as 1/r^2) and a
+// directional light's irradiance on a surface facing it.
+enum class LightType { Point, Spot, Directional };
+enum class Falloff { None, InverseSquare };
+const char* light_type_name(LightType t);  // "point", "spot", "directional"
+const char* falloff_name(Falloff f);       // "none", "inverse_square"
 struct Light {
   glm::vec3 position{0.0f};
   glm::vec3 color{1.0f};
+  LightType type = LightType::Point;
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot: the cone's axis; directional: where light goes
+  float inner_deg = 25.0f, outer_deg = 30.0f;  // spot: 0 <= inner <= outer, 0 < outer <= 90
+  Falloff falloff = Falloff::None;             // Whitted, point and spot lights
 };
+// The spot cone's widest half-angle (degrees): a hemisphere.
+constexpr float kMaxSpotDeg = 90.0f;
 
-// Pinhole camera (docs/camera.md): vertical field of view in degrees.
+// The camera (docs/camera.md): a perspective camera with a vertical field of view in degrees,
+// a pinhole or, with aperture > 0, a thin lens focused at focus_distance; or an orthographic
+// camera whose view is ortho_height scene units tall.
+enum class Projection { Perspective, Orthographic };
+// What the kernels generate rays for (a kernel variant each): a perspective camera with
+// aperture 0 is the pinhole, with aperture > 0 the thin lens.
+enum class CameraKind { Pinhole, Orthographic, ThinLens };
 struct Camera {
   glm::vec3 eye{0.0f, 0.0f, 5.0f};
   glm::vec3 look_at{0.0f};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float fov_y = 45.0f;
+  Projection projection = Projection::Perspective;
+  float ortho_height = 2.0f;    // orthographic: the view's height in scene units
+  float aperture = 0.0f;        // perspective: the lens's radius in scene units; 0 = a pinhole
+  float focus_distance = 0.0f;  // thin lens: the focal plane's distance; 0 = |look_at - eye|
 };
 
 // The values of SceneOptions' accelerator settings, which the scene formats and the command
@@ -207,6 +235,9 @@ struct Scene {
 inline constexpr size_t kMaxTriangles = size_t{1} << 26;
 
 void check_camera(const Camera& camera, const std::string& where);
+// The projection's and lens's part of check_camera: finite values, an orthographic height > 0,
+// aperture and focus_distance >= 0 (0: the defaults), no aperture on an orthographic camera.
+void check_lens(const Camera& camera, const std::string& where);
 // A material's values whatever its shader: a shader named, every parameter finite, colours
 // >= 0, texture parameters within texture_count. Throws SceneError naming the material. What
 // a shader asks of its own parameters (reflect + transmit <= 1, the ranges of shininess and
@@ -249,10 +280,15 @@ struct ObjLoadOptions {
   // When set, receives each triangle's three OBJ vertex numbers (0-based, in the order of
   // its corners): an OBJ sequence compares them to check that its topology stays the same.
   std::vector<int32_t>* corners = nullptr;
-  // Vertex normals for a file without `vn` (VertexNormals.h): off, or on with faces that meet
-  // at more than crease_degrees keeping a hard edge. A file with `vn` keeps its own.
+  // Vertex normals for the faces of a file that give no `vn` (VertexNormals.h): off, or on
+  // with faces that meet at more than crease_degrees keeping a hard edge. Faces with `vn`
+  // keep their own.
   bool smooth = true;
   float crease_degrees = kDefaultCreaseDegrees;
+  NormalWeighting normal_weighting = NormalWeighting::Angle;
+  // The textures override_material's texture parameters refer to (the scene it comes from),
+  // so that faces without `vt` on a material that reads texture coordinates get a warning.
+  const std::vector<Texture>* override_textures = nullptr;
 };
 Scene load_obj(const std::string& path, const ObjLoadOptions& opt = {});
 

@@ -42,6 +42,10 @@ const std::vector<std::string>& procedural_texture_types() {
   return types;
 }
 
+bool reads_texture_coordinates(const Texture& t) {
+  return t.type == "bitmap" || t.type == "checker";
+}
+
 float srgb8_to_linear(unsigned char c) {
   // Computed once in double and rounded to float, so that every platform decodes the same
   // bits whatever its pow().

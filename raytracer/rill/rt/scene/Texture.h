@@ -52,4 +52,8 @@ float srgb8_to_linear(unsigned char c);
 // and "wood" (of the hit point P * scale); each blends between color1 and color2.
 const std::vector<std::string>& procedural_texture_types();
 
+// Whether a texture is looked up at a surface's texture coordinates (a bitmap, a checker)
+// rather than at the point itself (the solid textures).
+bool reads_texture_coordinates(const Texture& t);
+
 }  // namespace rt

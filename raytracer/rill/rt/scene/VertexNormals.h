@@ -1,13 +1,15 @@
 // Vertex normals for a mesh that has none (an OBJ file without `vn`): each corner of a
-// triangle gets the angle-weighted mean of the face normals of the triangles that share its
-// vertex and bend from its own face by at most the crease angle, so curved surfaces shade
-// smooth and hard edges stay hard.
+// triangle gets the weighted mean of the face normals of the triangles that share its vertex
+// and bend from its own face by at most the crease angle, so curved surfaces shade smooth and
+// hard edges stay hard. The weights are the faces' angles at the vertex (the default), their
+// areas, or both multiplied.
 #pragma once
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace rt {
@@ -16,6 +18,14 @@ namespace rt {
 // between them. 60 smooths coarse curved meshes (a 12-sided cylinder's faces meet at 30
 // degrees) and keeps a box's 90-degree edges sharp.
 inline constexpr float kDefaultCreaseDegrees = 60.0f;
+
+// How much each face counts in a vertex's normal. Angle (Thuermer and Wuethrich 1998): its
+// interior angle at the vertex, so the normal depends neither on how a polygon was cut into
+// triangles nor on the faces' sizes. Area: its area, so big faces dominate slivers (Gouraud's
+// mean of cross products). AreaAngle: the product, Blender's "face area and angle".
+enum class NormalWeighting { Angle, Area, AreaAngle };
+// "angle", "area" or "area_angle"; throws std::invalid_argument naming the value and these.
+NormalWeighting parse_normal_weighting(const std::string& s);
 
 struct NormalMesh {
   // Three corners per triangle, in the triangles' order.
@@ -31,7 +41,8 @@ struct NormalMesh {
 // face gets its own face's normal; a triangle with no area (or a non-finite vertex) gets
 // (0, 0, 0) at its corners and adds nothing to its neighbours'.
 std::vector<glm::vec3> vertex_normals(const NormalMesh& mesh,
-                                      float crease_degrees = kDefaultCreaseDegrees);
+                                      float crease_degrees = kDefaultCreaseDegrees,
+                                      NormalWeighting weighting = NormalWeighting::Angle);
 
 // Copies a triangle's three computed normals (`computed`, from vertex_normals) into n and
 // says whether the triangle stays flat: every corner got its own face normal (or none), as

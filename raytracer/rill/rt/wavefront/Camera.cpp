@@ -10,7 +10,7 @@ using namespace wf;
 // The path along the pixel's camera ray, as the megakernel's capture_path starts it; a pixel
 // that cannot see the scene gets the miss's shading (the same operations) and is done. The
 // AOVs start as a miss leaves them, the shadow query inactive.
-Program Wavefront::capture_camera(bool aovs) const {
+Program Wavefront::capture_camera() const {
   return rill::program("wf_camera", [&] {
     const Int2 pix = element_coord();
     const PathIntegrator& P = *path_;
@@ -20,7 +20,7 @@ Program Wavefront::capture_camera(bool aovs) const {
       (void)P.shade(path, Hit{Float(0.0f), Float2(0.0f), Int(-1)}, pix);
     }
     RILL_ELSE {
-      path.ray.d = S_.camera.direction(pix);
+      S_.camera.aim(path.ray, pix);
     }
     RILL_ENDIF;
     Output<PathRecord> out_path("path");
@@ -29,12 +29,10 @@ Program Wavefront::capture_camera(bool aovs) const {
       Output<Int> active("shadow.active");
       active = 0;
     }
-    if (aovs) {
-      Output<Aov> aov("aov");
-      aov = Aov{as_float(Int(0x7f800000)), Int(-1), Float3(0.0f)};
-      Output<Float3> albedo("albedo");
-      albedo = Float3(0.0f);
-    }
+    Output<Aov> aov("aov");
+    aov = Aov{as_float(Int(0x7f800000)), Int(-1), Float3(0.0f)};
+    Output<Float3> albedo("albedo");
+    albedo = Float3(0.0f);
   });
 }
 

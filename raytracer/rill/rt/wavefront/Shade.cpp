@@ -11,7 +11,7 @@ using namespace wf;
 // Launched on the paths not done (masked). Writes the path back, its shadow query, and, on
 // the camera ray (depth 0), the AOVs. A scene without geometry has no intersect stage: every
 // ray misses.
-Program Wavefront::capture_shade(bool aovs) const {
+Program Wavefront::capture_shade() const {
   return rill::program("wf_shade", [&] {
     // Every field but done, which is false: the launch is masked to the paths not done.
     const PathRecord in_path{Input<Float4>("path.o"),        Input<Float4>("path.d"),
@@ -24,22 +24,20 @@ Program Wavefront::capture_shade(bool aovs) const {
     const Int depth = path.depth;
     FirstHit first;
     first.depth = as_float(Int(0x7f800000));
-    const ShadowQuery shadow = path_->shade(path, hit, image_pix, aovs ? &first : nullptr);
+    const ShadowQuery shadow = path_->shade(path, hit, image_pix, &first);
     Output<PathRecord> out_path("path");
     out_path = store(path);
     if (path_->shadow_rays()) {
       Output<ShadowRecord> out_shadow("shadow");
       out_shadow = store(shadow);
     }
-    if (aovs) {
-      Output<Aov> aov("aov");
-      Output<Float3> albedo("albedo");
-      RILL_IF(depth == 0) {
-        aov = Aov{first.depth, first.prim, first.normal};
-        albedo = first.albedo;
-      }
-      RILL_ENDIF;
+    Output<Aov> aov("aov");
+    Output<Float3> albedo("albedo");
+    RILL_IF(depth == 0) {
+      aov = Aov{first.depth, first.prim, first.normal};
+      albedo = first.albedo;
     }
+    RILL_ENDIF;
   });
 }
 

@@ -23,27 +23,26 @@ Wavefront::Wavefront(DeviceScene& scene) : S_(scene) {
         "the wavefront strategy runs the path integrator; use megakernel or multipass for "
         "whitted");
   path_ = std::make_unique<PathIntegrator>(S_, S_.path_lights, S_.options);
-  (void)programs(true);  // a shader's misuse of its parameters is an error of the first frame
+  (void)programs();  // a shader's misuse of its parameters is an error of the first frame
 }
 
 Wavefront::~Wavefront() = default;
 
-const Wavefront::Programs& Wavefront::programs(bool aovs) {
-  auto it = programs_.find(aovs);
-  if (it != programs_.end()) return it->second;
+const Wavefront::Programs& Wavefront::programs() {
+  if (programs_) return *programs_;
   Programs p;
-  p.camera = capture_camera(aovs);
+  p.camera = capture_camera();
   if (S_.F.geometry) p.intersect = capture_intersect();
-  p.shade = capture_shade(aovs);
+  p.shade = capture_shade();
   if (path_->shadow_rays()) p.shadow = capture_shadow();
-  return programs_.emplace(aovs, std::move(p)).first->second;
+  return programs_.emplace(std::move(p));
 }
 
-Wavefront::Kernels& Wavefront::kernels(const std::string& backend_name, Accuracy a, bool aovs) {
-  const std::string key = backend_key(backend_name, a) + (aovs ? "/aovs" : "");
+Wavefront::Kernels& Wavefront::kernels(const std::string& backend_name, Accuracy a) {
+  const std::string key = backend_key(backend_name, a);
   auto it = kernels_.find(key);
   if (it != kernels_.end()) return it->second;
-  const Programs& p = programs(aovs);
+  const Programs& p = programs();
   check_backend(backend_name, a);
   CompileOptions opt;
   opt.accuracy = a;
@@ -86,8 +85,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
   r.width = width;
   r.height = height;
   Stopwatch since_start;
-  const bool aovs = rs.outputs.depth || rs.outputs.prim || rs.outputs.normal || rs.outputs.albedo;
-  Kernels& K = kernels(rs.backend, rs.accuracy, aovs);
+  Kernels& K = kernels(rs.backend, rs.accuracy);
   r.from_cache = K.camera.info().cache_hit || K.camera.info().from_disk_cache;
   for (const Kernel* k : {&K.camera, &K.intersect, &K.shade, &K.shadow})
     if (!k->backend_name().empty()) add_stages(r, k->info());
@@ -108,12 +106,10 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
     K.shade.bind_fields("shadow", B.shadow);
     K.shadow.bind_fields("shadow", B.shadow).bind_fields("path", B.path);
   }
-  if (aovs) {
-    K.camera.bind_fields("aov", B.aov);
-    K.shade.bind_fields("aov", B.aov);
-    K.camera.bind("albedo", B.albedo);
-    K.shade.bind("albedo", B.albedo);
-  }
+  K.camera.bind_fields("aov", B.aov);
+  K.shade.bind_fields("aov", B.aov);
+  K.camera.bind("albedo", B.albedo);
+  K.shade.bind("albedo", B.albedo);
   film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing(),
              rs.outputs.variance);
   r.times.setup = setup.ms();
@@ -126,8 +122,8 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
   // Drivers that finish compiling at the first launch of a size (PoCL, Mesa), or at the
   // first masked one, do it here, so that the trace time below is tracing alone; the ray
   // count's reduction kernels compile here too.
-  const auto warm_key = std::make_pair(backend_key(rs.backend, rs.accuracy) + (aovs ? "/aovs" : ""),
-                                       int64_t{width} * height);
+  const auto warm_key =
+      std::make_pair(backend_key(rs.backend, rs.accuracy), int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
     K.camera.warm_up();
     if (geometry) K.intersect.warm_up(alive);
@@ -159,6 +155,7 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
   Stopwatch since_samples;
   for (int s = frame.first_sample; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
+    S_.camera.lens_sample.set(s);
     path_->sample_index.set(s);
     run(K.camera, kCamera, std::nullopt);
     capture_after(0, s);

@@ -32,6 +32,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -57,17 +58,18 @@ class Wavefront final : public RenderStrategy {
     rill::Kernel camera, intersect, shade, shadow;
   };
   struct Buffers;
-  // The stages' programs (one file each); with or without the AOV outputs.
-  rill::Program capture_camera(bool aovs) const;
+  // The stages' programs (one file each), with the AOV outputs whatever a render reads back:
+  // one set of kernels for every output (megakernel/Megakernel.h says why).
+  rill::Program capture_camera() const;
   rill::Program capture_intersect() const;
-  rill::Program capture_shade(bool aovs) const;
+  rill::Program capture_shade() const;
   rill::Program capture_shadow() const;
-  const Programs& programs(bool aovs);
-  Kernels& kernels(const std::string& backend, rill::Accuracy a, bool aovs);
+  const Programs& programs();
+  Kernels& kernels(const std::string& backend, rill::Accuracy a);
 
   DeviceScene& S_;
   std::unique_ptr<PathIntegrator> path_;
-  std::map<bool, Programs> programs_;  // by aovs
+  std::optional<Programs> programs_;
   std::map<std::string, Kernels> kernels_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
   std::set<std::pair<std::string, int64_t>> warmed_;         // kernels launched at a size before
