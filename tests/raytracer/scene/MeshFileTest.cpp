@@ -29,22 +29,15 @@ namespace {
 
 // ---- writing the files ----------------------------------------------------------------
 
-// A square (quad) and a concave L-shaped hexagon, as OBJ and PLY write them (0-based in PLY).
-const std::vector<glm::vec3> kVertices = {{0, 0, 0},
-                                          {1, 0, 0},
-                                          {1, 1, 0},
-                                          {0, 1, 0},  // quad
-                                          {2, 0, 0},
-                                          {4, 0, 0},
-                                          {4, 1, 0},
-                                          {3, 1, 0},
-                                          {3, 2, 0},
-                                          {2, 2, 0},  // L
-                                          // a tent (two faces at 90 degrees): computed normals
-                                          {0, 3, 0},
-                                          {1, 3, 0},
-                                          {0.5f, 3.5f, 0.5f},
-                                          {0.5f, 3.5f, -0.5f}};
+// A square (quad), a concave L-shaped hexagon and a tent of two triangles, as OBJ and PLY
+// write them (0-based in PLY).
+// clang-format off
+const std::vector<glm::vec3> kVertices = {
+    {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},                         // the quad
+    {2, 0, 0}, {4, 0, 0}, {4, 1, 0}, {3, 1, 0}, {3, 2, 0}, {2, 2, 0},   // the L
+    // a tent (two faces at 90 degrees): computed normals
+    {0, 3, 0}, {1, 3, 0}, {0.5f, 3.5f, 0.5f}, {0.5f, 3.5f, -0.5f}};
+// clang-format on
 const std::vector<std::vector<uint32_t>> kFaces = {
     {0, 1, 2, 3}, {4, 5, 6, 7, 8, 9}, {10, 11, 12}, {11, 10, 13}};
 
