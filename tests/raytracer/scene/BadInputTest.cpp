@@ -53,7 +53,7 @@ TEST(BadInput, MissingFiles) {
                 ": no such file ('missing.obj' is relative to the scene's folder)");
   // A folder given as the scene: said so, not that its extension is unknown.
   EXPECT_EQ(error_of([&] { load_scene(dir.dir()); }),
-            dir.dir() + ": is a directory, not a scene (.json or .obj)");
+            dir.dir() + ": is a directory, not a scene (.json, .obj, .ply, .gltf or .glb)");
 }
 
 // A path naming a device or a pipe is refused before anything is read (reading /dev/zero

@@ -1,10 +1,12 @@
-// rill-trace's SCENE argument (SceneFile.h): a built-in scene, a JSON file or an OBJ file.
+// rill-trace's SCENE argument (SceneFile.h): a built-in scene, a JSON file or a mesh file (OBJ,
+// PLY, glTF: scene/MeshFile.h).
 #include <cctype>
 #include <filesystem>
 
 #include "rill/rt/load/SceneFile.h"
 #include "rill/rt/scene/Framing.h"
 #include "rill/rt/scene/InputFile.h"
+#include "rill/rt/scene/MeshFile.h"
 
 namespace rt {
 
@@ -20,12 +22,13 @@ Scene load_scene(const std::string& spec, const InputOptions& input) {
     throw SceneError(spec + ": no such file (built-in scenes are named builtin:NAME)");
   }
   // A folder or a device: say so, rather than that its (empty) extension is unknown.
-  if (ext != ".json" && ext != ".obj") check_input_file(spec, "a scene (.json or .obj)");
+  if (ext != ".json" && !is_mesh_file(spec))
+    check_input_file(spec, "a scene (.json, .obj, .ply, .gltf or .glb)");
   if (ext == ".json") return load_json(spec, input);
-  if (ext == ".obj") {
+  if (is_mesh_file(spec)) {
     ObjLoadOptions o;
     o.input = input;
-    Scene s = load_obj(spec, o);
+    Scene s = load_mesh_file(spec, o);
     s.camera = default_camera(s);
     s.has_camera = true;
     s.camera_framed = true;
@@ -34,7 +37,8 @@ Scene load_scene(const std::string& spec, const InputOptions& input) {
     s.lights.push_back(Light{framing_light_position(s.camera), glm::vec3(1.0f)});
     return s;
   }
-  throw SceneError(spec + ": unknown scene type '" + ext + "' (expected .json or .obj)");
+  throw SceneError(spec + ": unknown scene type '" + ext +
+                   "' (expected .json, .obj, .ply, .gltf or .glb)");
 }
 
 }  // namespace rt

@@ -16,13 +16,13 @@ namespace rt {
 // file of nested brackets costs no more memory than a scene does. Real scenes nest 5 deep.
 inline constexpr int kMaxJsonDepth = 256;
 
-// A JSON scene file. The OBJ files it names are read with `input`.
+// A JSON scene file. The mesh files it names (OBJ, PLY, glTF) are read with `input`.
 Scene load_json(const std::string& path, const InputOptions& input = {});
 Scene parse_json_scene(const std::string& text, const std::string& base_dir,
                        const std::string& name = "scene", const InputOptions& input = {});
 
-// SCENE argument of rill-trace: "builtin:NAME", a .json file or a .obj file (framed by the
-// default camera, lit from the eye).
+// SCENE argument of rill-trace: "builtin:NAME", a .json file or a mesh file (.obj, .ply, .gltf,
+// .glb: framed by the default camera, lit by the framing light).
 Scene load_scene(const std::string& spec, const InputOptions& input = {});
 
 }  // namespace rt

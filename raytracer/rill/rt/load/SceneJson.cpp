@@ -20,6 +20,7 @@
 #include "rill/rt/scene/ClassicMaterial.h"
 #include "rill/rt/scene/InputFile.h"
 #include "rill/rt/scene/JsonFields.h"
+#include "rill/rt/scene/MeshFile.h"
 #include "rill/rt/scene/NameList.h"
 #include "rill/rt/scene/RemoveTriangles.h"
 #include "rill/rt/scene/Scene.h"
@@ -321,14 +322,16 @@ void mesh(const Ctx& c, Scene& s, const json& j, size_t index,
       }
     }
     const size_t first = s.materials.size();
-    s.append(load_obj(p.string(), o));
+    s.append(load_mesh_file(p.string(), o));
     // append() renumbers the OBJ's texture indices as its own; the override's already refer
     // to this scene's textures (the OBJ then has one material and no textures).
     if (mat != nullptr) s.materials[first] = *mat;
     return;
   }
   if (!j.contains("shape") || !j["shape"].is_string())
-    fail(c, where + " needs \"file\" (an OBJ) or \"shape\" (box, sphere, quad, triangle, teapot)");
+    fail(c,
+         where +
+             " needs \"file\" (OBJ, PLY, glTF) or \"shape\" (box, sphere, quad, triangle, teapot)");
   const std::string shape = j["shape"].get<std::string>();
   Material grey;
   const int m = s.add_material(mat != nullptr ? *mat : grey);

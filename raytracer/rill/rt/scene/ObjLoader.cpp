@@ -408,18 +408,7 @@ Scene load_obj(const std::string& path, const ObjLoadOptions& opt) {
         t[k] = glm::vec2(attrib.texcoords[2 * ix.texcoord_index],
                          attrib.texcoords[2 * ix.texcoord_index + 1]);
     }
-    if (!computed.empty() && !all_normals) {
-      // A triangle whose corners all get its own face normal (a face of a box, a flat one)
-      // stays a flat triangle: a mesh of hard edges only loads as it did without smoothing,
-      // and renders with the same kernel and bits.
-      const glm::vec3 face = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
-      bool flat = true;
-      for (int k = 0; k < 3; ++k) {
-        n[k] = computed[3 * i + k];
-        flat = flat && (n[k] == glm::vec3(0.0f) || glm::dot(n[k], face) > 1.0f - 1e-6f);
-      }
-      all_normals = !flat;
-    }
+    if (!computed.empty() && !all_normals) all_normals = !keeps_flat(p, &computed[3 * i], n);
     s.add_triangle(p[0], p[1], p[2], tri.mat, all_normals ? n : nullptr, has_colors ? c : nullptr,
                    all_uv ? t : nullptr);
     if (opt.corners != nullptr)

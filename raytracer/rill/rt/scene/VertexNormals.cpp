@@ -78,4 +78,14 @@ std::vector<glm::vec3> vertex_normals(const NormalMesh& mesh, float crease_degre
   return out;
 }
 
+bool keeps_flat(const glm::vec3 p[3], const glm::vec3* computed, glm::vec3 n[3]) {
+  const glm::vec3 face = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+  bool flat = true;
+  for (int k = 0; k < 3; ++k) {
+    n[k] = computed[k];
+    flat = flat && (n[k] == glm::vec3(0.0f) || glm::dot(n[k], face) > 1.0f - 1e-6f);
+  }
+  return flat;
+}
+
 }  // namespace rt

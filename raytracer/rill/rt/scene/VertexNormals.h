@@ -44,4 +44,10 @@ std::vector<glm::vec3> vertex_normals(const NormalMesh& mesh,
                                       float crease_degrees = kDefaultCreaseDegrees,
                                       NormalWeighting weighting = NormalWeighting::Angle);
 
+// Copies a triangle's three computed normals (`computed`, from vertex_normals) into n and
+// says whether the triangle stays flat: every corner got its own face normal (or none), as
+// the faces of a box do. The loaders then add it without normals, so that a mesh of hard edges
+// loads as it did without smoothing, and renders with the same kernel and bits.
+bool keeps_flat(const glm::vec3 p[3], const glm::vec3* computed, glm::vec3 n[3]);
+
 }  // namespace rt
