@@ -1,6 +1,7 @@
 // Control-flow programs: if / else-if / else, while, do-until, for, break, continue,
 // discard, arrays (1D, 2D, 3D, out-of-range indices), uniforms (changed between launches),
-// swizzles and write masks, element_index / element_coord on a 2D stream.
+// swizzles and write masks, element_index / element_coord on a 2D stream, lane-group
+// operations used so that no output depends on the group.
 //
 // They compute with integers and with floats whose every intermediate is exact (small
 // multiples of 1/4), so every accuracy mode must reproduce the reference interpreter bit for
@@ -374,11 +375,58 @@ Case coords_case() {
   return c;
 }
 
+// Lane-group operations (rill/Group.h) used so that no output depends on the group: the
+// reference interpreter runs a group of one, the simd backend its lanes, so every backend
+// and mode must give the interpreter's bits. A group-wide early out whose sides agree, a
+// loop that runs while any lane of the group still needs it (as a packet traversal does),
+// a broadcast from the element's own lane, and invariants of any group (its own ballot bit
+// set, min <= own <= max, a count of at least one, the lane inside the group).
+Case group_case() {
+  Case c = control(
+      "group_independent",
+      [] {
+        return program("control_group", [] {
+          Input<Float> x("x");
+          Input<Int> k("k");
+          Output<Float> y("y");
+          Output<Int> code("code");
+          Float r = x;
+          RILL_IF(group_any(x > 0.0f)) {
+            r = select(x > 0.0f, x * 2.0f, x);
+          }
+          RILL_ENDIF;
+          y = group_broadcast(r, lane_index());
+          Int i = 0, sum = 0;
+          RILL_WHILE(group_any(i < (k & 7))) {
+            RILL_IF(i < (k & 7)) {
+              sum += i * 3 + 1;
+            }
+            RILL_ENDIF;
+            i += 1;
+          }
+          RILL_ENDWHILE;
+          Int lane = lane_index();
+          Int4 b = group_ballot(Bool(true));
+          Int word =
+              select(lane < 32, b.x(), select(lane < 64, b.y(), select(lane < 96, b.z(), b.w())));
+          Bool ok = ((word >> (lane & 31)) & 1) == 1;
+          ok = ok && group_min(k) <= k && group_max(k) >= k && group_count(k > -1000000) >= 1;
+          ok = ok && lane >= 0 && lane < group_size() && group_all(Bool(true));
+          code = select(ok, sum, Int(-1));
+        });
+      },
+      {quarters(-64, 64), ints(-100, 100)});
+  c.elements = 1001;  // the simd backend's last group is short
+  return c;
+}
+
 }  // namespace
 
 std::vector<Case> control_cases() {
-  return {if_case(),      while_case(),  do_until_case(), for_case(),     nested_case(),
-          discard_case(), arrays_case(), uniforms_case(), swizzle_and_mask_case(), coords_case()};
+  return {if_case(),     while_case(),    do_until_case(),
+          for_case(),    nested_case(),   discard_case(),
+          arrays_case(), uniforms_case(), swizzle_and_mask_case(),
+          coords_case(), group_case()};
 }
 
 }  // namespace rill::conformance

@@ -194,6 +194,22 @@ void CFamilyPrinter::assign(std::string& out, const Stmt& s, const std::string& 
   out += pad + "}\n";
 }
 
+std::string Dialect::group(Op op, ScalarKind, int c, const std::vector<std::string>& args) const {
+  const std::string zero = literal(ScalarKind::Int, 0), one = literal(ScalarKind::Int, 1);
+  switch (op) {
+    case Op::GroupSize:
+      return one;
+    case Op::LaneIndex:
+      return zero;
+    case Op::GroupBallot:  // bit 0 of component 0
+      return c == 0 ? select(ScalarKind::Int, args[0], one, zero) : zero;
+    case Op::GroupCount:
+      return select(ScalarKind::Int, args[0], one, zero);
+    default:  // any, all, min, max, sum, broadcast: the element's own value
+      return args[0];
+  }
+}
+
 // Component c of an assignment's value, spelled as Ops.def's form column says.
 std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
   auto a = [&](size_t i) { return operand(s.args[i], c); };
@@ -231,6 +247,11 @@ std::string CFamilyPrinter::scalar_expr(const Stmt& s, int c) const {
       return fixed_form_expr(s, c, [&](const Operand& o, int i) { return operand(o, i); });
     case FormKind::Element:
       return s.op == Op::ElementIndex ? d_.element_index() : d_.element_coord(c);
+    case FormKind::Group: {
+      std::vector<std::string> args;
+      for (size_t i = 0; i < s.args.size(); ++i) args.push_back(a(i));
+      return d_.group(s.op, k, c, args);
+    }
     case FormKind::Gather:  // a statement of its own (assign() prints it), not an expression
     case FormKind::None:
       break;

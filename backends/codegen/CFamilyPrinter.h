@@ -74,6 +74,12 @@ class Dialect {
   // The test an `if` or a loop exit makes of a bool condition (lockstep C: whether any lane
   // has it).
   virtual std::string branch_condition(const std::string& c) const { return c; }
+  // Component c of a lane-group op (class Group of Ops.def) on operands of kind k, the
+  // operands printed in `args` (lockstep code: the active-lane mask last). By default a
+  // group of one, the element alone: its own value, its predicate as a count or ballot bit,
+  // size 1 and lane 0 (docs/programming-model.md).
+  virtual std::string group(ir::Op op, ir::ScalarKind k, int c,
+                            const std::vector<std::string>& args) const;
 };
 
 // The helper mapping one gather index into its dimension under an array's boundary mode

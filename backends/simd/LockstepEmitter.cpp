@@ -201,6 +201,65 @@ RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi*
   RILL_FN R name(A a, A b) { R r; for (int l = 0; l < RILL_W; ++l) r[l] = fn(a[l], b[l]); return r; }
 )";
 
+// The lane-group operations (VectorDialect::group): the group is the RILL_W lanes, and m
+// the mask of the lanes taking part (-1 on, 0 off). Integer results are the same in any
+// order, so the loops need no fixed tree. Only kernels that use them get them, so other
+// kernels' source is unchanged.
+const char* kGroupPrelude = R"(
+RILL_FN uint32_t rill_g_bits(rill_vi x) {
+  uint32_t b = 0;
+  for (int l = 0; l < RILL_W; ++l) b |= (uint32_t)(x[l] != 0) << l;
+  return b;
+}
+RILL_FN rill_vi rill_g_any(rill_vi x, rill_vi m) { return rill_splat_i(-rill_any(x & m)); }
+RILL_FN rill_vi rill_g_all(rill_vi x, rill_vi m) { return rill_splat_i(rill_any(~x & m) - 1); }
+RILL_FN rill_vi rill_g_ballot(rill_vi x, rill_vi m) {
+  return rill_splat_i((int32_t)rill_g_bits(x & m));
+}
+RILL_FN rill_vi rill_g_count(rill_vi x, rill_vi m) {
+  return rill_splat_i(__builtin_popcount(rill_g_bits(x & m)));
+}
+RILL_FN rill_vi rill_g_min(rill_vi x, rill_vi m) {
+  int32_t r = 2147483647;
+  for (int l = 0; l < RILL_W; ++l) if (m[l] && x[l] < r) r = x[l];
+  return rill_splat_i(r);
+}
+RILL_FN rill_vi rill_g_max(rill_vi x, rill_vi m) {
+  int32_t r = -2147483647 - 1;
+  for (int l = 0; l < RILL_W; ++l) if (m[l] && x[l] > r) r = x[l];
+  return rill_splat_i(r);
+}
+RILL_FN rill_vi rill_g_sum(rill_vi x, rill_vi m) {
+  uint32_t r = 0;
+  for (int l = 0; l < RILL_W; ++l) r += (uint32_t)(x[l] & m[l]);
+  return rill_splat_i((int32_t)r);
+}
+RILL_FN rill_vi rill_g_bcast_i(rill_vi x, rill_vi lane, rill_vi m) {
+  rill_vi r;
+  for (int l = 0; l < RILL_W; ++l) {
+    const int32_t k = lane[l];
+    r[l] = k >= 0 && k < RILL_W && m[k] ? x[k] : x[l];
+  }
+  return r;
+}
+RILL_FN rill_vr rill_g_bcast_r(rill_vr x, rill_vi lane, rill_vi m) {
+  rill_vr r;
+  for (int l = 0; l < RILL_W; ++l) {
+    const int32_t k = lane[l];
+    r[l] = k >= 0 && k < RILL_W && m[k] ? x[k] : x[l];
+  }
+  return r;
+}
+)";
+
+bool uses_group_ops(const Function& f) {
+  bool used = false;
+  for_each_stmt(f.body, [&](const Stmt& s) {
+    used = used || (s.kind == StmtKind::Assign && op_info(s.op).cls == OpClass::Group);
+  });
+  return used;
+}
+
 // For a helper without a lockstep body, RILL_LANES1/2(rill_v_NAME, result, operand,
 // rill_NAME) when an op's HELPER form names it: lane by lane through its scalar definition.
 std::string lane_wise(const codegen::Helper& h) {
@@ -259,6 +318,8 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   src += kVectorPrelude;
   src += lockstep_helpers();
   src += codegen::on_demand_bodies(codegen::Language::Lockstep, f, lane_wise);
+  const bool group = uses_group_ops(f);
+  if (group) src += kGroupPrelude;
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
   src += c_entry_locals(f, codegen::CDialect(accuracy, ""));  // scalar locals
   src += "  int64_t rill_written = 0;\n";
@@ -267,6 +328,14 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   src += "  int64_t rill_lane[RILL_W];\n";
   src += "  int rill_n;\n";
   src += "  while ((rill_n = rill_next_group(&rill_gs, rill_lane)) > 0) {\n";
+  if (group) {
+    // The lanes of the group that hold a real element, and each lane's index.
+    src += "    rill_vi rill_live, rill_lane_id;\n";
+    src += "    for (int l = 0; l < RILL_W; ++l) {\n";
+    src += "      rill_live[l] = l < rill_n ? -1 : 0;\n";
+    src += "      rill_lane_id[l] = l;\n";
+    src += "    }\n";
+  }
   auto uses = [&](Op op) { return contains(f.body, op); };
   if (uses(Op::ElementIndex)) {
     src += "    rill_vi rill_element;\n";

@@ -73,6 +73,40 @@ class VectorDialect : public codegen::CDialect {
   std::string branch_condition(const std::string& c) const override {
     return "rill_any(" + c + ")";
   }
+  // The group is the RILL_W lanes (docs/programming-model.md); the lanes taking part are
+  // those of the op's mask operand (lower_lockstep appends it) that hold a real element
+  // (rill_live: not the spare lanes of a short group). The rill_g_* functions are
+  // LockstepEmitter.cpp's, emitted only for kernels that use them.
+  std::string group(ir::Op op, ir::ScalarKind k, int c,
+                    const std::vector<std::string>& args) const override {
+    const std::string m = args.empty() ? "" : "(" + args.back() + " & rill_live)";
+    switch (op) {
+      case ir::Op::GroupSize:
+        return "rill_splat_i(RILL_W)";
+      case ir::Op::LaneIndex:
+        return "rill_lane_id";
+      case ir::Op::GroupAny:
+        return "rill_g_any(" + args[0] + ", " + m + ")";
+      case ir::Op::GroupAll:
+        return "rill_g_all(" + args[0] + ", " + m + ")";
+      case ir::Op::GroupBallot:  // at most 16 lanes: components 1..3 are 0
+        return c == 0 ? "rill_g_ballot(" + args[0] + ", " + m + ")" : "rill_splat_i(0)";
+      case ir::Op::GroupCount:
+        return "rill_g_count(" + args[0] + ", " + m + ")";
+      case ir::Op::GroupMin:
+        return "rill_g_min(" + args[0] + ", " + m + ")";
+      case ir::Op::GroupMax:
+        return "rill_g_max(" + args[0] + ", " + m + ")";
+      case ir::Op::GroupSum:
+        return "rill_g_sum(" + args[0] + ", " + m + ")";
+      case ir::Op::GroupBroadcast:
+        return std::string(k == ir::ScalarKind::Float ? "rill_g_bcast_r(" : "rill_g_bcast_i(") +
+               args[0] + ", " + args[1] + ", " + m + ")";
+      default:
+        break;
+    }
+    throw Error(std::string("internal: lockstep C has no form for ") + ir::op_name(op));
+  }
   std::string element_index() const override { return "rill_element"; }
   std::string element_coord(int c) const override {
     return c == 0 ? "rill_coord_x" : "rill_coord_y";

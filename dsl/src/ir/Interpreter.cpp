@@ -110,6 +110,18 @@ class Machine : public Visitor {
         r.bits[static_cast<size_t>(k)] = decl.boundary == Boundary::Constant && !inside
                                              ? decl.border.bits[static_cast<size_t>(k)]
                                              : a.data[idx * ew + k];
+    } else if (op_info(s.op).cls == OpClass::Group) {
+      // The interpreter runs one element at a time: a group of one (docs/programming-model.md).
+      const Constant x = s.args.empty() ? Constant{} : read(s.args[0]);
+      const uint32_t on = x.bits[0] != 0 ? 1u : 0u;
+      if (s.op == Op::GroupSize)
+        r.bits[0] = 1;
+      else if (s.op == Op::LaneIndex)
+        r.bits[0] = 0;
+      else if (x.type.is_bool() && s.op != Op::GroupBroadcast)
+        r.bits[0] = on;  // any, all, ballot (bit 0), count
+      else
+        r.bits[0] = x.bits[0];  // min, max, sum, broadcast: the element's own value
     } else if (s.op == Op::ElementIndex) {
       r.bits[0] = static_cast<uint32_t>(static_cast<int32_t>(i_));
     } else if (s.op == Op::ElementCoord) {

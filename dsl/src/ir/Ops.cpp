@@ -10,6 +10,7 @@ namespace {
 #define COMMUTES kCommutes
 #define FLUSHES kFlushes
 #define TRANSCENDENTAL kTranscendental
+#define GROUPED kGroup
 #define NONE OpForm{}
 #define COPY OpForm{FormKind::Copy}
 #define NEGATE OpForm{FormKind::Negate}
@@ -23,6 +24,7 @@ namespace {
 #define FIXED OpForm{FormKind::Fixed}
 #define GATHER OpForm{FormKind::Gather}
 #define ELEMENT OpForm{FormKind::Element}
+#define GROUP OpForm{FormKind::Group}
 constexpr OpInfo kOps[] = {
 #define RILL_OP(name, spelling, arity, cls, traits, ff, fi, fb, eval) \
   {spelling, arity, OpClass::cls, static_cast<uint8_t>(traits), {ff, fi, fb}},
@@ -45,6 +47,8 @@ constexpr OpInfo kOps[] = {
 #undef FIXED
 #undef GATHER
 #undef ELEMENT
+#undef GROUP
+#undef GROUPED
 
 // Operands of a componentwise op must have the result's width or width 1 (broadcast).
 std::optional<int> common_width(std::span<const Type> args, std::string* why) {
@@ -74,7 +78,9 @@ bool same_kind(std::span<const Type> args, std::string* why) {
 
 const OpInfo& op_info(Op op) { return kOps[static_cast<size_t>(op)]; }
 
-bool is_componentwise(Op op) { return op_info(op).cls != OpClass::Special; }
+bool is_componentwise(Op op) {
+  return op_info(op).cls != OpClass::Special && op_info(op).cls != OpClass::Group;
+}
 bool is_pure(Op) { return true; }
 
 std::optional<Type> result_type(Op op, std::span<const Type> args, std::string* why) {
@@ -83,6 +89,11 @@ std::optional<Type> result_type(Op op, std::span<const Type> args, std::string* 
     if (why) *why = std::string(info.spelling) + ": " + m;
     return std::nullopt;
   };
+  // Lockstep lowering appends the active-lane mask (a scalar bool) to a GROUPED op.
+  if (info.has(kGroup) && static_cast<int>(args.size()) == info.arity + 1) {
+    if (args.back() != bool_type(1)) return fail("the active-lane mask must be a scalar bool");
+    args = args.first(args.size() - 1);
+  }
   if (info.arity >= 0 && static_cast<int>(args.size()) != info.arity)
     return fail("expects " + std::to_string(info.arity) + " operands, got " +
                 std::to_string(args.size()));
@@ -141,6 +152,34 @@ std::optional<Type> result_type(Op op, std::span<const Type> args, std::string* 
         default:
           return fail("typed by its caller");
       }
+    case OpClass::Group: {
+      for (const Type& t : args)
+        if (t.width != 1) return fail("expects scalar operands, got " + t.str());
+      switch (op) {
+        case Op::GroupSize:
+        case Op::LaneIndex:
+          return int_type(1);
+        case Op::GroupAny:
+        case Op::GroupAll:
+          if (!args[0].is_bool()) return fail("expects a Bool");
+          return bool_type(1);
+        case Op::GroupBallot:
+        case Op::GroupCount:
+          if (!args[0].is_bool()) return fail("expects a Bool");
+          return int_type(op == Op::GroupBallot ? 4 : 1);
+        case Op::GroupMin:
+        case Op::GroupMax:
+        case Op::GroupSum:
+          if (!args[0].is_int()) return fail("expects an Int (float reductions are not offered)");
+          return int_type(1);
+        case Op::GroupBroadcast:
+          if (!args[1].is_int()) return fail("the lane must be an Int");
+          return args[0];
+        default:
+          break;
+      }
+      return fail("unknown group op");
+    }
   }
   return fail("unknown op");
 }

@@ -49,7 +49,8 @@ class Cse : public Mutator {
   }
 
   void assign(Stmt& s) {
-    if (s.op == Op::Copy || !s.mask.full() || !is_pure(s.op)) return;
+    // A lane-group op gives other results under other control flow (other active lanes).
+    if (s.op == Op::Copy || !s.mask.full() || !is_pure(s.op) || reads_group(s.op)) return;
     if (defs_[s.dst] != 1 || f_.var(s.dst).role == VarRole::Output) return;
     for (const Operand& a : s.args)
       if (!stable(a)) return;

@@ -185,9 +185,14 @@ class LockstepLowering {
     }
   }
 
-  void assign(const Stmt& s, Block& out, VarId mask) {
+  void assign(const Stmt& in, Block& out, VarId mask) {
+    Stmt s = in;
+    // A lane-group op reads the lanes running it: the mask they run under, as its last
+    // operand (true where every lane runs; the emitter also leaves out spare lanes).
+    if (reads_group(s.op))
+      s.args.push_back(mask == kNoVar ? Operand::of_const(Constant::of_bool(true)) : use(mask));
     if (mask == kNoVar || unblended_[s.dst]) {
-      out.push_back(s);
+      out.push_back(std::move(s));
       return;
     }
     // t = op(args); dst[.mask] = select(mask, t, dst[.mask]). A copy blends its operand

@@ -34,6 +34,7 @@ enum class OpClass : uint8_t {
   Select,     // (bool, T, T) -> T
   Convert,    // kind changes, width kept
   Special,    // typed by hand (see result_type)
+  Group,      // lane-group ops: scalar operands, typed by hand (see result_type)
 };
 
 // How a C-family printer spells an op on operands of one scalar kind (the *_form columns of
@@ -53,6 +54,7 @@ enum class FormKind : uint8_t {
   Fixed,     // combines components in one fixed order (fixed_form_expr in codegen)
   Gather,    // a statement of its own, through Dialect::gather
   Element,   // the element's index or coordinate, through the dialect
+  Group,     // a lane-group op, through Dialect::group
 };
 struct OpForm {
   FormKind kind = FormKind::None;
@@ -65,6 +67,7 @@ enum OpTrait : uint8_t {
   kCommutes = 1,        // operands may be swapped
   kFlushes = 2,         // a flushing backend may flush its float operands and result
   kTranscendental = 4,  // not exactly specified: lowered in strict mode, never folded
+  kGroup = 8,           // reads the active lanes of the group: never folded or deduplicated
 };
 
 struct OpInfo {
@@ -87,6 +90,9 @@ bool is_pure(Op op);
 inline bool is_commutative(Op op) { return op_info(op).has(kCommutes); }
 inline bool is_transcendental(Op op) { return op_info(op).has(kTranscendental); }
 inline bool flushes_denormals(Op op) { return op_info(op).has(kFlushes); }
+// A lane-group op whose result depends on which lanes of the group are active (the mask
+// lockstep lowering appends as its last operand).
+inline bool reads_group(Op op) { return op_info(op).has(kGroup); }
 
 // The result type of `op` on operands of the given types, or nullopt with `why` filled in.
 // Gather and Construct need context and are typed by their caller.
