@@ -51,7 +51,8 @@ void for_each_block_stmt(const Block& b, F&& f) {
 
 // Which variables may move: temporaries and locals (a copy of a DSL value passed by value is
 // a local, made in argument order too) written once, by a whole-variable assignment, and
-// read only after that in the same block or in blocks nested there.
+// read only after that in the same block or in blocks nested there. Not a lane-group op's
+// result: moved past a branch that breaks or discards, it would see other lanes.
 std::vector<bool> movable_values(const Function& f) {
   const std::vector<int> defs = count_definitions(f);
   std::vector<bool> movable(f.vars.size(), false);
@@ -66,7 +67,7 @@ std::vector<bool> movable_values(const Function& f) {
     const Stmt& s = b[i];
     const VarRole role = s.kind == StmtKind::Assign ? f.var(s.dst).role : VarRole::Input;
     if (s.kind == StmtKind::Assign && s.mask.full() && defs[s.dst] == 1 &&
-        (role == VarRole::Temp || role == VarRole::Local)) {
+        (role == VarRole::Temp || role == VarRole::Local) && !reads_group(s.op)) {
       movable[s.dst] = true;
       def_block[s.dst] = &b;
       def_index[s.dst] = i;
