@@ -219,37 +219,32 @@ RILL_FN rill_vi rill_g_ballot(rill_vi x, rill_vi m) {
 RILL_FN rill_vi rill_g_count(rill_vi x, rill_vi m) {
   return rill_splat_i(__builtin_popcount(rill_g_bits(x & m)));
 }
-RILL_FN rill_vi rill_g_min(rill_vi x, rill_vi m) {
-  int32_t r = 2147483647;
-  for (int l = 0; l < RILL_W; ++l) if (m[l] && x[l] < r) r = x[l];
-  return rill_splat_i(r);
-}
-RILL_FN rill_vi rill_g_max(rill_vi x, rill_vi m) {
-  int32_t r = -2147483647 - 1;
-  for (int l = 0; l < RILL_W; ++l) if (m[l] && x[l] > r) r = x[l];
-  return rill_splat_i(r);
-}
+/* min and max: the best of the active lanes, from the identity. */
+#define RILL_G_PICK(name, identity, better) \
+  RILL_FN rill_vi name(rill_vi x, rill_vi m) { \
+    int32_t r = identity; \
+    for (int l = 0; l < RILL_W; ++l) if (m[l] && x[l] better r) r = x[l]; \
+    return rill_splat_i(r); \
+  }
+RILL_G_PICK(rill_g_min, 2147483647, <)
+RILL_G_PICK(rill_g_max, -2147483647 - 1, >)
 RILL_FN rill_vi rill_g_sum(rill_vi x, rill_vi m) {
   uint32_t r = 0;
   for (int l = 0; l < RILL_W; ++l) r += (uint32_t)(x[l] & m[l]);
   return rill_splat_i((int32_t)r);
 }
-RILL_FN rill_vi rill_g_bcast_i(rill_vi x, rill_vi lane, rill_vi m) {
-  rill_vi r;
-  for (int l = 0; l < RILL_W; ++l) {
-    const int32_t k = lane[l];
-    r[l] = k >= 0 && k < RILL_W && m[k] ? x[k] : x[l];
+/* Lane `lane` of x where that lane is active, else the lane's own x. */
+#define RILL_G_BCAST(name, V) \
+  RILL_FN V name(V x, rill_vi lane, rill_vi m) { \
+    V r; \
+    for (int l = 0; l < RILL_W; ++l) { \
+      const int32_t k = lane[l]; \
+      r[l] = k >= 0 && k < RILL_W && m[k] ? x[k] : x[l]; \
+    } \
+    return r; \
   }
-  return r;
-}
-RILL_FN rill_vr rill_g_bcast_r(rill_vr x, rill_vi lane, rill_vi m) {
-  rill_vr r;
-  for (int l = 0; l < RILL_W; ++l) {
-    const int32_t k = lane[l];
-    r[l] = k >= 0 && k < RILL_W && m[k] ? x[k] : x[l];
-  }
-  return r;
-}
+RILL_G_BCAST(rill_g_bcast_i, rill_vi)
+RILL_G_BCAST(rill_g_bcast_r, rill_vr)
 )";
 
 bool uses_group_ops(const Function& f) {
