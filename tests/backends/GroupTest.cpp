@@ -176,6 +176,21 @@ TEST_P(GroupTest, GroupSizeIndependentProgramGivesTheSameBitsEverywhere) {
   }
 }
 
+// Kernels that use no group op keep their source: the lockstep group helpers (rill_g_*) and
+// the group's lane masks are emitted only into kernels that use them.
+TEST_P(GroupTest, GroupCodeOnlyInKernelsThatUseIt) {
+  Program plain = program("no_group", [] {
+    Input<Int> v("v");
+    Output<Int> y("y");
+    y = v * 2;
+  });
+  EXPECT_EQ(compile(plain).source().find("rill_g_"), std::string::npos);
+  EXPECT_EQ(compile(plain).source().find("rill_live"), std::string::npos);
+  if (backend_name() == "simd") {
+    EXPECT_NE(compile(group_program()).source().find("rill_g_sum"), std::string::npos);
+  }
+}
+
 RILL_BACKEND_TEST_SUITE(GroupTest);
 
 }  // namespace
