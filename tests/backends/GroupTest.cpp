@@ -165,14 +165,15 @@ TEST_P(GroupTest, GroupSizeIndependentProgramGivesTheSameBitsEverywhere) {
     RILL_ENDIF;
     y = group_broadcast(r, lane_index());
     Int mine = v * 3 + 1;
-    z = group_sum(mine) - (group_sum(mine) - mine);
+    Bool positive = group_broadcast(v > 0, lane_index());
+    z = group_sum(mine) - (group_sum(mine) - mine) + select(positive, Int(1000000), Int(0));
   });
   const std::vector<int32_t> v = small_ints(5, 777, -50, 50);
   auto [y, z] = run<Float, Int>(p, v);
   for (size_t i = 0; i < v.size(); ++i) {
     const float r = v[i] > 0 ? static_cast<float>(v[i]) * 0.37f + 1.0f : 0.0f;
     ASSERT_EQ(std::bit_cast<uint32_t>(y[i]), std::bit_cast<uint32_t>(r)) << "at " << i;
-    ASSERT_EQ(z[i], v[i] * 3 + 1) << "at " << i;
+    ASSERT_EQ(z[i], v[i] * 3 + 1 + (v[i] > 0 ? 1000000 : 0)) << "at " << i;
   }
 }
 

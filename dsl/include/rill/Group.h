@@ -2,10 +2,10 @@
 // with it (its lane group), as a SIMD backend's lanes or a GPU's sub-group.
 //
 // Which elements form a group, and how many, is the backend's (docs/programming-model.md has
-// the table): the simd backend's lane blocks, GLSL and OpenCL sub-groups where they are used,
-// and a group of one (the element alone) everywhere else. A lane is active when it holds an
-// element that runs the operation, under the same control flow; inactive lanes contribute
-// the identity: false to group_any, true to group_all, bit 0 to group_ballot and
+// the table): the simd backend's lanes, and today a group of one (the element alone)
+// everywhere else; OpenCL and GLSL sub-groups may come where a device has them. A lane is active
+// when it holds an element that runs the operation, under the same control flow; inactive lanes
+// contribute the identity: false to group_any, true to group_all, bit 0 to group_ballot and
 // group_count, INT32_MAX to group_min, INT32_MIN to group_max, 0 to group_sum.
 //
 // Results are exact for the group the backend reports: a program whose outputs do not depend
