@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "DivSqrt.h"
 #include "rill/Backend.h"
 #include "rill/ir/IR.h"
-#include "DivSqrt.h"
 
 namespace rill::glsl {
 
@@ -26,6 +26,7 @@ constexpr int kMaskValues = 8;
 // What the generated code does differently per driver (found by the conformance suite).
 struct DriverRules {
   DivSqrt divsqrt = DivSqrt::Native;  // strict / and sqrt (DivSqrt.h)
+  bool fused_fma = false;             // their residual by one fma (DivSqrt.h, fused_fma_mode)
   bool native_compare = false;        // strict float comparisons: the driver's, or on bits
   // Mesa's llvmpipe ends every loop of a shader once a batch of lanes has run 65535 loop
   // iterations in all (LP_MAX_TGSI_LOOP_ITERATIONS), silently. With the guard an element
@@ -45,8 +46,8 @@ struct GLSLShader {
 // The fragment shader computing `optimized` and writing the outputs listed (indices into
 // Function::outputs), at draw-buffer locations 0, 1, ... in that order.
 // Strict kernels divide, take square roots and compare as `rules` says.
-GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std::vector<int>& outputs,
-                     const DriverRules& rules = {});
+GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy,
+                     const std::vector<int>& outputs, const DriverRules& rules = {});
 // The compute shader computing `optimized` over `local_size` invocations per work group and
 // storing the outputs listed (indices into Function::outputs; a kernel with more outputs
 // than the driver has storage buffers runs in several passes, as on the fragment stage).
@@ -55,8 +56,8 @@ GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std
 // `flushes_denormals`: whether the driver's compute arithmetic flushes denormals (then
 // comparisons treat them as zero too, as on the fragment stage).
 GLSLShader emit_glsl_compute(const ir::Function& optimized, Accuracy accuracy,
-                             const std::vector<int>& outputs, bool counts,
-                             const DriverRules& rules, bool flushes_denormals, int local_size);
+                             const std::vector<int>& outputs, bool counts, const DriverRules& rules,
+                             bool flushes_denormals, int local_size);
 // Where a compute pass's storage buffers are bound: inputs from `inputs` on, the pass's
 // outputs from `outputs` on, then the two counters (elements written, selected) and the
 // mask's states.
