@@ -182,6 +182,16 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       },
       "multipass: launch each pass masked to its state (on|off)")
       ->default_str("on");
+  add_parsed_option(
+      r, "--overlap", o.overlap,
+      [](const std::string& s) {
+        if (s != "on" && s != "off")
+          throw rt::SceneError("--overlap expects on or off (got '" + s + "')");
+        return s == "on";
+      },
+      "--frames: write each frame's outputs while the next one renders (on|off); images do "
+      "not depend on it")
+      ->default_str("on");
   return r;
 }
 
