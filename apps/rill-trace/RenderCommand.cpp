@@ -261,6 +261,8 @@ int render(RenderOptions o) {
     if (o.strategy == rt::Strategy::Multipass) {
       j["wait_threshold"] = rs.wait_threshold;
       j["masking"] = rs.masking;
+    }
+    if (o.strategy == rt::Strategy::Multipass || o.strategy == rt::Strategy::Wavefront) {
       nlohmann::json passes = nlohmann::json::array();
       for (const rt::PassStats& ps : r.passes)
         passes.push_back({{"name", ps.name},
@@ -340,9 +342,13 @@ int render(RenderOptions o) {
         r.kernels, rill::origin_name(r.stages.origin), r.stages.capture_ms, r.stages.optimize_ms,
         r.stages.codegen_ms, r.stages.backend_compile_ms, r.stages.driver_finish_ms,
         r.stages.compile_ms);
-  if (o.stats && o.strategy == rt::Strategy::Multipass) {
+  if (o.stats && o.strategy == rt::Strategy::Wavefront)
+    std::printf("%-14s %8s %14s %14s %10s   (%lld pixels a launch)\n", "stage", "calls",
+                "processed", "written", "ms", static_cast<long long>(r.width) * r.height);
+  if (o.stats && o.strategy == rt::Strategy::Multipass)
     std::printf("%-14s %8s %14s %14s %10s   (masking %s, wait threshold %g)\n", "pass", "calls",
                 "processed", "written", "ms", rs.masking ? "on" : "off", rs.wait_threshold);
+  if (o.stats && (o.strategy == rt::Strategy::Multipass || o.strategy == rt::Strategy::Wavefront)) {
     for (const rt::PassStats& ps : r.passes)
       std::printf("%-14s %8lld %14lld %14lld %10.2f\n", ps.name.c_str(),
                   static_cast<long long>(ps.calls), static_cast<long long>(ps.processed),
@@ -360,7 +366,10 @@ int render(RenderOptions o) {
       o.strategy == rt::Strategy::Multipass ? " multipass" : "", grid.res.x, grid.res.y, grid.res.z,
       rays_per_s * 1e-6, sp.cold ? " cold" : "", static_cast<long long>(all.rays), load_ms,
       grid.build_ms, kernels_ms, r.from_cache ? " (cached)" : "", setup_ms, first_launch_ms,
-      all.trace_ms, r.cold ? " (cold)" : "",
+      all.trace_ms,
+      !r.cold            ? ""
+      : span.count() > 1 ? " (the first frame cold)"
+                         : " (cold)",
       o.strategy == rt::Strategy::Multipass
           ? (" (" + std::to_string(all.launches) + " launches)").c_str()
           : "");
