@@ -151,6 +151,7 @@ int render(RenderOptions o) {
     frame_trace_ms.push_back(frame.trace_ms);
     frame_times.push_back(frame.times);
   }
+  const int64_t bench_rays = frame.rays;  // each repeat's (frame goes on to --frames' frames)
   std::vector<double> sorted = frame_ms;  // for the min and max
   std::sort(sorted.begin(), sorted.end());
   const double median_ms = median(frame_ms);
@@ -253,7 +254,7 @@ int render(RenderOptions o) {
   // --bench-frames' repeats are reported on their own).
   const FrameTotals all = totals(frame_stats);
   // Mrays/s from warm traces where there are any, else labelled cold (FrameReport.h).
-  const Speed sp = speed(frame_stats, frame.rays, frame_trace_ms);
+  const Speed sp = speed(frame_stats, bench_rays, frame_trace_ms);
   const double rays_per_s = sp.rays_per_second;
   if (!o.stats_json.empty()) {
     nlohmann::json j = stats_json(o, p, r.width, r.height, all.rays);
@@ -292,7 +293,7 @@ int render(RenderOptions o) {
       j["bench_frames"] = {{"frames", frame_ms.size()},
                            {"frame_ms", frame_ms},
                            {"trace_ms", frame_trace_ms},
-                           {"rays", frame.rays},
+                           {"rays", bench_rays},
                            {"median_ms", median_ms},
                            {"min_ms", sorted.front()},
                            {"max_ms", sorted.back()},
