@@ -40,11 +40,13 @@ struct SharedObject {
 
 // Compiles `source` with `flags` (or finds it in the cache entries of `backend`), loads it
 // and looks up `entry`. Throws rill::Error with the compiler's messages and the numbered
-// source on failure. `kernel` (the program's name) names the files when profiling.
+// source on failure. `kernel` (the program's name) names the files when profiling. units > 1:
+// the source is that many translation units (CEmitter.h's c_units), compiled at the same
+// time and linked (when profiling, as the one translation unit it also is).
 SharedObject compile_shared_object(const std::string& backend, const std::string& kernel,
                                    const std::string& source,
                                    const std::vector<std::string>& flags,
-                                   const std::string& entry);
+                                   const std::string& entry, int units = 1);
 // Unloads the object and closes its memory file.
 void release(SharedObject& so);
 
