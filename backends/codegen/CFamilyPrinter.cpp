@@ -78,12 +78,12 @@ std::string CFamilyPrinter::declarations(int indent) const {
     const Variable& var = f_.vars[v];
     std::string qual = var.type.is_float() ? d_.float_qualifier() : "";
     if (d_.scalarize() || var.type.width == 1) {
-      const bool interface = var.role == VarRole::Input || var.role == VarRole::Output ||
-                             var.role == VarRole::Uniform;
+      const bool interface =
+          var.role == VarRole::Input || var.role == VarRole::Output || var.role == VarRole::Uniform;
       for (int c = 0; c < var.type.width; ++c)
         if (!declare || interface || declare(v, c))
           out += pad + qual + d_.scalar_type(var.type.kind) + " " + component(v, c) + " = " +
-               d_.initial_value(f_, v, c) + ";\n";
+                 d_.initial_value(f_, v, c) + ";\n";
     } else {
       std::string init = d_.vector_type(var.type) + "(";
       for (int c = 0; c < var.type.width; ++c) init += (c ? ", " : "") + d_.initial_value(f_, v, c);
@@ -115,8 +115,7 @@ std::string CFamilyPrinter::jump(StmtKind kind) const {
     case StmtKind::Break:
       return loop_depth_ == 0 && !escape_break_text.empty() ? escape_break_text : "break;";
     case StmtKind::Continue:
-      return loop_depth_ == 0 && !escape_continue_text.empty() ? escape_continue_text
-                                                               : "continue;";
+      return loop_depth_ == 0 && !escape_continue_text.empty() ? escape_continue_text : "continue;";
     case StmtKind::Discard:
       return discard_text.empty() ? d_.discard() : discard_text;
     default:

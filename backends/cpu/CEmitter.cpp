@@ -173,8 +173,8 @@ class PartPrinter {
                               StmtKind::Continue};
     for (int e = kDiscard; e <= kContinue; ++e)
       if (part.exits[e])
-        out += pad + "  if (rill_call_rc == " + std::to_string(e) + ") " +
-               caller.jump(kinds[e]) + "\n";
+        out += pad + "  if (rill_call_rc == " + std::to_string(e) + ") " + caller.jump(kinds[e]) +
+               "\n";
     out += pad + "}\n";
   }
 
@@ -184,21 +184,19 @@ class PartPrinter {
 };
 
 // Spreads the parts over translation units, largest first onto the least loaded (unit 0
-// carries the entry function); at most max_units, and no more than one per kUnitCost of
+// carries the entry function); at most max_units, and no more than one per unit_cost of
 // the kernel's cost, so that a unit's compile outweighs the cost of a compiler run.
-constexpr size_t kUnitCost = 3000;
-
-std::vector<int> assign_units(const OutlinePlan& plan, int max_units, int& units) {
+std::vector<int> assign_units(const OutlinePlan& plan, const CLayout& layout, int& units) {
   size_t total = plan.root_cost;
   for (const OutlinedPart& part : plan.parts) total += part.cost;
-  units = static_cast<int>(std::clamp<size_t>(total / kUnitCost, 1, static_cast<size_t>(std::max(max_units, 1))));
+  units = static_cast<int>(std::clamp<size_t>(total / std::max<size_t>(layout.unit_cost, 1), 1,
+                                              static_cast<size_t>(std::max(layout.max_units, 1))));
   std::vector<size_t> order(plan.parts.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   // Parts nested in others are counted in their own cost only: the outer part's cost
   // counts a nested part as a call.
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return plan.parts[a].cost > plan.parts[b].cost;
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return plan.parts[a].cost > plan.parts[b].cost; });
   std::vector<size_t> load(static_cast<size_t>(units), 0);
   load[0] = plan.root_cost;
   std::vector<int> unit(plan.parts.size(), 0);
@@ -215,7 +213,8 @@ std::vector<int> assign_units(const OutlinePlan& plan, int max_units, int& units
 int c_units(const std::string& source) {
   const size_t at = source.find(std::string("\n") + kUnitsMark);
   if (at == std::string::npos) return 1;
-  return std::max(1, std::atoi(source.c_str() + at + 1 + std::char_traits<char>::length(kUnitsMark)));
+  return std::max(1,
+                  std::atoi(source.c_str() + at + 1 + std::char_traits<char>::length(kUnitsMark)));
 }
 
 std::string emit_c(const Function& f, Accuracy accuracy, const CLayout& layout) {
@@ -237,7 +236,7 @@ std::string emit_c(const Function& f, Accuracy accuracy, const CLayout& layout) 
     // static functions of this one; with it, unit k defines its own parts and calls the
     // others' through hidden symbols of the shared object. noinline: GCC would otherwise
     // inline a part called once back into its caller, which is the size it is split from.
-    const std::vector<int> unit = assign_units(plan, layout.max_units, units);
+    const std::vector<int> unit = assign_units(plan, layout, units);
     src += "\n" + std::string(kUnitsMark) + std::to_string(units) + " */\n";
     src +=
         "#ifdef RILL_TU\n#define RILL_PART __attribute__((visibility(\"hidden\"), noinline))\n"

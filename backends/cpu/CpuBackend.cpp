@@ -1,6 +1,8 @@
 // The cpu backend (CpuBackend.h): scalar C, one element per iteration of the kernel's loop.
 #include "CpuBackend.h"
 
+#include <cctype>
+#include <cerrno>
 #include <cstdlib>
 #include <memory>
 
@@ -68,12 +70,25 @@ CLayout c_layout() {
   const char* knob = std::getenv("RILL_CPU_OUTLINE");
   if (!knob || !*knob) return layout;
   const std::string v = knob;
-  if (v == "off" || v == "0") return CLayout{};
+  if (v == "off") return CLayout{};
+  // COST or COST:UNIT_COST, both at least 1.
+  auto bad = [&] {
+    return Error(
+        "RILL_CPU_OUTLINE: expected off, COST or COST:UNIT_COST (numbers of at least 1), "
+        "got '" +
+        v + "'");
+  };
+  auto number = [&](const char* from, char** end) {
+    if (!std::isdigit(static_cast<unsigned char>(*from))) throw bad();
+    errno = 0;
+    const unsigned long long n = std::strtoull(from, end, 10);
+    if (n == 0 || errno != 0) throw bad();
+    return static_cast<size_t>(n);
+  };
   char* end = nullptr;
-  const unsigned long long cost = std::strtoull(knob, &end, 10);
-  if (*end != 0 || cost == 0)
-    throw Error("RILL_CPU_OUTLINE: expected off or a cost of at least 1, got '" + v + "'");
-  layout.outline_min_cost = static_cast<size_t>(cost);
+  layout.outline_min_cost = number(knob, &end);
+  if (*end == ':') layout.unit_cost = number(end + 1, &end);
+  if (*end != 0) throw bad();
   return layout;
 }
 
@@ -87,7 +102,8 @@ std::unique_ptr<CompiledKernel> compile_scalar_c(const std::string& backend, con
   // are then one exact instruction instead of a conversion sequence; 3-4% on a ray traced
   // frame (docs/benchmarks/2026-11-25-gpu-frame.md).
   if (has_sse41()) flags.push_back("-msse4.1");
-  SharedObject so = compile_shared_object(backend, f.name, source, flags, "rill_run", c_units(source));
+  SharedObject so =
+      compile_shared_object(backend, f.name, source, flags, "rill_run", c_units(source));
   auto k = make_host_kernel(std::move(source), std::move(so), 0);
   k->set_build_times(codegen_ms, stage.lap());
   return k;

@@ -27,7 +27,8 @@ void for_each_write(const Function& fn, const Stmt& s, F&& f) {
   if (s.mask.full()) {
     for (int c = 0; c < fn.var(s.dst).type.width; ++c) f(scalar_key(s.dst, c));
   } else {
-    for (int c = 0; c < s.mask.count; ++c) f(scalar_key(s.dst, s.mask.comps[static_cast<size_t>(c)]));
+    for (int c = 0; c < s.mask.count; ++c)
+      f(scalar_key(s.dst, s.mask.comps[static_cast<size_t>(c)]));
   }
 }
 

@@ -30,9 +30,7 @@ namespace rill::cpu {
 struct ScalarRef {
   ir::VarId var;
   int comp;
-  bool operator<(const ScalarRef& o) const {
-    return var != o.var ? var < o.var : comp < o.comp;
-  }
+  bool operator<(const ScalarRef& o) const { return var != o.var ? var < o.var : comp < o.comp; }
 };
 
 // Return codes of an outlined function, for the jumps that leave its block.
@@ -43,14 +41,14 @@ struct OutlinedPart {
   int id = 0;       // rill_part<id>: its place in `parts`
   size_t cost = 0;  // its statements' cost, nested parts counted as calls
   std::vector<ScalarRef> by_value, by_pointer, locals;
-  std::vector<int> arrays;           // arrays its gathers read
-  bool element_index = false;        // reads rill_i
-  bool element_coord = false;        // reads rill_x, rill_y
+  std::vector<int> arrays;                       // arrays its gathers read
+  bool element_index = false;                    // reads rill_i
+  bool element_coord = false;                    // reads rill_x, rill_y
   bool exits[4] = {false, false, false, false};  // which OutlineExit codes it may return
 };
 
 struct OutlinePlan {
-  std::vector<OutlinedPart> parts;  // inner parts before the parts that call them
+  std::vector<OutlinedPart> parts;           // inner parts before the parts that call them
   std::map<const ir::Block*, size_t> index;  // block -> its part
   size_t root_cost = 0;                      // cost of what stays in the entry function
   // Which scalars (var * 4 + component) the entry function itself mentions, calls included

@@ -155,8 +155,7 @@ void check_compile(int rc, const std::string& cc, const std::string& messages,
 }
 
 // Runs the compiler and returns its status, its messages in `messages`.
-int run_compiler(const std::vector<std::string>& argv, const fs::path& log,
-                 std::string& messages) {
+int run_compiler(const std::vector<std::string>& argv, const fs::path& log, std::string& messages) {
   const int rc = wait_for(spawn(argv, log));
   messages = read_file(log);
   std::error_code ec;
