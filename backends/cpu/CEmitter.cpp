@@ -105,17 +105,7 @@ class PartPrinter {
 
   std::string prototype(const OutlinedPart& part) const {
     std::string params;
-    auto param = [&](const std::string& text) { params += (params.empty() ? "" : ", ") + text; };
-    if (part.element_index) param("int64_t rill_i");
-    if (part.element_coord) param("int64_t rill_x, int64_t rill_y");
-    for (int a : part.arrays) {
-      const std::string id = std::to_string(a);
-      const std::string t = c_elem_type(f_.arrays[static_cast<size_t>(a)].elem.kind);
-      param("const " + t + "* arr" + id + ", const int64_t* arr" + id + "_shape, uint32_t arr" +
-            id + "_n32");
-    }
-    for (const ScalarRef& r : part.by_value) param(type(r) + " " + name(r));
-    for (const ScalarRef& r : part.by_pointer) param(type(r) + "* rill_p_" + name(r));
+    for (const Param& q : interface(part)) params += (params.empty() ? "" : ", ") + q.declaration;
     return "RILL_PART int rill_part" + std::to_string(part.id) + "(" +
            (params.empty() ? "void" : params) + ")";
   }
@@ -132,15 +122,37 @@ class PartPrinter {
     for (const ScalarRef& r : part.locals)
       src += "  " + type(r) + " " + name(r) + " = " + d_.initial_value(f_, r.var, r.comp) + ";\n";
     src += p.statements(*part.block, 1);
-    bool exits = false;
-    for (int e = kDiscard; e <= kContinue; ++e) exits = exits || part.exits[e];
-    if (exits) src += "rill_exit:\n";
+    if (has_exits(part)) src += "rill_exit:\n";
     for (const ScalarRef& r : part.by_pointer)
       src += "  *rill_p_" + name(r) + " = " + name(r) + ";\n";
     return src + "  return rill_rc;\n}\n";
   }
 
  private:
+  // A parameter of a part: its declaration, and the argument a caller passes.
+  struct Param {
+    std::string declaration, argument;
+  };
+  // The element position, the arrays, the values and the pointers a part takes, in order.
+  std::vector<Param> interface(const OutlinedPart& part) const {
+    std::vector<Param> out;
+    if (part.element_index) out.push_back({"int64_t rill_i", "rill_i"});
+    if (part.element_coord) out.push_back({"int64_t rill_x, int64_t rill_y", "rill_x, rill_y"});
+    for (int a : part.arrays) {
+      const std::string id = std::to_string(a);
+      const std::string t = c_elem_type(f_.arrays[static_cast<size_t>(a)].elem.kind);
+      out.push_back({"const " + t + "* arr" + id + ", const int64_t* arr" + id +
+                         "_shape, uint32_t arr" + id + "_n32",
+                     "arr" + id + ", arr" + id + "_shape, arr" + id + "_n32"});
+    }
+    for (const ScalarRef& r : part.by_value) out.push_back({type(r) + " " + name(r), name(r)});
+    for (const ScalarRef& r : part.by_pointer)
+      out.push_back({type(r) + "* rill_p_" + name(r), "&" + name(r)});
+    return out;
+  }
+  static bool has_exits(const OutlinedPart& part) {
+    return part.exits[kDiscard] || part.exits[kBreak] || part.exits[kContinue];
+  }
   std::string type(const ScalarRef& r) const { return d_.scalar_type(f_.var(r.var).type.kind); }
   std::string name(const ScalarRef& r) const {
     return codegen::CFamilyPrinter(f_, d_).component(r.var, r.comp);
@@ -152,19 +164,9 @@ class PartPrinter {
   void call(std::string& out, const codegen::CFamilyPrinter& caller, const OutlinedPart& part,
             const std::string& pad) const {
     std::string args;
-    auto arg = [&](const std::string& text) { args += (args.empty() ? "" : ", ") + text; };
-    if (part.element_index) arg("rill_i");
-    if (part.element_coord) arg("rill_x, rill_y");
-    for (int a : part.arrays) {
-      const std::string id = std::to_string(a);
-      arg("arr" + id + ", arr" + id + "_shape, arr" + id + "_n32");
-    }
-    for (const ScalarRef& r : part.by_value) arg(name(r));
-    for (const ScalarRef& r : part.by_pointer) arg("&" + name(r));
+    for (const Param& q : interface(part)) args += (args.empty() ? "" : ", ") + q.argument;
     const std::string call = "rill_part" + std::to_string(part.id) + "(" + args + ")";
-    bool exits = false;
-    for (int e = kDiscard; e <= kContinue; ++e) exits = exits || part.exits[e];
-    if (!exits) {
+    if (!has_exits(part)) {
       out += pad + call + ";\n";
       return;
     }
