@@ -78,9 +78,12 @@ std::string CFamilyPrinter::declarations(int indent) const {
     const Variable& var = f_.vars[v];
     std::string qual = var.type.is_float() ? d_.float_qualifier() : "";
     if (d_.scalarize() || var.type.width == 1) {
+      const bool interface =
+          var.role == VarRole::Input || var.role == VarRole::Output || var.role == VarRole::Uniform;
       for (int c = 0; c < var.type.width; ++c)
-        out += pad + qual + d_.scalar_type(var.type.kind) + " " + component(v, c) + " = " +
-               d_.initial_value(f_, v, c) + ";\n";
+        if (!declare || interface || declare(v, c))
+          out += pad + qual + d_.scalar_type(var.type.kind) + " " + component(v, c) + " = " +
+                 d_.initial_value(f_, v, c) + ";\n";
     } else {
       std::string init = d_.vector_type(var.type) + "(";
       for (int c = 0; c < var.type.width; ++c) init += (c ? ", " : "") + d_.initial_value(f_, v, c);
@@ -97,7 +100,28 @@ std::string CFamilyPrinter::body(int indent) const {
 }
 
 void CFamilyPrinter::block(std::string& out, const Block& b, int indent) const {
+  if (outline && outline(out, b, indent)) return;
   for (const Stmt& s : b) stmt(out, s, indent);
+}
+
+std::string CFamilyPrinter::statements(const Block& b, int indent) const {
+  std::string out;
+  for (const Stmt& s : b) stmt(out, s, indent);
+  return out;
+}
+
+std::string CFamilyPrinter::jump(StmtKind kind) const {
+  switch (kind) {
+    case StmtKind::Break:
+      return loop_depth_ == 0 && !escape_break_text.empty() ? escape_break_text : "break;";
+    case StmtKind::Continue:
+      return loop_depth_ == 0 && !escape_continue_text.empty() ? escape_continue_text : "continue;";
+    case StmtKind::Discard:
+      return discard_text.empty() ? d_.discard() : discard_text;
+    default:
+      break;
+  }
+  throw Error("internal: jump() of a statement that is no jump");
 }
 
 void CFamilyPrinter::stmt(std::string& out, const Stmt& s, int indent) const {
@@ -124,6 +148,7 @@ void CFamilyPrinter::stmt(std::string& out, const Stmt& s, int indent) const {
     case StmtKind::Loop: {
       // Every loop is an endless loop with explicit exits (see passes/LowerContinue.cpp).
       out += pad + d_.loop_header() + " {\n";
+      ++loop_depth_;
       if (s.loop != LoopKind::DoUntil) {
         block(out, s.cond_body, indent + 1);
         out += pad + "  if (!" + d_.branch_condition(operand(s.cond, 0)) + ") break;\n";
@@ -134,17 +159,14 @@ void CFamilyPrinter::stmt(std::string& out, const Stmt& s, int indent) const {
         block(out, s.cond_body, indent + 1);
         out += pad + "  if (" + d_.branch_condition(operand(s.cond, 0)) + ") break;\n";
       }
+      --loop_depth_;
       out += pad + "}\n";
       return;
     }
     case StmtKind::Break:
-      out += pad + "break;\n";
-      return;
     case StmtKind::Continue:
-      out += pad + "continue;\n";
-      return;
     case StmtKind::Discard:
-      out += pad + d_.discard() + "\n";
+      out += pad + jump(s.kind) + "\n";
       return;
   }
 }

@@ -113,12 +113,27 @@ class CFamilyPrinter {
 
   // Declarations of every variable with its initial value, one per line.
   std::string declarations(int indent) const;
+  // When set (scalarizing dialects), declarations() leaves out the components of non-
+  // interface variables it says no to (outlining: those only outlined functions use).
+  std::function<bool(ir::VarId, int)> declare;
   // The kernel body's statements.
   std::string body(int indent) const;
 
   // Names used by the backends' wrappers.
   std::string component(ir::VarId v, int c) const;  // one component, as an lvalue
   std::string operand(const ir::Operand& o, int c) const;
+
+  // Outlining (backends/cpu/Outline.h): `outline`, when set, is asked about every nested
+  // block before it is printed and may print it itself (as a call) by returning true.
+  std::function<bool(std::string& out, const ir::Block& b, int indent)> outline;
+  // What Discard prints, and Break or Continue outside every loop of the block being printed
+  // (inside an outlined function: a return code); empty: the dialect's discard, a plain
+  // break or continue.
+  std::string discard_text, escape_break_text, escape_continue_text;
+  // Statement kind Break, Continue or Discard as printed at the current point.
+  std::string jump(ir::StmtKind kind) const;
+  // The statements of b (b itself not offered to `outline`, its nested blocks are).
+  std::string statements(const ir::Block& b, int indent) const;
 
  private:
   void block(std::string& out, const ir::Block& b, int indent) const;
@@ -128,6 +143,7 @@ class CFamilyPrinter {
 
   const ir::Function& f_;
   const Dialect& d_;
+  mutable int loop_depth_ = 0;  // loops open around the statement being printed
 };
 
 }  // namespace rill::codegen

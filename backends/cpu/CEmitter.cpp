@@ -6,6 +6,7 @@
 // from many threads on disjoint ranges.
 #include "CEmitter.h"
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
 #include "../codegen/SourceText.h"
+#include "Outline.h"
 
 namespace rill::cpu {
 
@@ -83,10 +85,173 @@ std::string c_entry_locals(const Function& f, const codegen::Dialect& d) {
   return src;
 }
 
-std::string emit_c(const Function& f, Accuracy accuracy) {
+namespace {
+
+// Prints the outlined parts of a plan and the calls to them (Outline.h).
+class PartPrinter {
+ public:
+  PartPrinter(const Function& f, const codegen::Dialect& d, const OutlinePlan& plan)
+      : f_(f), d_(d), plan_(plan) {}
+
+  // Lets p print the blocks of the plan as calls.
+  void attach(codegen::CFamilyPrinter& p) const {
+    p.outline = [this, &p](std::string& out, const Block& b, int indent) {
+      auto it = plan_.index.find(&b);
+      if (it == plan_.index.end()) return false;
+      call(out, p, plan_.parts[it->second], std::string(static_cast<size_t>(indent) * 2, ' '));
+      return true;
+    };
+  }
+
+  std::string prototype(const OutlinedPart& part) const {
+    std::string params;
+    for (const Param& q : interface(part)) params += (params.empty() ? "" : ", ") + q.declaration;
+    return "RILL_PART int rill_part" + std::to_string(part.id) + "(" +
+           (params.empty() ? "void" : params) + ")";
+  }
+
+  std::string definition(const OutlinedPart& part) const {
+    codegen::CFamilyPrinter p(f_, d_);
+    attach(p);
+    p.discard_text = exit_text(kDiscard);
+    p.escape_break_text = exit_text(kBreak);
+    p.escape_continue_text = exit_text(kContinue);
+    std::string src = "\n" + prototype(part) + " {\n  int rill_rc = 0;\n";
+    for (const ScalarRef& r : part.by_pointer)
+      src += "  " + type(r) + " " + name(r) + " = *rill_p_" + name(r) + ";\n";
+    for (const ScalarRef& r : part.locals)
+      src += "  " + type(r) + " " + name(r) + " = " + d_.initial_value(f_, r.var, r.comp) + ";\n";
+    src += p.statements(*part.block, 1);
+    if (has_exits(part)) src += "rill_exit:\n";
+    for (const ScalarRef& r : part.by_pointer)
+      src += "  *rill_p_" + name(r) + " = " + name(r) + ";\n";
+    return src + "  return rill_rc;\n}\n";
+  }
+
+ private:
+  // A parameter of a part: its declaration, and the argument a caller passes.
+  struct Param {
+    std::string declaration, argument;
+  };
+  // The element position, the arrays, the values and the pointers a part takes, in order.
+  std::vector<Param> interface(const OutlinedPart& part) const {
+    std::vector<Param> out;
+    if (part.element_index) out.push_back({"int64_t rill_i", "rill_i"});
+    if (part.element_coord) out.push_back({"int64_t rill_x, int64_t rill_y", "rill_x, rill_y"});
+    for (int a : part.arrays) {
+      const std::string id = std::to_string(a);
+      const std::string t = c_elem_type(f_.arrays[static_cast<size_t>(a)].elem.kind);
+      out.push_back({"const " + t + "* arr" + id + ", const int64_t* arr" + id +
+                         "_shape, uint32_t arr" + id + "_n32",
+                     "arr" + id + ", arr" + id + "_shape, arr" + id + "_n32"});
+    }
+    for (const ScalarRef& r : part.by_value) out.push_back({type(r) + " " + name(r), name(r)});
+    for (const ScalarRef& r : part.by_pointer)
+      out.push_back({type(r) + "* rill_p_" + name(r), "&" + name(r)});
+    return out;
+  }
+  static bool has_exits(const OutlinedPart& part) {
+    return part.exits[kDiscard] || part.exits[kBreak] || part.exits[kContinue];
+  }
+  std::string type(const ScalarRef& r) const { return d_.scalar_type(f_.var(r.var).type.kind); }
+  std::string name(const ScalarRef& r) const {
+    return codegen::CFamilyPrinter(f_, d_).component(r.var, r.comp);
+  }
+  static std::string exit_text(int code) {
+    return "{ rill_rc = " + std::to_string(code) + "; goto rill_exit; }";
+  }
+
+  void call(std::string& out, const codegen::CFamilyPrinter& caller, const OutlinedPart& part,
+            const std::string& pad) const {
+    std::string args;
+    for (const Param& q : interface(part)) args += (args.empty() ? "" : ", ") + q.argument;
+    const std::string call = "rill_part" + std::to_string(part.id) + "(" + args + ")";
+    if (!has_exits(part)) {
+      out += pad + call + ";\n";
+      return;
+    }
+    out += pad + "{\n" + pad + "  const int rill_call_rc = " + call + ";\n";
+    const StmtKind kinds[] = {StmtKind::Assign, StmtKind::Discard, StmtKind::Break,
+                              StmtKind::Continue};
+    for (int e = kDiscard; e <= kContinue; ++e)
+      if (part.exits[e])
+        out += pad + "  if (rill_call_rc == " + std::to_string(e) + ") " + caller.jump(kinds[e]) +
+               "\n";
+    out += pad + "}\n";
+  }
+
+  const Function& f_;
+  const codegen::Dialect& d_;
+  const OutlinePlan& plan_;
+};
+
+// Spreads the parts over translation units, largest first onto the least loaded (unit 0
+// carries the entry function); at most max_units, and no more than one per unit_cost of
+// the kernel's cost, so that a unit's compile outweighs the cost of a compiler run.
+std::vector<int> assign_units(const OutlinePlan& plan, const CLayout& layout, int& units) {
+  size_t total = plan.root_cost;
+  for (const OutlinedPart& part : plan.parts) total += part.cost;
+  units = static_cast<int>(std::clamp<size_t>(total / std::max<size_t>(layout.unit_cost, 1), 1,
+                                              static_cast<size_t>(std::max(layout.max_units, 1))));
+  std::vector<size_t> order(plan.parts.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  // Parts nested in others are counted in their own cost only: the outer part's cost
+  // counts a nested part as a call.
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return plan.parts[a].cost > plan.parts[b].cost; });
+  std::vector<size_t> load(static_cast<size_t>(units), 0);
+  load[0] = plan.root_cost;
+  std::vector<int> unit(plan.parts.size(), 0);
+  for (size_t i : order) {
+    const size_t u = static_cast<size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    unit[i] = static_cast<int>(u);
+    load[u] += plan.parts[i].cost;
+  }
+  return unit;
+}
+
+}  // namespace
+
+int c_units(const std::string& source) {
+  const size_t at = source.find(std::string("\n") + kUnitsMark);
+  if (at == std::string::npos) return 1;
+  return std::max(1,
+                  std::atoi(source.c_str() + at + 1 + std::char_traits<char>::length(kUnitsMark)));
+}
+
+std::string emit_c(const Function& f, Accuracy accuracy, const CLayout& layout) {
   codegen::CDialect d(accuracy, "goto rill_discarded;");
   codegen::CFamilyPrinter p(f, d);
+  const OutlinePlan plan =
+      layout.outline_min_cost ? plan_outlining(f, layout.outline_min_cost) : OutlinePlan{};
+  const PartPrinter parts(f, d, plan);
+  if (!plan.parts.empty()) {
+    parts.attach(p);
+    p.declare = [&plan](VarId v, int c) {
+      return plan.root_scalars[static_cast<size_t>(v) * 4 + static_cast<size_t>(c)] != 0;
+    };
+  }
   std::string src = c_head(f, accuracy);
+  int units = 1;
+  if (!plan.parts.empty()) {
+    // One file, one translation unit or several (c_units): without RILL_TU the parts are
+    // static functions of this one; with it, unit k defines its own parts and calls the
+    // others' through hidden symbols of the shared object. noinline: GCC would otherwise
+    // inline a part called once back into its caller, which is the size it is split from.
+    const std::vector<int> unit = assign_units(plan, layout, units);
+    src += "\n" + std::string(kUnitsMark) + std::to_string(units) + " */\n";
+    src +=
+        "#ifdef RILL_TU\n#define RILL_PART __attribute__((visibility(\"hidden\"), noinline))\n"
+        "#else\n#define RILL_PART static __attribute__((noinline))\n#endif\n";
+    for (const OutlinedPart& part : plan.parts) src += parts.prototype(part) + ";\n";
+    for (int u = 0; u < units; ++u) {
+      src += "\n#if !defined(RILL_TU) || RILL_TU == " + std::to_string(u) + "\n";
+      for (size_t i = 0; i < plan.parts.size(); ++i)
+        if (unit[i] == u) src += parts.definition(plan.parts[i]);
+      src += "#endif\n";
+    }
+    src += "\n#if !defined(RILL_TU) || RILL_TU == 0";
+  }
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
   src += c_entry_locals(f, d);
   src += "  int64_t rill_written = 0;\n";
@@ -108,6 +273,7 @@ std::string emit_c(const Function& f, Accuracy accuracy) {
   src += "    continue;\n";
   src += "  rill_discarded:;\n";
   src += "  }\n  return rill_written;\n}\n";
+  if (!plan.parts.empty()) src += "#endif\n";
   return src;
 }
 

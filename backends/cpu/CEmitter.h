@@ -12,7 +12,21 @@ class Dialect;
 
 namespace rill::cpu {
 
-std::string emit_c(const ir::Function& optimized, Accuracy accuracy);
+// How the C is laid out: outline_min_cost 0 prints the kernel as one function; otherwise
+// blocks costing at least that many are printed as functions of their own (Outline.h),
+// spread over up to max_units translation units (C_UNITS_MARK below).
+struct CLayout {
+  size_t outline_min_cost = 0;
+  int max_units = 1;
+  size_t unit_cost = 3000;  // at most one unit per this much cost (Outline.h's measure)
+};
+std::string emit_c(const ir::Function& optimized, Accuracy accuracy, const CLayout& layout = {});
+
+// A source with outlined functions is one file that compiles as one translation unit, or
+// as `units` of them, each with -DRILL_TU=k (k < units), linked together; the first line
+// that starts with this mark says how many: "/* rill-units: N */". Returns 1 without it.
+inline constexpr const char* kUnitsMark = "/* rill-units: ";
+int c_units(const std::string& source);
 
 // Pieces every C translation unit of the CPU backends shares (the scalar one above and the
 // lockstep one in simd/LockstepEmitter.h):

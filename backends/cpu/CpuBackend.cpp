@@ -1,11 +1,16 @@
 // The cpu backend (CpuBackend.h): scalar C, one element per iteration of the kernel's loop.
 #include "CpuBackend.h"
 
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
 #include <memory>
 
 #include "CEmitter.h"
 #include "HostKernel.h"
+#include "Outline.h"
 #include "SharedObjectCache.h"
+#include "rill/Error.h"
 #include "rill/Stopwatch.h"
 
 namespace rill::cpu {
@@ -60,17 +65,45 @@ bool has_sse41() {
   return sse41;
 }
 
+CLayout c_layout() {
+  CLayout layout{kOutlineMinCost, 4};
+  const char* knob = std::getenv("RILL_CPU_OUTLINE");
+  if (!knob || !*knob) return layout;
+  const std::string v = knob;
+  if (v == "off") return CLayout{};
+  // COST or COST:UNIT_COST, both at least 1.
+  auto bad = [&] {
+    return Error(
+        "RILL_CPU_OUTLINE: expected off, COST or COST:UNIT_COST (numbers of at least 1), "
+        "got '" +
+        v + "'");
+  };
+  auto number = [&](const char* from, char** end) {
+    if (!std::isdigit(static_cast<unsigned char>(*from))) throw bad();
+    errno = 0;
+    const unsigned long long n = std::strtoull(from, end, 10);
+    if (n == 0 || errno != 0) throw bad();
+    return static_cast<size_t>(n);
+  };
+  char* end = nullptr;
+  layout.outline_min_cost = number(knob, &end);
+  if (*end == ':') layout.unit_cost = number(end + 1, &end);
+  if (*end != 0) throw bad();
+  return layout;
+}
+
 std::unique_ptr<CompiledKernel> compile_scalar_c(const std::string& backend, const ir::Function& f,
                                                  Accuracy a) {
   Stopwatch stage;
-  std::string source = emit_c(f, a);
+  std::string source = emit_c(f, a, c_layout());
   const double codegen_ms = stage.lap();
   std::vector<std::string> flags = compiler_flags(a);
   // Scalar code gains from SSE4.1's roundss: floor and ceil (every 3D-DDA start and jump)
   // are then one exact instruction instead of a conversion sequence; 3-4% on a ray traced
   // frame (docs/benchmarks/2026-11-25-gpu-frame.md).
   if (has_sse41()) flags.push_back("-msse4.1");
-  SharedObject so = compile_shared_object(backend, f.name, source, flags, "rill_run");
+  SharedObject so =
+      compile_shared_object(backend, f.name, source, flags, "rill_run", c_units(source));
   auto k = make_host_kernel(std::move(source), std::move(so), 0);
   k->set_build_times(codegen_ms, stage.lap());
   return k;

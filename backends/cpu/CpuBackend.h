@@ -27,6 +27,10 @@ std::vector<std::string> compiler_flags(Accuracy a);
 bool has_sse41();
 // A kernel as cpu compiles it (scalar C), for `backend`'s cache entries: simd's double mode
 // runs this too.
+// How cpu lays out a kernel's C (CEmitter.h): outlined functions over up to 4 translation
+// units, unless $RILL_CPU_OUTLINE says `off` (one function) or another outlining threshold.
+struct CLayout;
+CLayout c_layout();
 std::unique_ptr<CompiledKernel> compile_scalar_c(const std::string& backend, const ir::Function& f,
                                                  Accuracy a);
 

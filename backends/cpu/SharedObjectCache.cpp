@@ -42,8 +42,8 @@ std::string read_file(const fs::path& p) {
   return ss.str();
 }
 
-// Runs argv, with stdout and stderr going to `log`; returns the exit status (-1: not run).
-int run(const std::vector<std::string>& argv, const fs::path& log) {
+// Starts argv, with stdout and stderr going to `log`; returns its process id (-1: not run).
+pid_t spawn(const std::vector<std::string>& argv, const fs::path& log) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -54,7 +54,12 @@ int run(const std::vector<std::string>& argv, const fs::path& log) {
   pid_t pid;
   int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return -1;
+  return rc != 0 ? -1 : pid;
+}
+
+// Waits for a process spawn() started; returns its exit status (-1: not run).
+int wait_for(pid_t pid) {
+  if (pid < 0) return -1;
   int status = 0;
   while (waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) return -1;
@@ -127,17 +132,19 @@ void release(SharedObject& so) {
 
 namespace {
 
-// Compiles the C file src (whose text is `source`) into out; throws rill::Error with the
-// compiler's messages and the numbered source. The callers remove out (TemporaryFiles).
-void compile_file(const std::string& cc, const std::vector<std::string>& flags, const fs::path& src,
-                  const fs::path& out, const fs::path& log, const std::string& source) {
-  std::vector<std::string> argv{cc};
-  argv.insert(argv.end(), flags.begin(), flags.end());
-  argv.insert(argv.end(), {"-o", out.string(), src.string(), "-lm"});
-  int rc = run(argv, log);
-  std::string messages = read_file(log);
-  std::error_code ec;
-  fs::remove(log, ec);
+// Temporary files of one compile, removed on every path out of its scope.
+struct TemporaryFiles {
+  std::vector<fs::path> paths;
+  ~TemporaryFiles() {
+    std::error_code ignored;
+    for (const fs::path& p : paths) fs::remove(p, ignored);
+  }
+};
+
+// Throws rill::Error for a compiler run that failed with status rc, with its messages and
+// the numbered source.
+void check_compile(int rc, const std::string& cc, const std::string& messages,
+                   const std::string& source) {
   if (rc == 0) return;
   if (rc < 0)
     throw Error("CPU backend: the C compiler '" + cc +
@@ -145,6 +152,65 @@ void compile_file(const std::string& cc, const std::vector<std::string>& flags, 
   throw Error("CPU backend: the C compiler rejected the generated kernel (exit " +
               std::to_string(rc) + "):\n" + messages + "\ngenerated source:\n" +
               codegen::numbered(source));
+}
+
+// Runs the compiler and returns its status, its messages in `messages`.
+int run_compiler(const std::vector<std::string>& argv, const fs::path& log, std::string& messages) {
+  const int rc = wait_for(spawn(argv, log));
+  messages = read_file(log);
+  std::error_code ec;
+  fs::remove(log, ec);
+  return rc;
+}
+
+// Compiles the C file src (whose text is `source`) into out; throws rill::Error with the
+// compiler's messages and the numbered source. The callers remove out (TemporaryFiles).
+// A source of several translation units (CEmitter.h's c_units) is compiled once per unit,
+// with -DRILL_TU=k, all units at the same time, and the objects linked into out.
+void compile_file(const std::string& cc, const std::vector<std::string>& flags, const fs::path& src,
+                  const fs::path& out, const fs::path& log, const std::string& source,
+                  int units = 1) {
+  std::string messages;
+  if (units <= 1) {
+    std::vector<std::string> argv{cc};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    argv.insert(argv.end(), {"-o", out.string(), src.string(), "-lm"});
+    check_compile(run_compiler(argv, log, messages), cc, messages, source);
+    return;
+  }
+  std::vector<fs::path> objects, logs;
+  std::vector<pid_t> pids;
+  TemporaryFiles temporaries;  // the objects
+  for (int u = 0; u < units; ++u) {
+    const std::string k = std::to_string(u);
+    objects.push_back(out.string() + "." + k + ".o");
+    temporaries.paths.push_back(objects.back());
+    logs.push_back(log.string() + "." + k);
+    std::vector<std::string> argv{cc};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    argv.insert(argv.end(), {"-c", "-DRILL_TU=" + k, "-o", objects.back().string(), src.string()});
+    pids.push_back(spawn(argv, logs.back()));
+  }
+  int failed = 0;
+  for (int u = 0; u < units; ++u) {
+    const int rc = wait_for(pids[static_cast<size_t>(u)]);
+    std::string m = read_file(logs[static_cast<size_t>(u)]);
+    std::error_code ec;
+    fs::remove(logs[static_cast<size_t>(u)], ec);
+    if (rc != 0 && failed == 0) {
+      failed = rc;
+      messages = m;
+    }
+  }
+  if (failed == 0) {
+    std::vector<std::string> argv{cc};
+    argv.insert(argv.end(), flags.begin(), flags.end());
+    argv.insert(argv.end(), {"-o", out.string()});
+    for (const fs::path& o : objects) argv.push_back(o.string());
+    argv.push_back("-lm");
+    failed = run_compiler(argv, log, messages);
+  }
+  check_compile(failed, cc, messages, source);
 }
 
 void write_text(const fs::path& p, const std::string& text) {
@@ -160,15 +226,6 @@ std::string compiler_command(const std::string& cc, const std::vector<std::strin
   for (const auto& f : flags) command += " " + f;
   return command;
 }
-
-// Temporary files of one compile, removed on every path out of its scope.
-struct TemporaryFiles {
-  std::vector<fs::path> paths;
-  ~TemporaryFiles() {
-    std::error_code ignored;
-    for (const fs::path& p : paths) fs::remove(p, ignored);
-  }
-};
 
 // A unique suffix for temporary files of this process and thread.
 std::string temporary_tag() {
@@ -251,7 +308,7 @@ std::string profile_directory() {
 
 SharedObject compile_shared_object(const std::string& backend, const std::string& kernel,
                                    const std::string& source, const std::vector<std::string>& flags,
-                                   const std::string& entry) {
+                                   const std::string& entry, int units) {
   if (const std::string dir = profile_directory(); !dir.empty())
     return compile_for_profiling(dir, backend, kernel, source, flags, entry);
   const std::string cc = c_compiler();
@@ -287,7 +344,7 @@ SharedObject compile_shared_object(const std::string& backend, const std::string
   {
     const TemporaryFiles temporaries{{src, tmp}};
     write_text(src, source);
-    compile_file(cc, flags, src, tmp, dir / (tag + ".log"), source);
+    compile_file(cc, flags, src, tmp, dir / (tag + ".log"), source, units);
     binary = read_file(tmp);
   }
   cache::store(backend, key_text, binary);

@@ -31,20 +31,21 @@
 namespace rill::cpu {
 
 struct SharedObject {
-  void* handle = nullptr;  // from dlopen
-  void* symbol = nullptr;  // the requested entry point
-  int fd = -1;             // the memory file the object was loaded from (see above)
+  void* handle = nullptr;        // from dlopen
+  void* symbol = nullptr;        // the requested entry point
+  int fd = -1;                   // the memory file the object was loaded from (see above)
   bool from_disk_cache = false;  // or, when profiling, an earlier run's file
-  std::string path;               // the cache entry, or the file when profiling
+  std::string path;              // the cache entry, or the file when profiling
 };
 
 // Compiles `source` with `flags` (or finds it in the cache entries of `backend`), loads it
 // and looks up `entry`. Throws rill::Error with the compiler's messages and the numbered
-// source on failure. `kernel` (the program's name) names the files when profiling.
+// source on failure. `kernel` (the program's name) names the files when profiling. units > 1:
+// the source is that many translation units (CEmitter.h's c_units), compiled at the same
+// time and linked (when profiling, as the one translation unit it also is).
 SharedObject compile_shared_object(const std::string& backend, const std::string& kernel,
-                                   const std::string& source,
-                                   const std::vector<std::string>& flags,
-                                   const std::string& entry);
+                                   const std::string& source, const std::vector<std::string>& flags,
+                                   const std::string& entry, int units = 1);
 // Unloads the object and closes its memory file.
 void release(SharedObject& so);
 

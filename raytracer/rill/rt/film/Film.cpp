@@ -206,6 +206,12 @@ Kernel& Film::encoder_for(const Stream<Float3>& source, int width, int height) {
   return *now_->encode;
 }
 
+void Film::prepare_encoder(const Stream<Float3>& color) {
+  // The stream finish() encodes: the mean when summing, else the sample itself.
+  const Stream<Float3>& source = summing_ ? *now_->mean_color : color;
+  encoder_for(source, static_cast<int>(source.width()), static_cast<int>(source.height()));
+}
+
 void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r) {
   Stopwatch step;
   // The colour stream: one sample's or the mean.

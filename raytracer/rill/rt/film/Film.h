@@ -52,6 +52,9 @@ class Film {
   // back).
   void begin(const std::string& backend, rill::Accuracy a, int width, int height, int spp,
              const Accumulation* resume = nullptr, bool summing = false, bool squares = false);
+  // Compiles now the 8-bit encoder that finish() will run for a frame whose samples the
+  // strategy writes to `color` (a strategy does this while its own kernel compiles).
+  void prepare_encoder(const rill::Stream<rill::Float3>& color);
   // Sample s's colour, just written by the strategy on the frame's backend.
   void add_sample(const rill::Stream<rill::Float3>& color, int s);
   // The mean of the samples added (and resumed), encoded and read back as `want` asks, with

@@ -1,10 +1,12 @@
 // The megakernel (Megakernel.h): its program and its render loop over samples.
 #include "rill/rt/megakernel/Megakernel.h"
 
+#include <future>
 #include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "rill/Backend.h"
 #include "rill/Reduce.h"
 #include "rill/Stopwatch.h"
 
@@ -492,6 +494,28 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   const MegakernelLoop loop = megakernel_loop_for(rs.loop, rs.backend);
   r.loop = megakernel_loop_name(loop);
   Stopwatch since_start;
+  // A first frame on a backend that compiles off the calling thread (cpu: a C compiler
+  // process) compiles the frame's small kernels, the film's and the ray count's, while the
+  // megakernel compiles: one after the other, their compiler runs added about 0.3 s to a
+  // cold first image (docs/benchmarks/2026-12-07-first-image.md). The program is captured
+  // here, on this thread (capture is per thread); only its compile runs on the other.
+  const std::string megakernel_key = kernel_key(rs.backend, rs.accuracy, loop);
+  std::future<Kernel> building;
+  if (!kernels_.count(megakernel_key) && !rill::backend(rs.backend).single_threaded()) {
+    const Program& p = program(loop);
+    building = std::async(std::launch::async,
+                          [&p, &rs] { return compile_for(p, rs.backend, rs.accuracy); });
+  }
+  Stopwatch setup;
+  Buffers& out = buffers_for(buffers_, backend_key(rs.backend, rs.accuracy), width, height);
+  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing(),
+             rs.outputs.variance);
+  r.times.setup = setup.ms();
+  if (building.valid()) {
+    (void)rill::sum(out.rays);  // its reduction levels, compiled (and run on zeros)
+    if (rs.outputs.rgb8) film.prepare_encoder(out.color);
+    kernels_.emplace(megakernel_key, building.get());
+  }
   Kernel& k = kernel(rs.backend, rs.accuracy, loop);
   r.from_cache = k.info().cache_hit || k.info().from_disk_cache;
   add_stages(r, k.info());
@@ -511,15 +535,11 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   const int64_t iters = segments * (loop_lights + 1) + 8;
 
   // Both loops write the same outputs: they share the backend's buffers, and each warms up.
-  const std::string key = backend_key(rs.backend, rs.accuracy);
-  Stopwatch setup;
-  Buffers& out = buffers_for(buffers_, key, width, height);
+  setup.lap();
   k.bind("rays", out.rays).bind("color", out.color);
   k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
   if (path()) k.bind("albedo", out.albedo);
-  film.begin(rs.backend, rs.accuracy, width, height, spp, rs.resume, frame.summing(),
-             rs.outputs.variance);
-  r.times.setup = setup.ms();
+  r.times.setup += setup.ms();
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
   // below is tracing alone. The ray count's reduction kernels compile here too.
