@@ -168,7 +168,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
                     "grid traversal: incremental or recompute")
       ->default_str("incremental");
   add_parsed_option(r, "--packets", o.knobs.packets, rt::parse_packets,
-                    "lane groups walk the grid together: auto (on simd), on or off")
+                    "lane groups walk the grid together: auto (off today), on or off")
       ->default_str("auto");
   r->add_flag("--stats", o.stats,
               "print the compile stages; multipass: per-pass calls, elements and time");

@@ -23,10 +23,10 @@ enum class Traversal {
 };
 // Whether a lane group walks the grid together (Intersector::walk_grid_together): the group
 // visits one voxel at a time, the one of its rays furthest behind, and every ray tests that
-// voxel's triangles. Auto: on where a backend runs lanes in lockstep (packets_for), off
-// elsewhere; On: everywhere (a group of one walks alone: the same voxels as Off, in other
-// code); Off: each ray walks alone. The hits are the same bits whichever (docs/raytracer.md,
-// "Coherent traversal").
+// voxel's triangles. Auto: packets_for's rule (today off on every backend: measured slower,
+// docs/benchmarks/2026-12-07-coherent.md); On: everywhere (a group of one walks alone: the
+// same voxels as Off, in other code); Off: each ray walks alone. The hits are the same bits
+// whichever (docs/raytracer.md, "Coherent traversal").
 enum class Packets { Auto, On, Off };
 // Deliberately broken variants of the path integrator, for its validation tests only
 // (tests/raytracer/integrator/): each must be rejected by them. None is the integrator.
@@ -56,9 +56,10 @@ SelfIntersection parse_self_intersection(const std::string& s);
 Traversal parse_traversal(const std::string& s);
 Packets parse_packets(const std::string& s);  // auto|on|off
 const char* packets_name(Packets p);
-// Whether kernels for `backend` walk lane groups together under setting p: Auto resolves to
-// on for simd (8 lockstep lanes), off for the rest (a group of one, or sub-groups the tracer
-// does not use yet).
+// Whether kernels for `backend` walk lane groups together under setting p. Auto resolves to
+// off everywhere: on simd (8 lockstep lanes) the shared walk measured 10-25% slower than each
+// lane walking alone on thesis B and C, and slower on thesis A with the group reductions as
+// they are compiled today; the other backends run groups of one, where it only adds code.
 bool packets_for(Packets p, const std::string& backend);
 
 }  // namespace rt
