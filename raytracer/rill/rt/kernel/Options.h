@@ -57,9 +57,9 @@ Traversal parse_traversal(const std::string& s);
 Packets parse_packets(const std::string& s);  // auto|on|off
 const char* packets_name(Packets p);
 // Whether kernels for `backend` walk lane groups together under setting p. Auto resolves to
-// off everywhere: on simd (8 lockstep lanes) the shared walk measured 10-25% slower than each
-// lane walking alone on thesis B and C, and slower on thesis A with the group reductions as
-// they are compiled today; the other backends run groups of one, where it only adds code.
+// off everywhere: on simd (8 lockstep lanes) the shared walk traced primary rays at 0.70-0.90x
+// the speed of each lane walking alone (thesis A, B, C; full frames 0.81x on B and C); the
+// other backends run groups of one, where it only adds code.
 bool packets_for(Packets p, const std::string& backend);
 
 }  // namespace rt
