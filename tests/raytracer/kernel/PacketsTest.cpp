@@ -9,6 +9,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "TestUtil.h"
@@ -19,22 +20,6 @@ namespace rt {
 namespace {
 
 class Packets : public ::testing::TestWithParam<std::string> {};
-
-// The closest hit over every usable triangle, as the kernel computes each test (GridTest.cpp
-// has the same oracle; the smaller id wins ties because it is tested first).
-void brute_force(const Scene& s, const glm::vec3& o, const glm::vec3& d, int32_t& id, float& t) {
-  id = -1;
-  t = INFINITY;
-  for (size_t k = 0; k < s.triangle_count(); ++k) {
-    const glm::vec3* p = &s.positions[3 * k];
-    if (!triangle_usable(p[0], p[1], p[2])) continue;
-    float tk;
-    if (testing::hit_triangle_f(o, d, p[0], p[1] - p[0], p[2] - p[0], tk) && tk < t) {
-      t = tk;
-      id = static_cast<int32_t>(k);
-    }
-  }
-}
 
 struct Rays {
   std::string what;
@@ -59,7 +44,7 @@ std::vector<Rays> coherent_rays(const Scene& s, int w, int h) {
   for (const glm::vec3& d : dirs) {
     int32_t id;
     float t;
-    brute_force(s, s.camera.eye, d, id, t);
+    testing::brute_force_closest(s, s.camera.eye, d, id, t);
     if (id < 0) continue;
     const glm::vec3 p = s.camera.eye + (t - back) * d;
     const glm::vec3 l = light - p;
@@ -78,7 +63,7 @@ int expect_brute_force(const Scene& s, const Rays& r, const std::vector<int32_t>
   for (size_t k = 0; k < r.o.size(); ++k) {
     int32_t id;
     float t;
-    brute_force(s, r.o[k], r.d[k], id, t);
+    testing::brute_force_closest(s, r.o[k], r.d[k], id, t);
     hits += id >= 0;
     const bool same =
         prim[k] == id && (id < 0 || std::bit_cast<uint32_t>(dist[k]) == std::bit_cast<uint32_t>(t));
@@ -164,6 +149,41 @@ TEST_P(Packets, AxisParallelPacketsWithSignedZerosAndDenormals) {
           r.d.push_back(dir);
         }
   for (int res : {4, 5, 16}) check_packets(GetParam(), s, build_grid(s, res), {r}, "box");
+}
+
+// Whole renders: camera rays, shadow rays (any hit, through the light buffer or the grid),
+// reflections and refraction give the same image and AOVs, bit for bit, with packets on and
+// off (the megakernel's walks; 8 lanes on simd, a group of one elsewhere).
+TEST_P(Packets, ImagesAreTheSameBitsWithPacketsOnAndOff) {
+  RT_REQUIRE_BACKEND(GetParam());
+  if (GetParam() != "cpu" && GetParam() != "simd")
+    GTEST_SKIP() << "a group of one: AxisParallel and CameraAndLightRays cover the walk there";
+  for (const char* name : {"thesis-b", "glass", "thesis-c"}) {
+    Scene s = builtin_scene(name);
+    const Grid g = build_grid_for(s, GetParam());
+    RenderSettings rs;
+    rs.backend = GetParam();
+    rs.width = 48;
+    rs.height = 32;
+    rs.outputs.depth = rs.outputs.prim = true;
+    std::vector<RenderResult> r;
+    for (rt::Packets p : {rt::Packets::Off, rt::Packets::On}) {
+      TracerOptions k;
+      k.packets = p;
+      Tracer tracer(s, g, k);
+      r.push_back(tracer.render(rs, s.camera));
+    }
+    ASSERT_EQ(r[0].color.size(), r[1].color.size()) << name;
+    EXPECT_EQ(
+        std::memcmp(r[0].color.data(), r[1].color.data(), r[0].color.size() * sizeof(glm::vec3)), 0)
+        << name;
+    EXPECT_EQ(r[0].prim, r[1].prim) << name;
+    ASSERT_EQ(r[0].depth.size(), r[1].depth.size()) << name;
+    EXPECT_EQ(std::memcmp(r[0].depth.data(), r[1].depth.data(), r[0].depth.size() * sizeof(float)),
+              0)
+        << name;
+    EXPECT_EQ(r[0].rays, r[1].rays) << name;
+  }
 }
 
 // Auto is off on every backend (measured slower, Options.h): its kernels are those without
