@@ -2,7 +2,10 @@
 // "Coherent traversal"): the rays of a lane group that step the same way on every axis
 // visit the union of their voxels one voxel at a time, and every ray tests each visited
 // voxel's triangles, so the group loads one voxel entry and one triangle list per step
-// instead of one per ray, and no lane idles while another finishes a longer list.
+// instead of one per ray, and no lane idles while another finishes a longer list. On simd it
+// measured slower than the lanes walking side by side, each its own voxel (they already share
+// a voxel's loads when they are in it, and the shared walk visits different voxels one after
+// the other: docs/benchmarks/2026-12-07-coherent.md), so it runs only under --packets on.
 //
 // Why the hits are exactly those of each ray walking alone. Each ray keeps its own 3D-DDA
 // state and steps it (leave_voxel) only when the group visits the voxel the ray is in; the
