@@ -5,6 +5,7 @@
 //                    all|cpu,simd,opencl,glsl,glsl-compute]
 //                    [--repeats R] [--subgrids N|off|auto] [--grid-density D] [--grid-scene S]
 //                    [--grids auto,16,32,...] [--loops auto|ray,segment]
+//                    [--packets auto|on|off,...]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu]
 //                    [--path-scenes default|S,...] [--bounce 2] [--spp 1] [--seed N]
 //                    [--md F] [--csv F]
@@ -19,6 +20,8 @@
 //               8-bit image for its PNG, into the memory of the last frame's, as
 //               `rill-trace render --bench-frames` does). With --loops ray,segment each backend's
 //               full frames run with both megakernel loops, interleaved, one row each.
+//               With --packets off,auto the CPU backends run once per setting (Options.h,
+//               Packets: whether lane groups walk the grid together), side by side.
 //   embree      the same primary rays through Intel Embree 3 (rtcIntersect1, one ray at a
 //               time, oneTBB over the same cores), interleaved with Rill's CPU backend:
 //               Mrays/s of both, the ratio, and how many rays agree (same primitive, or the
@@ -138,6 +141,10 @@ struct Options {
   // The megakernel loops of the throughput section's full frames, side by side (Tracer.h).
   std::string loops = "auto";
   std::vector<rt::MegakernelLoop> loop_list{rt::MegakernelLoop::Auto};
+  // The packet settings the CPU backends run with, side by side (the throughput and Embree
+  // sections).
+  std::string packets = "auto";
+  std::vector<rt::Packets> packets_list{rt::Packets::Auto};
   std::string depth_scene = "builtin:thesis-b,builtin:glass";
   std::string depths = "1-8";
   std::string sweep_backends = "cpu";
@@ -322,6 +329,23 @@ class Bench {
     if (embree && std::find(bes.begin(), bes.end(), "simd") == bes.end())
       bes.insert(bes.begin(), "simd");
     if (embree || throughput) bes.insert(bes.begin(), "cpu");
+    // Each CPU backend once per packet setting (labelled when there are several); the GPU
+    // backends with the first.
+    std::vector<rt::Packets> pks;
+    std::vector<std::string> labels;
+    {
+      std::vector<std::string> each;
+      for (const auto& be : bes)
+        for (size_t p = 0; p < o_.packets_list.size(); ++p) {
+          if (p > 0 && be != "cpu" && be != "simd") continue;
+          each.push_back(be);
+          pks.push_back(o_.packets_list[p]);
+          labels.push_back(o_.packets_list.size() > 1 && (be == "cpu" || be == "simd")
+                               ? be + " (packets " + rt::packets_name(o_.packets_list[p]) + ")"
+                               : be);
+        }
+      bes = each;
+    }
     const std::string acc = rill::accuracy_name(o_.acc);
     Table tp{"Throughput, " + size_str() + ", " + acc + ", median of " +
                  std::to_string(o_.repeats) + " (Mrays/s)",
@@ -342,20 +366,26 @@ class Bench {
       // the CPU and GPUs may want different ones); backends that want the same share it.
       struct Setup {
         int32_t subgrid_min;
+        rt::Packets packets;
         rt::Grid grid;
         std::unique_ptr<rt::Tracer> tracer;
       };
       std::vector<std::unique_ptr<Setup>> setups;
       std::vector<Setup*> setup_of;
-      for (const auto& be : bes) {
+      for (size_t b = 0; b < bes.size(); ++b) {
+        const std::string& be = bes[b];
         const int32_t want = rt::subgrid_min_for(scene.options.subgrid_min, be);
-        auto it = std::find_if(setups.begin(), setups.end(),
-                               [&](const auto& u) { return u->subgrid_min == want; });
+        const rt::Packets pk = pks[b];
+        auto it = std::find_if(setups.begin(), setups.end(), [&](const auto& u) {
+          return u->subgrid_min == want && u->packets == pk;
+        });
         if (it == setups.end()) {
           rt::Scene with = scene;
           with.options.subgrid_min = want;
-          auto u = std::make_unique<Setup>(Setup{want, rt::build_grid_for(with), nullptr});
-          u->tracer = std::make_unique<rt::Tracer>(scene, u->grid);
+          auto u = std::make_unique<Setup>(Setup{want, pk, rt::build_grid_for(with), nullptr});
+          rt::TracerOptions knobs;
+          knobs.packets = pk;
+          u->tracer = std::make_unique<rt::Tracer>(scene, u->grid, knobs);
           std::printf("%s: %zu triangles, grid %s (for %s), features: %s\n", scene.name.c_str(),
                       scene.triangle_count(), res_str(u->grid).c_str(), be.c_str(),
                       u->tracer->features().str().c_str());
@@ -409,7 +439,7 @@ class Bench {
         for (size_t b = 0; b < bes.size(); ++b) {
           prim_ms[b].push_back(runs[b]->run());
 #ifdef RILL_BENCH_HAVE_EMBREE
-          if (ebr && bes[b] == "cpu") {
+          if (ebr && b == 0) {  // beside the first cpu run
             const auto t = Clock::now();
             ebr->trace(scene.camera.eye, dirs, e_prim.data(), e_dist.data());
             embree_ms.push_back(ms_since(t));
@@ -441,7 +471,8 @@ class Bench {
           // Only strict promises the same bits everywhere; fast's differences are reported.
           ok = ok && (differ == 0 || o_.acc == rill::Accuracy::Fast);
           if (differ && o_.acc != rill::Accuracy::Fast)
-            std::printf("error: %s: %zu primary hits differ from cpu's\n", bes[b].c_str(), differ);
+            std::printf("error: %s: %zu primary hits differ from cpu's\n", labels[b].c_str(),
+                        differ);
         }
         if (!throughput) continue;
         const double pm = median(prim_ms[b]);
@@ -449,9 +480,10 @@ class Bench {
           const double fm = median(full_ms[b][l]);
           const double rays = static_cast<double>(full_rays[b][l]);
           // The loop is named when it was asked for: "cpu (segment)".
-          const std::string label = loops[l] == rt::MegakernelLoop::Auto
-                                        ? bes[b]
-                                        : bes[b] + " (" + rt::megakernel_loop_name(loops[l]) + ")";
+          const std::string label =
+              loops[l] == rt::MegakernelLoop::Auto
+                  ? labels[b]
+                  : labels[b] + " (" + rt::megakernel_loop_name(loops[l]) + ")";
           tp.rows.push_back(
               {scene.name, std::to_string(scene.triangle_count()), res_str(setup_of[b]->grid),
                fmt("%.1f", build_ms_of(b)), fmt("%.1f", bpt_of(b)), label, fmt("%.2f", pm),
@@ -472,7 +504,7 @@ class Bench {
           // simd's hits equal cpu's (checked above when the throughput section runs).
           const double rm = median(prim_ms[b]);
           em.rows.push_back(
-              {scene.name, std::to_string(scene.triangle_count()), bes[b], fmt("%.2f", rm),
+              {scene.name, std::to_string(scene.triangle_count()), labels[b], fmt("%.2f", rm),
                fmt("%.3f", mrays(static_cast<double>(n), rm)), fmt("%.2f", emm),
                fmt("%.3f", mrays(static_cast<double>(n), emm)), fmt("%.3f", emm / rm),
                fmt("%.4f%%", 100.0 * static_cast<double>(same) / static_cast<double>(n)),
@@ -871,6 +903,9 @@ int main(int argc, char** argv) {
                  "accuracy of the throughput and Embree sections: strict or fast (fast: hits "
                  "may differ between backends, and are reported, not checked)")
       ->default_str(o.accuracy);
+  app.add_option("--packets", o.packets,
+                 "comma list of auto,on,off: the CPU backends once per setting, side by side")
+      ->default_str(o.packets);
   app.add_option("--loops", o.loops,
                  "the megakernel loops of the throughput section's full frames, side by side: "
                  "comma list of auto, ray, segment (Tracer.h: MegakernelLoop)")
@@ -913,6 +948,15 @@ int main(int argc, char** argv) {
     for (const std::string& l : split_list(o.loops))
       o.loop_list.push_back(rt::parse_megakernel_loop(l));
     if (o.loop_list.empty()) throw rt::SceneError("--loops: name at least one loop");
+    o.packets_list.clear();
+    for (const std::string& p : split_list(o.packets)) {
+      try {
+        o.packets_list.push_back(rt::parse_packets(p));
+      } catch (const std::invalid_argument& e) {
+        throw rt::SceneError(e.what());
+      }
+    }
+    if (o.packets_list.empty()) throw rt::SceneError("--packets: name at least one setting");
     if (o.acc == rill::Accuracy::Double)
       throw rt::SceneError("--accuracy: strict or fast (double is the accuracy reference)");
     const auto sections = split_list(o.sections);

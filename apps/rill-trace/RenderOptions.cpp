@@ -179,6 +179,9 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   add_parsed_option(r, "--traversal", o.knobs.traversal, rt::parse_traversal,
                     "grid traversal: incremental or recompute")
       ->default_str("incremental");
+  add_parsed_option(r, "--packets", o.knobs.packets, rt::parse_packets,
+                    "lane groups walk the grid together: auto (off today), on or off")
+      ->default_str("auto");
   r->add_flag("--stats", o.stats,
               "print the compile stages; multipass and wavefront: per-pass calls, elements and "
               "time");

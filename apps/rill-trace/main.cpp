@@ -10,7 +10,7 @@
 //                           [--strategy megakernel|multipass] [--loop auto|ray|segment]
 //                           [--stats-json FILE] [--source FILE] [--quiet]
 //                           [--triangle moller|watertight] [--offset epsilon|scaled]
-//                           [--traversal incremental|recompute]
+//                           [--traversal incremental|recompute] [--packets auto|on|off]
 //                           [--stats] [--wait-threshold F] [--masking on|off]   (multipass)
 //                           [--device SPEC] [--tile N] [--tail-tile N] [--rank-timeout S]
 //                           [--tile-timeout S] [--checkpoint S] [--progress] [--distribute]

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "ParamName.h"
+#include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace rt::testing {
@@ -138,6 +139,24 @@ inline bool hit_triangle_f(const glm::vec3& o, const glm::vec3& d, const glm::ve
   float v = dotf(d, qv) * inv;
   t = dotf(e2, qv) * inv;
   return u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f;
+}
+
+// The closest hit by testing every usable triangle (those the grid holds) with
+// hit_triangle_f, as the kernel computes each test; ties go to the smaller id, tested first.
+// The traversal's oracle (GridTest.cpp, PacketsTest.cpp). No hit: id -1, t infinite.
+inline void brute_force_closest(const Scene& s, const glm::vec3& o, const glm::vec3& d, int32_t& id,
+                                float& t) {
+  id = -1;
+  t = INFINITY;
+  for (size_t k = 0; k < s.triangle_count(); ++k) {
+    const glm::vec3* p = &s.positions[3 * k];
+    if (!triangle_usable(p[0], p[1], p[2])) continue;
+    float tk;
+    if (hit_triangle_f(o, d, p[0], p[1] - p[0], p[2] - p[0], tk) && tk < t) {
+      t = tk;
+      id = static_cast<int32_t>(k);
+    }
+  }
 }
 
 // Double-precision ray-triangle intersection for references: t, and the smallest

@@ -230,7 +230,8 @@ struct Tracer::Impl {
   std::vector<Aabb> static_boxes;
   std::vector<Aabb> frame_boxes;  // static_boxes widened for the frame's eye
   Film film;                      // every strategy's samples meet here
-  Program intersect_program, camera_program;
+  Program intersect_programs[2];  // without and with packets (Intersector::set_packets)
+  Program camera_program;
 
   // The megakernel, whose programs and source the Tracer also gives out.
   Megakernel& megakernel() { return static_cast<Megakernel&>(*strategies.at("megakernel")); }
@@ -421,8 +422,11 @@ std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Cam
 
 Kernel Tracer::intersect_kernel(const std::string& backend, Accuracy accuracy) {
   Impl& I = *d_;
-  if (!I.intersect_program.valid())
-    I.intersect_program = rill::program("rill_intersect", [&] {
+  const bool packets = packets_for(I.device.K.packets, backend);
+  Program& intersect_program = I.intersect_programs[packets ? 1 : 0];
+  if (!intersect_program.valid()) {
+    I.device.intersector.set_packets(packets);  // for this program's capture alone
+    intersect_program = rill::program("rill_intersect", [&] {
       Input<Float3> o("origin");
       Input<Float3> d("direction");
       Output<Int> prim("prim");
@@ -432,9 +436,11 @@ Kernel Tracer::intersect_kernel(const std::string& backend, Accuracy accuracy) {
       prim = select(found, hit.id, -1);
       dist = select(found, hit.t, as_float(Int(0x7f800000)));
     });
+    I.device.intersector.set_packets(false);
+  }
   CompileOptions opt;
   opt.accuracy = accuracy;
-  return compile(I.intersect_program, backend, opt);
+  return compile(intersect_program, backend, opt);
 }
 
 void Tracer::intersect(const std::string& backend, const std::vector<glm::vec3>& origins,

@@ -313,21 +313,6 @@ TEST(Grid, DensitySetsVoxelsPerTriangle) {
 
 class GridTraversal : public ::testing::TestWithParam<std::string> {};
 
-// Closest hit by testing every triangle, with the kernel's float arithmetic and tie rule.
-void brute_force(const Scene& s, const glm::vec3& o, const glm::vec3& d, int32_t& id, float& t) {
-  id = -1;
-  t = INFINITY;
-  for (size_t k = 0; k < s.triangle_count(); ++k) {
-    const glm::vec3* p = &s.positions[3 * k];
-    if (!triangle_usable(p[0], p[1], p[2])) continue;
-    float tk;
-    if (testing::hit_triangle_f(o, d, p[0], p[1] - p[0], p[2] - p[0], tk) && tk < t) {
-      t = tk;
-      id = static_cast<int32_t>(k);
-    }
-  }
-}
-
 TEST_P(GridTraversal, FindsTheSameClosestHitAsBruteForce) {
   RT_REQUIRE_BACKEND(GetParam());
   for (const char* name : {"thesis-b", "glass"}) {
@@ -398,7 +383,7 @@ TEST_P(GridTraversal, FindsTheSameClosestHitAsBruteForce) {
       for (size_t k = 0; k < o.size(); ++k) {
         int32_t id;
         float t;
-        brute_force(s, o[k], d[k], id, t);
+        testing::brute_force_closest(s, o[k], d[k], id, t);
         hits += id >= 0;
         if (prim[k] != id || (id >= 0 && dist[k] != t)) {
           if (++wrong <= 5)

@@ -346,20 +346,40 @@ void Intersector::walk_grid(const Ray& ray, const Bool& any, Hit& best) const {
   RILL_IF(box.inside) {
     DdaState st = dda_init(o, d, box.t_enter);
     const RaySteps rs = ray_steps(d);
-    RILL_DO {
-      Int2 range = grid_.voxel_range(st.vox);
-      test_list(o, d, range, any, best);
-      if (grid_.subgrids > 0) {  // the second level's code only where the grid has one
-        RILL_IF(range.y() < 0) {
-          walk_subgrid(o, rs, t_exit, any, range, st, best);
-        }
-        RILL_ENDIF;
+    if (packets_) {
+      // Rays that step the same way on every axis walk together; a group with any other
+      // direction walks ray by ray (`together` is the same in every lane of the group).
+      Bool together = true;
+      for (int a = 0; a < 3; ++a)
+        together = together && group_min(Int(rs.step[a])) == group_max(Int(rs.step[a]));
+      RILL_IF(together) {
+        walk_grid_together(o, rs, t_exit, any, st, best);
       }
-      leave_voxel(rs, t_exit, best, any, range, st);
+      RILL_ELSE {
+        walk_alone(o, d, rs, t_exit, any, st, best);
+      }
+      RILL_ENDIF;
+    } else {
+      walk_alone(o, d, rs, t_exit, any, st, best);
     }
-    RILL_UNTIL(st.done);
   }
   RILL_ENDIF;
+}
+
+void Intersector::walk_alone(const Float3& o, const Float3& d, const RaySteps& rs,
+                             const Float& t_exit, const Bool& any, DdaState& st, Hit& best) const {
+  RILL_DO {
+    Int2 range = grid_.voxel_range(st.vox);
+    test_list(o, d, range, any, best);
+    if (grid_.subgrids > 0) {  // the second level's code only where the grid has one
+      RILL_IF(range.y() < 0) {
+        walk_subgrid(o, rs, t_exit, any, range, st, best);
+      }
+      RILL_ENDIF;
+    }
+    leave_voxel(rs, t_exit, best, any, range, st);
+  }
+  RILL_UNTIL(st.done);
 }
 
 }  // namespace rt

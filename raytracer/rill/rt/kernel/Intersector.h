@@ -78,7 +78,20 @@ class Intersector {
   bool has_light_buffer() const { return lb_.enabled(); }
 
   // The grid's part of intersect(): box, 3D-DDA, the voxels' lists; from the hit in best.
+  // With packets on (set_packets), a lane group whose rays step the same way on every axis
+  // walks together (walk_grid_together); the others walk alone.
   void walk_grid(const Ray& ray, const Bool& any_hit, Hit& best) const;
+  // The lane group's shared walk (GroupWalk.cpp), from each ray's 3D-DDA state st: the same
+  // hits as each ray walking alone.
+  void walk_grid_together(const Float3& o, const RaySteps& r, const Float& t_exit,
+                          const Bool& any_hit, DdaState& st, Hit& best) const;
+  // One ray's 3D-DDA from st, voxel by voxel (the walk without packets).
+  void walk_alone(const Float3& o, const Float3& d, const RaySteps& r, const Float& t_exit,
+                  const Bool& any_hit, DdaState& st, Hit& best) const;
+  // Whether the programs captured from now on walk lane groups together (Options.h,
+  // Packets): set per program by the strategy that captures it, off by default.
+  void set_packets(bool on) { packets_ = on; }
+  bool packets() const { return packets_; }
 
   // ---- the steps --------------------------------------------------------------------------
   // The ray against the grid's box.
@@ -130,6 +143,7 @@ class Intersector {
   const Triangles& tris_;
   const TracerOptions& K_;
   const Features& F_;
+  bool packets_ = false;
 };
 
 }  // namespace rt

@@ -29,4 +29,20 @@ Traversal parse_traversal(const std::string& s) {
   throw std::invalid_argument("--traversal expects incremental or recompute (got '" + s + "')");
 }
 
+Packets parse_packets(const std::string& s) {
+  if (s == "auto") return Packets::Auto;
+  if (s == "on") return Packets::On;
+  if (s == "off") return Packets::Off;
+  throw std::invalid_argument("--packets expects auto, on or off (got '" + s + "')");
+}
+
+const char* packets_name(Packets p) {
+  return p == Packets::On ? "on" : p == Packets::Off ? "off" : "auto";
+}
+
+bool packets_for(Packets p, const std::string& backend) {
+  (void)backend;  // the rule is the same for every backend today (Options.h says why)
+  return p == Packets::On;
+}
+
 }  // namespace rt

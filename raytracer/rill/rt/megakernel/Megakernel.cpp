@@ -23,11 +23,18 @@ Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
 
 Megakernel::~Megakernel() = default;
 
-const Program& Megakernel::program(MegakernelLoop loop) const {
+const Program& Megakernel::program(MegakernelLoop loop, bool packets) const {
   if (loop == MegakernelLoop::Auto)
     throw std::invalid_argument("Megakernel::program: resolve Auto first (megakernel_loop_for)");
-  auto it = programs_.find(loop);
-  if (it == programs_.end()) it = programs_.emplace(loop, capture(loop)).first;
+  auto it = programs_.find({loop, packets});
+  if (it == programs_.end()) {
+    // The intersector's walk is chosen at capture (Intersector::set_packets), for this
+    // program alone.
+    S_.intersector.set_packets(packets);
+    Program p = capture(loop);
+    S_.intersector.set_packets(false);
+    it = programs_.emplace(std::make_pair(loop, packets), std::move(p)).first;
+  }
   return it->second;
 }
 
@@ -462,7 +469,8 @@ Kernel& Megakernel::kernel(const std::string& backend_name, Accuracy a, Megakern
   const std::string key = kernel_key(backend_name, a, loop);
   auto it = kernels_.find(key);
   if (it != kernels_.end()) return it->second;
-  return kernels_.emplace(key, compile_for(program(loop), backend_name, a)).first->second;
+  const bool packets = packets_for(S_.K.packets, backend_name);
+  return kernels_.emplace(key, compile_for(program(loop, packets), backend_name, a)).first->second;
 }
 
 // One backend's output streams, kept for its next frame of the same size (Film.h says why

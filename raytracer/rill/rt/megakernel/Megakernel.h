@@ -54,8 +54,9 @@ class Megakernel final : public RenderStrategy {
   explicit Megakernel(DeviceScene& scene);
   ~Megakernel() override;
   // The program with loop Ray or Segment (Segment's captured by the constructor, Ray's at its
-  // first use).
-  const rill::Program& program(MegakernelLoop loop) const;
+  // first use), with lane groups walking the grid together or not (Options.h, Packets; the
+  // kernel of a backend takes packets_for's choice).
+  const rill::Program& program(MegakernelLoop loop, bool packets = false) const;
   // Compiled once per backend, accuracy and loop (Auto: the backend's, megakernel_loop_for),
   // whatever the render's outputs and samples per pixel.
   rill::Kernel& kernel(const std::string& backend, rill::Accuracy a,
@@ -94,7 +95,7 @@ class Megakernel final : public RenderStrategy {
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
   // Captured on demand, from const accessors (Tracer::program is const): a GPU never needs
   // Segment's program beyond the constructor's, a CPU backend never Ray's.
-  mutable std::map<MegakernelLoop, rill::Program> programs_;
+  mutable std::map<std::pair<MegakernelLoop, bool>, rill::Program> programs_;
   std::map<std::string, rill::Kernel> kernels_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
   std::set<std::pair<std::string, int64_t>> warmed_;         // kernels launched at a size before
