@@ -167,6 +167,11 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   add_parsed_option(r, "--traversal", o.knobs.traversal, rt::parse_traversal,
                     "grid traversal: incremental or recompute")
       ->default_str("incremental");
+  r->add_flag("--debug", o.debug,
+              "kernels check every gather's index and stop at the first read outside an "
+              "array, naming the element, index and array (docs/debugging.md)");
+  r->add_flag("--debug-nonfinite", o.debug_nonfinite,
+              "--debug, and report the first statement that produced a NaN or infinity");
   r->add_flag("--stats", o.stats,
               "print the compile stages; multipass: per-pass calls, elements and time");
   r->add_option("--wait-threshold", o.wait_threshold,

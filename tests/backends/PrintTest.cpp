@@ -162,6 +162,28 @@ TEST_P(PrintTest, AMismatchedFormatIsACaptureError) {
                Error);
 }
 
+// connect and combine do not fuse print slots yet: they refuse, naming the program.
+TEST_P(PrintTest, FusingAPrintingProgramIsRefused) {
+  Program a = program("talks", [] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    print("{}", x);
+    y = x;
+  });
+  Program b = program("quiet", [] {
+    Input<Float> y("y");
+    Output<Float> z("z");
+    z = y;
+  });
+  try {
+    connect(a, b);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'talks' uses rill::print"), std::string::npos)
+        << e.what();
+  }
+}
+
 RILL_BACKEND_TEST_SUITE(PrintTest);
 
 }  // namespace
