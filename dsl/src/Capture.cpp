@@ -282,15 +282,13 @@ Ref new_var(ir::Type t, ir::VarRole role, std::string name, SourceLoc loc) {
 }
 
 Ref new_hidden_output(ir::Type t, std::string name, SourceLoc loc, int* slot) {
-  Builder& b = builder("rill::print", loc);
-  ir::VarId v = b.fn->add_var(t, ir::VarRole::Output, std::move(name));
-  b.fn->vars[v].slot = static_cast<int>(b.fn->outputs.size());
-  b.fn->outputs.push_back(v);
-  *slot = b.fn->vars[v].slot;
-  Ref r;
-  r.kind = Ref::Kind::Var;
-  r.program = b.serial;
-  r.var = v;
+  // A variable made where capture is, then made an output: new_var would refuse an output
+  // declared inside a block, which a print may well be.
+  Ref r = new_var(t, ir::VarRole::Local, std::move(name), loc);
+  ir::Function& f = *builder("rill::print", loc).fn;
+  f.vars[r.var].role = ir::VarRole::Output;
+  f.vars[r.var].slot = *slot = static_cast<int>(f.outputs.size());
+  f.outputs.push_back(r.var);
   return r;
 }
 

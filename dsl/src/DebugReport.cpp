@@ -5,6 +5,7 @@
 #include <bit>
 #include <charconv>
 #include <cstdio>
+#include <utility>
 
 namespace rill::detail {
 
@@ -25,6 +26,17 @@ std::string float_text(uint32_t bits) {
   return std::string(buf, r.ptr) + " (bits " + hex + ")";
 }
 
+// The lowest element whose report is set (-1: none), and how many are.
+std::pair<int64_t, int64_t> first_failure(const uint32_t* code, int64_t count) {
+  int64_t first = -1, elements = 0;
+  for (int64_t e = 0; e < count; ++e)
+    if (code[e] != 0) {
+      if (first < 0) first = e;
+      ++elements;
+    }
+  return {first, elements};
+}
+
 }  // namespace
 
 std::string debug_report(const passes::DebugTable& t, const SlotReader& slot, int64_t count,
@@ -33,12 +45,7 @@ std::string debug_report(const passes::DebugTable& t, const SlotReader& slot, in
   std::string out;
   if (t.code_slot >= 0) {
     const uint32_t* code = slot(t.code_slot);
-    int64_t first = -1, elements = 0;
-    for (int64_t e = 0; e < count; ++e)
-      if (code[e] != 0) {
-        if (first < 0) first = e;
-        ++elements;
-      }
+    const auto [first, elements] = first_failure(code, count);
     if (first >= 0) {
       const passes::DebugSite& site = t.sites.at(code[first] - 1);
       const auto& shape = shapes.at(static_cast<size_t>(site.array_slot));
@@ -59,12 +66,7 @@ std::string debug_report(const passes::DebugTable& t, const SlotReader& slot, in
   }
   if (t.nonfinite_slot >= 0) {
     const uint32_t* code = slot(t.nonfinite_slot);
-    int64_t first = -1, elements = 0;
-    for (int64_t e = 0; e < count; ++e)
-      if (code[e] != 0) {
-        if (first < 0) first = e;
-        ++elements;
-      }
+    const auto [first, elements] = first_failure(code, count);
     if (first >= 0) {
       const passes::DebugSite& site = t.sites.at(code[first] - 1);
       const uint32_t bits = slot(t.value_slot)[first];
