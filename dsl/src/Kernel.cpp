@@ -281,7 +281,10 @@ void Kernel::bind_record(const std::string& name, const std::string& stream,
 
 LaunchArgs Kernel::prepare() {
   if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
-  const ir::Function& f = shared_->optimized;  // the program's interface, and the debug mode's
+  // The compiled interface: the program's, and the debug mode's outputs and uniforms after
+  // it. (Its name may be another identical program's: messages use this one's.)
+  const ir::Function& f = shared_->optimized;
+  const std::string& name = program_.name();
   LaunchArgs a;
   // Print slots and debug reports: fresh zeroed streams of the launch's shape, so that what
   // an element leaves there is this launch's (a masked launch skips some elements).
@@ -301,11 +304,15 @@ LaunchArgs Kernel::prepare() {
     if (!out_[i] && !detail::is_hidden_output(f.var(f.outputs[i]).name))
       unbound += (unbound.empty() ? "" : ", ") + describe_param(f, f.outputs[i], "output");
   if (!unbound.empty())
-    throw Error("kernel '" + f.name + "': not bound to a stream: " + unbound +
+    throw Error("kernel '" + name + "': not bound to a stream: " + unbound +
                 " (bind them with bind(name, stream), or inputs(...) and outputs(...))");
+  if (!shape && out_.size() > 0 && !out_[0])
+    throw Error("kernel '" + name +
+                "' has no output of its own, which its prints need: they take the number of "
+                "elements to print from the kernel's outputs (declare and write one)");
   auto check = [&](const std::shared_ptr<detail::StreamState>& s, ir::VarId v, const char* dir) {
     if (s->type() != f.var(v).type)
-      throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) +
+      throw Error("kernel '" + name + "': " + describe_param(f, v, dir) +
                   " is bound to a stream of " + s->type().str());
   };
   for (size_t i = 0; i < out_.size(); ++i) {
@@ -315,8 +322,8 @@ LaunchArgs Kernel::prepare() {
       a.width = out_[0]->width;
       a.height = out_[0]->height;
     } else if (out_[i]->count() != a.count) {
-      throw Error("kernel '" + f.name + "': " + describe_param(f, f.outputs[i], "output") +
-                  " has " + std::to_string(out_[i]->count()) + " elements but output '" +
+      throw Error("kernel '" + name + "': " + describe_param(f, f.outputs[i], "output") + " has " +
+                  std::to_string(out_[i]->count()) + " elements but output '" +
                   f.var(f.outputs[0]).name + "' has " + std::to_string(a.count));
     }
     a.outputs.push_back(out_[i].get());
@@ -324,7 +331,7 @@ LaunchArgs Kernel::prepare() {
   for (size_t i = 0; i < in_.size(); ++i) {
     check(in_[i], f.inputs[i], "input");
     if (in_[i]->count() != a.count)
-      throw Error("kernel '" + f.name + "': " + describe_param(f, f.inputs[i], "input") + " has " +
+      throw Error("kernel '" + name + "': " + describe_param(f, f.inputs[i], "input") + " has " +
                   std::to_string(in_[i]->count()) + " elements but the kernel runs over " +
                   std::to_string(a.count) + " (the size of its outputs)");
     a.inputs.push_back(in_[i].get());
@@ -356,7 +363,7 @@ LaunchArgs Kernel::prepare() {
     // through an input bound to the same stream is well defined, and allowed.)
     for (size_t i = 0; i < out_.size(); ++i)
       if (out_[i].get() == arr.get())
-        throw Error("kernel '" + f.name + "' gathers from stream '" + arr->name +
+        throw Error("kernel '" + name + "' gathers from stream '" + arr->name +
                     "' while writing it as " + describe_param(f, f.outputs[i], "output") +
                     "; write to another stream (ping-pong between two), or read the element's "
                     "own value through an input bound to the same stream");

@@ -184,6 +184,20 @@ TEST_P(PrintTest, FusingAPrintingProgramIsRefused) {
   }
 }
 
+// Prints take the launch's size from the kernel's own outputs: without one, a clear error.
+TEST_P(PrintTest, AKernelWithoutOutputsOfItsOwnCannotPrint) {
+  Program p = program("mute", [] { print("{}", element_index()); });
+  Kernel k = compile(p);
+  try {
+    k.execute();
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("kernel 'mute' has no output of its own"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 RILL_BACKEND_TEST_SUITE(PrintTest);
 
 }  // namespace
