@@ -182,6 +182,11 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   add_parsed_option(r, "--packets", o.knobs.packets, rt::parse_packets,
                     "lane groups walk the grid together: auto (off today), on or off")
       ->default_str("auto");
+  r->add_flag("--debug", o.debug,
+              "kernels check every gather's index and stop at the first read outside an "
+              "array, naming the element, index and array (docs/debugging.md)");
+  r->add_flag("--debug-nonfinite", o.debug_nonfinite,
+              "--debug, and report the first statement that produced a NaN or infinity");
   r->add_flag("--stats", o.stats,
               "print the compile stages; multipass and wavefront: per-pass calls, elements and "
               "time");

@@ -39,6 +39,8 @@ struct RenderOptions {
   rt::TracerOptions knobs;
   // Multipass: per-pass statistics, the intersector's rerun threshold, masked launches.
   bool stats = false;
+  // --debug, --debug-nonfinite: the kernels' debug mode (docs/debugging.md), as RILL_DEBUG.
+  bool debug = false, debug_nonfinite = false;
   double wait_threshold = 0.2;
   bool masking = true;
   // Frame-rate mode: after the first render (which compiles), render this many more frames

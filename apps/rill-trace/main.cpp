@@ -32,6 +32,7 @@
 // and reports errors.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <new>
 #include <regex>
@@ -82,6 +83,10 @@ int main(int argc, char** argv) {
   int rc = 0;
   try {
     ro.backend_given = r->count("--backend") > 0;
+    // The debug mode reaches every compile of the process through the environment, as if
+    // RILL_DEBUG had been set (rill::compile reads it).
+    if (*r && (ro.debug || ro.debug_nonfinite))
+      setenv("RILL_DEBUG", ro.debug_nonfinite ? "nonfinite" : "1", 1);
     if (*r) rc = render(ro);
     if (*acc) rc = accuracy(ao);
     if (*nz) rc = noise(no);

@@ -43,6 +43,7 @@ struct Builder {
   // (data, boundary mode, border bits) -> index in fn->arrays
   std::map<std::tuple<const ArrayState*, ir::Boundary, std::array<uint32_t, 4>>, int> array_ids;
   std::vector<std::shared_ptr<ArrayState>> arrays;
+  std::vector<PrintSite> prints;
 
   ir::Block* root = nullptr;  // where top-level statements go (fn->body unless extending)
   Stopwatch started;          // when the program's definition began (capture_ms)
@@ -280,6 +281,21 @@ Ref new_var(ir::Type t, ir::VarRole role, std::string name, SourceLoc loc) {
   return r;
 }
 
+Ref new_hidden_output(ir::Type t, std::string name, SourceLoc loc, int* slot) {
+  // A variable made where capture is, then made an output: new_var would refuse an output
+  // declared inside a block, which a print may well be.
+  Ref r = new_var(t, ir::VarRole::Local, std::move(name), loc);
+  ir::Function& f = *builder("rill::print", loc).fn;
+  f.vars[r.var].role = ir::VarRole::Output;
+  f.vars[r.var].slot = *slot = static_cast<int>(f.outputs.size());
+  f.outputs.push_back(r.var);
+  return r;
+}
+
+std::vector<PrintSite>& print_sites(SourceLoc loc) {
+  return builder("rill::print", loc).prints;
+}
+
 void assign(const Ref& dst, const ir::Mask& mask, const ir::Operand& src, SourceLoc loc) {
   Builder& b = builder("an assignment", loc);
   if (dst.kind != Ref::Kind::Var) throw Error("assignment to something that is not a variable", loc);
@@ -496,10 +512,11 @@ CapturedProgram ProgramScope::finish() {
   passes::InterfaceOrder order;
   passes::canonicalize(*b.fn, &order);
   ir::verify_or_throw(*b.fn, "canonicalize");
-  CapturedProgram out{b.fn, {}, {}, 0.0};
+  CapturedProgram out{b.fn, {}, {}, 0.0, {}};
   for (size_t i : order.uniforms) out.uniforms.push_back(b.uniforms[i]);
   for (size_t i : order.arrays) out.arrays.push_back(b.arrays[i]);
   out.capture_ms = b.started.ms();
+  out.prints = b.prints;
   return out;
 }
 

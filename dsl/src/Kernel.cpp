@@ -1,6 +1,9 @@
 #include "rill/Kernel.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstdlib>
 #include <future>
 #include <map>
 #include <mutex>
@@ -8,7 +11,10 @@
 #include <tuple>
 
 #include "CompileProgress.h"
+#include "DebugReport.h"
+#include "PrintSlots.h"
 #include "rill/Parameters.h"
+#include "rill/Print.h"
 #include "rill/Stopwatch.h"
 #include "rill/ir/Printer.h"
 #include "rill/ir/Verifier.h"
@@ -20,8 +26,9 @@ struct Kernel::Shared {
   Backend* backend = nullptr;
   ir::Function optimized;
   std::unique_ptr<CompiledKernel> compiled;
-  std::mutex run_mutex;  // a compiled kernel runs one launch at a time
-  CompileInfo info;      // what building it cost
+  std::mutex run_mutex;      // a compiled kernel runs one launch at a time
+  CompileInfo info;          // what building it cost
+  passes::DebugTable debug;  // the debug mode's checks (CompileOptions::debug)
 };
 
 namespace {
@@ -52,6 +59,8 @@ std::shared_ptr<Kernel::Shared> build(const Program& p, Backend& be,
   CompileInfo& info = shared->info;
   shared->backend = &be;
   shared->optimized = passes::optimize(p.ir(), options.passes, options.accuracy);
+  if (options.debug)
+    shared->debug = passes::instrument_debug(shared->optimized, options.debug_nonfinite);
   info.optimize_ms = stage.lap();
   shared->compiled = be.compile(shared->optimized, options);
   stage.lap();
@@ -73,6 +82,16 @@ std::shared_ptr<Kernel::Shared> build(const Program& p, Backend& be,
   return shared;
 }
 
+// RILL_DEBUG=1 (gathers) or RILL_DEBUG=nonfinite (NaN and infinity too) turns the debug
+// mode on for every compile of the process.
+CompileOptions with_environment(CompileOptions o) {
+  const char* env = std::getenv("RILL_DEBUG");
+  if (env == nullptr || *env == '\0' || std::string(env) == "0") return o;
+  o.debug = true;
+  if (std::string(env) == "nonfinite") o.debug_nonfinite = true;
+  return o;
+}
+
 std::string describe_param(const ir::Function& f, ir::VarId v, const char* dir) {
   return std::string(dir) + " '" + f.var(v).name + "' (" + f.var(v).type.str() + ")";
 }
@@ -90,7 +109,8 @@ void clear_kernel_cache() {
   cache().stats = {};
 }
 
-Kernel compile(const Program& p, const std::string& backend_name, const CompileOptions& options) {
+Kernel compile(const Program& p, const std::string& backend_name, const CompileOptions& requested) {
+  const CompileOptions options = with_environment(requested);
   if (!p.valid()) throw Error("compile(): the program is empty (default-constructed)");
   // The cache exists before any backend starts its driver, so at exit it is destroyed after
   // the exit handlers the drivers register. Kernels destroyed then must not call into a
@@ -126,6 +146,7 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
     k.info_.cache_hit = true;
     k.info_.origin = KernelOrigin::ProcessCache;
     k.info_.capture_ms = p.capture_ms();
+    k.out_.resize(k.shared_->optimized.outputs.size());  // the debug mode's outputs too
     return k;
   }
   ++c.stats.misses;
@@ -150,6 +171,7 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
     throw;
   }
   promise.set_value(k.shared_);
+  k.out_.resize(k.shared_->optimized.outputs.size());  // the debug mode's outputs too
   k.info_ = k.shared_->info;
   k.info_.capture_ms = p.capture_ms();
   return k;
@@ -159,13 +181,16 @@ void Kernel::bind_all(bool inputs, std::initializer_list<StreamRef> s) {
   if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
   const ir::Function& f = program_.ir();
   auto& slots = inputs ? in_ : out_;
-  const auto& params = inputs ? f.inputs : f.outputs;
+  // The user's parameters only: print slots are bound by the kernel itself.
+  std::vector<size_t> params;
+  for (size_t i = 0; i < (inputs ? f.inputs : f.outputs).size(); ++i)
+    if (inputs || !detail::is_hidden_output(f.var(f.outputs[i]).name)) params.push_back(i);
   if (s.size() != params.size())
     throw Error("kernel '" + f.name + "' has " + std::to_string(params.size()) +
                 (inputs ? " input(s)" : " output(s)") + " but " + std::to_string(s.size()) +
                 " stream(s) were bound");
   size_t i = 0;
-  for (const StreamRef& r : s) slots[i++] = r.shared();
+  for (const StreamRef& r : s) slots[params[i++]] = r.shared();
 }
 
 namespace {
@@ -175,7 +200,8 @@ std::string describe_interface(const ir::Function& f) {
   auto list = [&](const std::vector<ir::VarId>& vs) {
     std::string out;
     for (ir::VarId v : vs)
-      out += (out.empty() ? "" : ", ") + f.var(v).name + " (" + f.var(v).type.str() + ")";
+      if (!detail::is_hidden_output(f.var(v).name))
+        out += (out.empty() ? "" : ", ") + f.var(v).name + " (" + f.var(v).type.str() + ")";
     return out.empty() ? std::string("none") : out;
   };
   return "inputs " + list(f.inputs) + "; outputs " + list(f.outputs);
@@ -255,20 +281,38 @@ void Kernel::bind_record(const std::string& name, const std::string& stream,
 
 LaunchArgs Kernel::prepare() {
   if (!shared_) throw Error("this kernel was never compiled (use rill::compile)");
-  const ir::Function& f = program_.ir();
+  // The compiled interface: the program's, and the debug mode's outputs and uniforms after
+  // it. (Its name may be another identical program's: messages use this one's.)
+  const ir::Function& f = shared_->optimized;
+  const std::string& name = program_.name();
   LaunchArgs a;
+  // Print slots and debug reports: fresh zeroed streams of the launch's shape, so that what
+  // an element leaves there is this launch's (a masked launch skips some elements).
+  const detail::StreamState* shape = nullptr;
+  for (size_t i = 0; i < out_.size() && !shape; ++i)
+    if (!detail::is_hidden_output(f.var(f.outputs[i]).name) && out_[i]) shape = out_[i].get();
+  for (size_t i = 0; i < out_.size(); ++i) {
+    const ir::Variable& v = f.var(f.outputs[i]);
+    if (!detail::is_hidden_output(v.name) || !shape) continue;
+    out_[i] = std::make_shared<detail::StreamState>();
+    detail::init_stream(*out_[i], v.type, shape->width, shape->height, shape->dims, v.name);
+  }
   std::string unbound;
   for (size_t i = 0; i < in_.size(); ++i)
     if (!in_[i]) unbound += (unbound.empty() ? "" : ", ") + describe_param(f, f.inputs[i], "input");
   for (size_t i = 0; i < out_.size(); ++i)
-    if (!out_[i])
+    if (!out_[i] && !detail::is_hidden_output(f.var(f.outputs[i]).name))
       unbound += (unbound.empty() ? "" : ", ") + describe_param(f, f.outputs[i], "output");
   if (!unbound.empty())
-    throw Error("kernel '" + f.name + "': not bound to a stream: " + unbound +
+    throw Error("kernel '" + name + "': not bound to a stream: " + unbound +
                 " (bind them with bind(name, stream), or inputs(...) and outputs(...))");
+  if (!shape && out_.size() > 0 && !out_[0])
+    throw Error("kernel '" + name +
+                "' has no output of its own, which its prints need: they take the number of "
+                "elements to print from the kernel's outputs (declare and write one)");
   auto check = [&](const std::shared_ptr<detail::StreamState>& s, ir::VarId v, const char* dir) {
     if (s->type() != f.var(v).type)
-      throw Error("kernel '" + f.name + "': " + describe_param(f, v, dir) +
+      throw Error("kernel '" + name + "': " + describe_param(f, v, dir) +
                   " is bound to a stream of " + s->type().str());
   };
   for (size_t i = 0; i < out_.size(); ++i) {
@@ -278,8 +322,8 @@ LaunchArgs Kernel::prepare() {
       a.width = out_[0]->width;
       a.height = out_[0]->height;
     } else if (out_[i]->count() != a.count) {
-      throw Error("kernel '" + f.name + "': " + describe_param(f, f.outputs[i], "output") +
-                  " has " + std::to_string(out_[i]->count()) + " elements but output '" +
+      throw Error("kernel '" + name + "': " + describe_param(f, f.outputs[i], "output") + " has " +
+                  std::to_string(out_[i]->count()) + " elements but output '" +
                   f.var(f.outputs[0]).name + "' has " + std::to_string(a.count));
     }
     a.outputs.push_back(out_[i].get());
@@ -287,19 +331,39 @@ LaunchArgs Kernel::prepare() {
   for (size_t i = 0; i < in_.size(); ++i) {
     check(in_[i], f.inputs[i], "input");
     if (in_[i]->count() != a.count)
-      throw Error("kernel '" + f.name + "': " + describe_param(f, f.inputs[i], "input") + " has " +
+      throw Error("kernel '" + name + "': " + describe_param(f, f.inputs[i], "input") + " has " +
                   std::to_string(in_[i]->count()) + " elements but the kernel runs over " +
                   std::to_string(a.count) + " (the size of its outputs)");
     a.inputs.push_back(in_[i].get());
   }
   for (const auto& u : program_.captured().uniforms) a.uniforms.push_back(u.get());
+  // The debug mode's checks read each array's shape from a uniform of their own.
+  const passes::DebugTable& debug = shared_->debug;
+  shape_uniforms_.resize(debug.shape_uniforms.size());
+  for (size_t i = 0; i < debug.shape_uniforms.size(); ++i) {
+    if (debug.shape_uniforms[i] < 0) continue;
+    if (!shape_uniforms_[i]) shape_uniforms_[i] = std::make_shared<detail::UniformState>();
+    detail::UniformState& u = *shape_uniforms_[i];
+    u.type = ir::int_type(3);
+    const detail::ArrayState& arr = *program_.captured().arrays.at(i);
+    for (int d = 0; d < 3; ++d)
+      u.bits[static_cast<size_t>(d)] = static_cast<uint32_t>(static_cast<int32_t>(
+          std::min<int64_t>(arr.shape[d], std::numeric_limits<int32_t>::max())));
+  }
+  for (size_t i = 0; i < debug.shape_uniforms.size(); ++i)
+    if (debug.shape_uniforms[i] >= 0)
+      a.uniforms.resize(
+          std::max(a.uniforms.size(), static_cast<size_t>(debug.shape_uniforms[i]) + 1));
+  for (size_t i = 0; i < debug.shape_uniforms.size(); ++i)
+    if (debug.shape_uniforms[i] >= 0)
+      a.uniforms[static_cast<size_t>(debug.shape_uniforms[i])] = shape_uniforms_[i].get();
   for (const auto& arr : program_.captured().arrays) {
     // A gather reads other elements than its own, which a launch may be rewriting in any
     // order: the result would depend on the schedule. (Reading the element's own value
     // through an input bound to the same stream is well defined, and allowed.)
     for (size_t i = 0; i < out_.size(); ++i)
       if (out_[i].get() == arr.get())
-        throw Error("kernel '" + f.name + "' gathers from stream '" + arr->name +
+        throw Error("kernel '" + name + "' gathers from stream '" + arr->name +
                     "' while writing it as " + describe_param(f, f.outputs[i], "output") +
                     "; write to another stream (ping-pong between two), or read the element's "
                     "own value through an input bound to the same stream");
@@ -314,7 +378,60 @@ int64_t Kernel::launch(LaunchArgs& a) {
   last_.written = r.written;
   last_.processed = a.mask ? r.selected : a.count;
   last_.device_ms = r.device_ms;
+  after_launch(a);
   return last_.written;
+}
+
+Kernel& Kernel::print_limit(int64_t elements) {
+  if (elements < 0)
+    throw Error("kernel '" + program_.name() + "': print_limit(" + std::to_string(elements) +
+                "): the limit is a number of elements, 0 or more");
+  print_limit_ = elements;
+  return *this;
+}
+
+int64_t Kernel::print_limit() const {
+  if (print_limit_ >= 0) return print_limit_;
+  static const int64_t from_env = [] {
+    const char* env = std::getenv("RILL_PRINT_LIMIT");
+    if (env == nullptr || *env == '\0') return int64_t{16};
+    char* end = nullptr;
+    const long long n = std::strtoll(env, &end, 10);
+    if (*end != '\0' || n < 0)
+      throw Error(std::string("RILL_PRINT_LIMIT='") + env +
+                  "': expected a number of elements, 0 or more");
+    return static_cast<int64_t>(n);
+  }();
+  return from_env;
+}
+
+// Formats the prints and checks the debug reports of the launch just made.
+void Kernel::after_launch(const LaunchArgs& a) {
+  const std::vector<detail::PrintSite>& prints = program_.captured().prints;
+  const passes::DebugTable& debug = shared_->debug;
+  if (prints.empty() && !debug.active()) return;
+  std::vector<std::vector<uint32_t>> words(a.outputs.size());
+  const detail::SlotReader slot = [&](int i) -> const uint32_t* {
+    std::vector<uint32_t>& w = words.at(static_cast<size_t>(i));
+    if (w.empty()) {
+      detail::StreamState& s = *a.outputs[static_cast<size_t>(i)];
+      w.resize(s.words());
+      if (!w.empty()) s.read_into(w.data());
+    }
+    return w.data();
+  };
+  const std::string& name = program_.name();
+  if (!prints.empty()) {
+    last_print_ = detail::format_prints(prints, slot, a.count, print_limit(), name);
+    if (std::ostream* os = print_output(); os && !last_print_.empty()) *os << last_print_;
+  }
+  if (debug.active()) {
+    std::vector<std::array<int64_t, 3>> shapes;
+    for (const detail::ArrayState* arr : a.arrays)
+      shapes.push_back({arr->shape[0], arr->shape[1], arr->shape[2]});
+    const std::string report = detail::debug_report(debug, slot, a.count, shapes, name);
+    if (!report.empty()) throw Error(report.substr(0, report.size() - 1));
+  }
 }
 
 int64_t Kernel::execute() {

@@ -30,6 +30,7 @@ uint64_t CompileOptions::hash() const {
   key += passes.copy_propagation ? 'P' : 'p';
   key += passes.common_subexpressions ? 'C' : 'c';
   key += passes.dead_code ? 'D' : 'd';
+  if (debug) key += debug_nonfinite ? "+debug+nonfinite" : "+debug";  // absent: keys as before
   return ir::hash_bytes(key);
 }
 

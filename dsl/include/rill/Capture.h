@@ -83,6 +83,21 @@ void emit_break(SourceLoc loc);
 void emit_continue(SourceLoc loc);
 void emit_discard(SourceLoc loc);
 
+// One rill::print in a program (Print.h): its format and the hidden outputs (named "rill$...",
+// bound by Kernel, never by the user) that hold, per element, how often it ran and the raw
+// bits of its arguments the first time. Slots are indices into Function::outputs.
+struct PrintSite {
+  std::string format;
+  std::vector<ir::Type> args;
+  int count_slot = -1;
+  std::vector<int> arg_slots;  // parallel to args
+  SourceLoc loc;
+};
+// A hidden output of the current program (its index in Function::outputs in *slot), declared
+// wherever capture is (print may sit inside any block), and the current program's print table.
+Ref new_hidden_output(ir::Type t, std::string name, SourceLoc loc, int* slot);
+std::vector<PrintSite>& print_sites(SourceLoc loc);
+
 // Program definition scope (used by rill::program).
 struct CapturedProgram {
   std::shared_ptr<ir::Function> fn;
@@ -91,6 +106,7 @@ struct CapturedProgram {
   // Milliseconds spent making it: running the body, checking and hashing the IR (for a
   // program made by connect/combine, both halves' and the fusion's).
   double capture_ms = 0;
+  std::vector<PrintSite> prints;  // rill::print statements, in the order captured
 };
 
 class ProgramScope {

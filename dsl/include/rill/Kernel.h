@@ -117,6 +117,13 @@ class Kernel {
   double warm_up(const StateMask& mask);
   // Elements processed and written by the last execute() of this Kernel object.
   const LaunchStats& last_launch() const { return last_; }
+  // What the kernel's rill::print statements wrote in the last launch (Print.h), also sent
+  // to print_output(); empty when it has none.
+  const std::string& last_print() const { return last_print_; }
+  // How many elements' prints a launch shows: the first that printed, in element order (16
+  // by default, or RILL_PRINT_LIMIT from the environment).
+  Kernel& print_limit(int64_t elements);
+  int64_t print_limit() const;
 
   const std::string& source() const;  // generated code
   std::string ir() const;             // optimized IR text
@@ -143,6 +150,12 @@ class Kernel {
   std::vector<std::shared_ptr<detail::StreamState>> in_, out_;
   CompileInfo info_;
   LaunchStats last_;
+  std::string last_print_;
+  int64_t print_limit_ = -1;  // -1: the default
+  // Print slots and debug reports: hidden outputs, bound by the kernel itself (fresh zeroed
+  // streams each launch); the arrays' shapes for the debug mode's checks.
+  std::vector<std::shared_ptr<detail::UniformState>> shape_uniforms_;
+  void after_launch(const LaunchArgs& a);
 };
 
 Kernel compile(const Program& p, const std::string& backend = "cpu",

@@ -29,6 +29,12 @@ struct PassOptions {
 struct CompileOptions {
   Accuracy accuracy = Accuracy::Strict;
   PassOptions passes;
+  // The debug mode (docs/debugging.md): gathers check their indices and a launch that read
+  // outside an array throws, naming the element, index and array; with debug_nonfinite too,
+  // the first statement that produced a NaN or infinity. Never changes a result in range.
+  // RILL_DEBUG=1 (or =nonfinite) in the environment turns it on for every compile.
+  bool debug = false;
+  bool debug_nonfinite = false;
   bool operator==(const CompileOptions&) const = default;
   uint64_t hash() const;
 };

@@ -16,6 +16,7 @@
 #include "rill/Math.h"
 #include "rill/Operators.h"
 #include "rill/Parameters.h"
+#include "rill/Print.h"
 #include "rill/Program.h"
 #include "rill/Record.h"
 #include "rill/Random.h"

@@ -32,6 +32,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "rill/Options.h"
@@ -57,6 +58,31 @@ struct InterfaceOrder {
 void canonicalize(ir::Function& f, InterfaceOrder* interface = nullptr);
 
 ir::Function optimize(const ir::Function& f, const PassOptions& passes, Accuracy accuracy);
+
+// The debug mode (CompileOptions::debug), run on the optimized function: each clamp-mode
+// gather checks its indices and, with `nonfinite`, each float result is checked for NaN and
+// infinity (InstrumentDebug.cpp). The checks write hidden outputs only; the table says
+// where, for the report after a launch.
+struct DebugSite {
+  enum class Kind : uint8_t { Gather, NonFinite };
+  Kind kind = Kind::Gather;
+  std::string statement;  // the IR statement checked, as the IR printer writes it
+  std::string array;      // Gather: the array's name
+  int array_slot = -1;    // Gather: its index in Function::arrays
+  int dims = 1;
+  SourceLoc loc;  // the user's line where capture recorded one
+};
+struct DebugTable {
+  int code_slot = -1;               // Function::outputs: 1 + the element's first failing gather
+  std::vector<int> index_slots;     // outputs: that gather's indices
+  int nonfinite_slot = -1;          // outputs: 1 + the first site that made a NaN or infinity
+  int value_slot = -1;              // outputs: that value's bits
+  std::vector<int> shape_uniforms;  // per array: the Function::uniforms slot of its Int3
+                                    // shape (set by Kernel at each launch), or -1
+  std::vector<DebugSite> sites;     // code k is sites[k - 1]
+  bool active() const { return code_slot >= 0 || nonfinite_slot >= 0; }
+};
+DebugTable instrument_debug(ir::Function& f, bool nonfinite);
 
 // How many times each variable is assigned; inputs and uniforms count one assignment on
 // entry. Variables assigned exactly once hold one value wherever they are read.
