@@ -14,6 +14,7 @@
 #include "../codegen/CDialect.h"
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
+#include "../codegen/SourceMap.h"
 #include "../codegen/SourceText.h"
 
 namespace rill::cpu {
@@ -83,9 +84,9 @@ std::string c_entry_locals(const Function& f, const codegen::Dialect& d) {
   return src;
 }
 
-std::string emit_c(const Function& f, Accuracy accuracy) {
+std::string emit_c(const Function& f, Accuracy accuracy, bool source_map) {
   codegen::CDialect d(accuracy, "goto rill_discarded;");
-  codegen::CFamilyPrinter p(f, d);
+  codegen::CFamilyPrinter p(f, d, source_map);
   std::string src = c_head(f, accuracy);
   src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
   src += c_entry_locals(f, d);
@@ -108,7 +109,7 @@ std::string emit_c(const Function& f, Accuracy accuracy) {
   src += "    continue;\n";
   src += "  rill_discarded:;\n";
   src += "  }\n  return rill_written;\n}\n";
-  return src;
+  return source_map ? codegen::finish_source_lines(src) : src;
 }
 
 }  // namespace rill::cpu

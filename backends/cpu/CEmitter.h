@@ -12,7 +12,8 @@ class Dialect;
 
 namespace rill::cpu {
 
-std::string emit_c(const ir::Function& optimized, Accuracy accuracy);
+// `source_map`: with #line directives naming the user's lines (codegen/SourceMap.h).
+std::string emit_c(const ir::Function& optimized, Accuracy accuracy, bool source_map = false);
 
 // Pieces every C translation unit of the CPU backends shares (the scalar one above and the
 // lockstep one in simd/LockstepEmitter.h):

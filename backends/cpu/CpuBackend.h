@@ -27,7 +27,8 @@ std::vector<std::string> compiler_flags(Accuracy a);
 bool has_sse41();
 // A kernel as cpu compiles it (scalar C), for `backend`'s cache entries: simd's double mode
 // runs this too.
+// `source_map`: CompileOptions::source_map.
 std::unique_ptr<CompiledKernel> compile_scalar_c(const std::string& backend, const ir::Function& f,
-                                                 Accuracy a);
+                                                 Accuracy a, bool source_map = false);
 
 }  // namespace rill::cpu

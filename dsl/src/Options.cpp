@@ -30,6 +30,7 @@ uint64_t CompileOptions::hash() const {
   key += passes.copy_propagation ? 'P' : 'p';
   key += passes.common_subexpressions ? 'C' : 'c';
   key += passes.dead_code ? 'D' : 'd';
+  if (source_map) key += 'S';  // only when on: the keys of kernels without it stay as they were
   return ir::hash_bytes(key);
 }
 

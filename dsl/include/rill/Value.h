@@ -243,12 +243,14 @@ class Value {
 
   void write(const ir::Mask& mask, const ir::Operand& src) {
     if (ref_.kind == detail::Ref::Kind::Uniform)
-      throw Error("a uniform is read-only inside a kernel; set it on the host with set()");
+      throw Error("a uniform is read-only inside a kernel; set it on the host with set()",
+                  detail::nearest_location());
     if (ref_.kind == detail::Ref::Kind::Const) {
       if (detail::in_program())
         throw Error(
             "a value created outside this program cannot be assigned inside it; declare it "
-            "inside the program body");
+            "inside the program body",
+            detail::nearest_location());
       if (!src.is_const() || !mask.full())
         throw Error("assignment outside a program scope");
       ref_.value = src.value;
@@ -340,7 +342,8 @@ class Swizzle : public Value<T, M> {
     for (int c : idx)
       if (c < 0 || c >= N)
         throw Error("swizzle component " + std::to_string(c) + " is out of range for a " +
-                    detail::type_of<T, N>().str());
+                        detail::type_of<T, N>().str(),
+                    detail::nearest_location());
     const detail::Ref& p = parent.ref();
     if (p.kind == detail::Ref::Kind::Const) {
       ir::Constant c;
@@ -362,11 +365,14 @@ class Swizzle : public Value<T, M> {
       for (int j = 0; j < i; ++j)
         if (mask_.comps[static_cast<size_t>(i)] == mask_.comps[static_cast<size_t>(j)])
           throw Error("write mask repeats component " +
-                      std::to_string(mask_.comps[static_cast<size_t>(i)]));
+                          std::to_string(mask_.comps[static_cast<size_t>(i)]),
+                      detail::nearest_location());
     if (parent_.kind == detail::Ref::Kind::Uniform)
-      throw Error("a uniform is read-only inside a kernel; set it on the host with set()");
+      throw Error("a uniform is read-only inside a kernel; set it on the host with set()",
+                  detail::nearest_location());
     if (parent_.kind != detail::Ref::Kind::Var)
-      throw Error("only a variable inside a program can be written through a swizzle");
+      throw Error("only a variable inside a program can be written through a swizzle",
+                  detail::nearest_location());
     detail::assign(parent_, mask_, src);
   }
 
