@@ -113,7 +113,7 @@ void CFamilyPrinter::block(std::string& out, const Block& b, int indent) const {
       out += text;
       continue;
     }
-    const std::string mark = d_.source_line(s.loc) + "\n";
+    const std::string mark = pad_of(indent) + d_.source_line(s.loc) + "\n";
     const bool nested = s.kind == StmtKind::If || s.kind == StmtKind::Loop;
     size_t start = 0;
     while (start < text.size()) {
@@ -126,7 +126,8 @@ void CFamilyPrinter::block(std::string& out, const Block& b, int indent) const {
     }
     marked = true;
   }
-  if (marked && d_.source_line_renumbers()) out += std::string(kSourceLineRestore) + "\n";
+  if (marked && d_.source_line_renumbers())
+    out += pad_of(indent) + std::string(kSourceLineRestore) + "\n";
 }
 
 void CFamilyPrinter::stmt(std::string& out, const Stmt& s, int indent) const {

@@ -25,9 +25,8 @@ bool starts_with(const std::string& s, const char* prefix) {
 // A line of the source map: sets `user` to the "file:line" it names ("" for the generated
 // text) and returns true; false for any other line.
 bool map_line(const std::string& line, std::string& user) {
-  std::string s = line.substr(line.find_first_not_of(' ') == std::string::npos
-                                  ? line.size()
-                                  : line.find_first_not_of(' '));
+  std::string s = line.substr(
+      line.find_first_not_of(' ') == std::string::npos ? line.size() : line.find_first_not_of(' '));
   if (starts_with(s, kSourceComment)) {
     user = s.substr(std::strlen(kSourceComment));
     return true;
@@ -91,9 +90,10 @@ std::string finish_source_lines(const std::string& source) {
     ++line;
     std::string text = source.substr(start, nl - start + 1);
     const size_t lead = text.find_first_not_of(' ');
-    if (lead != std::string::npos && text.compare(lead, std::strlen(kSourceLineRestore),
-                                                  kSourceLineRestore) == 0)
-      text = "#line " + std::to_string(line + 1) + " \"" + kGeneratedFile + "\"\n";
+    if (lead != std::string::npos &&
+        text.compare(lead, std::strlen(kSourceLineRestore), kSourceLineRestore) == 0)
+      text = text.substr(0, lead) + "#line " + std::to_string(line + 1) + " \"" + kGeneratedFile +
+             "\"\n";
     out += text;
     start = nl + 1;
   }
@@ -142,7 +142,8 @@ std::string with_user_lines(const std::string& what, const std::string& shown,
     if (line == "generated source:") in_listing = true;
     const int g = in_listing ? 0 : generated_line(line);
     out += line;
-    if (g >= 1 && static_cast<size_t>(g) <= table.size() && !table[static_cast<size_t>(g - 1)].empty()) {
+    if (g >= 1 && static_cast<size_t>(g) <= table.size() &&
+        !table[static_cast<size_t>(g - 1)].empty()) {
       const std::string& user = table[static_cast<size_t>(g - 1)];
       out += "  [from " + user + "]";
       if (first.empty()) {

@@ -48,11 +48,12 @@ struct Builder {
   ir::Block* root = nullptr;  // where top-level statements go (fn->body unless extending)
   // Locations (SourceLoc): the latest statement recorded with a location of the user's,
   // which statements recorded by operators get (marked nearest); the chain of open
-  // CallSites; and, while extending (ExtendScope), the location of the statement that the
-  // recorded code replaces.
+  // CallSites; and the location every statement gets while a located library call runs
+  // (LocatedCall: normalize(v) at the user's line) or while extending a function
+  // (ExtendScope: the location of the statement that the recorded code replaces).
   SourceLoc near;
   const SourceLoc* chain = nullptr;
-  SourceLoc extending;
+  SourceLoc within;
   Stopwatch started;          // when the program's definition began (capture_ms)
 
   ir::Block& current() {
@@ -100,7 +101,7 @@ SourceLoc where(const Builder& b, SourceLoc loc) {
     loc.caller = b.chain;
     return loc;
   }
-  if (b.extending.known()) return b.extending;
+  if (b.within.known()) return b.within;
   SourceLoc n = b.near;
   n.nearest = n.known();
   return n;
@@ -110,7 +111,7 @@ SourceLoc where(const Builder& b, SourceLoc loc) {
 // one for the operators that follow.
 SourceLoc locate(Builder& b, SourceLoc loc) {
   SourceLoc at = where(b, loc);
-  if (user_location(loc)) b.near = at;
+  if (at.known() && !at.nearest) b.near = at;
   return at;
 }
 
@@ -522,7 +523,7 @@ ProgramScope::~ProgramScope() {
 
 ExtendScope::ExtendScope(ir::Function& f, SourceLoc at) {
   auto* b = new Builder;
-  b->extending = at;
+  b->within = at;
   b->serial = g_next_serial++;
   b->fn = std::shared_ptr<ir::Function>(&f, [](ir::Function*) {});  // not owned
   b->root = &block_;
@@ -588,6 +589,29 @@ CapturedProgram ProgramScope::finish() {
 
 namespace rill {
 
+namespace detail {
+
+LocatedCall::LocatedCall(SourceLoc loc) {
+  // The outermost located call names the user's line: normalize's own calls of dot and sqrt
+  // do not replace it with lines of Math.h.
+  if (t_builders.empty() || !user_location(loc)) return;
+  Builder& b = *t_builders.back();
+  if (b.within.known()) return;
+  active_ = true;
+  loc.nearest = false;
+  loc.caller = b.chain;
+  b.within = loc;
+}
+
+LocatedCall::~LocatedCall() {
+  if (!active_ || t_builders.empty()) return;
+  Builder& b = *t_builders.back();
+  b.near = b.within;
+  b.within = {};
+}
+
+}  // namespace detail
+
 CallSite::CallSite(SourceLoc at) {
   if (detail::t_builders.empty() || !detail::user_location(at)) return;
   detail::Builder& b = *detail::t_builders.back();
@@ -607,11 +631,11 @@ CallSite::~CallSite() {
   b.near = call_;  // the caller's statements that follow come after the call
 }
 
-Int element_index() {
-  return Int(detail::emit(ir::Op::ElementIndex, ir::int_type(1), {}), detail::AdoptTag{});
+Int element_index(SourceLoc loc) {
+  return Int(detail::emit(ir::Op::ElementIndex, ir::int_type(1), {}, loc), detail::AdoptTag{});
 }
-Int2 element_coord() {
-  return Int2(detail::emit(ir::Op::ElementCoord, ir::int_type(2), {}), detail::AdoptTag{});
+Int2 element_coord(SourceLoc loc) {
+  return Int2(detail::emit(ir::Op::ElementCoord, ir::int_type(2), {}, loc), detail::AdoptTag{});
 }
 
 }  // namespace rill

@@ -73,6 +73,38 @@ TEST(SourceLocation, MacrosAndCallsRecordTheirLineOperatorsTheNearest) {
   for (const ir::Stmt* s : statements_of(f)) EXPECT_TRUE(s->loc.known());
 }
 
+// Library functions take their call site: every statement normalize() records (its dot,
+// square root and division) names the user's line, not Math.h's.
+TEST(SourceLocation, MathCallsAndDeclarationsRecordTheUserLine) {
+  int norm_line = 0, decl_line = 0, copy_line = 0;
+  Program p = program("p", [&] {
+    Input<Float3> v("v");
+    Output<Float3> y("y");
+    Float3 n = (norm_line = __LINE__, normalize(v));
+    Float k = (decl_line = __LINE__, 2.0f);
+    Float3 m = n;
+    copy_line = __LINE__ - 1;
+    y = m * k;
+  });
+  const ir::Function& f = p.ir();
+  for (ir::Op op : {ir::Op::Dot, ir::Op::Sqrt, ir::Op::Div}) {
+    const ir::Stmt* s = first_of(f, ir::StmtKind::Assign, op);
+    ASSERT_NE(s, nullptr) << ir::op_name(op);
+    EXPECT_EQ(s->loc.describe(), LOC(norm_line)) << ir::op_name(op);
+  }
+  int declared = 0, copied = 0;
+  for (const ir::Stmt* s : statements_of(f)) {
+    if (s->kind != ir::StmtKind::Assign || s->op != ir::Op::Copy) continue;
+    declared += s->loc.describe() == LOC(decl_line);
+    copied += s->loc.describe() == LOC(copy_line);
+  }
+  EXPECT_EQ(declared, 1);
+  EXPECT_EQ(copied, 1);
+  // The multiplication that follows is near the copy.
+  EXPECT_EQ(first_of(f, ir::StmtKind::Assign, ir::Op::Mul)->loc.describe(),
+            "near " + LOC(copy_line));
+}
+
 TEST(SourceLocation, ThePrinterShowsLocationsOnlyWhenAsked) {
   int if_line = 0;
   Program p = program("p", [&] {

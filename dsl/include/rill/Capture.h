@@ -61,6 +61,20 @@ void label(const Ref& r, std::string name, SourceLoc loc = {});
 Ref new_var(ir::Type t, ir::VarRole role, std::string name = {}, SourceLoc loc = {});
 // Appends `dst[.mask] = src`. dst must be a variable of the current program.
 void assign(const Ref& dst, const ir::Mask& mask, const ir::Operand& src, SourceLoc loc = {});
+// While it lives, the statements recorded get `loc` (a library function's call site, such as
+// normalize(v)'s), unless an outer LocatedCall already named one. Nothing outside a program
+// or for a location in Rill's own headers.
+class LocatedCall {
+ public:
+  explicit LocatedCall(SourceLoc loc);
+  ~LocatedCall();
+  LocatedCall(const LocatedCall&) = delete;
+  LocatedCall& operator=(const LocatedCall&) = delete;
+
+ private:
+  bool active_ = false;
+};
+
 // The location of the latest statement of the user's recorded in the program being defined
 // (marked nearest), for errors raised where no location can be passed, such as inside
 // operator=. Unknown outside a program.
