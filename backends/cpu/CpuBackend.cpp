@@ -3,10 +3,10 @@
 
 #include <memory>
 
+#include "../codegen/SourceMap.h"
 #include "CEmitter.h"
 #include "HostKernel.h"
 #include "SharedObjectCache.h"
-#include "../codegen/SourceMap.h"
 #include "rill/Stopwatch.h"
 
 namespace rill::cpu {

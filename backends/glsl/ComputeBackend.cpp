@@ -109,9 +109,9 @@ class ComputeBackend : public GLBackend {
       for (size_t o = first; o < std::min(f.outputs.size(), first + static_cast<size_t>(group));
            ++o)
         p.outputs.push_back(static_cast<int>(o));
-      GLSLShader shader = emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), driver_.rules,
-                                            device_.flushes_denormals, device_.local_size,
-                                            o.source_map);
+      GLSLShader shader =
+          emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), driver_.rules,
+                            device_.flushes_denormals, device_.local_size, o.source_map);
       codegen_ms += stage.lap();
       bool cached = false;
       p.program = codegen::reporting_user_lines(

@@ -31,8 +31,8 @@
 #include <cstdio>
 
 #include "../codegen/CFamilyPrinter.h"
-#include "../codegen/SourceMap.h"
 #include "../codegen/Helpers.h"
+#include "../codegen/SourceMap.h"
 #include "../codegen/SourceText.h"
 #include "../codegen/Tiles.h"
 #include "DivSqrt.h"

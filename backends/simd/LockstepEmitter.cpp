@@ -22,8 +22,8 @@
 #include <string_view>
 
 #include "../codegen/CFamilyPrinter.h"
-#include "../codegen/SourceMap.h"
 #include "../codegen/Helpers.h"
+#include "../codegen/SourceMap.h"
 #include "../cpu/CEmitter.h"
 #include "VectorDialect.h"
 #include "rill/ir/Visitor.h"

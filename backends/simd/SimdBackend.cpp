@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "../codegen/SourceMap.h"
 #include "../cpu/CpuBackend.h"
 #include "../cpu/HostKernel.h"
-#include "../codegen/SourceMap.h"
 #include "../cpu/SharedObjectCache.h"
 #include "LockstepEmitter.h"
 #include "rill/Stopwatch.h"

@@ -3,8 +3,8 @@
 #include "rill/Capture.h"
 
 #include <array>
-#include <cstring>
 #include <atomic>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <tuple>

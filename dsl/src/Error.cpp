@@ -49,7 +49,8 @@ std::string SourceLoc::str() const {
 std::string SourceLoc::describe() const {
   if (!known()) return {};
   std::string s = (nearest ? "near " : "") + str();
-  for (const SourceLoc* c = caller; c && c->known(); c = c->caller) s += ", called from " + c->str();
+  for (const SourceLoc* c = caller; c && c->known(); c = c->caller)
+    s += ", called from " + c->str();
   return s;
 }
 

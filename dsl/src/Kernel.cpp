@@ -105,7 +105,8 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
   if (!p.valid()) throw Error("compile(): the program is empty (default-constructed)");
   CompileOptions options = requested;
   if (const char* v = std::getenv("RILL_SOURCE_MAP")) {
-    if (std::string(v) == "1") options.source_map = true;
+    if (std::string(v) == "1")
+      options.source_map = true;
     else if (std::string(v) != "0" && *v)
       throw Error("RILL_SOURCE_MAP='" + std::string(v).substr(0, 40) + "' is not 0 or 1");
   }

@@ -67,7 +67,8 @@ class Error : public std::runtime_error {
  public:
   explicit Error(const std::string& what) : std::runtime_error(what) {}
   // "file:line: what"; a nearest location (SourceLoc::nearest) says so after the message.
-  Error(const std::string& what, SourceLoc where) : std::runtime_error(text(what, where)), where_(where) {}
+  Error(const std::string& what, SourceLoc where)
+      : std::runtime_error(text(what, where)), where_(where) {}
 
   SourceLoc where() const { return where_; }
 

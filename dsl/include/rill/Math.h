@@ -21,11 +21,11 @@ Value<T, N> lift(const S& s) {
 }
 }  // namespace detail
 
-#define RILL_FLOAT_UNARY(fn, IROP)                                      \
-  template <int N>                                                      \
+#define RILL_FLOAT_UNARY(fn, IROP)                                          \
+  template <int N>                                                          \
   Value<float, N> fn(const Value<float, N>& x, SourceLoc loc = RILL_HERE) { \
-    detail::LocatedCall at(loc);                                        \
-    return detail::unary<float>(ir::Op::IROP, x);                       \
+    detail::LocatedCall at(loc);                                            \
+    return detail::unary<float>(ir::Op::IROP, x);                           \
   }
 
 RILL_FLOAT_UNARY(floor, Floor)
@@ -109,7 +109,8 @@ Value<float, N> lerp(const Value<float, N>& a, const B& b, const U& t, SourceLoc
 // Componentwise choice: c ? a : b (a scalar condition chooses whole vectors).
 template <class T, int N, int C>
   requires(C == 1 || C == N)
-Value<T, N> select(const Value<bool, C>& c, const Value<T, N>& a, const Value<T, N>& b, SourceLoc loc = RILL_HERE) {
+Value<T, N> select(const Value<bool, C>& c, const Value<T, N>& a, const Value<T, N>& b,
+                   SourceLoc loc = RILL_HERE) {
   detail::LocatedCall at(loc);
   return Value<T, N>(detail::emit(ir::Op::Select, detail::type_of<T, N>(),
                                   {c.operand(), a.operand(), b.operand()}),
@@ -160,14 +161,16 @@ Value<float, N> normalize(const Value<float, N>& v, SourceLoc loc = RILL_HERE) {
 }
 // Defined as i - 2 * dot(n, i) * n (n normalized), as in GLSL.
 template <int N>
-Value<float, N> reflect(const Value<float, N>& i, const Value<float, N>& n, SourceLoc loc = RILL_HERE) {
+Value<float, N> reflect(const Value<float, N>& i, const Value<float, N>& n,
+                        SourceLoc loc = RILL_HERE) {
   detail::LocatedCall at(loc);
   return i - (2.0f * dot(n, i)) * n;
 }
 // Defined as in GLSL: with k = 1 - eta^2 (1 - dot(n, i)^2), zero if k < 0 (total internal
 // reflection), else eta * i - (eta * dot(n, i) + sqrt(k)) * n.
 template <int N>
-Value<float, N> refract(const Value<float, N>& i, const Value<float, N>& n, const Float& eta, SourceLoc loc = RILL_HERE) {
+Value<float, N> refract(const Value<float, N>& i, const Value<float, N>& n, const Float& eta,
+                        SourceLoc loc = RILL_HERE) {
   detail::LocatedCall at(loc);
   Float d = dot(n, i);
   Float k = 1.0f - eta * eta * (1.0f - d * d);

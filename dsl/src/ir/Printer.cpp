@@ -92,9 +92,15 @@ void print_stmt(std::ostringstream& os, const Function& f, const Stmt& s, int in
       os << pad << "}\n";
       break;
     }
-    case StmtKind::Break: os << pad << "break" << at(s, locations) << "\n"; break;
-    case StmtKind::Continue: os << pad << "continue" << at(s, locations) << "\n"; break;
-    case StmtKind::Discard: os << pad << "discard" << at(s, locations) << "\n"; break;
+    case StmtKind::Break:
+      os << pad << "break" << at(s, locations) << "\n";
+      break;
+    case StmtKind::Continue:
+      os << pad << "continue" << at(s, locations) << "\n";
+      break;
+    case StmtKind::Discard:
+      os << pad << "discard" << at(s, locations) << "\n";
+      break;
   }
 }
 
