@@ -123,30 +123,27 @@ TEST(SourceLocation, ThePrinterShowsLocationsOnlyWhenAsked) {
   EXPECT_EQ(std::regex_replace(located, std::regex("  @ [^\n]*"), ""), plain);
 }
 
-// Two programs alike but for the lines they were written on.
+// Two programs alike but for the lines they were written on: one macro, expanded on two
+// lines (a macro's locations are those of the line that expands it).
+#define RILL_TEST_DOUBLING_PROGRAM \
+  program("p", [] {                \
+    Input<Float> x("x");           \
+    Output<Float> y("y");          \
+    RILL_IF(x > 0.0f) {            \
+      y = x * 2.0f;                \
+    }                              \
+    RILL_ENDIF;                    \
+  })
 Program written_here() {
-  return program("p", [] {
-    Input<Float> x("x");
-    Output<Float> y("y");
-    RILL_IF(x > 0.0f) {
-      y = x * 2.0f;
-    }
-    RILL_ENDIF;
-  });
+  return RILL_TEST_DOUBLING_PROGRAM;
 }
-Program written_over_several_lines() {
-  return program("p", [] {
-    Input<Float> x("x");
-    Output<Float> y("y");
-    RILL_IF(x > 0.0f) {
-      y = x * 2.0f;
-    }
-    RILL_ENDIF;
-  });
+Program written_further_down() {
+  return RILL_TEST_DOUBLING_PROGRAM;
 }
+#undef RILL_TEST_DOUBLING_PROGRAM
 
 TEST(SourceLocation, LocationsChangeNeitherHashNorText) {
-  const Program a = written_here(), b = written_over_several_lines();
+  const Program a = written_here(), b = written_further_down();
   EXPECT_EQ(a.hash(), b.hash());
   EXPECT_EQ(a.print(), b.print());
   EXPECT_NE(a.print(ir::PrintOptions{.locations = true}),
@@ -154,7 +151,7 @@ TEST(SourceLocation, LocationsChangeNeitherHashNorText) {
 }
 
 TEST(SourceLocationCpu, LocationsChangeNoGeneratedCode) {
-  const Program a = written_here(), b = written_over_several_lines();
+  const Program a = written_here(), b = written_further_down();
   clear_kernel_cache();
   const std::string first = compile(a, "cpu").source();
   clear_kernel_cache();  // compile b itself, not a's cache entry

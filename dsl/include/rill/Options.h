@@ -30,8 +30,8 @@ struct CompileOptions {
   Accuracy accuracy = Accuracy::Strict;
   PassOptions passes;
   // Source maps: the generated C, lockstep C and OpenCL C carry #line directives naming the
-  // user's lines, and GLSL comments (docs/debugging.md). Also on with RILL_SOURCE_MAP=1. Off,
-  // the generated code is as it was without the option.
+  // user's lines, and GLSL comments (docs/programming-model.md#source-maps). Also on with
+  // RILL_SOURCE_MAP=1. Off, the generated code is as it was without the option.
   bool source_map = false;
   bool operator==(const CompileOptions&) const = default;
   uint64_t hash() const;
