@@ -61,10 +61,11 @@ int demo(const DemoOptions& o) {
                        ("demo-" + scene.name + "-" + b->name() + ".png"))
                           .string();
     rt::write_png(png, r.width, r.height, r.color);
-    std::printf("  %-7s compile %8.1f ms%s  trace %8.1f ms  %7.3f Mrays/s  -> %s\n",
+    // One render per backend: its trace is cold (RenderResult::cold), and its speed says so.
+    std::printf("  %-7s compile %8.1f ms%s  trace %8.1f ms  %7.3f Mrays/s%s  -> %s\n",
                 b->name().c_str(), total - r.trace_ms, r.from_cache ? " (cached)" : "         ",
                 r.trace_ms, r.trace_ms > 0 ? static_cast<double>(r.rays) / (r.trace_ms * 1e3) : 0.0,
-                png.c_str());
+                r.cold ? " cold" : "", png.c_str());
     results.emplace_back(b->name(), std::move(r));
   }
   if (results.empty()) throw rt::SceneError("no backend can run here");

@@ -13,9 +13,14 @@ nlohmann::json split_json(const rt::FrameTimes& t) {
 nlohmann::json frames_json(const std::vector<FrameStats>& frames, const rt::Features& f) {
   nlohmann::json a = nlohmann::json::array();
   for (const FrameStats& s : frames) {
-    nlohmann::json j = {{"frame", s.frame},           {"time", s.time},
-                        {"trace_ms", s.trace_ms},     {"rays", s.rays},
-                        {"compile_ms", s.compile_ms}, {"kernels_compiled", s.compiles}};
+    nlohmann::json j = {{"frame", s.frame},
+                        {"time", s.time},
+                        {"trace_ms", s.trace_ms},
+                        {"rays", s.rays},
+                        {"compile_ms", s.compile_ms},
+                        {"kernels_compiled", s.compiles},
+                        {"first_launch_ms", s.first_launch_ms},
+                        {"cold", s.cold}};
     if (f.dynamic)
       j["update"] = {
           {"pose_ms", s.update.pose_ms},         {"bvh_ms", s.update.bvh_ms},
@@ -35,6 +40,24 @@ FrameTotals totals(const std::vector<FrameStats>& frames) {
     t.trace_ms += s.trace_ms;
   }
   return t;
+}
+
+Speed speed(const std::vector<FrameStats>& frames, int64_t bench_rays,
+            const std::vector<double>& bench_trace_ms) {
+  auto per_second = [](int64_t rays, double ms) {
+    return ms > 0 ? static_cast<double>(rays) / (ms * 1e-3) : 0.0;
+  };
+  if (!bench_trace_ms.empty())
+    return {per_second(bench_rays, median(bench_trace_ms)), false, "bench frames"};
+  FrameTotals warm;
+  for (const FrameStats& s : frames)
+    if (!s.cold) {
+      warm.rays += s.rays;
+      warm.trace_ms += s.trace_ms;
+    }
+  if (warm.trace_ms > 0) return {per_second(warm.rays, warm.trace_ms), false, "warm frames"};
+  const FrameTotals all = totals(frames);
+  return {per_second(all.rays, all.trace_ms), true, "cold first frame"};
 }
 
 double median(std::vector<double> v) {

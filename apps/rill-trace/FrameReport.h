@@ -17,7 +17,9 @@ struct FrameStats {
   double time = 0;
   rt::FrameUpdate update;
   double trace_ms = 0, compile_ms = 0;
-  int64_t compiles = 0;  // kernels compiled for it (misses of Rill's in-process kernel cache)
+  double first_launch_ms = 0;  // of compile_ms: first launches at the size (RenderResult)
+  bool cold = false;           // the first frame traced at its size (RenderResult::cold)
+  int64_t compiles = 0;        // kernels compiled for it (misses of Rill's in-process kernel cache)
   int64_t rays = 0, launches = 0;
 };
 
@@ -28,6 +30,18 @@ struct FrameTotals {
   double trace_ms = 0;
 };
 FrameTotals totals(const std::vector<FrameStats>& frames);
+
+// The speed a render reports (the stats line's Mrays/s, --stats-json's rays_per_second): from
+// warm traces where there are any, --bench-frames' repeats (the frame's rays over their median
+// trace time) or else the frames of a sequence that were not cold; from the cold first frame
+// only when nothing else was traced, and then labelled so.
+struct Speed {
+  double rays_per_second = 0;
+  bool cold = false;
+  const char* from = "";  // "bench frames", "warm frames", "cold first frame"
+};
+Speed speed(const std::vector<FrameStats>& frames, int64_t bench_rays,
+            const std::vector<double>& bench_trace_ms);
 
 // The frames as --stats-json's "frames" array (with each frame's update when the scene is
 // dynamic).

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -104,6 +105,8 @@ void write_video(const std::string& pattern, int first, double fps, const std::s
 struct FrameWriter::State {
   std::mutex mutex;
   std::exception_ptr error;
+  int in_flight = 0;  // writes posted and not finished (wait_in_flight)
+  std::condition_variable finished;
 };
 
 FrameWriter::FrameWriter() : s_(std::make_shared<State>()) {}
@@ -116,18 +119,34 @@ FrameWriter::~FrameWriter() {
 }
 
 void FrameWriter::post(std::function<void()> write) {
+  {
+    std::lock_guard<std::mutex> lock(s_->mutex);
+    ++s_->in_flight;
+  }
   thread_.post([s = s_, write = std::move(write)] {
+    bool dropped = false;
     {
       std::lock_guard<std::mutex> lock(s->mutex);
-      if (s->error) return;  // after a failure the rest are dropped
+      dropped = s->error != nullptr;  // after a failure the rest are dropped
     }
-    try {
-      write();
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(s->mutex);
-      s->error = std::current_exception();
+    if (!dropped) {
+      try {
+        write();
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(s->mutex);
+        s->error = std::current_exception();
+      }
     }
+    // Counted finished however it ended: written, failed or dropped.
+    std::lock_guard<std::mutex> lock(s->mutex);
+    --s->in_flight;
+    s->finished.notify_all();
   });
+}
+
+void FrameWriter::wait_in_flight(int n) {
+  std::unique_lock<std::mutex> lock(s_->mutex);
+  s_->finished.wait(lock, [&] { return s_->in_flight <= n; });
 }
 
 void FrameWriter::check() {

@@ -52,6 +52,9 @@ class FrameWriter {
   void post(std::function<void()> write);
   // Throws the first write's error, if one failed so far (without waiting).
   void check();
+  // Waits until at most n of the writes posted have not finished: a sequence that renders
+  // faster than it writes keeps only so many frames in memory.
+  void wait_in_flight(int n);
   void finish();
 
  private:

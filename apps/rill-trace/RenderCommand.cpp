@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -12,6 +13,7 @@
 #include "Doing.h"
 #include "FramePlan.h"
 #include "FrameReport.h"
+#include "FrameSequence.h"
 #include "Interrupt.h"
 #include "Outputs.h"
 #include "PartialName.h"
@@ -127,13 +129,16 @@ int render(RenderOptions o) {
   const double render_ms = ms_since(t_render);
   compile_line.reset();
   const double compile_ms = p.setup_ms + (render_ms - r.trace_ms);
-  // Of that, the compile() calls (about 0 from a kernel cache); the rest is set-up: uploading
-  // the scene and grid, and the warm-up launch (Megakernel::render).
+  // Of that, the compile() calls (about 0 from a kernel cache), the first launches that trace
+  // nothing (the drivers' first-use work: RenderResult::first_launch_ms); the rest is set-up:
+  // uploading the scene and grid.
   const double kernels_ms = std::min(r.stages.compile_ms, compile_ms);
+  const double first_launch_ms = std::min(r.first_launch_ms, compile_ms - kernels_ms);
+  const double setup_ms = compile_ms - kernels_ms - first_launch_ms;
 
   // --bench-frames: the same frame again, each timed as the user's program would see it
   // (Tracer::render from call to return: launch, kernel, reductions, read-back, host work).
-  std::vector<double> frame_ms;
+  std::vector<double> frame_ms, frame_trace_ms;
   std::vector<rt::FrameTimes> frame_times;
   rt::RenderResult frame;  // one result for every frame: its image memory is reused
   for (int f = 0; f < o.bench_frames; ++f) {
@@ -143,8 +148,10 @@ int render(RenderOptions o) {
     const auto t_frame = Clock::now();
     tracer.render(rs, first_camera, frame);
     frame_ms.push_back(ms_since(t_frame));
+    frame_trace_ms.push_back(frame.trace_ms);
     frame_times.push_back(frame.times);
   }
+  const int64_t bench_rays = frame.rays;  // each repeat's (frame goes on to --frames' frames)
   std::vector<double> sorted = frame_ms;  // for the min and max
   std::sort(sorted.begin(), sorted.end());
   const double median_ms = median(frame_ms);
@@ -165,6 +172,8 @@ int render(RenderOptions o) {
   frame_stats[0].time = first_time;
   frame_stats[0].trace_ms = r.trace_ms;
   frame_stats[0].compile_ms = r.compile_ms;
+  frame_stats[0].first_launch_ms = r.first_launch_ms;
+  frame_stats[0].cold = r.cold;
   frame_stats[0].compiles = rill::kernel_cache_stats().misses - misses_before;
   frame_stats[0].rays = r.rays;
   frame_stats[0].launches = r.launches;
@@ -172,8 +181,16 @@ int render(RenderOptions o) {
   // grid and the static arrays stay; Tracer::set_time moves the objects and their BVH).
   Progress progress(span.count(), o.quiet);
   progress.update(1, r.trace_ms);
+  // --overlap on: frame k's outputs are written (encoded, compressed, saved) on a thread of
+  // their own while frame k + 1 renders, at most one frame waiting behind the one being
+  // written; the written results' memory comes back in `spare` for later frames. Declared
+  // after what its writes use, so that it finishes them before those go.
+  std::mutex spare_mutex;
+  std::vector<rt::RenderResult> spare;
+  FrameWriter writer;
   // A frame stopped by a signal is dropped; those before it are written and stay.
   auto stopped_in_frame = [&](int k, bool in_flight) {
+    writer.finish();
     progress.finish();
     return stopped((in_flight ? "in frame " : "before frame ") + std::to_string(k) + " of " +
                    std::to_string(span.first) + ".." + std::to_string(span.last) + "; frames " +
@@ -182,6 +199,7 @@ int render(RenderOptions o) {
   };
   for (int k = span.first + 1; k <= span.last; ++k) {
     if (interrupted() != 0) return stopped_in_frame(k, false);
+    writer.check();  // a frame that could not be written ends the render now
     FrameStats fs;
     fs.frame = k;
     fs.time = animated ? scene.animation.time.time_of(k) : 0.0;
@@ -194,14 +212,32 @@ int render(RenderOptions o) {
     if (interrupted() != 0) return stopped_in_frame(k, true);
     fs.trace_ms = frame.trace_ms;
     fs.compile_ms = frame.compile_ms;
+    fs.first_launch_ms = frame.first_launch_ms;
+    fs.cold = frame.cold;
     fs.compiles = rill::kernel_cache_stats().misses - misses;
     fs.rays = frame.rays;
     fs.launches = frame.launches;
-    g_doing = "writing frame " + std::to_string(k);
-    for (const std::string& w : write_outputs(o, p, frame, frame_file(k))) written.push_back(w);
+    if (o.overlap) {
+      writer.wait_in_flight(1);
+      writer.post([&, k, image = std::move(frame)]() mutable {
+        for (const std::string& w : write_outputs(o, p, image, frame_file(k))) written.push_back(w);
+        std::lock_guard<std::mutex> lock(spare_mutex);
+        spare.push_back(std::move(image));
+      });
+      std::lock_guard<std::mutex> lock(spare_mutex);
+      frame = rt::RenderResult();
+      if (!spare.empty()) {
+        frame = std::move(spare.back());
+        spare.pop_back();
+      }
+    } else {
+      g_doing = "writing frame " + std::to_string(k);
+      for (const std::string& w : write_outputs(o, p, frame, frame_file(k))) written.push_back(w);
+    }
     frame_stats.push_back(fs);
     progress.update(k - span.first + 1, fs.trace_ms);
   }
+  writer.finish();  // the last frames' writes, and the first error of any
   progress.finish();
   if (interrupted() != 0)
     return stopped(
@@ -217,14 +253,17 @@ int render(RenderOptions o) {
   // The rays, launches and trace time of every frame of --frames (the first alone without it;
   // --bench-frames' repeats are reported on their own).
   const FrameTotals all = totals(frame_stats);
-  const double rays_per_s =
-      all.trace_ms > 0 ? static_cast<double>(all.rays) / (all.trace_ms * 1e-3) : 0.0;
+  // Mrays/s from warm traces where there are any, else labelled cold (FrameReport.h).
+  const Speed sp = speed(frame_stats, bench_rays, frame_trace_ms);
+  const double rays_per_s = sp.rays_per_second;
   if (!o.stats_json.empty()) {
     nlohmann::json j = stats_json(o, p, r.width, r.height, all.rays);
     j["launches"] = all.launches;
     if (o.strategy == rt::Strategy::Multipass) {
       j["wait_threshold"] = rs.wait_threshold;
       j["masking"] = rs.masking;
+    }
+    if (o.strategy == rt::Strategy::Multipass || o.strategy == rt::Strategy::Wavefront) {
       nlohmann::json passes = nlohmann::json::array();
       for (const rt::PassStats& ps : r.passes)
         passes.push_back({{"name", ps.name},
@@ -235,6 +274,9 @@ int render(RenderOptions o) {
       j["passes"] = passes;
     }
     j["rays_per_second"] = rays_per_s;
+    j["rays_per_second_from"] = sp.from;
+    j["rays_per_second_cold"] = sp.cold;
+    j["trace_cold"] = r.cold;
     j["compiled_from_cache"] = r.from_cache;
     // Each kernel's Kernel::info(), summed over the render's kernels (multipass compiles its
     // nine at once, so the sum exceeds time_ms.compile).
@@ -250,16 +292,21 @@ int render(RenderOptions o) {
     if (!frame_ms.empty())
       j["bench_frames"] = {{"frames", frame_ms.size()},
                            {"frame_ms", frame_ms},
+                           {"trace_ms", frame_trace_ms},
+                           {"rays", bench_rays},
                            {"median_ms", median_ms},
                            {"min_ms", sorted.front()},
                            {"max_ms", sorted.back()},
                            {"fps", median_ms > 0 ? 1000.0 / median_ms : 0.0},
                            {"device", rill::backend(o.backend).description()},
                            {"median_split_ms", split_json(median_split)}};
-    j["time_ms"] = {
-        {"load", load_ms},       {"grid_build", grid.build_ms},
-        {"compile", kernels_ms}, {"setup", compile_ms - kernels_ms},
-        {"trace", all.trace_ms}, {"total", load_ms + grid.build_ms + compile_ms + all.trace_ms}};
+    j["time_ms"] = {{"load", load_ms},
+                    {"grid_build", grid.build_ms},
+                    {"compile", kernels_ms},
+                    {"setup", setup_ms},
+                    {"first_launch", first_launch_ms},
+                    {"trace", all.trace_ms},
+                    {"total", load_ms + grid.build_ms + compile_ms + all.trace_ms}};
     // The first frame's trace time, step by step (Tracer.h, FrameTimes).
     j["trace_split_ms"] = split_json(r.times);
     if (animated || span.count() > 1) j["frames"] = frames_json(frame_stats, tracer.features());
@@ -296,9 +343,13 @@ int render(RenderOptions o) {
         r.kernels, rill::origin_name(r.stages.origin), r.stages.capture_ms, r.stages.optimize_ms,
         r.stages.codegen_ms, r.stages.backend_compile_ms, r.stages.driver_finish_ms,
         r.stages.compile_ms);
-  if (o.stats && o.strategy == rt::Strategy::Multipass) {
+  if (o.stats && o.strategy == rt::Strategy::Wavefront)
+    std::printf("%-14s %8s %14s %14s %10s   (%lld pixels a launch)\n", "stage", "calls",
+                "processed", "written", "ms", static_cast<long long>(r.width) * r.height);
+  if (o.stats && o.strategy == rt::Strategy::Multipass)
     std::printf("%-14s %8s %14s %14s %10s   (masking %s, wait threshold %g)\n", "pass", "calls",
                 "processed", "written", "ms", rs.masking ? "on" : "off", rs.wait_threshold);
+  if (o.stats && (o.strategy == rt::Strategy::Multipass || o.strategy == rt::Strategy::Wavefront)) {
     for (const rt::PassStats& ps : r.passes)
       std::printf("%-14s %8lld %14lld %14lld %10.2f\n", ps.name.c_str(),
                   static_cast<long long>(ps.calls), static_cast<long long>(ps.processed),
@@ -308,14 +359,18 @@ int render(RenderOptions o) {
   const std::string what =
       span.count() > 1 ? std::to_string(span.count()) + " frames of " : std::string();
   std::printf(
-      "rill-trace: %s, %zu triangles, %s%dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s (%lld "
-      "rays); load %.1f ms, grid build %.1f ms, compile %.1f ms%s, set-up %.1f ms, trace %.1f "
-      "ms%s\n",
+      "rill-trace: %s, %zu triangles, %s%dx%d, %s %s%s, grid %dx%dx%d: %.3f Mrays/s%s (%lld "
+      "rays); load %.1f ms, grid build %.1f ms, compile %.1f ms%s, set-up %.1f ms, first launch "
+      "%.1f ms, trace %.1f ms%s%s\n",
       scene.name.c_str(), scene.triangle_count(), what.c_str(), r.width, r.height,
       o.backend.c_str(), rill::accuracy_name(o.accuracy),
       o.strategy == rt::Strategy::Multipass ? " multipass" : "", grid.res.x, grid.res.y, grid.res.z,
-      rays_per_s * 1e-6, static_cast<long long>(all.rays), load_ms, grid.build_ms, kernels_ms,
-      r.from_cache ? " (cached)" : "", compile_ms - kernels_ms, all.trace_ms,
+      rays_per_s * 1e-6, sp.cold ? " cold" : "", static_cast<long long>(all.rays), load_ms,
+      grid.build_ms, kernels_ms, r.from_cache ? " (cached)" : "", setup_ms, first_launch_ms,
+      all.trace_ms,
+      !r.cold            ? ""
+      : span.count() > 1 ? " (the first frame cold)"
+                         : " (cold)",
       o.strategy == rt::Strategy::Multipass
           ? (" (" + std::to_string(all.launches) + " launches)").c_str()
           : "");

@@ -1,5 +1,8 @@
 #include "RenderOptions.h"
 
+#include <functional>
+#include <string>
+
 #include "CliChecks.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/accel/LightBuffer.h"
@@ -9,6 +12,15 @@ namespace trace_cli {
 bool any_image_output(const RenderOptions& o) {
   return !o.out.empty() || !o.pfm.empty() || !o.depth.empty() || !o.prim.empty() ||
          !o.normal.empty() || !o.exr.empty() || !o.albedo.empty();
+}
+
+// The parser of an option that takes "on" or "off" (as a bool), naming the option in its error.
+static std::function<bool(const std::string&)> on_off(const std::string& option) {
+  return [option](const std::string& s) {
+    if (s != "on" && s != "off")
+      throw rt::SceneError(option + " expects on or off (got '" + s + "')");
+    return s == "on";
+  };
 }
 
 CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
@@ -168,19 +180,19 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
                     "grid traversal: incremental or recompute")
       ->default_str("incremental");
   r->add_flag("--stats", o.stats,
-              "print the compile stages; multipass: per-pass calls, elements and time");
+              "print the compile stages; multipass and wavefront: per-pass calls, elements and "
+              "time");
   r->add_option("--wait-threshold", o.wait_threshold,
                 "multipass: rerun the intersector while this fraction of rays waits (0..1]")
       ->default_str("0.2")
       ->check(number_in(1e-6, 1.0, false));
+  add_parsed_option(r, "--masking", o.masking, on_off("--masking"),
+                    "multipass: launch each pass masked to its state (on|off)")
+      ->default_str("on");
   add_parsed_option(
-      r, "--masking", o.masking,
-      [](const std::string& s) {
-        if (s != "on" && s != "off")
-          throw rt::SceneError("--masking expects on or off (got '" + s + "')");
-        return s == "on";
-      },
-      "multipass: launch each pass masked to its state (on|off)")
+      r, "--overlap", o.overlap, on_off("--overlap"),
+      "--frames: write each frame's outputs while the next one renders (on|off); images do "
+      "not depend on it")
       ->default_str("on");
   return r;
 }

@@ -284,7 +284,12 @@ float rill_residual(float a, float q, float b) {
   RILL_PRECISE float r = d - e;
   return r;
 })",
-         Variant::Corrected}}},
+         Variant::SplitResidual},
+        {Glsl,
+         R"(// a - q * b with one rounding, so exact under the same conditions: the driver's fma is
+// fused (glsl/DivSqrt.h, fused_fma_mode).
+float rill_residual(float a, float q, float b) { RILL_PRECISE float r = fma(-q, b, a); return r; })",
+         Variant::FusedResidual}}},
       {"nan_bits",
        {{Glsl, R"(bool rill_nan_bits(uint u) { return (u & 0x7fffffffu) > 0x7f800000u; })",
          Variant::Corrected}}},

@@ -32,8 +32,19 @@ enum class Language { C, OpenCL, Glsl, Lockstep };
 // The preludes of a language that take a body: Any, all of them; the others only GLSL's
 // division and square root use, which depend on the accuracy mode and the driver's rule
 // (glsl/DivSqrt.h): Fast, the fast mode's; in strict mode, DriverOps or InexactOps (the
-// driver's `/` and sqrt, or the inexact test stand-ins) and Uncorrected or Corrected.
-enum class Variant { Any, Fast, DriverOps, InexactOps, Uncorrected, Corrected };
+// driver's `/` and sqrt, or the inexact test stand-ins) and Uncorrected or Corrected, and for
+// Corrected the exact residual's form: SplitResidual (Dekker's product, any driver) or
+// FusedResidual (one fma, drivers whose fma rounds once).
+enum class Variant {
+  Any,
+  Fast,
+  DriverOps,
+  InexactOps,
+  Uncorrected,
+  Corrected,
+  SplitResidual,
+  FusedResidual
+};
 
 struct Body {
   Language language;

@@ -68,7 +68,8 @@ class ComputeBackend : public GLBackend {
     auto* self = const_cast<ComputeBackend*>(this);
     const GLContext& c = self->context();
     return std::string(kName) + ": compute shaders; " + c.kind() + ", " + c.renderer +
-           "; strict / and sqrt: " + divsqrt_name(driver_.rules.divsqrt) +
+           "; strict / and sqrt: " +
+           divsqrt_description(driver_.rules.divsqrt, driver_.rules.fused_fma) +
            ", comparisons: " + compare_name(driver_.rules.native_compare) +
            "; denormals: " + (device_.flushes_denormals ? "flushed" : "kept") + "; " +
            std::to_string(device_.limits.storage_blocks) + " storage buffers, " +

@@ -33,12 +33,32 @@ DivSqrt divsqrt_mode(const std::string& renderer) {
               "' is not one of auto, native, corrected, inexact, inexact-corrected");
 }
 
-std::vector<codegen::Variant> divsqrt_variants(DivSqrt m) {
+std::optional<bool> fused_fma_mode() {
+  const char* env = std::getenv("RILL_GLSL_FMA");
+  const std::string v = env ? env : "auto";
+  if (v == "auto" || v.empty()) return std::nullopt;
+  if (v == "fused") return true;
+  if (v == "split") return false;
+  throw Error("RILL_GLSL_FMA='" + v + "' is not one of auto, fused, split");
+}
+
+bool divsqrt_corrects(DivSqrt m) {
+  return m == DivSqrt::Corrected || m == DivSqrt::InexactCorrected;
+}
+
+std::vector<codegen::Variant> divsqrt_variants(DivSqrt m, bool fused_fma) {
   using codegen::Variant;
   bool inexact = m == DivSqrt::Inexact || m == DivSqrt::InexactCorrected;
-  bool corrected = m == DivSqrt::Corrected || m == DivSqrt::InexactCorrected;
-  return {inexact ? Variant::InexactOps : Variant::DriverOps,
-          corrected ? Variant::Corrected : Variant::Uncorrected};
+  if (!divsqrt_corrects(m))
+    return {inexact ? Variant::InexactOps : Variant::DriverOps, Variant::Uncorrected};
+  return {inexact ? Variant::InexactOps : Variant::DriverOps, Variant::Corrected,
+          fused_fma ? Variant::FusedResidual : Variant::SplitResidual};
+}
+
+std::string divsqrt_description(DivSqrt m, bool fused_fma) {
+  std::string s = divsqrt_name(m);
+  if (divsqrt_corrects(m)) s += fused_fma ? ", fused residual" : ", split residual";
+  return s;
 }
 
 }  // namespace rill::glsl

@@ -10,7 +10,8 @@
 //      decided from their bits; the significands are scaled into [1, 2) (or [1, 4)).
 //   2. The driver's quotient (root) is refined by one Newton step whose residual a - q*b
 //      (x - s*s) is computed exactly: Dekker's two-product, Sterbenz's lemma for the
-//      subtraction. The result is then a faithful rounding.
+//      subtraction, or where the driver's fma rounds once (fused_fma_mode), one fma. The
+//      result is then a faithful rounding.
 //   3. For a faithful q the residual is exactly representable (Markstein), so comparing it
 //      with half the distance to each neighbour picks the correctly rounded neighbour. A
 //      quotient or root of floats is never exactly halfway, so there are no ties.
@@ -24,6 +25,7 @@
 // their parts are entries of the helper table (codegen/Helpers.cpp), one variant per mode.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,8 +48,21 @@ const char* divsqrt_name(DivSqrt m);
 // value.
 DivSqrt divsqrt_mode(const std::string& renderer);
 
+// Whether mode m corrects the driver's estimates (Corrected, InexactCorrected).
+bool divsqrt_corrects(DivSqrt m);
+
+// Whether the corrections compute their exact residual a - q*b as one fma(-q, b, a) (a
+// tenth of the instructions of Dekker's product): only where the driver's fma is fused, which
+// GLSL leaves to the driver and FmaProbe.h finds out.
+// RILL_GLSL_FMA = auto (default: nullopt, probe the driver) | fused | split. Throws on an
+// unknown value.
+std::optional<bool> fused_fma_mode();
+
 // The variants of the helper table's GLSL bodies that define rill_div_f(a, b) and
-// rill_sqrt(x) for strict kernels in mode m.
-std::vector<codegen::Variant> divsqrt_variants(DivSqrt m);
+// rill_sqrt(x) for strict kernels in mode m, with their residual fused or split.
+std::vector<codegen::Variant> divsqrt_variants(DivSqrt m, bool fused_fma);
+
+// What rill-info says of the rule: "native", "corrected", "corrected, fused residual", ...
+std::string divsqrt_description(DivSqrt m, bool fused_fma);
 
 }  // namespace rill::glsl

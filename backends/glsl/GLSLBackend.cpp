@@ -61,7 +61,8 @@ class GLSLBackend : public GLBackend {
     if (!why.empty()) return "glsl: unavailable: " + why;
     auto* self = const_cast<GLSLBackend*>(this);
     return "glsl: fragment shaders; " + self->context().kind() + ", " + self->context().renderer +
-           "; strict / and sqrt: " + divsqrt_name(self->driver_.rules.divsqrt) +
+           "; strict / and sqrt: " +
+           divsqrt_description(self->driver_.rules.divsqrt, self->driver_.rules.fused_fma) +
            ", comparisons: " + compare_name(self->driver_.rules.native_compare) + "; disk cache: " +
            (self->driver_.binary_formats > 0
                 ? std::string("program binaries")

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "DivSqrt.h"
 #include "rill/Backend.h"
 #include "rill/ir/IR.h"
-#include "DivSqrt.h"
 
 namespace rill::glsl {
 
@@ -26,6 +26,7 @@ constexpr int kMaskValues = 8;
 // What the generated code does differently per driver (found by the conformance suite).
 struct DriverRules {
   DivSqrt divsqrt = DivSqrt::Native;  // strict / and sqrt (DivSqrt.h)
+  bool fused_fma = false;             // their residual by one fma (DivSqrt.h, fused_fma_mode)
   bool native_compare = false;        // strict float comparisons: the driver's, or on bits
   // Mesa's llvmpipe ends every loop of a shader once a batch of lanes has run 65535 loop
   // iterations in all (LP_MAX_TGSI_LOOP_ITERATIONS), silently. With the guard an element

@@ -1,6 +1,8 @@
 // The GL context, exit handling and program linking both GLSL backends share (GLSession.h).
 #include "GLSession.h"
 
+#include "FmaProbe.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -36,6 +38,11 @@ Driver describe_driver(const GL& gl, const std::string& renderer_line) {
   gl.glGetIntegerv(GL_MINOR_VERSION, &d.minor);
   gl.glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &d.binary_formats);
   d.rules.divsqrt = divsqrt_mode(renderer_line);
+  // Probed only where it matters: the corrections run, and the context has compute shaders.
+  const std::optional<bool> fused = fused_fma_mode();
+  const bool probe = !fused && divsqrt_corrects(d.rules.divsqrt) &&
+                     (d.major > 4 || (d.major == 4 && d.minor >= 3));
+  d.rules.fused_fma = fused ? *fused : probe && probe_fused_fma(gl, d, "GLSL backend");
   d.rules.native_compare = native_compare_mode(renderer_line);
   d.rules.loop_guard = loop_guard_mode(renderer_line);
   return d;

@@ -154,15 +154,34 @@ TEST(Helpers, EveryHelperHasAGlslBodyUnderEveryDriverRule) {
   for (Accuracy a : {Accuracy::Strict, Accuracy::Fast})
     for (glsl::DivSqrt ds : {glsl::DivSqrt::Native, glsl::DivSqrt::Corrected,
                              glsl::DivSqrt::Inexact, glsl::DivSqrt::InexactCorrected})
-      for (bool flushes : {false, true}) {
-        glsl::DriverRules rules;
-        rules.divsqrt = ds;
-        const std::string text = glsl::glsl_helpers(probe(), a, rules, flushes);
-        for (const Helper& h : table_helpers())
-          EXPECT_TRUE(defines(text, "rill_" + h.name))
-              << "op '" << h.op << "': no rill_" << h.name << " in the GLSL prelude ("
-              << accuracy_name(a) << ")";
-      }
+      for (bool flushes : {false, true})
+        for (bool fused : {false, true}) {
+          glsl::DriverRules rules;
+          rules.divsqrt = ds;
+          rules.fused_fma = fused;
+          const std::string text = glsl::glsl_helpers(probe(), a, rules, flushes);
+          for (const Helper& h : table_helpers())
+            EXPECT_TRUE(defines(text, "rill_" + h.name))
+                << "op '" << h.op << "': no rill_" << h.name << " in the GLSL prelude ("
+                << accuracy_name(a) << ")";
+        }
+}
+
+// The corrections' residual is one fma exactly when the rule says the driver's fma is fused,
+// and a shader never gets both residuals (they define the same function).
+TEST(Helpers, TheCorrectionsResidualFollowsTheFmaRule) {
+  for (bool fused : {false, true}) {
+    glsl::DriverRules rules;
+    rules.divsqrt = glsl::DivSqrt::Corrected;
+    rules.fused_fma = fused;
+    const std::string text = glsl::glsl_helpers(probe(), Accuracy::Strict, rules, true);
+    EXPECT_EQ(text.find("fma(-q, b, a)") != std::string::npos, fused);
+    EXPECT_EQ(text.find("4097.0 * q") != std::string::npos, !fused);
+  }
+  glsl::DriverRules native;
+  native.fused_fma = true;
+  EXPECT_EQ(glsl::glsl_helpers(probe(), Accuracy::Strict, native, true).find("rill_residual"),
+            std::string::npos);
 }
 #endif
 

@@ -8,6 +8,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -222,6 +223,9 @@ struct Tracer::Impl {
   // The strategies made so far, by name: the megakernel with the tracer, the others at their
   // first frame (StrategyRegistry).
   std::map<std::string, std::unique_ptr<RenderStrategy>> strategies;
+  // The frames traced so far, as "strategy/backend/accuracy/loop/WxH": a frame not among them
+  // is cold (RenderResult::cold).
+  std::set<std::string> traced;
   // Boxes that hold every static triangle that can be hit (accel/OccupiedBoxes.h).
   std::vector<Aabb> static_boxes;
   std::vector<Aabb> frame_boxes;  // static_boxes widened for the frame's eye
@@ -376,7 +380,12 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
   if (rs.bounce_rays != nullptr && rs.bounce_rays->bounce < 0)
     throw std::runtime_error("render: the bounce rays' bounce must be 0 or more (got " +
                              std::to_string(rs.bounce_rays->bounce) + ")");
+  const std::string traced_key = rs.strategy.name + "/" + rs.backend + "/" +
+                                 rill::accuracy_name(rs.accuracy) + "/" +
+                                 megakernel_loop_name(rs.loop) + "/" + std::to_string(win.width) +
+                                 "x" + std::to_string(win.height);
   I.strategy(rs.strategy).render(frame, r);
+  r.cold = I.traced.insert(traced_key).second;
 }
 
 std::vector<glm::vec3> Tracer::camera_rays(const std::string& backend, const Camera& camera,

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "RunCommand.h"
@@ -155,6 +157,33 @@ TEST(CliPath, AResumeFromAnotherRenderIsRefusedNamingTheFile) {
     EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "not one line: " << r.err;
   }
+}
+
+// The wavefront's stages in --stats-json and --stats: the camera stage runs once a sample on
+// every pixel; the masked stages process only the paths not done, at most every pixel a launch,
+// and the shade stage runs on the paths the intersect stage had (the same mask, between them
+// nothing changes it); the ray count is the image's.
+TEST(CliPath, TheWavefrontsStagesAreCounted) {
+  testing::TempDir dir;
+  const auto r =
+      run_path("--spp 3 --strategy wavefront --stats --stats-json s.json --out /dev/null", dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(testing::read_text(dir.path("s.json")));
+  const int64_t pixels = 12 * 10;
+  std::map<std::string, nlohmann::json> stage;
+  for (const nlohmann::json& p : j["passes"]) stage[p["name"].get<std::string>()] = p;
+  ASSERT_EQ(stage.count("camera"), 1u) << j["passes"];
+  EXPECT_EQ(stage["camera"]["calls"].get<int64_t>(), 3);
+  EXPECT_EQ(stage["camera"]["processed"].get<int64_t>(), 3 * pixels);
+  for (const char* name : {"intersect", "shade", "shadow"}) {
+    const nlohmann::json& p = stage[name];
+    EXPECT_GT(p["calls"].get<int64_t>(), 0) << name;
+    EXPECT_GT(p["processed"].get<int64_t>(), 0) << name;
+    EXPECT_LE(p["processed"].get<int64_t>(), p["calls"].get<int64_t>() * pixels) << name;
+  }
+  EXPECT_EQ(stage["shade"]["processed"], stage["intersect"]["processed"]);
+  EXPECT_NE(r.out.find("(120 pixels a launch)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\nintersect "), std::string::npos) << r.out;
 }
 
 #endif

@@ -412,6 +412,38 @@ TEST_P(Render, KernelTimeIsPartOfTheLaunch) {
   }
 }
 
+// First-use honesty (RenderResult::cold, first_launch_ms): a tracer's first frame of a
+// strategy, backend and size is cold and times its first launches apart from the trace; the
+// same frame again is warm with no first launch; another size is cold again, and so is a frame
+// of another strategy. Multipass warms nothing up (first_launch_ms stays 0) but is cold too.
+TEST_P(Render, FirstFrameIsColdAndItsFirstLaunchIsApart) {
+  RT_REQUIRE_BACKEND(GetParam());
+  Scene s = builtin_scene("thesis-b");
+  Grid g = build_grid(s, 8);
+  Tracer t(s, g);
+  RenderSettings rs;
+  rs.backend = GetParam();
+  rs.width = 16;
+  rs.height = 12;
+  const RenderResult first = t.render(rs, s.camera);
+  EXPECT_TRUE(first.cold);
+  EXPECT_GT(first.first_launch_ms, 0.0);
+  EXPECT_LE(first.first_launch_ms, first.compile_ms);  // part of the time before the trace
+  const RenderResult again = t.render(rs, s.camera);
+  EXPECT_FALSE(again.cold);
+  EXPECT_EQ(again.first_launch_ms, 0.0);
+  expect_identical(first, again, "the warm frame");
+  RenderSettings other = rs;
+  other.width = 8;
+  const RenderResult resized = t.render(other, s.camera);
+  EXPECT_TRUE(resized.cold);
+  EXPECT_GT(resized.first_launch_ms, 0.0);
+  EXPECT_FALSE(t.render(other, s.camera).cold);
+  other.strategy = Strategy::Multipass;
+  EXPECT_TRUE(t.render(other, s.camera).cold);
+  EXPECT_FALSE(t.render(other, s.camera).cold);
+}
+
 TEST_P(Render, BadGeometryAndEmptyScenes) {
   RT_REQUIRE_BACKEND(GetParam());
   // NaN, infinite and degenerate triangles are never hit; the rest renders normally.

@@ -526,10 +526,12 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   const auto warm_key =
       std::make_pair(kernel_key(rs.backend, rs.accuracy, loop), int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
+    Stopwatch first_launch;
     max_iter_.set(0);
     k.execute();
     (void)rill::sum(out.rays);
     warmed_.insert(warm_key);
+    r.first_launch_ms = first_launch.ms();
   }
   // A path has at most depth + 1 segments, one iteration each.
   max_iter_.set(path_ ? depth + 2 : static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));

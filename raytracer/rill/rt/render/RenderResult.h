@@ -73,6 +73,16 @@ struct RenderResult {
   Accumulation accumulation;  // the running sums, when FrameOutputs::accumulation
   double compile_ms = 0;      // 0 when the compiled kernel came from a cache
   bool from_cache = false;
+  // Of compile_ms: the first launches of the frame's kernels at its size, which trace nothing
+  // (the megakernel's launch with no iterations, the wavefront's warm-ups, the ray count's
+  // reduction): a driver that finishes its compile at a first launch (PoCL, Mesa, NVIDIA's
+  // lazy module loading) does it there. 0 when they had run at this size before.
+  double first_launch_ms = 0;
+  // Whether this frame was the first this tracer traced with its strategy, backend, accuracy,
+  // loop and size: its trace time then holds first-use costs that no warm-up launch takes
+  // (the first touch of the scene's buffers and of the outputs, caches, a GPU's clocks), so
+  // rays / trace_ms is a cold speed, not the device's (rill-trace labels it "cold").
+  bool cold = false;
   // The render's kernels' compile stages (Kernel::info()), summed over them: the multipass
   // strategy compiles its nine at once (compile_all), so the sum exceeds compile_ms. origin
   // is the first kernel's.

@@ -125,12 +125,14 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
   const auto warm_key =
       std::make_pair(backend_key(rs.backend, rs.accuracy), int64_t{width} * height);
   if (!warmed_.count(warm_key)) {
+    Stopwatch first_launch;
     K.camera.warm_up();
     if (geometry) K.intersect.warm_up(alive);
     K.shade.warm_up(alive);
     if (shadows) K.shadow.warm_up(queried);
     (void)rill::sum(ints, rs.backend);
     warmed_.insert(warm_key);
+    r.first_launch_ms = first_launch.ms();
   }
   r.compile_ms = since_start.ms() - r.times.setup;
 
