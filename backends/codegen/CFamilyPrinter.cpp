@@ -1,5 +1,6 @@
 #include "CFamilyPrinter.h"
 
+#include "SourceMap.h"
 #include "rill/ir/Printer.h"
 #include "rill/ir/Visitor.h"
 
@@ -101,7 +102,36 @@ std::string CFamilyPrinter::body(int indent) const {
 
 void CFamilyPrinter::block(std::string& out, const Block& b, int indent) const {
   if (outline && outline(out, b, indent)) return;
-  for (const Stmt& s : b) stmt(out, s, indent);
+  if (!source_map_) {
+    for (const Stmt& s : b) stmt(out, s, indent);
+    return;
+  }
+  // Every line a statement prints follows the line naming its source (one per line, so
+  // that a compiler counting lines from a #line names this statement for each of them);
+  // where the block ends, the generated numbering comes back for what follows.
+  bool marked = false;
+  for (const Stmt& s : b) {
+    std::string text;
+    stmt(text, s, indent);
+    if (!s.loc.known()) {
+      out += text;
+      continue;
+    }
+    const std::string mark = pad_of(indent) + d_.source_line(s.loc) + "\n";
+    const bool nested = s.kind == StmtKind::If || s.kind == StmtKind::Loop;
+    size_t start = 0;
+    while (start < text.size()) {
+      size_t nl = text.find('\n', start);
+      if (nl == std::string::npos) nl = text.size() - 1;
+      // A nested statement's own blocks mark their lines: only its first line is its own.
+      if (!nested || start == 0) out += mark;
+      out += text.substr(start, nl - start + 1);
+      start = nl + 1;
+    }
+    marked = true;
+  }
+  if (marked && d_.source_line_renumbers())
+    out += pad_of(indent) + std::string(kSourceLineRestore) + "\n";
 }
 
 std::string CFamilyPrinter::statements(const Block& b, int indent) const {
@@ -214,6 +244,10 @@ void CFamilyPrinter::assign(std::string& out, const Stmt& s, const std::string& 
   for (int c = 0; c < width; ++c)
     out += pad + "  " + component(s.dst, dst_comp(c)) + " = r" + std::to_string(c) + ";\n";
   out += pad + "}\n";
+}
+
+std::string Dialect::source_line(const SourceLoc& loc) const {
+  return "#line " + std::to_string(loc.line) + " \"" + quoted_file(loc) + "\"";
 }
 
 std::string Dialect::group(Op op, ScalarKind, int c, const std::vector<std::string>& args) const {

@@ -80,6 +80,13 @@ class Dialect {
   // size 1 and lane 0 (docs/programming-model.md).
   virtual std::string group(ir::Op op, ir::ScalarKind k, int c,
                             const std::vector<std::string>& args) const;
+  // Source maps (SourceMap.h): the line put before generated code from the user's `loc`.
+  // C and OpenCL C take a #line directive, which compilers' messages then follow; GLSL,
+  // whose #line names no file, a comment.
+  virtual std::string source_line(const SourceLoc& loc) const;
+  // True when source_line() renumbers the lines after it (then a block's end puts the
+  // generated numbering back: SourceMap.h).
+  virtual bool source_line_renumbers() const { return true; }
 };
 
 // The helper mapping one gather index into its dimension under an array's boundary mode
@@ -109,7 +116,10 @@ std::string fixed_form_expr(const ir::Stmt& s, int c,
 
 class CFamilyPrinter {
  public:
-  CFamilyPrinter(const ir::Function& f, const Dialect& d) : f_(f), d_(d) {}
+  // `source_map`: each statement's lines follow a line naming where the user wrote it
+  // (Dialect::source_line); off, the text is exactly as without source maps.
+  CFamilyPrinter(const ir::Function& f, const Dialect& d, bool source_map = false)
+      : f_(f), d_(d), source_map_(source_map) {}
 
   // Declarations of every variable with its initial value, one per line.
   std::string declarations(int indent) const;
@@ -144,6 +154,7 @@ class CFamilyPrinter {
   const ir::Function& f_;
   const Dialect& d_;
   mutable int loop_depth_ = 0;  // loops open around the statement being printed
+  bool source_map_ = false;
 };
 
 }  // namespace rill::codegen

@@ -15,6 +15,7 @@
 #include "../codegen/CDialect.h"
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
+#include "../codegen/SourceMap.h"
 #include "../codegen/SourceText.h"
 #include "Outline.h"
 
@@ -90,8 +91,9 @@ namespace {
 // Prints the outlined parts of a plan and the calls to them (Outline.h).
 class PartPrinter {
  public:
-  PartPrinter(const Function& f, const codegen::Dialect& d, const OutlinePlan& plan)
-      : f_(f), d_(d), plan_(plan) {}
+  PartPrinter(const Function& f, const codegen::Dialect& d, const OutlinePlan& plan,
+              bool source_map)
+      : f_(f), d_(d), plan_(plan), source_map_(source_map) {}
 
   // Lets p print the blocks of the plan as calls.
   void attach(codegen::CFamilyPrinter& p) const {
@@ -111,7 +113,7 @@ class PartPrinter {
   }
 
   std::string definition(const OutlinedPart& part) const {
-    codegen::CFamilyPrinter p(f_, d_);
+    codegen::CFamilyPrinter p(f_, d_, source_map_);
     attach(p);
     p.discard_text = exit_text(kDiscard);
     p.escape_break_text = exit_text(kBreak);
@@ -183,6 +185,7 @@ class PartPrinter {
   const Function& f_;
   const codegen::Dialect& d_;
   const OutlinePlan& plan_;
+  bool source_map_;
 };
 
 // Spreads the parts over translation units, largest first onto the least loaded (unit 0
@@ -221,10 +224,10 @@ int c_units(const std::string& source) {
 
 std::string emit_c(const Function& f, Accuracy accuracy, const CLayout& layout) {
   codegen::CDialect d(accuracy, "goto rill_discarded;");
-  codegen::CFamilyPrinter p(f, d);
+  codegen::CFamilyPrinter p(f, d, layout.source_map);
   const OutlinePlan plan =
       layout.outline_min_cost ? plan_outlining(f, layout.outline_min_cost) : OutlinePlan{};
-  const PartPrinter parts(f, d, plan);
+  const PartPrinter parts(f, d, plan, layout.source_map);
   if (!plan.parts.empty()) {
     parts.attach(p);
     p.declare = [&plan](VarId v, int c) {
@@ -274,7 +277,7 @@ std::string emit_c(const Function& f, Accuracy accuracy, const CLayout& layout) 
   src += "  rill_discarded:;\n";
   src += "  }\n  return rill_written;\n}\n";
   if (!plan.parts.empty()) src += "#endif\n";
-  return src;
+  return layout.source_map ? codegen::finish_source_lines(src) : src;
 }
 
 }  // namespace rill::cpu

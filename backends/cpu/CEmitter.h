@@ -19,6 +19,8 @@ struct CLayout {
   size_t outline_min_cost = 0;
   int max_units = 1;
   size_t unit_cost = 3000;  // at most one unit per this much cost (Outline.h's measure)
+  // With #line directives naming the user's lines (codegen/SourceMap.h).
+  bool source_map = false;
 };
 std::string emit_c(const ir::Function& optimized, Accuracy accuracy, const CLayout& layout = {});
 

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "../codegen/SourceMap.h"
 #include "CEmitter.h"
 #include "HostKernel.h"
 #include "Outline.h"
@@ -25,7 +26,7 @@ class CpuBackend : public Backend {
   }
   bool supports(Accuracy) const override { return true; }
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
-    return compile_scalar_c(name(), f, o.accuracy);
+    return compile_scalar_c(name(), f, o.accuracy, o.source_map);
   }
 };
 
@@ -93,17 +94,24 @@ CLayout c_layout() {
 }
 
 std::unique_ptr<CompiledKernel> compile_scalar_c(const std::string& backend, const ir::Function& f,
-                                                 Accuracy a) {
+                                                 Accuracy a, bool source_map) {
   Stopwatch stage;
-  std::string source = emit_c(f, a, c_layout());
+  CLayout layout = c_layout();
+  layout.source_map = source_map;
+  std::string source = emit_c(f, a, layout);
   const double codegen_ms = stage.lap();
   std::vector<std::string> flags = compiler_flags(a);
   // Scalar code gains from SSE4.1's roundss: floor and ceil (every 3D-DDA start and jump)
   // are then one exact instruction instead of a conversion sequence; 3-4% on a ray traced
   // frame (docs/benchmarks/2026-11-25-gpu-frame.md).
   if (has_sse41()) flags.push_back("-msse4.1");
-  SharedObject so =
-      compile_shared_object(backend, f.name, source, flags, "rill_run", c_units(source));
+  CLayout mapped = layout;
+  mapped.source_map = true;
+  SharedObject so = codegen::reporting_user_lines(
+      source, [&] { return emit_c(f, a, mapped); },
+      [&] {
+        return compile_shared_object(backend, f.name, source, flags, "rill_run", c_units(source));
+      });
   auto k = make_host_kernel(std::move(source), std::move(so), 0);
   k->set_build_times(codegen_ms, stage.lap());
   return k;

@@ -31,7 +31,8 @@ bool has_sse41();
 // units, unless $RILL_CPU_OUTLINE says `off` (one function) or another outlining threshold.
 struct CLayout;
 CLayout c_layout();
+// `source_map`: CompileOptions::source_map.
 std::unique_ptr<CompiledKernel> compile_scalar_c(const std::string& backend, const ir::Function& f,
-                                                 Accuracy a);
+                                                 Accuracy a, bool source_map = false);
 
 }  // namespace rill::cpu

@@ -33,6 +33,7 @@
 #include <memory>
 #include <vector>
 
+#include "../codegen/SourceMap.h"
 #include "ComputeBuffers.h"
 #include "ComputeLauncher.h"
 #include "GLBackend.h"
@@ -109,12 +110,22 @@ class ComputeBackend : public GLBackend {
       for (size_t o = first; o < std::min(f.outputs.size(), first + static_cast<size_t>(group));
            ++o)
         p.outputs.push_back(static_cast<int>(o));
-      GLSLShader shader = emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), driver_.rules,
-                                            device_.flushes_denormals, device_.local_size);
+      GLSLShader shader =
+          emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), driver_.rules,
+                            device_.flushes_denormals, device_.local_size, o.source_map);
       codegen_ms += stage.lap();
       bool cached = false;
-      p.program = link_program_cached(gl, driver_, kName, kWho, f.name,
-                                      {{GL_COMPUTE_SHADER, shader.source}}, cached);
+      p.program = codegen::reporting_user_lines(
+          shader.source,
+          [&] {
+            return emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), driver_.rules,
+                                     device_.flushes_denormals, device_.local_size, true)
+                .source;
+          },
+          [&] {
+            return link_program_cached(gl, driver_, kName, kWho, f.name,
+                                       {{GL_COMPUTE_SHADER, shader.source}}, cached);
+          });
       link_ms += stage.lap();
       all_cached = all_cached && cached;
       p.constants = std::move(shader.constants);

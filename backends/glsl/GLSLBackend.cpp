@@ -35,6 +35,7 @@
 #include <mutex>
 #include <vector>
 
+#include "../codegen/SourceMap.h"
 #include "FragmentLauncher.h"
 #include "FragmentTextures.h"
 #include "GLBackend.h"
@@ -86,14 +87,18 @@ class GLSLBackend : public GLBackend {
       for (size_t i = first; i < std::min(f.outputs.size(), first + static_cast<size_t>(group));
            ++i)
         p.outputs.push_back(static_cast<int>(i));
-      GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, driver_.rules);
+      GLSLShader shader = emit_glsl(f, o.accuracy, p.outputs, driver_.rules, o.source_map);
       codegen_ms += stage.lap();
       p.source = std::move(shader.source);
       p.constants = std::move(shader.constants);
       bool cached = false;
-      p.program = link_program_cached(
-          gl, driver_, "glsl", "GLSL backend", f.name,
-          {{GL_VERTEX_SHADER, vertex_shader()}, {GL_FRAGMENT_SHADER, p.source}}, cached);
+      p.program = codegen::reporting_user_lines(
+          p.source, [&] { return emit_glsl(f, o.accuracy, p.outputs, driver_.rules, true).source; },
+          [&] {
+            return link_program_cached(
+                gl, driver_, "glsl", "GLSL backend", f.name,
+                {{GL_VERTEX_SHADER, vertex_shader()}, {GL_FRAGMENT_SHADER, p.source}}, cached);
+          });
       all_cached = all_cached && cached;
       link_ms += stage.lap();
       passes.push_back(std::move(p));

@@ -32,6 +32,7 @@
 
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
+#include "../codegen/SourceMap.h"
 #include "../codegen/SourceText.h"
 #include "../codegen/Tiles.h"
 #include "DivSqrt.h"
@@ -51,6 +52,13 @@ class GLSLDialect : public codegen::Dialect {
         stage_(stage),
         pass_outputs_(pass_outputs),
         loop_guard_(loop_guard) {}
+
+  // GLSL's #line takes a source-string number, not a file: the map is comments.
+  std::string source_line(const SourceLoc& loc) const override {
+    return codegen::kSourceComment +
+           codegen::comment_safe(relative_path(loc.file) + ":" + std::to_string(loc.line));
+  }
+  bool source_line_renumbers() const override { return false; }
 
   // Strict: through rill_div_f, correctly rounded on every driver (DivSqrt.h).
   std::string float_div(const std::string& a, const std::string& b) const override {
@@ -320,9 +328,9 @@ std::string output_components(const Function& f, const codegen::CFamilyPrinter& 
 }  // namespace
 
 GLSLShader emit_glsl(const Function& f, Accuracy accuracy, const std::vector<int>& outputs,
-                     const DriverRules& rules) {
+                     const DriverRules& rules, bool source_map) {
   GLSLDialect d(accuracy, Stage::Fragment, outputs, rules.loop_guard);
-  codegen::CFamilyPrinter p(f, d);
+  codegen::CFamilyPrinter p(f, d, source_map);
   // The body first: printing it collects the constants that the declarations need; printed
   // again once they are in their own order.
   std::string body = p.declarations(1) + p.body(1);
@@ -384,9 +392,9 @@ ComputeBindings compute_bindings(const Function& f, size_t pass_outputs) {
 
 GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::vector<int>& outputs,
                              bool counts, const DriverRules& rules, bool flushes_denormals,
-                             int local_size) {
+                             int local_size, bool source_map) {
   GLSLDialect d(accuracy, Stage::Compute, outputs, rules.loop_guard);
-  codegen::CFamilyPrinter p(f, d);
+  codegen::CFamilyPrinter p(f, d, source_map);
   std::string body = p.declarations(1) + p.body(1);
   d.sort_constants();  // as in emit_glsl
   body = p.declarations(1) + p.body(1);

@@ -46,8 +46,10 @@ struct GLSLShader {
 // The fragment shader computing `optimized` and writing the outputs listed (indices into
 // Function::outputs), at draw-buffer locations 0, 1, ... in that order.
 // Strict kernels divide, take square roots and compare as `rules` says.
+// `source_map`: comments naming the user's lines (codegen/SourceMap.h), here and below.
 GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy,
-                     const std::vector<int>& outputs, const DriverRules& rules = {});
+                     const std::vector<int>& outputs, const DriverRules& rules = {},
+                     bool source_map = false);
 // The compute shader computing `optimized` over `local_size` invocations per work group and
 // storing the outputs listed (indices into Function::outputs; a kernel with more outputs
 // than the driver has storage buffers runs in several passes, as on the fragment stage).
@@ -57,7 +59,7 @@ GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy,
 // comparisons treat them as zero too, as on the fragment stage).
 GLSLShader emit_glsl_compute(const ir::Function& optimized, Accuracy accuracy,
                              const std::vector<int>& outputs, bool counts, const DriverRules& rules,
-                             bool flushes_denormals, int local_size);
+                             bool flushes_denormals, int local_size, bool source_map = false);
 // Where a compute pass's storage buffers are bound: inputs from `inputs` on, the pass's
 // outputs from `outputs` on, then the two counters (elements written, selected) and the
 // mask's states.

@@ -6,6 +6,7 @@
 
 #include <mutex>
 
+#include "../codegen/SourceMap.h"
 #include "ClCompiler.h"
 #include "ClDevice.h"
 #include "ClLauncher.h"
@@ -70,9 +71,11 @@ class OpenCLBackend : public Backend {
                   "' has no fp64 support (cl_khr_fp64)");
     check_launch_settings();
     Stopwatch stage;
-    std::string source = emit_opencl(f, o.accuracy);
+    std::string source = emit_opencl(f, o.accuracy, o.source_map);
     const double codegen_ms = stage.lap();
-    const BuiltKernel built = build_kernel(d, f.name, source, o.accuracy);
+    const BuiltKernel built = codegen::reporting_user_lines(
+        source, [&] { return emit_opencl(f, o.accuracy, true); },
+        [&] { return build_kernel(d, f.name, source, o.accuracy); });
     auto kernel = std::make_unique<ClKernel>(d, memory(), f, std::move(source), built);
     kernel->set_build_times(codegen_ms, stage.lap());
     return kernel;

@@ -8,6 +8,7 @@
 
 namespace rill::opencl {
 
-std::string emit_opencl(const ir::Function& optimized, Accuracy accuracy);
+// `source_map`: with #line directives naming the user's lines (codegen/SourceMap.h).
+std::string emit_opencl(const ir::Function& optimized, Accuracy accuracy, bool source_map = false);
 
 }  // namespace rill::opencl

@@ -23,6 +23,7 @@
 
 #include "../codegen/CFamilyPrinter.h"
 #include "../codegen/Helpers.h"
+#include "../codegen/SourceMap.h"
 #include "../cpu/CEmitter.h"
 #include "VectorDialect.h"
 #include "rill/ir/Visitor.h"
@@ -287,7 +288,8 @@ const std::string& lockstep_helpers() {
 
 }  // namespace
 
-std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int lanes) {
+std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int lanes,
+                            bool source_map) {
   if (accuracy == Accuracy::Double)
     throw Error(
         "lockstep C: the double mode has no lockstep form (the simd backend runs it as scalar C)");
@@ -297,7 +299,7 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   const passes::LockstepFunction lowered = passes::lower_lockstep(optimized);
   const Function& f = lowered.f;
   VectorDialect d(accuracy, lanes);
-  codegen::CFamilyPrinter p(f, d);
+  codegen::CFamilyPrinter p(f, d, source_map);
   std::string splat = "{x";
   for (int l = 1; l < lanes; ++l) splat += ", x";
   // Lockstep kernels keep hundreds of vector variables live across their loops, and GCC's
@@ -361,7 +363,7 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
     }
   }
   src += "      ++rill_written;\n    }\n  }\n  return rill_written;\n}\n";
-  return src;
+  return source_map ? codegen::finish_source_lines(src) : src;
 }
 
 }  // namespace rill::simd

@@ -14,7 +14,8 @@ constexpr int kLockstepLanes = 8;
 // The kernel as C over `lanes` elements at a time: every variable becomes a GCC/Clang vector
 // of `lanes` values, control flow becomes masks, and each element computes exactly the
 // operations the scalar C of emit_c() computes, so the results are bit for bit the same.
+// `source_map`: with #line directives naming the user's lines (codegen/SourceMap.h).
 std::string emit_c_lockstep(const ir::Function& optimized, Accuracy accuracy,
-                            int lanes = kLockstepLanes);
+                            int lanes = kLockstepLanes, bool source_map = false);
 
 }  // namespace rill::simd

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "../codegen/SourceMap.h"
 #include "../cpu/CpuBackend.h"
 #include "../cpu/HostKernel.h"
 #include "../cpu/SharedObjectCache.h"
@@ -41,16 +42,18 @@ class SimdBackend : public Backend {
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
     if (o.accuracy == Accuracy::Double) {
-      auto k = cpu::compile_scalar_c(name(), f, o.accuracy);
+      auto k = cpu::compile_scalar_c(name(), f, o.accuracy, o.source_map);
       k->set_execution(kScalarDouble);
       return k;
     }
     Stopwatch stage;
-    std::string source = emit_c_lockstep(f, o.accuracy);
+    std::string source = emit_c_lockstep(f, o.accuracy, kLockstepLanes, o.source_map);
     const double codegen_ms = stage.lap();
     std::vector<std::string> flags = cpu::compiler_flags(o.accuracy);
     if (vector_isa() == "AVX2") flags.push_back("-mavx2");
-    cpu::SharedObject so = cpu::compile_shared_object(name(), f.name, source, flags, "rill_run");
+    cpu::SharedObject so = codegen::reporting_user_lines(
+        source, [&] { return emit_c_lockstep(f, o.accuracy, kLockstepLanes, true); },
+        [&] { return cpu::compile_shared_object(name(), f.name, source, flags, "rill_run"); });
     auto k = cpu::make_host_kernel(std::move(source), std::move(so), kLockstepLanes);
     k->set_build_times(codegen_ms, stage.lap());
     return k;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <atomic>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <tuple>
@@ -46,6 +47,14 @@ struct Builder {
   std::vector<PrintSite> prints;
 
   ir::Block* root = nullptr;  // where top-level statements go (fn->body unless extending)
+  // Locations (SourceLoc): the latest statement recorded with a location of the user's,
+  // which statements recorded by operators get (marked nearest); the chain of open
+  // CallSites; and the location every statement gets while a located library call runs
+  // (LocatedCall: normalize(v) at the user's line) or while extending a function
+  // (ExtendScope: the location of the statement that the recorded code replaces).
+  SourceLoc near;
+  const SourceLoc* chain = nullptr;
+  SourceLoc within;
   Stopwatch started;          // when the program's definition began (capture_ms)
 
   ir::Block& current() {
@@ -75,8 +84,51 @@ Builder& builder(const char* what, SourceLoc loc) {
   return *t_builders.back();
 }
 
+// Rill's own headers and sources record code too (math routines, library kernels): their
+// lines say nothing to the user, who gets the nearest line of their own instead.
+bool library_file(const char* file) {
+  return std::strstr(file, "include/rill/") != nullptr || std::strstr(file, "dsl/src/") != nullptr;
+}
+
+bool user_location(SourceLoc loc) {
+  return loc.known() && !library_file(loc.file);
+}
+
+// The location an error or a statement recorded now names: `loc` itself when it is the
+// user's (with the chain of open CallSites), else the nearest located statement.
+SourceLoc where(const Builder& b, SourceLoc loc) {
+  if (user_location(loc)) {
+    loc.nearest = false;
+    loc.caller = b.chain;
+    return loc;
+  }
+  if (b.within.known()) return b.within;
+  SourceLoc n = b.near;
+  n.nearest = n.known();
+  return n;
+}
+
+// where(), for a statement being recorded: a location of the user's becomes the nearest
+// one for the operators that follow.
+SourceLoc locate(Builder& b, SourceLoc loc) {
+  SourceLoc at = where(b, loc);
+  if (at.known() && !at.nearest) b.near = at;
+  return at;
+}
+
+// A chain link that lives as long as the process (SourceLoc::caller), one per distinct
+// call site and outer chain.
+const SourceLoc* intern(SourceLoc at, const SourceLoc* outer) {
+  static std::mutex mutex;
+  static std::map<std::tuple<const char*, unsigned, const SourceLoc*>, SourceLoc> links;
+  std::lock_guard<std::mutex> lock(mutex);
+  at.nearest = false;
+  at.caller = outer;
+  return &links.try_emplace(std::make_tuple(at.file, at.line, outer), at).first->second;
+}
+
 std::string describe(const Frame& f) {
-  return std::string(f.macro) + (f.opened.known() ? " at " + f.opened.str() : "");
+  return std::string(f.macro) + (f.opened.known() ? " at " + f.opened.describe() : "");
 }
 
 // Checks that the innermost open construct is the one `macro` closes or continues.
@@ -149,6 +201,7 @@ ir::Operand operand(const Ref& r, ir::Type t, SourceLoc loc) {
     }
     case Ref::Kind::Var: {
       Builder& b = builder("reading a DSL variable", loc);
+      loc = where(b, loc);
       if (r.program != b.serial) {
         std::string other = program_name(r.program);
         throw Error("a value of program '" + other + "' is used in program '" + b.fn->name +
@@ -161,6 +214,7 @@ ir::Operand operand(const Ref& r, ir::Type t, SourceLoc loc) {
     }
     case Ref::Kind::Uniform: {
       Builder& b = builder("reading a uniform", loc);
+      loc = where(b, loc);
       const UniformState* key = r.uniform.get();
       auto it = b.uniform_vars.find(key);
       if (it == b.uniform_vars.end()) {
@@ -183,6 +237,7 @@ ir::Operand operand(const Ref& r, ir::Type t, SourceLoc loc) {
 
 Ref emit(ir::Op op, ir::Type result, std::vector<ir::Operand> args, SourceLoc loc) {
   Builder& b = builder(ir::op_name(op), loc);
+  loc = locate(b, loc);
   ir::VarId v = b.fn->add_var(result);
   b.current().push_back(ir::Stmt::assign(v, op, std::move(args), loc));
   Ref r;
@@ -195,6 +250,7 @@ Ref emit(ir::Op op, ir::Type result, std::vector<ir::Operand> args, SourceLoc lo
 Ref emit_gather(const std::shared_ptr<ArrayState>& array, std::vector<ir::Operand> index,
                 ir::Boundary boundary, const ir::Constant& border, SourceLoc loc) {
   Builder& b = builder("an array gather", loc);
+  loc = locate(b, loc);
   // Only Constant reads its border: other modes share one entry whatever the border holds.
   const std::array<uint32_t, 4> border_bits =
       boundary == ir::Boundary::Constant ? border.bits : std::array<uint32_t, 4>{};
@@ -236,6 +292,7 @@ void label(const Ref& r, std::string name, SourceLoc loc) {
                     "one; only values created inside a program body can be named",
                 loc);
   Builder& b = builder("rill::label", loc);
+  loc = locate(b, loc);
   if (r.program != b.serial)
     throw Error("rill::label('" + name + "'): the value belongs to program '" +
                     program_name(r.program) + "', not to '" + b.fn->name + "'",
@@ -254,6 +311,7 @@ Ref new_var(ir::Type t, ir::VarRole role, std::string name, SourceLoc loc) {
                      : role == ir::VarRole::Output ? "declaring an Output"
                                                    : "declaring a DSL variable";
   Builder& b = builder(what, loc);
+  loc = locate(b, loc);
   if (role == ir::VarRole::Input || role == ir::VarRole::Output) {
     if (!b.open.empty())
       throw Error(std::string(what) + " inside " + describe(b.open.back()) +
@@ -298,6 +356,7 @@ std::vector<PrintSite>& print_sites(SourceLoc loc) {
 
 void assign(const Ref& dst, const ir::Mask& mask, const ir::Operand& src, SourceLoc loc) {
   Builder& b = builder("an assignment", loc);
+  loc = locate(b, loc);
   if (dst.kind != Ref::Kind::Var) throw Error("assignment to something that is not a variable", loc);
   if (dst.program != b.serial)
     throw Error("assignment to a value of program '" + program_name(dst.program) +
@@ -324,6 +383,7 @@ void assign(const Ref& dst, const ir::Mask& mask, const ir::Operand& src, Source
 
 void begin_if(const ir::Operand& cond, SourceLoc loc) {
   Builder& b = builder("RILL_IF", loc);
+  loc = locate(b, loc);
   bool chained = b.pending_else_if;
   b.pending_else_if = false;
   push(b, ir::Stmt::make_if(cond, loc), Section::Then, loc, chained ? "RILL_ELSE_IF" : "RILL_IF",
@@ -332,6 +392,7 @@ void begin_if(const ir::Operand& cond, SourceLoc loc) {
 
 void begin_else(SourceLoc loc) {
   Builder& b = builder("RILL_ELSE", loc);
+  loc = locate(b, loc);
   if (!b.open.empty() && is_if(b.open.back()) && b.open.back().section == Section::Else)
     throw Error("a second RILL_ELSE for " + describe(b.open.back()), loc);
   Frame& f = expect(b, "RILL_ELSE", loc, is_if_then, "RILL_IF");
@@ -340,6 +401,7 @@ void begin_else(SourceLoc loc) {
 
 void begin_else_if(SourceLoc loc) {
   Builder& b = builder("RILL_ELSE_IF", loc);
+  loc = locate(b, loc);
   Frame& f = expect(b, "RILL_ELSE_IF", loc, is_if_then, "RILL_IF");
   f.section = Section::Else;
   b.pending_else_if = true;  // the if that follows is part of this chain
@@ -347,6 +409,7 @@ void begin_else_if(SourceLoc loc) {
 
 void end_if(SourceLoc loc) {
   Builder& b = builder("RILL_ENDIF", loc);
+  loc = locate(b, loc);
   expect(b, "RILL_ENDIF", loc, is_if, "RILL_IF");
   bool chained = b.open.back().chained;
   close_into_parent(b);
@@ -358,11 +421,13 @@ void end_if(SourceLoc loc) {
 
 void begin_while(SourceLoc loc) {
   Builder& b = builder("RILL_WHILE", loc);
+  loc = locate(b, loc);
   push(b, ir::Stmt::make_loop(ir::LoopKind::While, loc), Section::Cond, loc, "RILL_WHILE");
 }
 
 void while_body(const ir::Operand& cond, SourceLoc loc) {
   Builder& b = builder("RILL_WHILE", loc);
+  loc = locate(b, loc);
   Frame& f = expect(b, "RILL_WHILE", loc, is_while_cond, "RILL_WHILE");
   f.stmt.cond = cond;
   f.section = Section::Body;
@@ -370,23 +435,27 @@ void while_body(const ir::Operand& cond, SourceLoc loc) {
 
 void end_while(SourceLoc loc) {
   Builder& b = builder("RILL_ENDWHILE", loc);
+  loc = locate(b, loc);
   expect(b, "RILL_ENDWHILE", loc, is_while_body, "RILL_WHILE");
   close_into_parent(b);
 }
 
 void begin_do(SourceLoc loc) {
   Builder& b = builder("RILL_DO", loc);
+  loc = locate(b, loc);
   push(b, ir::Stmt::make_loop(ir::LoopKind::DoUntil, loc), Section::Body, loc, "RILL_DO");
 }
 
 void begin_until(SourceLoc loc) {
   Builder& b = builder("RILL_UNTIL", loc);
+  loc = locate(b, loc);
   Frame& f = expect(b, "RILL_UNTIL", loc, is_do_body, "RILL_DO");
   f.section = Section::Cond;
 }
 
 void end_until(const ir::Operand& cond, SourceLoc loc) {
   Builder& b = builder("RILL_UNTIL", loc);
+  loc = locate(b, loc);
   Frame& f = expect(b, "RILL_UNTIL", loc, is_do_cond, "RILL_DO");
   f.stmt.cond = cond;
   close_into_parent(b);
@@ -394,11 +463,13 @@ void end_until(const ir::Operand& cond, SourceLoc loc) {
 
 void begin_for(SourceLoc loc) {
   Builder& b = builder("RILL_FOR", loc);
+  loc = locate(b, loc);
   push(b, ir::Stmt::make_loop(ir::LoopKind::For, loc), Section::Cond, loc, "RILL_FOR");
 }
 
 void for_cond(const ir::Operand& cond, SourceLoc loc) {
   Builder& b = builder("RILL_FOR", loc);
+  loc = locate(b, loc);
   Frame& f = expect(b, "RILL_FOR", loc, is_for_cond, "RILL_FOR");
   f.stmt.cond = cond;
   f.section = Section::Step;
@@ -406,12 +477,14 @@ void for_cond(const ir::Operand& cond, SourceLoc loc) {
 
 void for_body(SourceLoc loc) {
   Builder& b = builder("RILL_FOR", loc);
+  loc = locate(b, loc);
   Frame& f = expect(b, "RILL_FOR", loc, is_for_step, "RILL_FOR");
   f.section = Section::Body;
 }
 
 void end_for(SourceLoc loc) {
   Builder& b = builder("RILL_ENDFOR", loc);
+  loc = locate(b, loc);
   expect(b, "RILL_ENDFOR", loc, is_for_body, "RILL_FOR");
   close_into_parent(b);
 }
@@ -419,6 +492,7 @@ void end_for(SourceLoc loc) {
 namespace {
 void jump(ir::StmtKind kind, const char* macro, SourceLoc loc) {
   Builder& b = builder(macro, loc);
+  loc = locate(b, loc);
   if (kind != ir::StmtKind::Discard) {
     // The innermost loop must be in its body (not computing its condition or step).
     bool ok = false;
@@ -446,7 +520,9 @@ ProgramScope::ProgramScope(std::string name, SourceLoc loc) {
   auto* b = new Builder;
   b->serial = g_next_serial++;
   b->defined_at = loc;
+  if (user_location(loc)) b->near = loc;  // operators before any located statement
   b->fn->name = name.empty() ? "kernel" : name;
+  b->fn->defined_at = loc;
   {
     std::lock_guard<std::mutex> lock(g_names_mutex);
     g_names[b->serial] = b->fn->name;
@@ -461,8 +537,9 @@ ProgramScope::~ProgramScope() {
   }
 }
 
-ExtendScope::ExtendScope(ir::Function& f) {
+ExtendScope::ExtendScope(ir::Function& f, SourceLoc at) {
   auto* b = new Builder;
+  b->within = at;
   b->serial = g_next_serial++;
   b->fn = std::shared_ptr<ir::Function>(&f, [](ir::Function*) {});  // not owned
   b->root = &block_;
@@ -481,6 +558,11 @@ Ref ExtendScope::var(ir::VarId v) const {
   r.program = serial_;
   r.var = v;
   return r;
+}
+
+SourceLoc nearest_location() {
+  if (t_builders.empty()) return {};
+  return where(*t_builders.back(), {});
 }
 
 ir::Block ExtendScope::take() {
@@ -524,11 +606,53 @@ CapturedProgram ProgramScope::finish() {
 
 namespace rill {
 
-Int element_index() {
-  return Int(detail::emit(ir::Op::ElementIndex, ir::int_type(1), {}), detail::AdoptTag{});
+namespace detail {
+
+LocatedCall::LocatedCall(SourceLoc loc) {
+  // The outermost located call names the user's line: normalize's own calls of dot and sqrt
+  // do not replace it with lines of Math.h.
+  if (t_builders.empty() || !user_location(loc)) return;
+  Builder& b = *t_builders.back();
+  if (b.within.known()) return;
+  active_ = true;
+  loc.nearest = false;
+  loc.caller = b.chain;
+  b.within = loc;
 }
-Int2 element_coord() {
-  return Int2(detail::emit(ir::Op::ElementCoord, ir::int_type(2), {}), detail::AdoptTag{});
+
+LocatedCall::~LocatedCall() {
+  if (!active_ || t_builders.empty()) return;
+  Builder& b = *t_builders.back();
+  b.near = b.within;
+  b.within = {};
+}
+
+}  // namespace detail
+
+CallSite::CallSite(SourceLoc at) {
+  if (detail::t_builders.empty() || !detail::user_location(at)) return;
+  detail::Builder& b = *detail::t_builders.back();
+  active_ = true;
+  saved_chain_ = b.chain;
+  at.caller = b.chain;
+  at.nearest = false;
+  call_ = at;
+  b.chain = detail::intern(at, b.chain);
+  b.near = at;  // operators before the function's first located statement
+}
+
+CallSite::~CallSite() {
+  if (!active_ || detail::t_builders.empty()) return;
+  detail::Builder& b = *detail::t_builders.back();
+  b.chain = saved_chain_;
+  b.near = call_;  // the caller's statements that follow come after the call
+}
+
+Int element_index(SourceLoc loc) {
+  return Int(detail::emit(ir::Op::ElementIndex, ir::int_type(1), {}, loc), detail::AdoptTag{});
+}
+Int2 element_coord(SourceLoc loc) {
+  return Int2(detail::emit(ir::Op::ElementCoord, ir::int_type(2), {}, loc), detail::AdoptTag{});
 }
 
 }  // namespace rill

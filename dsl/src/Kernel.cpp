@@ -58,11 +58,21 @@ std::shared_ptr<Kernel::Shared> build(const Program& p, Backend& be,
   auto shared = std::make_shared<Kernel::Shared>();
   CompileInfo& info = shared->info;
   shared->backend = &be;
-  shared->optimized = passes::optimize(p.ir(), options.passes, options.accuracy);
-  if (options.debug)
-    shared->debug = passes::instrument_debug(shared->optimized, options.debug_nonfinite);
-  info.optimize_ms = stage.lap();
-  shared->compiled = be.compile(shared->optimized, options);
+  try {
+    shared->optimized = passes::optimize(p.ir(), options.passes, options.accuracy);
+    if (options.debug)
+      shared->debug = passes::instrument_debug(shared->optimized, options.debug_nonfinite);
+    info.optimize_ms = stage.lap();
+    shared->compiled = be.compile(shared->optimized, options);
+  } catch (const Error& e) {
+    // Errors that name no line of the user's (a statement's own, or a driver message read
+    // back through the source map: codegen/SourceMap.h) name where the program was defined.
+    const std::string what = e.what();
+    if (e.where().known() || what.find(" (generated line ") != std::string::npos ||
+        !p.ir().defined_at.known())
+      throw;
+    throw Error(what, p.ir().defined_at);
+  }
   stage.lap();
   // A warm-up that fails (a launch the backend cannot make, such as too many textures)
   // leaves the driver's work to the first launch, which reports the same problem with the
@@ -110,8 +120,14 @@ void clear_kernel_cache() {
 }
 
 Kernel compile(const Program& p, const std::string& backend_name, const CompileOptions& requested) {
-  const CompileOptions options = with_environment(requested);
   if (!p.valid()) throw Error("compile(): the program is empty (default-constructed)");
+  CompileOptions options = with_environment(requested);
+  if (const char* v = std::getenv("RILL_SOURCE_MAP")) {
+    if (std::string(v) == "1")
+      options.source_map = true;
+    else if (std::string(v) != "0" && *v)
+      throw Error("RILL_SOURCE_MAP='" + std::string(v).substr(0, 40) + "' is not 0 or 1");
+  }
   // The cache exists before any backend starts its driver, so at exit it is destroyed after
   // the exit handlers the drivers register. Kernels destroyed then must not call into a
   // driver that has shut down: GLSL kernels check that their context still exists (Session
@@ -122,7 +138,8 @@ Kernel compile(const Program& p, const std::string& backend_name, const CompileO
   if (!why.empty()) throw Error("backend '" + be.name() + "' is not available: " + why);
   if (!be.supports(options.accuracy))
     throw Error("backend '" + be.name() + "' does not support accuracy mode '" +
-                accuracy_name(options.accuracy) + "'");
+                    accuracy_name(options.accuracy) + "'",
+                p.ir().defined_at);
 
   Kernel k;
   k.program_ = p;

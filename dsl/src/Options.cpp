@@ -31,6 +31,7 @@ uint64_t CompileOptions::hash() const {
   key += passes.common_subexpressions ? 'C' : 'c';
   key += passes.dead_code ? 'D' : 'd';
   if (debug) key += debug_nonfinite ? "+debug+nonfinite" : "+debug";  // absent: keys as before
+  if (source_map) key += 'S';  // only when on: the keys of kernels without it stay as they were
   return ir::hash_bytes(key);
 }
 

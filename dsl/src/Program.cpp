@@ -18,6 +18,10 @@ Program::Program(detail::CapturedProgram captured) {
 
 std::string Program::print() const { return ir::print(*d_->fn); }
 
+std::string Program::print(const ir::PrintOptions& options) const {
+  return ir::print(*d_->fn, options);
+}
+
 void Program::dump(std::ostream& os) const {
   os << *this;
 }

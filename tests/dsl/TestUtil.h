@@ -108,15 +108,10 @@ std::string error_of(F&& f) {
   return "<no rill::Error thrown>";
 }
 
-// The file name part of __FILE__, as rill::SourceLoc::str() prints it.
-inline std::string file_name(const char* path) {
-  std::string p(path);
-  size_t slash = p.rfind('/');
-  return slash == std::string::npos ? p : p.substr(slash + 1);
-}
-// "ThisTest.cpp:<line>", for matching error locations.
+// "tests/dsl/ThisTest.cpp:<line>", as rill::SourceLoc::str() prints a location of __FILE__
+// (relative_path), for matching error locations.
 inline std::string here(const char* path, int line) {
-  return file_name(path) + ":" + std::to_string(line);
+  return rill::relative_path(path) + ":" + std::to_string(line);
 }
 #define RILL_TEST_HERE ::rill::test::here(__FILE__, __LINE__)
 

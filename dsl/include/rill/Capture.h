@@ -61,6 +61,24 @@ void label(const Ref& r, std::string name, SourceLoc loc = {});
 Ref new_var(ir::Type t, ir::VarRole role, std::string name = {}, SourceLoc loc = {});
 // Appends `dst[.mask] = src`. dst must be a variable of the current program.
 void assign(const Ref& dst, const ir::Mask& mask, const ir::Operand& src, SourceLoc loc = {});
+// While it lives, the statements recorded get `loc` (a library function's call site, such as
+// normalize(v)'s), unless an outer LocatedCall already named one. Nothing outside a program
+// or for a location in Rill's own headers.
+class LocatedCall {
+ public:
+  explicit LocatedCall(SourceLoc loc);
+  ~LocatedCall();
+  LocatedCall(const LocatedCall&) = delete;
+  LocatedCall& operator=(const LocatedCall&) = delete;
+
+ private:
+  bool active_ = false;
+};
+
+// The location of the latest statement of the user's recorded in the program being defined
+// (marked nearest), for errors raised where no location can be passed, such as inside
+// operator=. Unknown outside a program.
+SourceLoc nearest_location();
 // Name of the program a serial belongs to ("" if unknown), for error messages.
 std::string program_name(uint64_t serial);
 
@@ -123,7 +141,9 @@ class ProgramScope {
 // DSL itself (Rill's own math routines are ordinary DSL code, see passes/LowerMath.cpp).
 class ExtendScope {
  public:
-  explicit ExtendScope(ir::Function& f);
+  // Statements recorded without a location of the user's get `at`: the location of the
+  // statement that the recorded code replaces.
+  explicit ExtendScope(ir::Function& f, SourceLoc at = {});
   ~ExtendScope();
   ExtendScope(const ExtendScope&) = delete;
   ExtendScope& operator=(const ExtendScope&) = delete;
@@ -138,3 +158,31 @@ class ExtendScope {
 };
 
 }  // namespace rill::detail
+
+namespace rill {
+
+// Marks a function of the user's that records DSL code, so that errors and source maps name
+// the chain of calls ("shade.cpp:12, called from main.cpp:40") and not only the line inside
+// it. The function takes its call site as a defaulted last argument and opens a CallSite for
+// its body:
+//
+//   Float3 shade(const Float3& n, SourceLoc at = RILL_HERE) {
+//     rill::CallSite site(at);
+//     ...
+//   }
+//
+// Outside a program it does nothing. CallSites nest.
+class CallSite {
+ public:
+  explicit CallSite(SourceLoc at);
+  ~CallSite();
+  CallSite(const CallSite&) = delete;
+  CallSite& operator=(const CallSite&) = delete;
+
+ private:
+  bool active_ = false;
+  const SourceLoc* saved_chain_ = nullptr;
+  SourceLoc call_;
+};
+
+}  // namespace rill

@@ -17,9 +17,21 @@ namespace rill {
 
 // A place in the user's source code, captured with std::source_location at the macro or
 // function call that recorded an IR statement.
+//
+// Statements keep their SourceLoc beside the IR (ir::Stmt::loc): it is not part of the
+// printed form that the kernel caches hash, nor of any comparison, so where a statement was
+// written never changes which kernel it is or the code generated for it.
 struct SourceLoc {
   const char* file = nullptr;
   unsigned line = 0;
+  // C++ operators (=, +, ...) cannot take a location argument: a statement one of them
+  // records gets the nearest located statement recorded before it, marked here, and
+  // messages then say "near file:line".
+  bool nearest = false;
+  // Inside a function the user marked with rill::CallSite (Capture.h): where that function
+  // was called from, and so on outwards; null at the program body's own level. Interned:
+  // the chain lives as long as the process.
+  const SourceLoc* caller = nullptr;
 
 #if defined(__cpp_lib_source_location)
   static SourceLoc from(const std::source_location& l) {
@@ -36,19 +48,32 @@ struct SourceLoc {
   bool known() const {
     return file != nullptr && line != 0;
   }
-  // "file.cpp:42", or "" when unknown.
+  // "dir/file.cpp:42", the file relative to the project where that can be told (see
+  // relative_path), or "" when unknown.
   std::string str() const;
+  // What messages print: str(), "near " before it for a nearest location, and the chain of
+  // calls: "a.cpp:12, called from b.cpp:40, called from b.cpp:71". "" when unknown.
+  std::string describe() const;
+  // Same place and chain (the nearest flag aside).
+  bool same_place(const SourceLoc& o) const;
 };
+
+// The file name messages show: the path relative to Rill's source tree for files inside it,
+// else relative to the working directory for files under it, with leading "./" and "../"
+// (left by build tools that pass relative paths, such as ccache's base_dir) removed.
+std::string relative_path(const char* file);
 
 class Error : public std::runtime_error {
  public:
   explicit Error(const std::string& what) : std::runtime_error(what) {}
+  // "file:line: what"; a nearest location (SourceLoc::nearest) says so after the message.
   Error(const std::string& what, SourceLoc where)
-      : std::runtime_error(where.known() ? where.str() + ": " + what : what), where_(where) {}
+      : std::runtime_error(text(what, where)), where_(where) {}
 
   SourceLoc where() const { return where_; }
 
  private:
+  static std::string text(const std::string& what, SourceLoc where);
   SourceLoc where_;
 };
 

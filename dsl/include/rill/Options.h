@@ -35,6 +35,10 @@ struct CompileOptions {
   // RILL_DEBUG=1 (or =nonfinite) in the environment turns it on for every compile.
   bool debug = false;
   bool debug_nonfinite = false;
+  // Source maps: the generated C, lockstep C and OpenCL C carry #line directives naming the
+  // user's lines, and GLSL comments (docs/programming-model.md#source-maps). Also on with
+  // RILL_SOURCE_MAP=1. Off, the generated code is as it was without the option.
+  bool source_map = false;
   bool operator==(const CompileOptions&) const = default;
   uint64_t hash() const;
 };

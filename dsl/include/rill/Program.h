@@ -18,6 +18,7 @@
 
 #include "rill/Capture.h"
 #include "rill/ir/IR.h"
+#include "rill/ir/Printer.h"
 
 namespace rill {
 
@@ -31,6 +32,9 @@ class Program {
   const ir::Function& ir() const { return *d_->fn; }
   // Readable IR text (returned, not printed: dump() prints it).
   std::string print() const;
+  // The same, with what `options` adds: print({.locations = true}) puts each statement's
+  // source line after it.
+  std::string print(const ir::PrintOptions& options) const;
   // Writes print() to `os` (standard error by default), for debugging: p.dump();
   void dump(std::ostream& os = std::cerr) const;
   // Stable hash of the IR (the kernel caches' key).

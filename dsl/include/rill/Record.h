@@ -364,7 +364,8 @@ class Stream<R> {
   R gather(std::vector<ir::Operand> idx, int dims) const {
     if (dims != first().dims)
       throw Error("stream '" + name_ + "' is " + std::to_string(first().dims) +
-                  "D but was gathered with " + std::to_string(dims) + " indices");
+                      "D but was gathered with " + std::to_string(dims) + " indices",
+                  detail::nearest_location());
     return detail::gather_record<R>(leaves_, std::move(idx));
   }
 
@@ -418,7 +419,8 @@ class Array<R> {
   R gather(std::vector<ir::Operand> idx, int dims) const {
     if (dims != leaves_.front().second->dims)
       throw Error("array '" + name_ + "' is " + std::to_string(leaves_.front().second->dims) +
-                  "D but was indexed with " + std::to_string(dims) + " indices");
+                      "D but was indexed with " + std::to_string(dims) + " indices",
+                  detail::nearest_location());
     return detail::gather_record<R>(leaves_, std::move(idx));
   }
 

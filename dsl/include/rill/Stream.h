@@ -287,9 +287,10 @@ class Stream {
   V gather(std::vector<ir::Operand> idx, int dims) const {
     if (dims != s_->dims)
       throw Error("stream '" + s_->name + "' is " + std::to_string(s_->dims) +
-                  "D but was gathered with " + std::to_string(dims) + " indices" +
-                  (s_->dims == 2 ? " (gather a 2D stream as s(x, y))"
-                                 : " (a 1D stream is gathered as s[i])"));
+                      "D but was gathered with " + std::to_string(dims) + " indices" +
+                      (s_->dims == 2 ? " (gather a 2D stream as s(x, y))"
+                                     : " (a 1D stream is gathered as s[i])"),
+                  detail::nearest_location());
     return V(detail::emit_gather(s_, std::move(idx), boundary_, border_), detail::AdoptTag{});
   }
   std::shared_ptr<detail::StreamState> s_;
@@ -388,7 +389,8 @@ class Array {
   V gather(std::vector<ir::Operand> idx, int dims) const {
     if (dims != s_->dims)
       throw Error("array '" + s_->name + "' is " + std::to_string(s_->dims) +
-                  "D but was indexed with " + std::to_string(dims) + " indices");
+                      "D but was indexed with " + std::to_string(dims) + " indices",
+                  detail::nearest_location());
     return V(detail::emit_gather(s_, std::move(idx), boundary_, border_), detail::AdoptTag{});
   }
   void upload_shaped(const std::vector<host_type>& data) {

@@ -109,13 +109,14 @@ class Value {
   // Inside a program: a new variable, zero-initialized. Outside: the constant zero.
   Value() : Value(T{}, broadcast) {}
 
-  // From a host scalar (scalars implicitly; vectors explicitly, broadcasting it).
+  // From a host scalar (scalars implicitly; vectors explicitly, broadcasting it). Inside a
+  // program the new variable's statement records the line it is declared on.
   template <detail::HostScalarFor<T> S>
     requires(N == 1)
-  Value(S v) : Value(static_cast<T>(v), broadcast) {}
+  Value(S v, SourceLoc loc = RILL_HERE) : Value(static_cast<T>(v), broadcast, loc) {}
   template <detail::HostScalarFor<T> S>
     requires(N > 1)
-  explicit Value(S v) : Value(static_cast<T>(v), broadcast) {}
+  explicit Value(S v, SourceLoc loc = RILL_HERE) : Value(static_cast<T>(v), broadcast, loc) {}
 
   // Broadcast of a DSL scalar: Float3(s) is (s, s, s).
   template <int M>
@@ -153,7 +154,8 @@ class Value {
     construct({component_operand(a0), component_operand(a1), component_operand(as)...});
   }
 
-  Value(const Value& o) { init_from_value(o.ref_); }
+  // A copy (Float y = x;) is a statement too, located where it is made.
+  Value(const Value& o, SourceLoc loc = RILL_HERE) { init_from_value(o.ref_, loc); }
   Value(Value&& o) noexcept : ref_(std::move(o.ref_)) {}
   ~Value() = default;
 
@@ -222,33 +224,37 @@ class Value {
   struct BroadcastTag {};
   static constexpr BroadcastTag broadcast{};
 
-  Value(T v, BroadcastTag) { init_from(detail::Ref::constant(detail::splat<T>(v, N))); }
+  Value(T v, BroadcastTag, SourceLoc loc = {}) {
+    init_from(detail::Ref::constant(detail::splat<T>(v, N)), loc);
+  }
 
   // Constants stay constants outside programs; inside one a value is a variable of its own.
-  void init_from(const detail::Ref& src) {
+  void init_from(const detail::Ref& src, SourceLoc loc = {}) {
     if (!detail::in_program()) {
       ref_ = src;
       return;
     }
-    ref_ = detail::new_var(type(), ir::VarRole::Local);
-    detail::assign(ref_, ir::Mask{}, detail::operand(src, type()));
+    ref_ = detail::new_var(type(), ir::VarRole::Local, {}, loc);
+    detail::assign(ref_, ir::Mask{}, detail::operand(src, type(), loc), loc);
   }
-  void init_from_value(const detail::Ref& src) {
+  void init_from_value(const detail::Ref& src, SourceLoc loc = {}) {
     if (src.kind != detail::Ref::Kind::Var && !detail::in_program()) {
       ref_ = src;
       return;
     }
-    init_from(src);
+    init_from(src, loc);
   }
 
   void write(const ir::Mask& mask, const ir::Operand& src) {
     if (ref_.kind == detail::Ref::Kind::Uniform)
-      throw Error("a uniform is read-only inside a kernel; set it on the host with set()");
+      throw Error("a uniform is read-only inside a kernel; set it on the host with set()",
+                  detail::nearest_location());
     if (ref_.kind == detail::Ref::Kind::Const) {
       if (detail::in_program())
         throw Error(
             "a value created outside this program cannot be assigned inside it; declare it "
-            "inside the program body");
+            "inside the program body",
+            detail::nearest_location());
       if (!src.is_const() || !mask.full())
         throw Error("assignment outside a program scope");
       ref_.value = src.value;
@@ -340,7 +346,8 @@ class Swizzle : public Value<T, M> {
     for (int c : idx)
       if (c < 0 || c >= N)
         throw Error("swizzle component " + std::to_string(c) + " is out of range for a " +
-                    detail::type_of<T, N>().str());
+                        detail::type_of<T, N>().str(),
+                    detail::nearest_location());
     const detail::Ref& p = parent.ref();
     if (p.kind == detail::Ref::Kind::Const) {
       ir::Constant c;
@@ -362,11 +369,14 @@ class Swizzle : public Value<T, M> {
       for (int j = 0; j < i; ++j)
         if (mask_.comps[static_cast<size_t>(i)] == mask_.comps[static_cast<size_t>(j)])
           throw Error("write mask repeats component " +
-                      std::to_string(mask_.comps[static_cast<size_t>(i)]));
+                          std::to_string(mask_.comps[static_cast<size_t>(i)]),
+                      detail::nearest_location());
     if (parent_.kind == detail::Ref::Kind::Uniform)
-      throw Error("a uniform is read-only inside a kernel; set it on the host with set()");
+      throw Error("a uniform is read-only inside a kernel; set it on the host with set()",
+                  detail::nearest_location());
     if (parent_.kind != detail::Ref::Kind::Var)
-      throw Error("only a variable inside a program can be written through a swizzle");
+      throw Error("only a variable inside a program can be written through a swizzle",
+                  detail::nearest_location());
     detail::assign(parent_, mask_, src);
   }
 

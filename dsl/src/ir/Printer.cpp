@@ -35,9 +35,16 @@ std::string scalar_text(const Constant& c, int i) {
 
 std::string indent_str(int n) { return std::string(static_cast<size_t>(n) * 2, ' '); }
 
-void print_block(std::ostringstream& os, const Function& f, const Block& b, int indent);
+void print_block(std::ostringstream& os, const Function& f, const Block& b, int indent,
+                 bool locations);
 
-void print_stmt(std::ostringstream& os, const Function& f, const Stmt& s, int indent) {
+// With locations: the statement's source location after its line, "  @ file.cpp:12".
+std::string at(const Stmt& s, bool locations) {
+  return locations && s.loc.known() ? "  @ " + s.loc.describe() : "";
+}
+
+void print_stmt(std::ostringstream& os, const Function& f, const Stmt& s, int indent,
+                bool locations) {
   std::string pad = indent_str(indent);
   switch (s.kind) {
     case StmtKind::Assign: {
@@ -53,46 +60,53 @@ void print_stmt(std::ostringstream& os, const Function& f, const Stmt& s, int in
         if (i) os << ", ";
         os << print_operand(f, s.args[i]);
       }
-      os << ")\n";
+      os << ')' << at(s, locations) << "\n";
       break;
     }
     case StmtKind::If:
-      os << pad << "if " << print_operand(f, s.cond) << " {\n";
-      print_block(os, f, s.then_body, indent + 1);
+      os << pad << "if " << print_operand(f, s.cond) << " {" << at(s, locations) << "\n";
+      print_block(os, f, s.then_body, indent + 1, locations);
       if (!s.else_body.empty()) {
         os << pad << "} else {\n";
-        print_block(os, f, s.else_body, indent + 1);
+        print_block(os, f, s.else_body, indent + 1, locations);
       }
       os << pad << "}\n";
       break;
     case StmtKind::Loop: {
       const char* kind = s.loop == LoopKind::While ? "while" : s.loop == LoopKind::For ? "for" : "do";
-      os << pad << kind << " {\n";
+      os << pad << kind << " {" << at(s, locations) << "\n";
       if (s.loop != LoopKind::DoUntil) {
-        print_block(os, f, s.cond_body, indent + 1);
+        print_block(os, f, s.cond_body, indent + 1, locations);
         os << pad << "  exit unless " << print_operand(f, s.cond) << "\n";
       }
-      print_block(os, f, s.body, indent + 1);
+      print_block(os, f, s.body, indent + 1, locations);
       if (s.loop == LoopKind::For) {
         os << pad << "  step:\n";
-        print_block(os, f, s.step, indent + 1);
+        print_block(os, f, s.step, indent + 1, locations);
       }
       if (s.loop == LoopKind::DoUntil) {
         os << pad << "  until:\n";
-        print_block(os, f, s.cond_body, indent + 1);
+        print_block(os, f, s.cond_body, indent + 1, locations);
         os << pad << "  exit if " << print_operand(f, s.cond) << "\n";
       }
       os << pad << "}\n";
       break;
     }
-    case StmtKind::Break: os << pad << "break\n"; break;
-    case StmtKind::Continue: os << pad << "continue\n"; break;
-    case StmtKind::Discard: os << pad << "discard\n"; break;
+    case StmtKind::Break:
+      os << pad << "break" << at(s, locations) << "\n";
+      break;
+    case StmtKind::Continue:
+      os << pad << "continue" << at(s, locations) << "\n";
+      break;
+    case StmtKind::Discard:
+      os << pad << "discard" << at(s, locations) << "\n";
+      break;
   }
 }
 
-void print_block(std::ostringstream& os, const Function& f, const Block& b, int indent) {
-  for (const Stmt& s : b) print_stmt(os, f, s, indent);
+void print_block(std::ostringstream& os, const Function& f, const Block& b, int indent,
+                 bool locations) {
+  for (const Stmt& s : b) print_stmt(os, f, s, indent, locations);
 }
 
 void print_params(std::ostringstream& os, const Function& f, const std::vector<VarId>& ids,
@@ -123,11 +137,15 @@ std::string print_operand(const Function& f, const Operand& o) {
 
 std::string print(const Function& f, const Block& b, int indent) {
   std::ostringstream os;
-  print_block(os, f, b, indent);
+  print_block(os, f, b, indent, false);
   return os.str();
 }
 
 std::string print(const Function& f) {
+  return print(f, PrintOptions{});
+}
+
+std::string print(const Function& f, const PrintOptions& options) {
   std::ostringstream os;
   os << "kernel " << f.name << '(';
   print_params(os, f, f.inputs, "in");
@@ -150,7 +168,7 @@ std::string print(const Function& f) {
     if (r == VarRole::Temp || r == VarRole::Local)
       os << "  var " << f.vars[v].type.str() << ' ' << f.var_name(v) << "\n";
   }
-  print_block(os, f, f.body, 1);
+  print_block(os, f, f.body, 1, options.locations);
   return os.str();
 }
 

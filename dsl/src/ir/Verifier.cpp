@@ -24,11 +24,11 @@ class Checker {
 
  private:
   void problem(const Stmt* s, const std::string& what) {
-    std::string where = s && s->loc.known() ? s->loc.str() + ": " : "";
+    std::string where = s && s->loc.known() ? s->loc.describe() + ": " : "";
     problems_.push_back(where + what);
   }
   void problem(SourceLoc loc, const std::string& what) {
-    problems_.push_back((loc.known() ? loc.str() + ": " : "") + what);
+    problems_.push_back((loc.known() ? loc.describe() + ": " : "") + what);
   }
 
   void array(const ArrayDecl& a) {

@@ -53,7 +53,7 @@ class MathLowering : public Mutator {
 
  private:
   Block expand(const Stmt& s) {
-    detail::ExtendScope scope(f_);
+    detail::ExtendScope scope(f_, s.loc);
     const int width = s.mask.full() ? f_.var(s.dst).type.width : s.mask.count;
     std::vector<Float> results;
     for (int c = 0; c < width; ++c) {

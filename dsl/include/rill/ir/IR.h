@@ -28,6 +28,9 @@
 
 namespace rill::ir {
 
+// Where a statement came from in the user's source (the name diagnostics use): see Stmt::loc.
+using SourceLocation = SourceLoc;
+
 using VarId = uint32_t;
 constexpr VarId kNoVar = ~VarId{0};
 
@@ -86,6 +89,10 @@ using Block = std::vector<Stmt>;
 
 struct Stmt {
   StmtKind kind = StmtKind::Assign;
+  // Where the user wrote it (Error.h's SourceLoc): the side table of locations, carried
+  // beside each statement. It is not printed in the form that ir::hash reads, nor compared,
+  // so it changes neither a kernel's cache key nor the code generated for it; passes copy
+  // it to the statements they make from this one.
   SourceLoc loc;
 
   // Assign
@@ -149,6 +156,9 @@ struct ArrayDecl {
 // A whole kernel.
 struct Function {
   std::string name;
+  // Where the program was defined (rill::program's call): named by errors about the whole
+  // kernel. Like Stmt::loc, outside the printed form that the caches hash.
+  SourceLoc defined_at;
   std::vector<Variable> vars;
   std::vector<VarId> inputs;    // stream elements read, in declaration order
   std::vector<VarId> outputs;   // stream elements written, in declaration order

@@ -16,6 +16,13 @@
 namespace rill::ir {
 
 std::string print(const Function& f);
+// What print() adds for people: with `locations`, each statement's source location
+// (Stmt::loc) after its line, "  @ shade.cpp:12, called from main.cpp:40". The hashed form
+// is print(f) alone, which never shows them.
+struct PrintOptions {
+  bool locations = false;
+};
+std::string print(const Function& f, const PrintOptions& options);
 std::string print(const Function& f, const Block& b, int indent = 0);
 std::string print_operand(const Function& f, const Operand& o);
 std::string print_constant(const Constant& c);
