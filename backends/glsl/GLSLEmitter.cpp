@@ -46,11 +46,50 @@ const char kComp[] = "xyzw";
 
 class GLSLDialect : public codegen::Dialect {
  public:
-  GLSLDialect(Accuracy a, Stage stage, const std::vector<int>& pass_outputs, bool loop_guard)
+  GLSLDialect(Accuracy a, Stage stage, const std::vector<int>& pass_outputs, bool loop_guard,
+              bool subgroups = false)
       : strict_(a != Accuracy::Fast),
         stage_(stage),
         pass_outputs_(pass_outputs),
-        loop_guard_(loop_guard) {}
+        loop_guard_(loop_guard),
+        subgroups_(subgroups) {}
+
+  // Lane-group ops as GL_KHR_shader_subgroup operations over the invocations that reach them
+  // together (VulkanTarget::subgroups), else a group of one. Inactive invocations take no
+  // part in a subgroup operation, which gives the identities Group.h promises; a broadcast
+  // from an inactive or out-of-range lane keeps the element's own value.
+  std::string group(Op op, ScalarKind k, int c, const std::vector<std::string>& args) const override {
+    if (!subgroups_) return codegen::Dialect::group(op, k, c, args);
+    switch (op) {
+      case Op::GroupSize:
+        return "int(gl_SubgroupSize)";
+      case Op::LaneIndex:
+        return "int(gl_SubgroupInvocationID)";
+      case Op::GroupAny:
+        return "subgroupAny(" + args[0] + ")";
+      case Op::GroupAll:
+        return "subgroupAll(" + args[0] + ")";
+      case Op::GroupBallot:
+        return "int(subgroupBallot(" + args[0] + ")[" + std::to_string(c) + "])";
+      case Op::GroupCount:
+        return "int(subgroupBallotBitCount(subgroupBallot(" + args[0] + ")))";
+      case Op::GroupMin:
+        return "subgroupMin(" + args[0] + ")";
+      case Op::GroupMax:
+        return "subgroupMax(" + args[0] + ")";
+      case Op::GroupSum:
+        return "subgroupAdd(" + args[0] + ")";
+      case Op::GroupBroadcast: {
+        const char* fn = k == ScalarKind::Float ? "rill_g_bcast_f"
+                         : k == ScalarKind::Int ? "rill_g_bcast_i"
+                                                : "rill_g_bcast_b";
+        return std::string(fn) + "(" + args[0] + ", " + args[1] + ")";
+      }
+      default:
+        break;
+    }
+    return codegen::Dialect::group(op, k, c, args);
+  }
 
   // Strict: through rill_div_f, correctly rounded on every driver (DivSqrt.h).
   std::string float_div(const std::string& a, const std::string& b) const override {
@@ -205,7 +244,21 @@ class GLSLDialect : public codegen::Dialect {
   Stage stage_;
   std::vector<int> pass_outputs_;
   bool loop_guard_;
+  bool subgroups_;
 };
+
+// group_broadcast's helpers under VulkanTarget::subgroups: the lane's x where that lane is
+// active and in range, else the element's own (a shuffle from an inactive invocation is
+// undefined, so its result is not used).
+const char kSubgroupBroadcast[] = R"(#define RILL_G_BCAST(name, T) T name(T x, int lane) { \
+  bool ok = lane >= 0 && lane < int(gl_SubgroupSize) && \
+            subgroupBallotBitExtract(subgroupBallot(true), uint(lane)); \
+  T v = subgroupShuffle(x, uint(clamp(lane, 0, int(gl_SubgroupSize) - 1))); \
+  return ok ? v : x; }
+RILL_G_BCAST(rill_g_bcast_f, float)
+RILL_G_BCAST(rill_g_bcast_i, int)
+RILL_G_BCAST(rill_g_bcast_b, bool)
+)";
 
 std::string sampler(ScalarKind k) {
   return k == ScalarKind::Float ? "sampler2D" : "isampler2D";
@@ -399,7 +452,8 @@ ComputeBindings compute_bindings(const Function& f, size_t pass_outputs) {
 GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::vector<int>& outputs,
                              bool counts, const DriverRules& rules, bool flushes_denormals,
                              int local_size, const VulkanTarget* vulkan) {
-  GLSLDialect d(accuracy, vulkan ? Stage::Vulkan : Stage::Compute, outputs, rules.loop_guard);
+  GLSLDialect d(accuracy, vulkan ? Stage::Vulkan : Stage::Compute, outputs, rules.loop_guard,
+                vulkan && vulkan->subgroups);
   codegen::CFamilyPrinter p(f, d);
   std::string body = p.declarations(1) + p.body(1);
   d.sort_constants();  // as in emit_glsl
@@ -412,8 +466,14 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   const std::string subgroups =
       "#extension GL_KHR_shader_subgroup_basic : enable\n"
       "#extension GL_KHR_shader_subgroup_ballot : enable\n";
+  const std::string group_ops =
+      "#extension GL_KHR_shader_subgroup_vote : require\n"
+      "#extension GL_KHR_shader_subgroup_arithmetic : require\n"
+      "#extension GL_KHR_shader_subgroup_shuffle : require\n";
   std::string src = vulkan ? header(f, accuracy, "compute, Vulkan",
-                                    (vulkan->ballot ? subgroups : "") + vulkan->execution_modes,
+                                    (vulkan->ballot || vulkan->subgroups ? subgroups : "") +
+                                        (vulkan->subgroups ? group_ops : "") +
+                                        vulkan->execution_modes,
                                     true)
                            : header(f, accuracy, "compute", subgroups);
   src += "layout(local_size_x = " + std::to_string(local_size) + ") in;\n";
@@ -456,6 +516,7 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   if (!counts)
     src += "#undef RILL_COUNT\n#define RILL_COUNT(field)  // counted by the kernel's first pass\n";
   src += helper_definitions(f, accuracy, rules, flushes_denormals);
+  if (vulkan && vulkan->subgroups) src += kSubgroupBroadcast;
   if (!vulkan) src += "uniform int rill_tiled;\n";
   src += "\nvoid main() {\n";
   src +=

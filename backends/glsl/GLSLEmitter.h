@@ -62,6 +62,9 @@ GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy, const std
 // vulkan_params_layout() says.
 struct VulkanTarget {
   bool ballot = false;  // GL_KHR_shader_subgroup_ballot in compute shaders (else one atomic each)
+  // Lane-group ops (rill/Group.h) as subgroup operations: the device has basic, vote, ballot,
+  // arithmetic and shuffle operations in compute shaders. Else a group of one.
+  bool subgroups = false;
   // Lines placed after #version: GL_EXT_spirv_intrinsics float-controls execution modes.
   std::string execution_modes;
 };

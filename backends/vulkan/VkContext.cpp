@@ -248,6 +248,11 @@ void Context::describe_device() {
                 (sub.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT) &&
                 (sub.supportedOperations & VK_SUBGROUP_FEATURE_BASIC_BIT);
   info.subgroup_size = std::max<uint32_t>(1, sub.subgroupSize);
+  const VkSubgroupFeatureFlags group_ops =
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT |
+      VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT;
+  info.group_ops = (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                   (sub.supportedOperations & group_ops) == group_ops && sub.subgroupSize <= 128;
   if (info.float_controls) {
     info.denorm_preserve = fc.shaderDenormPreserveFloat32;
     info.signed_zero_inf_nan = fc.shaderSignedZeroInfNanPreserveFloat32;

@@ -27,6 +27,9 @@ struct DeviceInfo {
   VkPhysicalDeviceLimits limits{};
   bool ballot = false;         // subgroup ballots in compute shaders
   uint32_t subgroup_size = 1;  // lanes per subgroup
+  // Basic, vote, ballot, arithmetic and shuffle subgroup operations in compute shaders: what
+  // lane-group ops need (rill/Group.h).
+  bool group_ops = false;
   // SPV_KHR_float_controls for 32-bit floats: what the device can be asked to keep.
   bool float_controls = false, denorm_preserve = false, signed_zero_inf_nan = false, rte = false;
   bool timestamps = false;     // the compute queue writes timestamps

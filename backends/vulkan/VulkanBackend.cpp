@@ -170,8 +170,12 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
            version(d.api) + "; strict / and sqrt: " + glsl::divsqrt_name(rules_.divsqrt) +
            ", comparisons: " + glsl::compare_name(rules_.native_compare) +
            "; float controls: " + modes + "; denormals: " + (flushes_denormals_ ? "flushed" : "kept") +
-           "; subgroups: " + std::to_string(d.subgroup_size) + " lanes" +
-           (d.ballot ? " (ballot)" : "") + "; " +
+           "; lane groups: " +
+           (group_ops_ ? "subgroups of " + std::to_string(d.subgroup_size)
+                       : std::string("one element") +
+                             (d.group_ops ? " (RILL_VULKAN_SUBGROUPS=off)"
+                                          : " (the device lacks subgroup operations)")) +
+           "; " +
            std::to_string(d.limits.maxPerStageDescriptorStorageBuffers) +
            " storage buffers; memory: " +
            (d.memory_device_local ? "device-local, host-visible" : "host-visible") +
@@ -200,6 +204,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
                   "which Rill needs for counts, masks and parameters");
     glsl::VulkanTarget target;
     target.ballot = c.info.ballot;
+    target.subgroups = group_ops_;
     if (o.accuracy != Accuracy::Fast) target.execution_modes = float_modes_;
     Stopwatch stage;
     double codegen_ms = 0, compile_ms = 0;
@@ -339,6 +344,15 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
       setup_.local_size = std::clamp(std::atoi(size), 1, most);
     setup_.local_size = std::min(setup_.local_size, most);
     setup_.loop_guard = rules_.loop_guard;
+    // RILL_VULKAN_SUBGROUPS = on (default) | off: lane groups as subgroups where the device
+    // has the operations, or a group of one (both pass the group tests).
+    group_ops_ = d.group_ops;
+    if (const char* g = std::getenv("RILL_VULKAN_SUBGROUPS"); g && *g) {
+      const std::string v = g;
+      if (v != "on" && v != "off")
+        throw Error("RILL_VULKAN_SUBGROUPS='" + v + "' is not one of on, off");
+      group_ops_ = group_ops_ && v == "on";
+    }
     float_modes_.clear();
     if (d.signed_zero_inf_nan)
       float_modes_ += execution_mode(kSignedZeroInfNanPreserve, kCapSignedZeroInfNanPreserve);
@@ -419,6 +433,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
   bool started_ = false;
   glsl::DriverRules rules_;
   bool flushes_denormals_ = true;
+  bool group_ops_ = false;  // lane groups are subgroups
   std::string float_modes_;  // the strict kernels' execution-mode lines
   std::unique_ptr<Buffer> counter_;
   LaunchSetup setup_;
