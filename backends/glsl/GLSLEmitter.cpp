@@ -516,7 +516,8 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   if (!counts)
     src += "#undef RILL_COUNT\n#define RILL_COUNT(field)  // counted by the kernel's first pass\n";
   src += helper_definitions(f, accuracy, rules, flushes_denormals);
-  if (vulkan && vulkan->subgroups) src += kSubgroupBroadcast;
+  if (vulkan && vulkan->subgroups && body.find("rill_g_bcast_") != std::string::npos)
+    src += kSubgroupBroadcast;  // only into kernels that broadcast
   if (!vulkan) src += "uniform int rill_tiled;\n";
   src += "\nvoid main() {\n";
   src +=
