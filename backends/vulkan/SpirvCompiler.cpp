@@ -50,10 +50,10 @@ std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::
   glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), spirv, &options);
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_1);
   std::string log;
-  tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& at,
-                               const char* message) {
-    log += "word " + std::to_string(at.index) + ": " + message + "\n";
-  });
+  tools.SetMessageConsumer(
+      [&](spv_message_level_t, const char*, const spv_position_t& at, const char* message) {
+        log += "word " + std::to_string(at.index) + ": " + message + "\n";
+      });
   if (!tools.Validate(spirv)) throw fail("validate (SPIRV-Tools)", log);
   return spirv;
 }

@@ -47,16 +47,17 @@ void Api::load_instance(VkInstance instance) {
   // Vulkan 1.1 functions: an instance made for 1.1 has them.
   if (!vkEnumeratePhysicalDevices || !vkGetPhysicalDeviceProperties2 || !vkCreateDevice ||
       !vkGetDeviceProcAddr)
-    throw Error(std::string(kWho) + ": the Vulkan instance lacks Vulkan 1.1 functions "
-                                    "(vkGetPhysicalDeviceProperties2); the loader is too old");
+    throw Error(std::string(kWho) +
+                ": the Vulkan instance lacks Vulkan 1.1 functions "
+                "(vkGetPhysicalDeviceProperties2); the loader is too old");
 }
 
 void Api::load_device(VkDevice device) {
 #define RILL_VK_INSTANCE(f)
-#define RILL_VK_DEVICE(f)                                                    \
-  f = reinterpret_cast<PFN_##f>(vkGetDeviceProcAddr(device, #f));            \
-  if (!f)                                                                    \
-    throw Error(std::string(kWho) + ": the Vulkan device has no " #f         \
+#define RILL_VK_DEVICE(f)                                            \
+  f = reinterpret_cast<PFN_##f>(vkGetDeviceProcAddr(device, #f));    \
+  if (!f)                                                            \
+    throw Error(std::string(kWho) + ": the Vulkan device has no " #f \
                                     " (a Vulkan 1.1 device function)");
 #include "VkFunctions.def"
 #undef RILL_VK_INSTANCE

@@ -84,8 +84,9 @@ Context::Context() {
       return std::strcmp(l.layerName, kValidationLayer) == 0;
     });
     if (!found)
-      throw Error(std::string(kWho) + ": validation was asked for (RILL_VULKAN_VALIDATION or "
-                                      "VK_INSTANCE_LAYERS) but the layer " +
+      throw Error(std::string(kWho) +
+                  ": validation was asked for (RILL_VULKAN_VALIDATION or "
+                  "VK_INSTANCE_LAYERS) but the layer " +
                   kValidationLayer +
                   " is not installed (Debian: apt-get install vulkan-validationlayers)");
     if (validation_asked()) layers.push_back(kValidationLayer);
@@ -113,7 +114,8 @@ Context::Context() {
     if (validation) {
       if (!api.vkCreateDebugUtilsMessengerEXT)
         throw Error(std::string(kWho) + ": the instance lacks vkCreateDebugUtilsMessengerEXT");
-      auto m = make<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
+      auto m = make<VkDebugUtilsMessengerCreateInfoEXT>(
+          VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
       m.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
       m.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
@@ -160,8 +162,9 @@ void Context::choose_device() {
   std::vector<VkPhysicalDevice> all(n);
   if (n) check(api.vkEnumeratePhysicalDevices(instance, &n, all.data()), "listing Vulkan devices");
   if (all.empty())
-    throw Error(std::string(kWho) + ": the Vulkan loader found no device (no driver, or "
-                                    "VK_ICD_FILENAMES / VK_DRIVER_FILES names none that loads)");
+    throw Error(std::string(kWho) +
+                ": the Vulkan loader found no device (no driver, or "
+                "VK_ICD_FILENAMES / VK_DRIVER_FILES names none that loads)");
   std::vector<VkPhysicalDeviceProperties> props(n);
   std::string names;
   for (uint32_t i = 0; i < n; ++i) {
@@ -184,8 +187,8 @@ void Context::choose_device() {
         if (lower(props[i].deviceName).find(lower(want)) != std::string::npos)
           chosen = static_cast<int>(i);
       if (chosen < 0)
-        throw Error("RILL_VULKAN_DEVICE='" + want + "' names none of the Vulkan devices (" +
-                    names + ")");
+        throw Error("RILL_VULKAN_DEVICE='" + want + "' names none of the Vulkan devices (" + names +
+                    ")");
     }
   } else {
     for (VkPhysicalDeviceType t :
@@ -204,9 +207,12 @@ void Context::choose_device() {
 }
 
 void Context::describe_device() {
-  auto sub = make<VkPhysicalDeviceSubgroupProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES);
-  auto drv = make<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES);
-  auto fc = make<VkPhysicalDeviceFloatControlsProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES);
+  auto sub = make<VkPhysicalDeviceSubgroupProperties>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES);
+  auto drv =
+      make<VkPhysicalDeviceDriverProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES);
+  auto fc = make<VkPhysicalDeviceFloatControlsProperties>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES);
   auto p2 = make<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2);
   // Driver and float-controls properties are Vulkan 1.2 (or their extensions): chained only
   // where the device has them.
@@ -215,8 +221,9 @@ void Context::describe_device() {
   std::vector<VkExtensionProperties> ext(n);
   api.vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, ext.data());
   auto has = [&](const char* e) {
-    return std::any_of(ext.begin(), ext.end(),
-                       [&](const VkExtensionProperties& x) { return std::strcmp(x.extensionName, e) == 0; });
+    return std::any_of(ext.begin(), ext.end(), [&](const VkExtensionProperties& x) {
+      return std::strcmp(x.extensionName, e) == 0;
+    });
   };
   VkPhysicalDeviceProperties base{};
   api.vkGetPhysicalDeviceProperties(physical, &base);
@@ -249,8 +256,9 @@ void Context::describe_device() {
                 (sub.supportedOperations & VK_SUBGROUP_FEATURE_BASIC_BIT);
   info.subgroup_size = std::max<uint32_t>(1, sub.subgroupSize);
   const VkSubgroupFeatureFlags group_ops =
-      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT |
-      VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT;
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT |
+      VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
+      VK_SUBGROUP_FEATURE_SHUFFLE_BIT;
   info.group_ops = (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                    (sub.supportedOperations & group_ops) == group_ops && sub.subgroupSize <= 128;
   if (info.float_controls) {

@@ -19,9 +19,9 @@ namespace rill::vk {
 
 // What the chosen device offers, asked once.
 struct DeviceInfo {
-  std::string name;         // deviceName: "llvmpipe (LLVM 15.0.6, 256 bits)", "NVIDIA H200"
-  std::string driver;       // driverName and driverInfo: "llvmpipe, Mesa 22.3.6 (LLVM 15.0.6)"
-  std::string uuid;         // pipelineCacheUUID, in hex (keys of the disk cache)
+  std::string name;    // deviceName: "llvmpipe (LLVM 15.0.6, 256 bits)", "NVIDIA H200"
+  std::string driver;  // driverName and driverInfo: "llvmpipe, Mesa 22.3.6 (LLVM 15.0.6)"
+  std::string uuid;    // pipelineCacheUUID, in hex (keys of the disk cache)
   uint32_t api = 0, driver_version = 0, vendor = 0;
   VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
   VkPhysicalDeviceLimits limits{};
@@ -32,9 +32,9 @@ struct DeviceInfo {
   bool group_ops = false;
   // SPV_KHR_float_controls for 32-bit floats: what the device can be asked to keep.
   bool float_controls = false, denorm_preserve = false, signed_zero_inf_nan = false, rte = false;
-  bool timestamps = false;     // the compute queue writes timestamps
-  double timestamp_ns = 1;     // nanoseconds per tick
-  uint32_t memory_type = 0;    // host-visible, coherent (device-local too where it is large)
+  bool timestamps = false;   // the compute queue writes timestamps
+  double timestamp_ns = 1;   // nanoseconds per tick
+  uint32_t memory_type = 0;  // host-visible, coherent (device-local too where it is large)
   bool memory_device_local = false;
 };
 

@@ -57,10 +57,12 @@ LaunchResult VulkanKernel::run(const LaunchArgs& a) {
   for (size_t i = 0; i < a.inputs.size(); ++i)
     inputs.push_back(readable(a.inputs[i], "input " + std::to_string(i)));
   const VkBuffer mask = a.mask ? readable(a.mask, "the mask") : setup_.counter->buf;
-  for (auto* arr : a.arrays) arrays.push_back(to_device(be_, session_, *arr, who + ": array '" + arr->name + "'").buf);
+  for (auto* arr : a.arrays)
+    arrays.push_back(to_device(be_, session_, *arr, who + ": array '" + arr->name + "'").buf);
   std::vector<VkBuffer> outputs;
   for (size_t o = 0; o < a.outputs.size(); ++o)
-    outputs.push_back(to_device(be_, session_, *a.outputs[o], who + ": output " + std::to_string(o)).buf);
+    outputs.push_back(
+        to_device(be_, session_, *a.outputs[o], who + ": output " + std::to_string(o)).buf);
   std::memset(setup_.counter->mapped, 0, 16);
   // Each pass's parameters and descriptor set (the last launch has finished: run() waits).
   const bool tiled = setup_.tiles && a.height > 1 && !a.warm_up;
@@ -129,8 +131,7 @@ LaunchResult VulkanKernel::run(const LaunchArgs& a) {
                                   nullptr);
     c.api.vkCmdDispatch(cb, static_cast<uint32_t>(gx), static_cast<uint32_t>(gy), 1);
   }
-  if (c.timer)
-    c.api.vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, c.timer, 1);
+  if (c.timer) c.api.vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, c.timer, 1);
   // The host reads the counts and outputs through its mappings once the fence signals.
   auto to_host = make<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
   to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;

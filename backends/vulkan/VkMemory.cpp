@@ -37,8 +37,9 @@ std::unique_ptr<Buffer> make_buffer(const std::shared_ptr<Session>& session, int
   VkMemoryRequirements req{};
   c.api.vkGetBufferMemoryRequirements(c.device, b->buf, &req);
   if (!(req.memoryTypeBits & (1u << c.info.memory_type)))
-    throw Error(std::string(kWho) + ": the device's buffers cannot live in its host-visible "
-                                    "memory type; Rill needs them to");
+    throw Error(std::string(kWho) +
+                ": the device's buffers cannot live in its host-visible "
+                "memory type; Rill needs them to");
   auto ai = make<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = c.info.memory_type;

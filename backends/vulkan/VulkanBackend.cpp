@@ -64,7 +64,8 @@ void make_pipeline(Context& c, const std::vector<uint32_t>& spirv, int bindings,
   for (int i = 0; i < bindings; ++i)
     b[static_cast<size_t>(i)] = {static_cast<uint32_t>(i), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
                                  VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-  auto li = make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  auto li =
+      make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   li.bindingCount = static_cast<uint32_t>(b.size());
   li.pBindings = b.data();
   check(c.api.vkCreateDescriptorSetLayout(c.device, &li, nullptr, &p.set_layout),
@@ -158,25 +159,25 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     if (!why.empty()) return std::string(kName) + ": unavailable: " + why;
     const DeviceInfo& d = session_->context->info;
     auto version = [](uint32_t v) {
-      return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v));
+      return std::to_string(VK_API_VERSION_MAJOR(v)) + "." +
+             std::to_string(VK_API_VERSION_MINOR(v));
     };
     std::string modes;
     if (d.signed_zero_inf_nan) modes += "signed zeros/inf/NaN preserved, ";
     if (d.denorm_preserve) modes += "denormals preserved, ";
     if (d.rte) modes += "round to nearest even, ";
     modes = modes.empty() ? "none offered" : modes.substr(0, modes.size() - 2);
-    return std::string(kName) + ": compute shaders (SPIR-V by " + spirv_compiler_version() +
-           "); " + d.name + " (" + device_type_name(d.type) + "), " + d.driver + ", Vulkan " +
+    return std::string(kName) + ": compute shaders (SPIR-V by " + spirv_compiler_version() + "); " +
+           d.name + " (" + device_type_name(d.type) + "), " + d.driver + ", Vulkan " +
            version(d.api) + "; strict / and sqrt: " + glsl::divsqrt_name(rules_.divsqrt) +
            ", comparisons: " + glsl::compare_name(rules_.native_compare) +
-           "; float controls: " + modes + "; denormals: " + (flushes_denormals_ ? "flushed" : "kept") +
-           "; lane groups: " +
+           "; float controls: " + modes +
+           "; denormals: " + (flushes_denormals_ ? "flushed" : "kept") + "; lane groups: " +
            (group_ops_ ? "subgroups of " + std::to_string(d.subgroup_size)
                        : std::string("one element") +
                              (d.group_ops ? " (RILL_VULKAN_SUBGROUPS=off)"
                                           : " (the device lacks subgroup operations)")) +
-           "; " +
-           std::to_string(d.limits.maxPerStageDescriptorStorageBuffers) +
+           "; " + std::to_string(d.limits.maxPerStageDescriptorStorageBuffers) +
            " storage buffers; memory: " +
            (d.memory_device_local ? "device-local, host-visible" : "host-visible") +
            "; validation: " + (session_->context->validation ? "on" : "off") +
@@ -214,7 +215,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     for (size_t first = 0; first < std::max<size_t>(1, f.outputs.size());
          first += static_cast<size_t>(group)) {
       VulkanKernel::Pass p;
-      for (size_t k = first; k < std::min(f.outputs.size(), first + static_cast<size_t>(group)); ++k)
+      for (size_t k = first; k < std::min(f.outputs.size(), first + static_cast<size_t>(group));
+           ++k)
         p.outputs.push_back(static_cast<int>(k));
       glsl::GLSLShader shader =
           glsl::emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), rules_,
@@ -227,10 +229,10 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     }
     codegen_ms += stage.lap();
     // SPIR-V from the disk cache, or from glslang.
-    const std::string key = "backend=vulkan\ndevice=" + c.info.name + "\ndriver=" + c.info.driver +
-                            " (" + std::to_string(c.info.driver_version) + ")\npipeline-cache=" +
-                            c.info.uuid + "\ncompiler=" + spirv_compiler_version() +
-                            "\n" + cache::source_line(source);
+    const std::string key =
+        "backend=vulkan\ndevice=" + c.info.name + "\ndriver=" + c.info.driver + " (" +
+        std::to_string(c.info.driver_version) + ")\npipeline-cache=" + c.info.uuid +
+        "\ncompiler=" + spirv_compiler_version() + "\n" + cache::source_line(source);
     std::optional<std::pair<std::vector<std::vector<uint32_t>>, std::string>> cached;
     if (auto payload = cache::load(kName, key)) {
       cached = unpack(*payload, passes.size());
@@ -249,7 +251,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
       pci.pInitialData = cached->second.data();
     }
     VkPipelineCache pcache = VK_NULL_HANDLE;
-    check(c.api.vkCreatePipelineCache(c.device, &pci, nullptr, &pcache), "creating a pipeline cache");
+    check(c.api.vkCreatePipelineCache(c.device, &pci, nullptr, &pcache),
+          "creating a pipeline cache");
     VkDescriptorPool pool = VK_NULL_HANDLE;
     try {
       int descriptors = 0;
@@ -263,8 +266,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
         std::string data;
         if (c.api.vkGetPipelineCacheData(c.device, pcache, &n, nullptr) == VK_SUCCESS) {
           data.resize(n);
-          if (c.api.vkGetPipelineCacheData(c.device, pcache, &n, data.data()) != VK_SUCCESS)
-            n = 0;
+          if (c.api.vkGetPipelineCacheData(c.device, pcache, &n, data.data()) != VK_SUCCESS) n = 0;
           data.resize(n);
         }
         cache::store(kName, key, pack(modules, data));
@@ -275,7 +277,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
       di.maxSets = static_cast<uint32_t>(passes.size());
       di.poolSizeCount = 1;
       di.pPoolSizes = &size;
-      check(c.api.vkCreateDescriptorPool(c.device, &di, nullptr, &pool), "creating a descriptor pool");
+      check(c.api.vkCreateDescriptorPool(c.device, &di, nullptr, &pool),
+            "creating a descriptor pool");
       for (auto& p : passes) {
         auto ai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
         ai.descriptorPool = pool;
@@ -318,7 +321,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     std::lock_guard<std::recursive_mutex> lock(session_->mutex);
     if (session_->context) return *session_->context;
     if (!init_error_.empty()) throw Error(init_error_);
-    if (started_) throw Error(std::string(kWho) + ": the device was shut down (the process is exiting)");
+    if (started_)
+      throw Error(std::string(kWho) + ": the device was shut down (the process is exiting)");
     try {
       session_->context = std::make_unique<Context>();
       started_ = true;
@@ -388,7 +392,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
       di.maxSets = 1;
       di.poolSizeCount = 1;
       di.pPoolSizes = &size;
-      check(c.api.vkCreateDescriptorPool(c.device, &di, nullptr, &pool), "creating a descriptor pool");
+      check(c.api.vkCreateDescriptorPool(c.device, &di, nullptr, &pool),
+            "creating a descriptor pool");
       auto ai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
       ai.descriptorPool = pool;
       ai.descriptorSetCount = 1;
@@ -414,7 +419,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
       to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
       to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
       c.api.vkCmdPipelineBarrier(c.commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                                 VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr, 0, nullptr);
+                                 VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr, 0,
+                                 nullptr);
       check(c.api.vkEndCommandBuffer(c.commands), "recording the denormal probe");
       c.submit_and_wait("probing how the device treats denormals");
       std::memcpy(&out, static_cast<const float*>(buf->mapped) + 2, sizeof out);
@@ -433,7 +439,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
   bool started_ = false;
   glsl::DriverRules rules_;
   bool flushes_denormals_ = true;
-  bool group_ops_ = false;  // lane groups are subgroups
+  bool group_ops_ = false;   // lane groups are subgroups
   std::string float_modes_;  // the strict kernels' execution-mode lines
   std::unique_ptr<Buffer> counter_;
   LaunchSetup setup_;
