@@ -8,6 +8,9 @@
 #include "glsl/ComputeBackend.h"
 #include "glsl/GLSLBackend.h"
 #endif
+#ifdef RILL_HAVE_VULKAN
+#include "vulkan/VulkanBackend.h"
+#endif
 #include "rill/Backend.h"
 
 namespace rill::detail {
@@ -21,6 +24,9 @@ void register_builtin_backends() {
 #ifdef RILL_HAVE_GLSL
   register_backend(glsl::make_backend());
   register_backend(glsl::make_compute_backend());
+#endif
+#ifdef RILL_HAVE_VULKAN
+  register_backend(vk::make_backend());
 #endif
 }
 

@@ -24,7 +24,7 @@ const char* kUsage = R"(usage: rill-conformance [options]
 Runs Rill's backend conformance suite: every operation and control-flow construct on each
 backend, in each accuracy mode, against the reference (see docs/conformance.md).
 
-  --backend B        cpu, simd, opencl, glsl, glsl-compute (repeat or comma-separate;
+  --backend B        cpu, simd, opencl, glsl, glsl-compute, vulkan (repeat or comma-separate;
                      default: every backend)
   --accuracy A       strict, fast, double (repeat or comma-separate; default: all three)
   --markdown FILE    write the result tables as Markdown

@@ -26,7 +26,7 @@ static std::function<bool(const std::string&)> on_off(const std::string& option)
 CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   CLI::App* r = app.add_subcommand("render", "render a scene");
   r->add_option("scene", o.scene, "JSON scene, OBJ file or builtin:NAME")->required();
-  r->add_option("--backend", o.backend, "cpu, simd, opencl, glsl or glsl-compute")
+  r->add_option("--backend", o.backend, "cpu, simd, opencl, glsl, glsl-compute or vulkan")
       ->default_str("cpu");
   add_parsed_option(r, "--accuracy", o.accuracy, rill::parse_accuracy, "strict, fast or double")
       ->default_str("strict");
@@ -145,8 +145,9 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       ->default_str("2")
       ->check(number_in(0, 86400, false));
   r->add_option("--device", o.device,
-                "the device of opencl, glsl or glsl-compute (RILL_OPENCL_DEVICE or "
-                "RILL_EGL_DEVICE); {local_rank} is the rank's index on its host");
+                "the device of opencl, glsl, glsl-compute or vulkan (RILL_OPENCL_DEVICE, "
+                "RILL_EGL_DEVICE or RILL_VULKAN_DEVICE); {local_rank} is the rank's index on its "
+                "host");
   r->add_flag("--progress", o.progress,
               "distributed: rank 0 draws a progress bar on stderr, the tiles done per rank "
               "(mpirun passes stderr through a pipe, so rill-trace cannot tell a terminal)");

@@ -1,6 +1,6 @@
 // rill-trace: the Rill ray tracer's command line.
 //
-//   rill-trace render SCENE [--backend cpu|simd|opencl|glsl|glsl-compute] [--accuracy
+//   rill-trace render SCENE [--backend cpu|simd|opencl|glsl|glsl-compute|vulkan] [--accuracy
 //   strict|fast|double]
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--exr FILE.exr]

@@ -112,14 +112,14 @@ class ComputeBackend : public GLBackend {
         p.outputs.push_back(static_cast<int>(o));
       GLSLShader shader =
           emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), driver_.rules,
-                            device_.flushes_denormals, device_.local_size, o.source_map);
+                            device_.flushes_denormals, device_.local_size, nullptr, o.source_map);
       codegen_ms += stage.lap();
       bool cached = false;
       p.program = codegen::reporting_user_lines(
           shader.source,
           [&] {
             return emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), driver_.rules,
-                                     device_.flushes_denormals, device_.local_size, true)
+                                     device_.flushes_denormals, device_.local_size, nullptr, true)
                 .source;
           },
           [&] {

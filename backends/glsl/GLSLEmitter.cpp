@@ -47,11 +47,51 @@ const char kComp[] = "xyzw";
 
 class GLSLDialect : public codegen::Dialect {
  public:
-  GLSLDialect(Accuracy a, Stage stage, const std::vector<int>& pass_outputs, bool loop_guard)
+  GLSLDialect(Accuracy a, Stage stage, const std::vector<int>& pass_outputs, bool loop_guard,
+              bool subgroups = false)
       : strict_(a != Accuracy::Fast),
         stage_(stage),
         pass_outputs_(pass_outputs),
-        loop_guard_(loop_guard) {}
+        loop_guard_(loop_guard),
+        subgroups_(subgroups) {}
+
+  // Lane-group ops as GL_KHR_shader_subgroup operations over the invocations that reach them
+  // together (VulkanTarget::subgroups), else a group of one. Inactive invocations take no
+  // part in a subgroup operation, which gives the identities Group.h promises; a broadcast
+  // from an inactive or out-of-range lane keeps the element's own value.
+  std::string group(Op op, ScalarKind k, int c,
+                    const std::vector<std::string>& args) const override {
+    if (!subgroups_) return codegen::Dialect::group(op, k, c, args);
+    switch (op) {
+      case Op::GroupSize:
+        return "int(gl_SubgroupSize)";
+      case Op::LaneIndex:
+        return "int(gl_SubgroupInvocationID)";
+      case Op::GroupAny:
+        return "subgroupAny(" + args[0] + ")";
+      case Op::GroupAll:
+        return "subgroupAll(" + args[0] + ")";
+      case Op::GroupBallot:
+        return "int(subgroupBallot(" + args[0] + ")[" + std::to_string(c) + "])";
+      case Op::GroupCount:
+        return "int(subgroupBallotBitCount(subgroupBallot(" + args[0] + ")))";
+      case Op::GroupMin:
+        return "subgroupMin(" + args[0] + ")";
+      case Op::GroupMax:
+        return "subgroupMax(" + args[0] + ")";
+      case Op::GroupSum:
+        return "subgroupAdd(" + args[0] + ")";
+      case Op::GroupBroadcast: {
+        const char* fn = k == ScalarKind::Float ? "rill_g_bcast_f"
+                         : k == ScalarKind::Int ? "rill_g_bcast_i"
+                                                : "rill_g_bcast_b";
+        return std::string(fn) + "(" + args[0] + ", " + args[1] + ")";
+      }
+      default:
+        break;
+    }
+    return codegen::Dialect::group(op, k, c, args);
+  }
 
   // GLSL's #line takes a source-string number, not a file: the map is comments.
   std::string source_line(const SourceLoc& loc) const override {
@@ -157,8 +197,17 @@ class GLSLDialect : public codegen::Dialect {
       out += "  " + std::string(vec) + " e = texelFetch(rill_arr" + id + ", ivec2(g & " +
              std::to_string(kTextureRow - 1) + ", g >> " + std::to_string(kTextureRowBits) +
              "), 0);\n";
-    else  // a buffer texture: element g is texel g
+    else if (stage_ == Stage::Compute)  // a buffer texture: element g is texel g
       out += "  " + std::string(vec) + " e = texelFetch(rill_arr" + id + ", g);\n";
+    else {  // Vulkan: a storage buffer, element g is words g * width .. g * width + width - 1
+      std::string words;
+      const int w = a.elem.width;
+      for (int c = 0; c < 4; ++c)
+        words += (c ? ", " : "") + (c < w ? "rill_arr" + id + ".d[g * " + std::to_string(w) +
+                                                " + " + std::to_string(c) + "]"
+                                          : std::string(a.elem.is_float() ? "0.0" : "0"));
+      out += "  " + std::string(vec) + " e = " + vec + "(" + words + ");\n";
+    }
     const bool border = a.boundary == Boundary::Constant;
     if (border) {
       std::string inside;
@@ -203,7 +252,21 @@ class GLSLDialect : public codegen::Dialect {
   Stage stage_;
   std::vector<int> pass_outputs_;
   bool loop_guard_;
+  bool subgroups_;
 };
+
+// group_broadcast's helpers under VulkanTarget::subgroups: the lane's x where that lane is
+// active and in range, else the element's own (a shuffle from an inactive invocation is
+// undefined, so its result is not used).
+const char kSubgroupBroadcast[] = R"(#define RILL_G_BCAST(name, T) T name(T x, int lane) { \
+  bool ok = lane >= 0 && lane < int(gl_SubgroupSize) && \
+            subgroupBallotBitExtract(subgroupBallot(true), uint(lane)); \
+  T v = subgroupShuffle(x, uint(clamp(lane, 0, int(gl_SubgroupSize) - 1))); \
+  return ok ? v : x; }
+RILL_G_BCAST(rill_g_bcast_f, float)
+RILL_G_BCAST(rill_g_bcast_i, int)
+RILL_G_BCAST(rill_g_bcast_b, bool)
+)";
 
 std::string sampler(ScalarKind k) {
   return k == ScalarKind::Float ? "sampler2D" : "isampler2D";
@@ -243,16 +306,18 @@ std::string measured_pragmas() {
 
 // What both stages print the same way.
 // `extensions`: #extension lines, which must precede everything but preprocessor lines.
+// `vulkan`: GLSL 4.50 for glslang, where rill_one is a member of the parameter buffer.
 std::string header(const Function& f, Accuracy accuracy, const char* stage,
-                   const std::string& extensions = "") {
-  std::string src = "#version 430 core\n" + extensions + measured_pragmas() +
-                    "// Generated by Rill from kernel '" +
+                   const std::string& extensions = "", bool vulkan = false) {
+  std::string src = std::string(vulkan ? "#version 450\n" : "#version 430 core\n") + extensions +
+                    measured_pragmas() + "// Generated by Rill from kernel '" +
                     codegen::comment_safe(f.name) + "' (" + accuracy_name(accuracy) + ", " + stage +
                     " stage).\n";
   src += accuracy == Accuracy::Fast
              ? "#define RILL_PRECISE\n#define RILL_ONE 1.0\n#define RILL_ZERO_I 0\n"
              : "#define RILL_PRECISE precise\n#define RILL_ONE uintBitsToFloat(rill_one)\n"
-               "#define RILL_ZERO_I int(rill_one ^ 0x3f800000u)\nuniform uint rill_one;\n";
+               "#define RILL_ZERO_I int(rill_one ^ 0x3f800000u)\n";
+  if (accuracy != Accuracy::Fast && !vulkan) src += "uniform uint rill_one;\n";
   return src;
 }
 
@@ -281,6 +346,22 @@ std::string uniform_declarations(const Function& f, const GLSLDialect& d) {
     src += "uniform int rill_shapes[" + std::to_string(f.arrays.size() * 3) + "];\n";
   src += "uniform int rill_count;\nuniform int rill_width;\n";
   return src;
+}
+
+// The Vulkan dialect's launch parameters: one read-only std430 storage buffer whose members
+// are named as GL's uniforms, so the body reads them alike. std430 packs the arrays as the
+// host's words (a uniform buffer's std140 would pad each element to 16 bytes, and push
+// constants may be as small as 128 bytes).
+std::string vulkan_params_block(const Function& f, const GLSLDialect& d, int binding) {
+  std::string src = "layout(std430, set = 0, binding = " + std::to_string(binding) +
+                    ") readonly buffer rill_params_b {\n  int rill_count; int rill_width; int "
+                    "rill_tiled; int rill_nvalues; uint rill_one;\n  int rill_values[" +
+                    std::to_string(kMaskValues) + "];\n";
+  if (!d.constants.empty()) src += "  uint rill_k[" + std::to_string(d.constants.size()) + "];\n";
+  if (!f.uniforms.empty()) src += "  uint rill_u[" + std::to_string(f.uniforms.size() * 4) + "];\n";
+  if (!f.arrays.empty()) src += "  int rill_shapes[" + std::to_string(f.arrays.size() * 3) + "];\n";
+  static_assert(kVulkanParamsHeader == 5 + kMaskValues);
+  return src + "};\n";
 }
 
 // The prelude's helpers for kernel f: the table's (codegen/Helpers.cpp) under the driver's
@@ -387,13 +468,16 @@ ComputeBindings compute_bindings(const Function& f, size_t pass_outputs) {
   b.outputs = static_cast<int>(f.inputs.size());
   b.counts = b.outputs + static_cast<int>(pass_outputs);
   b.mask = b.counts + 1;
+  b.arrays = b.mask + 1;
+  b.params = b.arrays + static_cast<int>(f.arrays.size());
   return b;
 }
 
 GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::vector<int>& outputs,
                              bool counts, const DriverRules& rules, bool flushes_denormals,
-                             int local_size, bool source_map) {
-  GLSLDialect d(accuracy, Stage::Compute, outputs, rules.loop_guard);
+                             int local_size, const VulkanTarget* vulkan, bool source_map) {
+  GLSLDialect d(accuracy, vulkan ? Stage::Vulkan : Stage::Compute, outputs, rules.loop_guard,
+                vulkan && vulkan->subgroups);
   codegen::CFamilyPrinter p(f, d, source_map);
   std::string body = p.declarations(1) + p.body(1);
   d.sort_constants();  // as in emit_glsl
@@ -401,12 +485,25 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   const ComputeBindings bind = compute_bindings(f, outputs.size());
   // Counting one atomic per subgroup where the driver has ballots (NVIDIA, recent Mesa); an
   // extension the driver lacks is a warning, and its macro stays undefined.
-  std::string src = header(f, accuracy, "compute",
-                           "#extension GL_KHR_shader_subgroup_basic : enable\n"
-                           "#extension GL_KHR_shader_subgroup_ballot : enable\n");
+  // In Vulkan, a device without ballots gets no such extension (its module would need the
+  // capability), and the float-controls execution modes follow.
+  const std::string subgroups =
+      "#extension GL_KHR_shader_subgroup_basic : enable\n"
+      "#extension GL_KHR_shader_subgroup_ballot : enable\n";
+  const std::string group_ops =
+      "#extension GL_KHR_shader_subgroup_vote : require\n"
+      "#extension GL_KHR_shader_subgroup_arithmetic : require\n"
+      "#extension GL_KHR_shader_subgroup_shuffle : require\n";
+  std::string src = vulkan
+                        ? header(f, accuracy, "compute, Vulkan",
+                                 (vulkan->ballot || vulkan->subgroups ? subgroups : "") +
+                                     (vulkan->subgroups ? group_ops : "") + vulkan->execution_modes,
+                                 true)
+                        : header(f, accuracy, "compute", subgroups);
   src += "layout(local_size_x = " + std::to_string(local_size) + ") in;\n";
+  const std::string set = vulkan ? "set = 0, " : "";
   auto block = [&](const std::string& name, int binding, ScalarKind k, bool readonly) {
-    return "layout(std430, binding = " + std::to_string(binding) + ") " +
+    return "layout(std430, " + set + "binding = " + std::to_string(binding) + ") " +
            (readonly ? "readonly " : "") + "buffer " + name + "_b { " +
            (k == ScalarKind::Float ? "float" : "int") + " d[]; } " + name + ";\n";
   };
@@ -416,17 +513,24 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   for (size_t k = 0; k < outputs.size(); ++k)
     src += block("rill_out" + std::to_string(outputs[k]), bind.outputs + static_cast<int>(k),
                  f.var(f.outputs[static_cast<size_t>(outputs[k])]).type.kind, false);
-  src += "layout(std430, binding = " + std::to_string(bind.counts) +
+  src += "layout(std430, " + set + "binding = " + std::to_string(bind.counts) +
          ") buffer rill_counts_b { uint written; uint selected; uint loops_cut; } rill_counts;\n";
   if (rules.loop_guard) src += loop_check("rill_counts.loops_cut");
   src += block("rill_mask", bind.mask, ScalarKind::Int, true);
-  for (size_t i = 0; i < f.arrays.size(); ++i)
-    src += "layout(binding = " + std::to_string(i) + ") uniform " +
-           (f.arrays[i].elem.is_float() ? "samplerBuffer" : "isamplerBuffer") + " rill_arr" +
-           std::to_string(i) + ";\n";
-  src += uniform_declarations(f, d);
-  src += "uniform int rill_values[" + std::to_string(kMaskValues) +
-         "];\nuniform int rill_nvalues;  // 0: no mask\n";
+  if (vulkan) {
+    for (size_t i = 0; i < f.arrays.size(); ++i)
+      src += block("rill_arr" + std::to_string(i), bind.arrays + static_cast<int>(i),
+                   f.arrays[i].elem.kind, true);
+    src += vulkan_params_block(f, d, bind.params);
+  } else {
+    for (size_t i = 0; i < f.arrays.size(); ++i)
+      src += "layout(binding = " + std::to_string(i) + ") uniform " +
+             (f.arrays[i].elem.is_float() ? "samplerBuffer" : "isamplerBuffer") + " rill_arr" +
+             std::to_string(i) + ";\n";
+    src += uniform_declarations(f, d);
+    src += "uniform int rill_values[" + std::to_string(kMaskValues) +
+           "];\nuniform int rill_nvalues;  // 0: no mask\n";
+  }
   src += R"(#if defined(GL_KHR_shader_subgroup_ballot)
 #define RILL_COUNT(field) { uvec4 rill_b = subgroupBallot(true); if (subgroupElect()) atomicAdd(rill_counts.field, subgroupBallotBitCount(rill_b)); }
 #else
@@ -436,7 +540,9 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   if (!counts)
     src += "#undef RILL_COUNT\n#define RILL_COUNT(field)  // counted by the kernel's first pass\n";
   src += helper_definitions(f, accuracy, rules, flushes_denormals);
-  src += "uniform int rill_tiled;\n";
+  if (vulkan && vulkan->subgroups && body.find("rill_g_bcast_") != std::string::npos)
+    src += kSubgroupBroadcast;  // only into kernels that broadcast
+  if (!vulkan) src += "uniform int rill_tiled;\n";
   src += "\nvoid main() {\n";
   src +=
       "  int rill_i = int(gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * gl_WorkGroupSize.x) + "

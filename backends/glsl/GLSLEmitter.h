@@ -11,8 +11,9 @@
 
 namespace rill::glsl {
 
-// The two stages the GLSL backends run kernels in: `glsl` and `glsl-compute`.
-enum class Stage { Fragment, Compute };
+// The stages the GLSL backends run kernels in: `glsl` and `glsl-compute`, and the compute
+// stage in the Vulkan dialect (backend `vulkan`, VulkanTarget below).
+enum class Stage { Fragment, Compute, Vulkan };
 
 // The fragment stage's textures hold a stream or array of n elements in rows of
 // min(n, kTextureRow) texels, so element g is texel (g % kTextureRow, g / kTextureRow) for
@@ -57,14 +58,33 @@ GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy,
 // Storage buffer bindings are compute_bindings(); array i is a buffer texture on unit i.
 // `flushes_denormals`: whether the driver's compute arithmetic flushes denormals (then
 // comparisons treat them as zero too, as on the fragment stage).
+// The Vulkan dialect of the compute shader (GLSL 4.50 for glslang, descriptor set 0): arrays
+// are storage buffers read word by word, and what GL passes as loose uniforms (the launch's
+// count, width, tiling and mask values, strict constants, the kernel's uniforms, array
+// shapes) is one read-only std430 storage buffer at ComputeBindings::params, laid out as
+// vulkan_params_layout() says.
+struct VulkanTarget {
+  bool ballot = false;  // GL_KHR_shader_subgroup_ballot in compute shaders (else one atomic each)
+  // Lane-group ops (rill/Group.h) as subgroup operations: the device has basic, vote, ballot,
+  // arithmetic and shuffle operations in compute shaders. Else a group of one.
+  bool subgroups = false;
+  // Lines placed after #version: GL_EXT_spirv_intrinsics float-controls execution modes.
+  std::string execution_modes;
+};
 GLSLShader emit_glsl_compute(const ir::Function& optimized, Accuracy accuracy,
                              const std::vector<int>& outputs, bool counts, const DriverRules& rules,
-                             bool flushes_denormals, int local_size, bool source_map = false);
+                             bool flushes_denormals, int local_size,
+                             const VulkanTarget* vulkan = nullptr, bool source_map = false);
+// The Vulkan dialect's parameter buffer, in 4-byte words: count, width, tiled, nvalues, one,
+// values[kMaskValues], then the pass's strict constants, the kernel's uniform words (4 per
+// uniform) and array shapes (3 per array).
+constexpr int kVulkanParamsHeader = 5 + kMaskValues;
 // Where a compute pass's storage buffers are bound: inputs from `inputs` on, the pass's
 // outputs from `outputs` on, then the two counters (elements written, selected) and the
-// mask's states.
+// mask's states. The Vulkan dialect adds the arrays from `arrays` on (storage buffers, not
+// buffer textures) and the launch's parameters at `params` (VulkanTarget).
 struct ComputeBindings {
-  int inputs = 0, outputs = 0, counts = 0, mask = 0;
+  int inputs = 0, outputs = 0, counts = 0, mask = 0, arrays = 0, params = 0;
   int total() const { return mask + 1; }
 };
 ComputeBindings compute_bindings(const ir::Function& f, size_t pass_outputs);

@@ -116,7 +116,7 @@ std::vector<Emitter> emitters() {
        }});
   out.push_back({"GLSL compute", false, [](const ir::Function& f, bool map) {
                    return glsl::emit_glsl_compute(f, Accuracy::Strict, {0}, true,
-                                                  glsl::DriverRules{}, false, 64, map)
+                                                  glsl::DriverRules{}, false, 64, nullptr, map)
                        .source;
                  }});
 #endif

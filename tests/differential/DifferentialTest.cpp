@@ -51,6 +51,7 @@ int64_t default_programs(const std::string& test) {
                     : test == "opencl"       ? 384
                     : test == "glsl"         ? 216
                     : test == "glsl-compute" ? 96
+                    : test == "vulkan"       ? 96
                     : test == "cross"        ? 96
                                              : 288;
   return kSanitized ? n / 2 : n;

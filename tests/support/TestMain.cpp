@@ -6,9 +6,16 @@
 // SKIP_RETURN_CODE makes CTest report as skipped, not passed. A batch in which some cases ran
 // and others skipped passes; GoogleTest lists the skipped ones in its output and
 // scripts/test-times counts them in its summary, so a skip is never silent.
+//
+// Tests run the vulkan backend with the Khronos validation layer on (RILL_VULKAN_VALIDATION,
+// docs/backends.md#vulkan) unless the environment says otherwise: a message from the layer
+// becomes the launch's or compile's Error, which fails the test.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 int main(int argc, char** argv) {
+  setenv("RILL_VULKAN_VALIDATION", "on", 0);
   testing::InitGoogleTest(&argc, argv);
   const int status = RUN_ALL_TESTS();
   const testing::UnitTest& unit = *testing::UnitTest::GetInstance();

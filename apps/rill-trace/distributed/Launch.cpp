@@ -56,9 +56,10 @@ void use_device(const std::string& backend, const std::string& spec) {
   const char* var = nullptr;
   if (backend == "opencl") var = "RILL_OPENCL_DEVICE";
   if (backend == "glsl" || backend == "glsl-compute") var = "RILL_EGL_DEVICE";
+  if (backend == "vulkan") var = "RILL_VULKAN_DEVICE";
   if (var == nullptr)
     throw SceneError("--device (or RILL_TRACE_DEVICE) '" + clipped(spec) +
-                     "' is for the opencl, glsl and glsl-compute backends, not " + backend);
+                     "' is for the opencl, glsl, glsl-compute and vulkan backends, not " + backend);
   setenv(var, spec.c_str(), 1);
 }
 

@@ -1,0 +1,66 @@
+// GLSL to SPIR-V through glslang, validated by SPIRV-Tools (SpirvCompiler.h).
+#include "SpirvCompiler.h"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+#include <glslang/build_info.h>
+#include <spirv-tools/libspirv.hpp>
+
+#include <mutex>
+
+#include "../codegen/SourceText.h"
+#include "VkApi.h"
+#include "rill/Error.h"
+
+namespace rill::vk {
+
+namespace {
+
+// glslang's process-wide tables, made once and kept (FinalizeProcess would race other
+// threads' compiles at exit).
+void initialize_glslang() {
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+}  // namespace
+
+std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::string& kernel) {
+  initialize_glslang();
+  auto fail = [&](const std::string& stage, const std::string& log) {
+    return Error(std::string(kWho) + ": kernel '" + kernel + "' did not " + stage + ":\n" + log +
+                 "\n" + codegen::numbered(glsl));
+  };
+  const char* text = glsl.c_str();
+  glslang::TShader shader(EShLangCompute);
+  shader.setStrings(&text, 1);
+  shader.setEnvInput(glslang::EShSourceGlsl, EShLangCompute, glslang::EShClientVulkan, 100);
+  shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_1);
+  shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_3);
+  const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
+  if (!shader.parse(GetDefaultResources(), 100, false, messages))
+    throw fail("compile (glslang)", shader.getInfoLog());
+  glslang::TProgram program;
+  program.addShader(&shader);
+  if (!program.link(messages)) throw fail("link (glslang)", program.getInfoLog());
+  std::vector<uint32_t> spirv;
+  glslang::SpvOptions options;
+  options.disableOptimizer = true;  // the driver optimizes; glslang's would only cost time
+  glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), spirv, &options);
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_1);
+  std::string log;
+  tools.SetMessageConsumer(
+      [&](spv_message_level_t, const char*, const spv_position_t& at, const char* message) {
+        log += "word " + std::to_string(at.index) + ": " + message + "\n";
+      });
+  if (!tools.Validate(spirv)) throw fail("validate (SPIRV-Tools)", log);
+  return spirv;
+}
+
+std::string spirv_compiler_version() {
+  return "glslang " + std::to_string(GLSLANG_VERSION_MAJOR) + "." +
+         std::to_string(GLSLANG_VERSION_MINOR) + "." + std::to_string(GLSLANG_VERSION_PATCH);
+}
+
+}  // namespace rill::vk

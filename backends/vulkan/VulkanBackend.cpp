@@ -1,0 +1,454 @@
+// The Vulkan compute backend (`vulkan`).
+//
+// Kernels are the glsl-compute backend's (GLSLEmitter.cpp, Stage::Vulkan): one invocation per
+// element, streams and arrays as storage buffers of descriptor set 0, the launch's uniforms in
+// a read-only parameter buffer, discarded elements returning before they store, counts of the
+// elements written and selected through atomics (one per subgroup where the device has
+// ballots). glslang compiles the GLSL to SPIR-V 1.3 in-process and SPIRV-Tools validates it
+// (SpirvCompiler.h); the device (VkContext.h) makes one compute pipeline per pass; the
+// launcher (VkKernel.h) records, submits and waits.
+//
+// Strict kernels follow glsl-compute's rules (`precise` on every float, which glslang writes
+// as SPIR-V NoContraction; constants in the parameter buffer so the driver cannot fold them;
+// the division and square-root correction of DivSqrt.h where the device is not known exact;
+// comparisons on bits except on NVIDIA) and add the SPV_KHR_float_controls execution modes the
+// device offers for 32-bit floats (signed zeros, infinities and NaN preserved, denormals
+// preserved, round to nearest even), through GL_EXT_spirv_intrinsics. Whether the device's
+// arithmetic then keeps denormals is probed, as on glsl-compute.
+//
+// The disk cache keeps, per kernel, the passes' SPIR-V and the driver's pipeline cache data
+// (vkGetPipelineCacheData), keyed by the device, its driver and pipelineCacheUUID, glslang's
+// version and the source: a hit skips glslang and hands the driver its own cache back.
+#include "VulkanBackend.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <optional>
+
+#include "../cache/DiskCache.h"
+#include "../glsl/DivSqrt.h"
+#include "../glsl/GLSLEmitter.h"
+#include "../glsl/GLSession.h"
+#include "SpirvCompiler.h"
+#include "VkContext.h"
+#include "VkKernel.h"
+#include "VkMemory.h"
+#include "rill/Error.h"
+#include "rill/Stopwatch.h"
+
+namespace rill::vk {
+
+namespace {
+
+// SPIR-V execution modes and capabilities of SPV_KHR_float_controls.
+constexpr int kDenormPreserve = 4459, kSignedZeroInfNanPreserve = 4461, kRoundingModeRTE = 4462;
+constexpr int kCapDenormPreserve = 4464, kCapSignedZeroInfNanPreserve = 4466,
+              kCapRoundingModeRTE = 4467;
+
+std::string execution_mode(int mode, int capability) {
+  return "spirv_execution_mode(extensions = [\"SPV_KHR_float_controls\"], capabilities = [" +
+         std::to_string(capability) + "], " + std::to_string(mode) + ", 32);\n";
+}
+
+// A compute pipeline (and its layout) over `bindings` storage buffers of set 0.
+void make_pipeline(Context& c, const std::vector<uint32_t>& spirv, int bindings,
+                   VkPipelineCache cache, VulkanKernel::Pass& p, const std::string& what) {
+  auto mi = make<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+  mi.codeSize = spirv.size() * 4;
+  mi.pCode = spirv.data();
+  check(c.api.vkCreateShaderModule(c.device, &mi, nullptr, &p.module),
+        "creating the shader module of " + what);
+  std::vector<VkDescriptorSetLayoutBinding> b(static_cast<size_t>(bindings));
+  for (int i = 0; i < bindings; ++i)
+    b[static_cast<size_t>(i)] = {static_cast<uint32_t>(i), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                                 VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  auto li =
+      make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  li.bindingCount = static_cast<uint32_t>(b.size());
+  li.pBindings = b.data();
+  check(c.api.vkCreateDescriptorSetLayout(c.device, &li, nullptr, &p.set_layout),
+        "creating the descriptor set layout of " + what);
+  auto pl = make<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+  pl.setLayoutCount = 1;
+  pl.pSetLayouts = &p.set_layout;
+  check(c.api.vkCreatePipelineLayout(c.device, &pl, nullptr, &p.layout),
+        "creating the pipeline layout of " + what);
+  auto ci = make<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+  ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = p.module;
+  ci.stage.pName = "main";
+  ci.layout = p.layout;
+  check(c.api.vkCreateComputePipelines(c.device, cache, 1, &ci, nullptr, &p.pipeline),
+        "creating the compute pipeline of " + what + " (vkCreateComputePipelines)");
+  p.bindings = bindings;
+}
+
+// The disk cache's payload: the number of passes, each pass's SPIR-V (word count, words),
+// then the driver's pipeline cache data to the end.
+std::string pack(const std::vector<std::vector<uint32_t>>& modules, const std::string& cache) {
+  std::string out;
+  auto put = [&](const void* p, size_t n) { out.append(static_cast<const char*>(p), n); };
+  const uint32_t n = static_cast<uint32_t>(modules.size());
+  put(&n, 4);
+  for (const auto& m : modules) {
+    const uint32_t words = static_cast<uint32_t>(m.size());
+    put(&words, 4);
+    put(m.data(), m.size() * 4);
+  }
+  return out + cache;
+}
+
+// Unpacks pack()'s payload for `passes` passes; nullopt when it does not fit.
+std::optional<std::pair<std::vector<std::vector<uint32_t>>, std::string>> unpack(
+    const std::string& payload, size_t passes) {
+  size_t at = 0;
+  auto get = [&](void* p, size_t n) {
+    if (payload.size() - at < n) return false;
+    std::memcpy(p, payload.data() + at, n);
+    at += n;
+    return true;
+  };
+  uint32_t n = 0;
+  if (!get(&n, 4) || n != passes) return std::nullopt;
+  std::vector<std::vector<uint32_t>> modules(n);
+  for (auto& m : modules) {
+    uint32_t words = 0;
+    if (!get(&words, 4) || words > (payload.size() - at) / 4 || words == 0) return std::nullopt;
+    m.resize(words);
+    get(m.data(), words * 4);
+  }
+  return std::make_pair(std::move(modules), payload.substr(at));
+}
+
+class VulkanBackend : public Backend, public glsl::SessionOwner {
+ public:
+  ~VulkanBackend() override {
+    glsl::forget_at_exit(this);
+    shutdown();
+  }
+
+  std::string name() const override { return kName; }
+
+  std::string unavailable_reason() const override {
+    try {
+      const_cast<VulkanBackend*>(this)->context();
+      return {};
+    } catch (const Error& e) {
+      return e.what();
+    }
+  }
+
+  bool runs_on_gpu() const override {
+    if (!unavailable_reason().empty()) return false;
+    const VkPhysicalDeviceType t = session_->context->info.type;
+    return t == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU ||
+           t == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU || t == VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU;
+  }
+
+  std::string driver_label() const override {
+    if (!unavailable_reason().empty()) return {};
+    const std::string& n = session_->context->info.name;
+    return n.substr(0, n.find(" ("));
+  }
+
+  std::string description() const override {
+    std::string why = unavailable_reason();
+    if (!why.empty()) return std::string(kName) + ": unavailable: " + why;
+    const DeviceInfo& d = session_->context->info;
+    auto version = [](uint32_t v) {
+      return std::to_string(VK_API_VERSION_MAJOR(v)) + "." +
+             std::to_string(VK_API_VERSION_MINOR(v));
+    };
+    std::string modes;
+    if (d.signed_zero_inf_nan) modes += "signed zeros/inf/NaN preserved, ";
+    if (d.denorm_preserve) modes += "denormals preserved, ";
+    if (d.rte) modes += "round to nearest even, ";
+    modes = modes.empty() ? "none offered" : modes.substr(0, modes.size() - 2);
+    return std::string(kName) + ": compute shaders (SPIR-V by " + spirv_compiler_version() + "); " +
+           d.name + " (" + device_type_name(d.type) + "), " + d.driver + ", Vulkan " +
+           version(d.api) + "; strict / and sqrt: " + glsl::divsqrt_name(rules_.divsqrt) +
+           ", comparisons: " + glsl::compare_name(rules_.native_compare) +
+           "; float controls: " + modes +
+           "; denormals: " + (flushes_denormals_ ? "flushed" : "kept") + "; lane groups: " +
+           (group_ops_ ? "subgroups of " + std::to_string(d.subgroup_size)
+                       : std::string("one element") +
+                             (d.group_ops ? " (RILL_VULKAN_SUBGROUPS=off)"
+                                          : " (the device lacks subgroup operations)")) +
+           "; " + std::to_string(d.limits.maxPerStageDescriptorStorageBuffers) +
+           " storage buffers; memory: " +
+           (d.memory_device_local ? "device-local, host-visible" : "host-visible") +
+           "; validation: " + (session_->context->validation ? "on" : "off") +
+           "; disk cache: SPIR-V and the driver's pipeline cache";
+  }
+
+  std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
+    std::lock_guard<std::recursive_mutex> lock(session_->mutex);
+    Context& c = context();
+    if (o.accuracy == Accuracy::Double)
+      throw Error(std::string(kWho) +
+                  ": accuracy mode 'double' is not supported (GLSL kernels compute in binary32)");
+    // Bindings left for outputs after the inputs, the arrays, the counters, the mask and the
+    // parameters; more outputs than that run in several passes.
+    const int limit = static_cast<int>(std::min(c.info.limits.maxPerStageDescriptorStorageBuffers,
+                                                c.info.limits.maxDescriptorSetStorageBuffers));
+    const int fixed = static_cast<int>(f.inputs.size() + f.arrays.size()) + 3;
+    const int group = limit - fixed;
+    if (group < 1)
+      throw Error(std::string(kWho) + ": kernel '" + f.name + "' reads " +
+                  std::to_string(f.inputs.size()) + " input streams and " +
+                  std::to_string(f.arrays.size()) + " arrays, but the device (" + c.info.name +
+                  ") allows " + std::to_string(limit) +
+                  " storage buffers per shader (maxPerStageDescriptorStorageBuffers), three of "
+                  "which Rill needs for counts, masks and parameters");
+    glsl::VulkanTarget target;
+    target.ballot = c.info.ballot;
+    target.subgroups = group_ops_;
+    if (o.accuracy != Accuracy::Fast) target.execution_modes = float_modes_;
+    Stopwatch stage;
+    double codegen_ms = 0, compile_ms = 0;
+    std::vector<VulkanKernel::Pass> passes;
+    std::vector<std::string> sources;
+    std::string source;
+    for (size_t first = 0; first < std::max<size_t>(1, f.outputs.size());
+         first += static_cast<size_t>(group)) {
+      VulkanKernel::Pass p;
+      for (size_t k = first; k < std::min(f.outputs.size(), first + static_cast<size_t>(group));
+           ++k)
+        p.outputs.push_back(static_cast<int>(k));
+      glsl::GLSLShader shader =
+          glsl::emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), rules_,
+                                  flushes_denormals_, setup_.local_size, &target, o.source_map);
+      p.constants = std::move(shader.constants);
+      p.bindings = fixed + static_cast<int>(p.outputs.size());
+      source += shader.source;
+      sources.push_back(std::move(shader.source));
+      passes.push_back(std::move(p));
+    }
+    codegen_ms += stage.lap();
+    // SPIR-V from the disk cache, or from glslang.
+    const std::string key =
+        "backend=vulkan\ndevice=" + c.info.name + "\ndriver=" + c.info.driver + " (" +
+        std::to_string(c.info.driver_version) + ")\npipeline-cache=" + c.info.uuid +
+        "\ncompiler=" + spirv_compiler_version() + "\n" + cache::source_line(source);
+    std::optional<std::pair<std::vector<std::vector<uint32_t>>, std::string>> cached;
+    if (auto payload = cache::load(kName, key)) {
+      cached = unpack(*payload, passes.size());
+      if (!cached) cache::remove(kName, key);
+    }
+    std::vector<std::vector<uint32_t>> modules;
+    if (cached) {
+      modules = std::move(cached->first);
+    } else {
+      for (size_t i = 0; i < passes.size(); ++i)
+        modules.push_back(compile_compute_spirv(sources[i], f.name));
+    }
+    auto pci = make<VkPipelineCacheCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO);
+    if (cached) {
+      pci.initialDataSize = cached->second.size();
+      pci.pInitialData = cached->second.data();
+    }
+    VkPipelineCache pcache = VK_NULL_HANDLE;
+    check(c.api.vkCreatePipelineCache(c.device, &pci, nullptr, &pcache),
+          "creating a pipeline cache");
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    try {
+      int descriptors = 0;
+      for (size_t i = 0; i < passes.size(); ++i) {
+        make_pipeline(c, modules[i], passes[i].bindings, pcache, passes[i],
+                      "kernel '" + f.name + "'");
+        descriptors += passes[i].bindings;
+      }
+      if (!cached) {
+        size_t n = 0;
+        std::string data;
+        if (c.api.vkGetPipelineCacheData(c.device, pcache, &n, nullptr) == VK_SUCCESS) {
+          data.resize(n);
+          if (c.api.vkGetPipelineCacheData(c.device, pcache, &n, data.data()) != VK_SUCCESS) n = 0;
+          data.resize(n);
+        }
+        cache::store(kName, key, pack(modules, data));
+      }
+      VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                static_cast<uint32_t>(descriptors)};
+      auto di = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+      di.maxSets = static_cast<uint32_t>(passes.size());
+      di.poolSizeCount = 1;
+      di.pPoolSizes = &size;
+      check(c.api.vkCreateDescriptorPool(c.device, &di, nullptr, &pool),
+            "creating a descriptor pool");
+      for (auto& p : passes) {
+        auto ai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+        ai.descriptorPool = pool;
+        ai.descriptorSetCount = 1;
+        ai.pSetLayouts = &p.set_layout;
+        check(c.api.vkAllocateDescriptorSets(c.device, &ai, &p.set), "allocating a descriptor set");
+      }
+      c.api.vkDestroyPipelineCache(c.device, pcache, nullptr);
+      c.check_validation("compiling kernel '" + f.name + "'");
+    } catch (...) {
+      c.api.vkDestroyPipelineCache(c.device, pcache, nullptr);
+      for (auto& p : passes) destroy_pass(c, p);
+      if (pool) c.api.vkDestroyDescriptorPool(c.device, pool, nullptr);
+      throw;
+    }
+    compile_ms += stage.lap();
+    auto kernel = std::make_unique<VulkanKernel>(*this, session_, setup_, f, std::move(passes),
+                                                 pool, std::move(source));
+    kernel->set_origin(cached ? KernelOrigin::DiskCache : KernelOrigin::Built);
+    kernel->set_build_times(codegen_ms, compile_ms);
+    return kernel;
+  }
+
+  void read_back(const detail::Storage& s, uint32_t* host) override {
+    std::lock_guard<std::recursive_mutex> lock(session_->mutex);
+    vk::read_back(*this, s, host);
+  }
+
+  // Frees the counter buffer and destroys the device and instance (at exit, before the
+  // driver's own exit handlers; see glsl/GLSession.h for why).
+  void shutdown() noexcept override {
+    std::lock_guard<std::recursive_mutex> lock(session_->mutex);
+    counter_.reset();
+    session_->context.reset();
+  }
+
+ private:
+  // The device, made at the first call; an Error on the way is kept for every later call.
+  Context& context() {
+    std::lock_guard<std::recursive_mutex> lock(session_->mutex);
+    if (session_->context) return *session_->context;
+    if (!init_error_.empty()) throw Error(init_error_);
+    if (started_)
+      throw Error(std::string(kWho) + ": the device was shut down (the process is exiting)");
+    try {
+      session_->context = std::make_unique<Context>();
+      started_ = true;
+      glsl::shut_down_at_exit(this);  // after the driver loaded: runs before its exit handlers
+      set_up(*session_->context);
+    } catch (const Error& e) {
+      init_error_ = e.what();
+      counter_.reset();
+      session_->context.reset();
+      throw;
+    }
+    return *session_->context;
+  }
+
+  void set_up(Context& c) {
+    const DeviceInfo& d = c.info;
+    rules_.divsqrt = glsl::divsqrt_mode(d.name);
+    rules_.native_compare = glsl::native_compare_mode(d.name);
+    rules_.loop_guard = glsl::loop_guard_mode(d.name);
+    const int most = static_cast<int>(std::min<uint32_t>(d.limits.maxComputeWorkGroupInvocations,
+                                                         d.limits.maxComputeWorkGroupSize[0]));
+    if (const char* size = std::getenv("RILL_VULKAN_LOCAL_SIZE"))  // for measuring
+      setup_.local_size = std::clamp(std::atoi(size), 1, most);
+    setup_.local_size = std::min(setup_.local_size, most);
+    setup_.loop_guard = rules_.loop_guard;
+    // RILL_VULKAN_SUBGROUPS = on (default) | off: lane groups as subgroups where the device
+    // has the operations, or a group of one (both pass the group tests).
+    group_ops_ = d.group_ops;
+    if (const char* g = std::getenv("RILL_VULKAN_SUBGROUPS"); g && *g) {
+      const std::string v = g;
+      if (v != "on" && v != "off")
+        throw Error("RILL_VULKAN_SUBGROUPS='" + v + "' is not one of on, off");
+      group_ops_ = group_ops_ && v == "on";
+    }
+    float_modes_.clear();
+    if (d.signed_zero_inf_nan)
+      float_modes_ += execution_mode(kSignedZeroInfNanPreserve, kCapSignedZeroInfNanPreserve);
+    if (d.denorm_preserve) float_modes_ += execution_mode(kDenormPreserve, kCapDenormPreserve);
+    if (d.rte) float_modes_ += execution_mode(kRoundingModeRTE, kCapRoundingModeRTE);
+    if (!float_modes_.empty())
+      float_modes_ = "#extension GL_EXT_spirv_intrinsics : require\n" + float_modes_;
+    counter_ = make_buffer(session_, 16, "the launch counters");
+    setup_.counter = counter_.get();
+    flushes_denormals_ = probe_flushes_denormals(c);
+    c.check_validation("setting up the device");
+  }
+
+  // Whether the device's arithmetic flushes denormals in strict kernels: 2 * the smallest
+  // denormal, computed by one invocation under the same execution modes, comes back as zero.
+  bool probe_flushes_denormals(Context& c) {
+    const std::string glsl = "#version 450\n" +
+                             (float_modes_.empty() ? std::string() : float_modes_) +
+                             "layout(local_size_x = 1) in;\n"
+                             "layout(std430, set = 0, binding = 0) buffer B { float d[]; } b;\n"
+                             "void main() { precise float x = b.d[0] * b.d[1]; b.d[2] = x; }\n";
+    const std::vector<uint32_t> spirv = compile_compute_spirv(glsl, "rill_denormal_probe");
+    VulkanKernel::Pass p;
+    std::unique_ptr<Buffer> buf = make_buffer(session_, 16, "the denormal probe");
+    const float in[4] = {std::numeric_limits<float>::denorm_min(), 2.0f, 1.0f, 0};
+    std::memcpy(buf->mapped, in, sizeof in);
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    float out = 1.0f;
+    try {
+      make_pipeline(c, spirv, 1, VK_NULL_HANDLE, p, "the denormal probe");
+      VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+      auto di = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+      di.maxSets = 1;
+      di.poolSizeCount = 1;
+      di.pPoolSizes = &size;
+      check(c.api.vkCreateDescriptorPool(c.device, &di, nullptr, &pool),
+            "creating a descriptor pool");
+      auto ai = make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+      ai.descriptorPool = pool;
+      ai.descriptorSetCount = 1;
+      ai.pSetLayouts = &p.set_layout;
+      VkDescriptorSet set = VK_NULL_HANDLE;
+      check(c.api.vkAllocateDescriptorSets(c.device, &ai, &set), "allocating a descriptor set");
+      VkDescriptorBufferInfo bi{buf->buf, 0, VK_WHOLE_SIZE};
+      auto w = make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+      w.dstSet = set;
+      w.descriptorCount = 1;
+      w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      w.pBufferInfo = &bi;
+      c.api.vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+      auto begin = make<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+      begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+      check(c.api.vkResetCommandBuffer(c.commands, 0), "resetting the command buffer");
+      check(c.api.vkBeginCommandBuffer(c.commands, &begin), "recording the denormal probe");
+      c.api.vkCmdBindPipeline(c.commands, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
+      c.api.vkCmdBindDescriptorSets(c.commands, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1,
+                                    &set, 0, nullptr);
+      c.api.vkCmdDispatch(c.commands, 1, 1, 1);
+      auto to_host = make<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+      to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+      to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+      c.api.vkCmdPipelineBarrier(c.commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                 VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr, 0,
+                                 nullptr);
+      check(c.api.vkEndCommandBuffer(c.commands), "recording the denormal probe");
+      c.submit_and_wait("probing how the device treats denormals");
+      std::memcpy(&out, static_cast<const float*>(buf->mapped) + 2, sizeof out);
+    } catch (...) {
+      destroy_pass(c, p);
+      if (pool) c.api.vkDestroyDescriptorPool(c.device, pool, nullptr);
+      throw;
+    }
+    destroy_pass(c, p);
+    c.api.vkDestroyDescriptorPool(c.device, pool, nullptr);
+    return out == 0.0f;
+  }
+
+  std::shared_ptr<Session> session_ = std::make_shared<Session>();
+  std::string init_error_;
+  bool started_ = false;
+  glsl::DriverRules rules_;
+  bool flushes_denormals_ = true;
+  bool group_ops_ = false;   // lane groups are subgroups
+  std::string float_modes_;  // the strict kernels' execution-mode lines
+  std::unique_ptr<Buffer> counter_;
+  LaunchSetup setup_;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_backend() {
+  return std::make_unique<VulkanBackend>();
+}
+
+}  // namespace rill::vk
