@@ -102,9 +102,14 @@ std::string CFamilyPrinter::body(int indent) const {
 
 void CFamilyPrinter::block(std::string& out, const Block& b, int indent) const {
   if (outline && outline(out, b, indent)) return;
+  out += statements(b, indent);
+}
+
+std::string CFamilyPrinter::statements(const Block& b, int indent) const {
+  std::string out;
   if (!source_map_) {
     for (const Stmt& s : b) stmt(out, s, indent);
-    return;
+    return out;
   }
   // Every line a statement prints follows the line naming its source (one per line, so
   // that a compiler counting lines from a #line names this statement for each of them);
@@ -132,11 +137,6 @@ void CFamilyPrinter::block(std::string& out, const Block& b, int indent) const {
   }
   if (marked && d_.source_line_renumbers())
     out += pad_of(indent) + std::string(kSourceLineRestore) + "\n";
-}
-
-std::string CFamilyPrinter::statements(const Block& b, int indent) const {
-  std::string out;
-  for (const Stmt& s : b) stmt(out, s, indent);
   return out;
 }
 
