@@ -36,6 +36,7 @@
 #include "../codegen/SourceMap.h"
 #include "ComputeBuffers.h"
 #include "ComputeLauncher.h"
+#include "DriverProbes.h"
 #include "GLBackend.h"
 #include "GLContext.h"
 #include "GLSLEmitter.h"
@@ -181,35 +182,7 @@ class ComputeBackend : public GLBackend {
     gl.glGenBuffers(1, &device_.counter);
     gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, device_.counter);
     gl.glBufferData(GL_SHADER_STORAGE_BUFFER, 16, nullptr, GL_DYNAMIC_READ);
-    device_.flushes_denormals = probe_flushes_denormals(gl);
-  }
-
-  // Whether the driver's compute arithmetic flushes denormals: 2 * the smallest denormal,
-  // computed by a one-invocation shader, comes back as zero. llvmpipe flushes in fragment
-  // shaders but not in compute shaders; NVIDIA flushes in both.
-  bool probe_flushes_denormals(const GL& gl) {
-    GLuint prog = link_program(gl, driver_, kWho, "rill_denormal_probe",
-                               {{GL_COMPUTE_SHADER,
-                                 "#version 430 core\n"
-                                 "layout(local_size_x = 1) in;\n"
-                                 "layout(std430, binding = 0) buffer B { float d[]; } b;\n"
-                                 "void main() { b.d[1] = b.d[0] * 2.0; }\n"}});
-    const float in[4] = {std::numeric_limits<float>::denorm_min(), 1.0f, 0, 0};
-    GLuint buf = 0;
-    gl.glGenBuffers(1, &buf);
-    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buf);
-    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof in, in, GL_DYNAMIC_COPY);
-    gl.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buf);
-    gl.glUseProgram(prog);
-    gl.glDispatchCompute(1, 1, 1);
-    gl.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    float out[4] = {};
-    gl.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof out, out);
-    gl.glUseProgram(0);
-    gl.glDeleteProgram(prog);
-    gl.glDeleteBuffers(1, &buf);
-    check(gl, "probing how the driver treats denormals", kWho);
-    return out[1] == 0.0f;
+    device_.flushes_denormals = probe_flushes_denormals(gl, driver_, kWho);
   }
 
   ComputeDevice device_;

@@ -53,7 +53,7 @@ bool divsqrt_corrects(DivSqrt m);
 
 // Whether the corrections compute their exact residual a - q*b as one fma(-q, b, a) (a
 // tenth of the instructions of Dekker's product): only where the driver's fma is fused, which
-// GLSL leaves to the driver and FmaProbe.h finds out.
+// GLSL leaves to the driver and DriverProbes.h finds out.
 // RILL_GLSL_FMA = auto (default: nullopt, probe the driver) | fused | split. Throws on an
 // unknown value.
 std::optional<bool> fused_fma_mode();

@@ -1,7 +1,7 @@
 // The GL context, exit handling and program linking both GLSL backends share (GLSession.h).
 #include "GLSession.h"
 
-#include "FmaProbe.h"
+#include "DriverProbes.h"
 
 #include <algorithm>
 #include <cstdio>
