@@ -12,10 +12,10 @@ namespace rill::detail {
 namespace {
 
 std::string where(const passes::DebugSite& site) {
-  // Hook for the source-location side table (issue 53, items 1-2): the statement's own
-  // location is used where capture recorded one; the side table, once it exists, is the
-  // better source for a gather made by an operator.
-  return site.loc.known() ? " at " + site.loc.str() : "";
+  // The statement's line from the capture's locations (rill/Error.h SourceLoc): its own, or
+  // for a statement an operator made (a gather by `a[i]`) the nearest located one, which
+  // describe() says ("near file:line").
+  return site.loc.known() ? " at " + site.loc.describe() : "";
 }
 
 std::string float_text(uint32_t bits) {
