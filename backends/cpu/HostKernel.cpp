@@ -7,6 +7,8 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <memory>
@@ -47,12 +49,31 @@ struct Launch {
   int64_t count, width, height;
 };
 using RunFn = int64_t (*)(const Launch*, int64_t, int64_t);
+// The lockstep kernel's compacted entry: positions [begin, end) of a list of element indices.
+using RunListFn = int64_t (*)(const Launch*, const int64_t*, int64_t, int64_t);
+
+// RILL_SIMD_COMPACT=off runs the simd backend's masked launches over runs of the mask, as
+// before compaction (for comparing the two; the images are the same either way).
+bool compaction_enabled() {
+  static const bool on = [] {
+    const char* v = std::getenv("RILL_SIMD_COMPACT");
+    if (v == nullptr || *v == '\0' || std::string(v) == "on") return true;
+    if (std::string(v) == "off") return false;
+    throw Error("RILL_SIMD_COMPACT='" + std::string(v).substr(0, 40) + "': expected on or off");
+  }();
+  return on;
+}
 
 // Masked launches run the unchanged kernel over each maximal run of consecutive selected
 // elements, found here on the host: states are spatially coherent (neighbouring pixels tend
 // to be in the same state), so runs are long, and the generated code pays nothing for the
 // mask. (Testing the state inside the generated loop instead measured 5-10% slower on the
 // multipass ray tracer than not masking at all; runs match it or beat it.)
+// The lockstep kernels (simd) compact instead: a run shorter than the lanes leaves lanes idle
+// and pays a call, and after a few bounces of the wavefront the live paths are scattered in
+// short runs. Each range collects its selected elements' indices into a dense list and the
+// kernel's lanes take them RILL_W at a time (rill_run_list). Every element still computes
+// exactly its own operations, so the results are bit for bit those of the runs.
 struct Selection {
   const int32_t* mask;
   const std::vector<int32_t>& values;
@@ -75,6 +96,8 @@ class HostKernel : public CompiledKernel {
         so_(std::move(so)),
         lanes_(lanes) {
     run_ = reinterpret_cast<RunFn>(so_.symbol);
+    // Absent for a kernel with group operations (LockstepEmitter.cpp) and for scalar C.
+    if (lanes_ > 0) run_list_ = reinterpret_cast<RunListFn>(dlsym(so_.handle, "rill_run_list"));
   }
   ~HostKernel() override { release(so_); }
 
@@ -102,6 +125,7 @@ class HostKernel : public CompiledKernel {
     // Here, not when the backend is made: a bad RILL_THREADS is an error of the launches that
     // would use it, not of the registry (which would take every backend down with it).
     apply_thread_setting();
+    const RunListFn run_list = mask && run_list_ && compaction_enabled() ? run_list_ : nullptr;
     // Last, once nothing can throw before the kernel runs: asking for an output's host copy
     // to write makes its device copy stale. (A stream that is also an input was read back
     // above and stays current on the host.)
@@ -134,6 +158,19 @@ class HostKernel : public CompiledKernel {
         const int64_t begin = r.begin() * unit, end = std::min(r.end() * unit, a.count);
         acc.written += run_(&L, begin, end);
         acc.selected += end - begin;
+        return acc;
+      }
+      if (run_list) {
+        // One list per thread, reused by its ranges (a range is at most `grain` elements).
+        thread_local std::vector<int64_t> list;
+        list.clear();
+        for (int64_t i = r.begin(); i < r.end(); ++i)
+          if (selected_at(i)) list.push_back(i);
+        if (!list.empty()) {
+          const auto n = static_cast<int64_t>(list.size());
+          acc.written += run_list(&L, list.data(), 0, n);
+          acc.selected += n;
+        }
         return acc;
       }
       for (int64_t i = r.begin(); i < r.end();) {
@@ -169,6 +206,7 @@ class HostKernel : public CompiledKernel {
   std::string source_;
   SharedObject so_;
   RunFn run_ = nullptr;
+  RunListFn run_list_ = nullptr;
   int lanes_;
   // The argument tables of a launch (see run()).
   struct Scratch {

@@ -98,10 +98,12 @@ RILL_FN int rill_any(rill_vi m) {
    runs of RILL_W): neighbouring pixels take similar paths through a kernel, and a tile's
    lanes lie closer together than RILL_W along one row, so they diverge less. Any other
    range goes in runs of RILL_W consecutive elements. The spare lanes of a short group repeat
-   its last element; the return value is the group's element count, 0 after the last. */
-typedef struct { int64_t next, end, width; int tiled; } rill_groups;
+   its last element; the return value is the group's element count, 0 after the last.
+   A compacted launch (rill_run_list) goes instead through positions [begin, end) of a list of
+   element indices, RILL_W at a time, so that its lanes run only the selected elements. */
+typedef struct { int64_t next, end, width; int tiled; const int64_t* list; } rill_groups;
 RILL_FN rill_groups rill_groups_of(const rill_launch* L, int64_t begin, int64_t end) {
-  rill_groups g = {begin, end, L->width, 0};
+  rill_groups g = {begin, end, L->width, 0, 0};
   g.tiled = RILL_W >= 4 && L->height >= 2 && L->width >= RILL_W / 2 &&
             L->count == L->width * L->height && begin % L->width == 0 && end % L->width == 0;
   return g;
@@ -110,7 +112,11 @@ RILL_FN int rill_next_group(rill_groups* g, int64_t lane[RILL_W]) {
   if (g->next >= g->end) return 0;
   int n = 0;
   const int64_t x = g->next % g->width, row = g->next - x;
-  if (g->tiled && g->end - row >= 2 * g->width) {
+  if (g->list) {
+    n = g->end - g->next < RILL_W ? (int)(g->end - g->next) : RILL_W;
+    for (int l = 0; l < n; ++l) lane[l] = g->list[g->next + l];
+    g->next += n;
+  } else if (g->tiled && g->end - row >= 2 * g->width) {
     const int64_t cols = g->width - x < RILL_W / 2 ? g->width - x : RILL_W / 2;
     for (int j = 0; j < 2; ++j)
       for (int64_t i = 0; i < cols; ++i) lane[n++] = row + j * g->width + x + i;
@@ -317,11 +323,15 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   src += codegen::on_demand_bodies(codegen::Language::Lockstep, f, lane_wise);
   const bool group = uses_group_ops(f);
   if (group) src += kGroupPrelude;
-  src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
+  // The kernel runs over groups of RILL_W elements: tiles of a 2D stream where they fit
+  // (rill_next_group), or, for a compacted masked launch, the entries of a list of element
+  // indices (rill_run_list, which HostKernel.cpp looks up). A kernel with group operations
+  // has no list form: its groups' members are part of its results.
+  src +=
+      "\nstatic __attribute__((noinline)) int64_t rill_run_groups(const rill_launch* L, "
+      "rill_groups rill_gs) {\n";
   src += c_entry_locals(f, codegen::CDialect(accuracy, ""));  // scalar locals
   src += "  int64_t rill_written = 0;\n";
-  // Groups of RILL_W elements: tiles of a 2D stream where they fit (rill_next_group).
-  src += "  rill_groups rill_gs = rill_groups_of(L, rill_begin, rill_end);\n";
   src += "  int64_t rill_lane[RILL_W];\n";
   src += "  int rill_n;\n";
   src += "  while ((rill_n = rill_next_group(&rill_gs, rill_lane)) > 0) {\n";
@@ -363,6 +373,15 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
     }
   }
   src += "      ++rill_written;\n    }\n  }\n  return rill_written;\n}\n";
+  src += "\nint64_t rill_run(const rill_launch* L, int64_t rill_begin, int64_t rill_end) {\n";
+  src += "  return rill_run_groups(L, rill_groups_of(L, rill_begin, rill_end));\n}\n";
+  if (!group) {
+    src +=
+        "\nint64_t rill_run_list(const rill_launch* L, const int64_t* rill_list, "
+        "int64_t rill_begin, int64_t rill_end) {\n";
+    src += "  const rill_groups rill_gs = {rill_begin, rill_end, L->width, 0, rill_list};\n";
+    src += "  return rill_run_groups(L, rill_gs);\n}\n";
+  }
   return source_map ? codegen::finish_source_lines(src) : src;
 }
 

@@ -226,6 +226,54 @@ TEST_P(MaskTest, SelectedElementsOfAnImageSeeTheirOwnCoordinates) {
   }
 }
 
+// A sparse, scattered selection (about one element in seven, the live paths of a wavefront
+// after a few bounces), which the simd backend runs compacted: its lanes take the selected
+// elements from a dense list (HostKernel.cpp), so each lane must still read its own element's
+// inputs, see its own index, run its own number of loop iterations and store to its own
+// element. Every output is recomputed here in integers, so any mix-up shows.
+TEST_P(MaskTest, SparseScatteredSelectionRunsEachElementAsItself) {
+  Program p = program("mask_sparse", [] {
+    Input<Int2> in("in");
+    Output<Int> out("out");
+    Int n = in.x() & 15, acc = in.y(), i = 0;
+    RILL_WHILE(i < n) {
+      acc = acc * 3 + element_index() + i;
+      i += 1;
+    }
+    RILL_ENDWHILE;
+    out = acc;
+  });
+  Kernel k = compile(p);
+  const std::vector<int32_t> states = random_states(11, kN, 7);
+  const std::vector<int32_t> raw = random_states(12, 2 * kN, 1 << 20);
+  std::vector<Stream<Int2>::host_type> ins(static_cast<size_t>(kN));
+  for (size_t u = 0; u < ins.size(); ++u) {
+    ins[u].x = raw[2 * u];
+    ins[u].y = raw[2 * u + 1];
+  }
+  Stream<Int2> in(ins);
+  Stream<Int> out(kN);
+  Stream<Int> state(states);
+  out.fill(-1);
+  k.inputs(in).outputs(out);
+  const int64_t selected = std::count(states.begin(), states.end(), 3);
+  EXPECT_EQ(k.execute(where(state, 3)), selected);
+  EXPECT_EQ(k.last_launch().processed, selected);
+  const std::vector<int32_t> got = out.download();
+  for (int64_t e = 0; e < kN; ++e) {
+    const auto u = static_cast<size_t>(e);
+    int32_t want = -1;
+    if (states[u] == 3) {
+      uint32_t acc = static_cast<uint32_t>(raw[2 * u + 1]);  // wraps as the kernel's Int does
+      for (int32_t i = 0; i < (raw[2 * u] & 15); ++i)
+        acc = acc * 3u + static_cast<uint32_t>(e) + static_cast<uint32_t>(i);
+      want = static_cast<int32_t>(acc);
+    }
+    ASSERT_EQ(got[u], want) << "element " << e;
+  }
+  ASSERT_GT(selected, kN / 10);  // random_states: about kN / 7
+}
+
 TEST_P(MaskTest, EmptySelectionRunsNothing) {
   std::vector<float> xs = floats(9);
   Kernel k = compile(scale_program());
