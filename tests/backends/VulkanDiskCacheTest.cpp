@@ -10,7 +10,6 @@
 #include <unistd.h>
 
 #include <cstddef>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -19,7 +18,7 @@
 #include "BackendTest.h"
 #include "cache/DiskCache.h"
 
-#include <vulkan/vulkan.h>
+#include "vulkan/VkContext.h"  // the header layout, rill::vk::hex
 
 namespace rill::testing {
 namespace {
@@ -182,12 +181,7 @@ TEST_P(VulkanDiskCacheTest, EntryHoldsSpirvAndDriverDataAndANewProcessLoadsIt) {
   ASSERT_GE(stored.driver_data.size(), sizeof h) << "no driver data was kept";
   std::memcpy(&h, stored.driver_data.data(), sizeof h);
   EXPECT_EQ(h.headerVersion, VK_PIPELINE_CACHE_HEADER_VERSION_ONE);
-  std::string uuid;
-  char hex[3];
-  for (uint8_t b : h.pipelineCacheUUID) {
-    std::snprintf(hex, sizeof hex, "%02x", b);
-    uuid += hex;
-  }
+  const std::string uuid = vk::hex(h.pipelineCacheUUID, VK_UUID_SIZE);
   EXPECT_NE(stored.key.find("pipeline-cache=" + uuid + "\n"), std::string::npos) << stored.key;
 
   std::vector<float> again;
