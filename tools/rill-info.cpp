@@ -5,6 +5,8 @@
 //   opencl  ok   opencl: Portable Computing Language / pthread-haswell-... (OpenCL 3.0 PoCL)
 //     OpenCL devices (choose with RILL_OPENCL_DEVICE=P:D or a name fragment):
 //       0:0  Portable Computing Language / pthread-haswell-...  fp64
+//     Vulkan devices (choose with RILL_VULKAN_DEVICE=N or a name fragment):
+//       0  llvmpipe (LLVM 15.0.6, 256 bits)  CPU  Vulkan 1.3.230  subgroups of 8  <- used: ...
 //
 //   $ rill-info --cache           the kernel disk cache: directory, bound, entries per backend
 //   $ rill-info --cache --clear   empties it
@@ -18,6 +20,9 @@
 #include "rill/rill.h"
 #ifdef RILL_HAVE_OPENCL
 #include "opencl/OpenCLBackend.h"
+#endif
+#ifdef RILL_HAVE_VULKAN
+#include "vulkan/VulkanBackend.h"
 #endif
 
 namespace {
@@ -115,6 +120,11 @@ int main(int argc, char** argv) {
         std::printf("    %d:%d  %s / %s  %s%s\n", d.platform, d.device, d.platform_name.c_str(),
                     d.device_name.c_str(), d.version.c_str(), d.fp64 ? "  fp64" : "");
     }
+#endif
+#ifdef RILL_HAVE_VULKAN
+    const std::vector<std::string> vulkan = rill::vk::device_lines();
+    for (size_t i = 0; i < vulkan.size(); ++i)
+      std::printf("%s%s\n", i ? "    " : "  ", vulkan[i].c_str());
 #endif
     return 0;
   } catch (const std::exception& e) {

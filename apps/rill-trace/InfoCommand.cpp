@@ -7,6 +7,9 @@
 #include "rill/rt/kernel/Shader.h"
 #include "rill/rt/scene/Scene.h"
 #include "rill/rt/shaders/Registry.h"
+#ifdef RILL_HAVE_VULKAN
+#include "vulkan/VulkanBackend.h"
+#endif
 
 namespace trace_cli {
 
@@ -27,6 +30,11 @@ int info() {
         why.empty() && !note.empty() && b->supports(rill::Accuracy::Double))
       std::printf("          double: %s\n", note.c_str());
   }
+#ifdef RILL_HAVE_VULKAN
+  const std::vector<std::string> vulkan = rill::vk::device_lines();
+  for (size_t i = 0; i < vulkan.size(); ++i)
+    std::printf("%s%s\n", i ? "            " : "          ", vulkan[i].c_str());
+#endif
   std::printf("built-in scenes (builtin:NAME):");
   for (const auto& n : rt::builtin_scene_names()) std::printf(" %s", n.c_str());
   std::printf("\n");

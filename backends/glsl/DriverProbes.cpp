@@ -53,26 +53,35 @@ const float kZ[kCases] = {1.0f, 1.0f, 1.5f, 0.99999988f};
 
 }  // namespace
 
-bool probe_fused_fma(const GL& gl, const Driver& d, const char* backend) {
+std::vector<float> fma_probe_data() {
   std::vector<float> data(4 * kCases, 0.0f);
   for (int i = 0; i < kCases; ++i) {
     data[static_cast<size_t>(i)] = kX[i];
     data[static_cast<size_t>(kCases + i)] = kY[i];
     data[static_cast<size_t>(2 * kCases + i)] = kZ[i];
   }
-  const std::vector<float> out =
-      run_probe(gl, d, backend, "rill_fma_probe",
-                "  for (int i = 0; i < 4; ++i) {\n"
-                "    precise float r = fma(-b.v[i], b.v[4 + i], b.v[8 + i]);\n"
-                "    b.v[12 + i] = r;\n"
-                "  }\n",
-                std::move(data));
+  return data;
+}
+
+const char* const kFmaProbeBody =
+    "  for (int i = 0; i < 4; ++i) {\n"
+    "    precise float r = fma(-b.v[i], b.v[4 + i], b.v[8 + i]);\n"
+    "    b.v[12 + i] = r;\n"
+    "  }\n";
+
+bool fma_probe_fused(const std::vector<float>& out) {
+  if (out.size() < static_cast<size_t>(4 * kCases)) return false;
   for (int i = 0; i < kCases; ++i) {
     const float want = std::fma(-kX[i], kY[i], kZ[i]);
     if (std::memcmp(&want, &out[static_cast<size_t>(3 * kCases + i)], sizeof want) != 0)
       return false;
   }
   return true;
+}
+
+bool probe_fused_fma(const GL& gl, const Driver& d, const char* backend) {
+  return fma_probe_fused(
+      run_probe(gl, d, backend, "rill_fma_probe", kFmaProbeBody, fma_probe_data()));
 }
 
 }  // namespace rill::glsl

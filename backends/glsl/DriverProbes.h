@@ -10,7 +10,8 @@
 //   Mesa's llvmpipe computes it as a product and a sum, each rounded. So fma(-x, y, z), the
 //   corrections' form, runs on operands whose product needs more than 24 bits, and the results
 //   are compared with the host's std::fma.
-// Both need a GL 4.3 context, current.
+// Both need a GL 4.3 context, current. The vulkan backend runs the same probes through its
+// own device (VulkanBackend.cpp) with the fma probe's data, body and verdict from here.
 #pragma once
 
 #include <string>
@@ -28,5 +29,11 @@ std::vector<float> run_probe(const GL& gl, const Driver& d, const char* backend,
 
 bool probe_flushes_denormals(const GL& gl, const Driver& d, const char* backend);
 bool probe_fused_fma(const GL& gl, const Driver& d, const char* backend);
+
+// The fma probe's parts: its buffer before the run, its main() body (over
+// `buffer B { float v[]; } b`), and whether the buffer after the run shows a fused fma.
+std::vector<float> fma_probe_data();
+extern const char* const kFmaProbeBody;
+bool fma_probe_fused(const std::vector<float>& out);
 
 }  // namespace rill::glsl

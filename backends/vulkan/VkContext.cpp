@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 
 #include "rill/Error.h"
 
@@ -49,7 +50,52 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT
   return VK_FALSE;
 }
 
+// The device RILL_VULKAN_DEVICE names (an index as rill-info lists them, or a fragment of the
+// name, case-insensitive), else the first discrete GPU, else integrated, virtual, CPU, other;
+// with the reason, for rill-info. Throws Error for a name or index that matches none.
+std::pair<int, std::string> pick_device(const std::vector<VkPhysicalDeviceProperties>& props,
+                                        const std::string& names) {
+  const long n = static_cast<long>(props.size());
+  const char* env = std::getenv("RILL_VULKAN_DEVICE");
+  if (env && *env) {
+    const std::string want = env;
+    char* end = nullptr;
+    const long index = std::strtol(env, &end, 10);
+    if (end && *end == '\0') {
+      if (index < 0 || index >= n)
+        throw Error("RILL_VULKAN_DEVICE=" + want + ": there are " + std::to_string(n) +
+                    " Vulkan devices (" + names + ")");
+      return {static_cast<int>(index), "RILL_VULKAN_DEVICE=" + want};
+    }
+    for (long i = 0; i < n; ++i)
+      if (lower(props[static_cast<size_t>(i)].deviceName).find(lower(want)) != std::string::npos)
+        return {static_cast<int>(i),
+                "RILL_VULKAN_DEVICE='" + want + "', the first name it matches"};
+    throw Error("RILL_VULKAN_DEVICE='" + want + "' names none of the Vulkan devices (" + names +
+                ")");
+  }
+  for (VkPhysicalDeviceType t :
+       {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU,
+        VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU, VK_PHYSICAL_DEVICE_TYPE_CPU,
+        VK_PHYSICAL_DEVICE_TYPE_OTHER})
+    for (long i = 0; i < n; ++i)
+      if (props[static_cast<size_t>(i)].deviceType == t)
+        return {static_cast<int>(i),
+                std::string("the first ") + device_type_name(t) + " (GPUs before CPU devices)"};
+  return {0, "the first device"};
+}
+
 }  // namespace
+
+std::string hex(const uint8_t* bytes, size_t n) {
+  std::string out;
+  char digits[3];
+  for (size_t i = 0; i < n; ++i) {
+    std::snprintf(digits, sizeof digits, "%02x", bytes[i]);
+    out += digits;
+  }
+  return out;
+}
 
 const char* device_type_name(VkPhysicalDeviceType t) {
   switch (t) {
@@ -154,8 +200,7 @@ void Context::release() noexcept {
   instance = VK_NULL_HANDLE;
 }
 
-// RILL_VULKAN_DEVICE: an index (as rill-info lists them) or a fragment of the device's name,
-// case-insensitive. Default: the first discrete GPU, else integrated, else any other.
+// The device pick_device() names.
 void Context::choose_device() {
   uint32_t n = 0;
   check(api.vkEnumeratePhysicalDevices(instance, &n, nullptr), "listing Vulkan devices");
@@ -171,34 +216,7 @@ void Context::choose_device() {
     api.vkGetPhysicalDeviceProperties(all[i], &props[i]);
     names += (i ? ", " : "") + std::to_string(i) + ": " + props[i].deviceName;
   }
-  const char* env = std::getenv("RILL_VULKAN_DEVICE");
-  int chosen = -1;
-  if (env && *env) {
-    const std::string want = env;
-    char* end = nullptr;
-    const long index = std::strtol(env, &end, 10);
-    if (end && *end == '\0') {
-      if (index < 0 || index >= static_cast<long>(n))
-        throw Error("RILL_VULKAN_DEVICE=" + want + ": there are " + std::to_string(n) +
-                    " Vulkan devices (" + names + ")");
-      chosen = static_cast<int>(index);
-    } else {
-      for (uint32_t i = 0; i < n && chosen < 0; ++i)
-        if (lower(props[i].deviceName).find(lower(want)) != std::string::npos)
-          chosen = static_cast<int>(i);
-      if (chosen < 0)
-        throw Error("RILL_VULKAN_DEVICE='" + want + "' names none of the Vulkan devices (" + names +
-                    ")");
-    }
-  } else {
-    for (VkPhysicalDeviceType t :
-         {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU,
-          VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU, VK_PHYSICAL_DEVICE_TYPE_CPU,
-          VK_PHYSICAL_DEVICE_TYPE_OTHER})
-      for (uint32_t i = 0; i < n && chosen < 0; ++i)
-        if (props[i].deviceType == t) chosen = static_cast<int>(i);
-    if (chosen < 0) chosen = 0;
-  }
+  const int chosen = pick_device(props, names).first;
   physical = all[static_cast<size_t>(chosen)];
   const VkPhysicalDeviceProperties& p = props[static_cast<size_t>(chosen)];
   if (p.apiVersion < VK_API_VERSION_1_1)
@@ -241,14 +259,11 @@ void Context::describe_device() {
   info.name = p.deviceName;
   info.driver = drv.driverName[0] ? std::string(drv.driverName) + ", " + drv.driverInfo
                                   : "driver " + std::to_string(p.driverVersion);
-  char hex[3];
-  for (uint8_t b : p.pipelineCacheUUID) {
-    std::snprintf(hex, sizeof hex, "%02x", b);
-    info.uuid += hex;
-  }
+  info.uuid = hex(p.pipelineCacheUUID, VK_UUID_SIZE);
   info.api = p.apiVersion;
   info.driver_version = p.driverVersion;
   info.vendor = p.vendorID;
+  info.device_id = p.deviceID;
   info.type = p.deviceType;
   info.limits = p.limits;
   info.ballot = (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
@@ -365,6 +380,56 @@ void Context::check_validation(const std::string& what) {
                      std::to_string(m.size()) + " message(s) while " + what + ":";
   for (const std::string& s : m) text += "\n  " + s;
   throw Error(text);
+}
+
+DeviceListing list_devices() {
+  DeviceListing out;
+  Api api;
+  VkInstance instance = VK_NULL_HANDLE;
+  try {
+    api.load_loader();
+    auto app = make<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
+    app.pApplicationName = "rill-info";
+    app.apiVersion = VK_API_VERSION_1_2;
+    auto ci = make<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
+    ci.pApplicationInfo = &app;
+    check(api.vkCreateInstance(&ci, nullptr, &instance), "creating the Vulkan instance");
+    api.load_instance(instance);
+    uint32_t n = 0;
+    check(api.vkEnumeratePhysicalDevices(instance, &n, nullptr), "listing Vulkan devices");
+    std::vector<VkPhysicalDevice> all(n);
+    if (n)
+      check(api.vkEnumeratePhysicalDevices(instance, &n, all.data()), "listing Vulkan devices");
+    std::vector<VkPhysicalDeviceProperties> props(n);
+    std::string names;
+    for (uint32_t i = 0; i < n; ++i) {
+      VkPhysicalDeviceProperties& p = props[i];
+      api.vkGetPhysicalDeviceProperties(all[i], &p);
+      names += (i ? ", " : "") + std::to_string(i) + ": " + p.deviceName;
+      DeviceSummary d;
+      d.name = p.deviceName;
+      d.type = p.deviceType;
+      d.api = p.apiVersion;
+      if (p.apiVersion >= VK_API_VERSION_1_1) {  // subgroup properties are Vulkan 1.1
+        auto sub = make<VkPhysicalDeviceSubgroupProperties>(
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES);
+        auto p2 = make<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2);
+        p2.pNext = &sub;
+        api.vkGetPhysicalDeviceProperties2(all[i], &p2);
+        d.subgroup_size = sub.subgroupSize;
+      }
+      out.devices.push_back(std::move(d));
+    }
+    if (n) {
+      const std::pair<int, std::string> pick = pick_device(props, names);
+      out.chosen = pick.first;
+      out.why = pick.second;
+    }
+  } catch (const Error& e) {
+    out.error = e.what();
+  }
+  if (instance) api.vkDestroyInstance(instance, nullptr);
+  return out;
 }
 
 }  // namespace rill::vk

@@ -22,7 +22,7 @@ struct DeviceInfo {
   std::string name;    // deviceName: "llvmpipe (LLVM 15.0.6, 256 bits)", "NVIDIA H200"
   std::string driver;  // driverName and driverInfo: "llvmpipe, Mesa 22.3.6 (LLVM 15.0.6)"
   std::string uuid;    // pipelineCacheUUID, in hex (keys of the disk cache)
-  uint32_t api = 0, driver_version = 0, vendor = 0;
+  uint32_t api = 0, driver_version = 0, vendor = 0, device_id = 0;
   VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
   VkPhysicalDeviceLimits limits{};
   bool ballot = false;         // subgroup ballots in compute shaders
@@ -78,7 +78,27 @@ class Context {
   std::vector<std::string> messages_;
 };
 
+// Bytes in lower-case hex (pipelineCacheUUID in the disk cache's keys).
+std::string hex(const uint8_t* bytes, size_t n);
+
 // "cpu", "discrete GPU", ... for descriptions.
 const char* device_type_name(VkPhysicalDeviceType t);
+
+// The Vulkan devices the loader sees, for rill-info: each one's name, type, API version and
+// subgroup size, which one the backend uses and why (RILL_VULKAN_DEVICE, or the type order).
+struct DeviceSummary {
+  std::string name;
+  VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+  uint32_t api = 0;
+  uint32_t subgroup_size = 0;  // 0: not reported (a Vulkan 1.0 device)
+};
+struct DeviceListing {
+  std::vector<DeviceSummary> devices;
+  int chosen = -1;    // index into devices; -1 where none is usable
+  std::string why;    // why that one ("the first discrete GPU", "RILL_VULKAN_DEVICE=1")
+  std::string error;  // no loader, no driver, a bad RILL_VULKAN_DEVICE: the reason, else ""
+};
+// Lists through an instance of its own (no device is made); never throws.
+DeviceListing list_devices();
 
 }  // namespace rill::vk

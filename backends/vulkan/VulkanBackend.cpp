@@ -29,6 +29,7 @@
 
 #include "../cache/DiskCache.h"
 #include "../glsl/DivSqrt.h"
+#include "../glsl/DriverProbes.h"
 #include "../glsl/GLSLEmitter.h"
 #include "../glsl/GLSession.h"
 #include "SpirvCompiler.h"
@@ -86,6 +87,21 @@ void make_pipeline(Context& c, const std::vector<uint32_t>& spirv, int bindings,
   p.bindings = bindings;
 }
 
+constexpr uint32_t kSpirvMagic = 0x07230203;
+
+// Whether pipeline cache data (from the disk cache) has the header vkGetPipelineCacheData
+// writes for this device: Vulkan asks for data that came from this device's driver, so data
+// that does not (an entry forged or damaged past the checksum) is dropped here, and the
+// pipelines are then made from the SPIR-V alone.
+bool pipeline_cache_fits(const std::string& data, const DeviceInfo& d) {
+  VkPipelineCacheHeaderVersionOne h{};
+  if (data.size() < sizeof h) return false;
+  std::memcpy(&h, data.data(), sizeof h);
+  return h.headerSize >= sizeof h && h.headerSize <= data.size() &&
+         h.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && h.vendorID == d.vendor &&
+         h.deviceID == d.device_id && hex(h.pipelineCacheUUID, VK_UUID_SIZE) == d.uuid;
+}
+
 // The disk cache's payload: the number of passes, each pass's SPIR-V (word count, words),
 // then the driver's pipeline cache data to the end.
 std::string pack(const std::vector<std::vector<uint32_t>>& modules, const std::string& cache) {
@@ -116,9 +132,10 @@ std::optional<std::pair<std::vector<std::vector<uint32_t>>, std::string>> unpack
   std::vector<std::vector<uint32_t>> modules(n);
   for (auto& m : modules) {
     uint32_t words = 0;
-    if (!get(&words, 4) || words > (payload.size() - at) / 4 || words == 0) return std::nullopt;
+    if (!get(&words, 4) || words > (payload.size() - at) / 4 || words < 5) return std::nullopt;
     m.resize(words);
     get(m.data(), words * 4);
+    if (m[0] != kSpirvMagic) return std::nullopt;  // a module's first word and header
   }
   return std::make_pair(std::move(modules), payload.substr(at));
 }
@@ -169,7 +186,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     modes = modes.empty() ? "none offered" : modes.substr(0, modes.size() - 2);
     return std::string(kName) + ": compute shaders (SPIR-V by " + spirv_compiler_version() + "); " +
            d.name + " (" + device_type_name(d.type) + "), " + d.driver + ", Vulkan " +
-           version(d.api) + "; strict / and sqrt: " + glsl::divsqrt_name(rules_.divsqrt) +
+           version(d.api) +
+           "; strict / and sqrt: " + glsl::divsqrt_description(rules_.divsqrt, rules_.fused_fma) +
            ", comparisons: " + glsl::compare_name(rules_.native_compare) +
            "; float controls: " + modes +
            "; denormals: " + (flushes_denormals_ ? "flushed" : "kept") + "; lane groups: " +
@@ -246,7 +264,9 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
         modules.push_back(compile_compute_spirv(sources[i], f.name));
     }
     auto pci = make<VkPipelineCacheCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO);
-    if (cached) {
+    // An entry whose driver data does not fit is stored again with the driver's own.
+    const bool fits = cached && pipeline_cache_fits(cached->second, c.info);
+    if (fits) {
       pci.initialDataSize = cached->second.size();
       pci.pInitialData = cached->second.data();
     }
@@ -261,7 +281,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
                       "kernel '" + f.name + "'");
         descriptors += passes[i].bindings;
       }
-      if (!cached) {
+      if (!fits) {
         size_t n = 0;
         std::string data;
         if (c.api.vkGetPipelineCacheData(c.device, pcache, &n, nullptr) == VK_SUCCESS) {
@@ -367,26 +387,46 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     counter_ = make_buffer(session_, 16, "the launch counters");
     setup_.counter = counter_.get();
     flushes_denormals_ = probe_flushes_denormals(c);
+    // The corrections' residual by one fma where the device's fma is fused (RILL_GLSL_FMA, else
+    // probed as on the glsl backends); probed only where the corrections run.
+    const std::optional<bool> fused = glsl::fused_fma_mode();
+    rules_.fused_fma =
+        fused ? *fused
+              : glsl::divsqrt_corrects(rules_.divsqrt) &&
+                    glsl::fma_probe_fused(run_probe(c, "rill_fma_probe", glsl::kFmaProbeBody,
+                                                    glsl::fma_probe_data()));
     c.check_validation("setting up the device");
   }
 
   // Whether the device's arithmetic flushes denormals in strict kernels: 2 * the smallest
   // denormal, computed by one invocation under the same execution modes, comes back as zero.
   bool probe_flushes_denormals(Context& c) {
-    const std::string glsl = "#version 450\n" +
-                             (float_modes_.empty() ? std::string() : float_modes_) +
+    const std::vector<float> out =
+        run_probe(c, "rill_denormal_probe", "  precise float x = b.v[0] * b.v[1];\n  b.v[2] = x;\n",
+                  {std::numeric_limits<float>::denorm_min(), 2.0f, 1.0f, 0});
+    return out[2] == 0.0f;
+  }
+
+  // Runs `main_body` (GLSL statements over `buffer B { float v[]; } b`) in one invocation
+  // under the strict kernels' execution modes, on `data`; returns the buffer afterwards.
+  // `what` names the probe in errors. The glsl backends' probes (glsl/DriverProbes.h) in
+  // Vulkan.
+  std::vector<float> run_probe(Context& c, const std::string& what, const std::string& main_body,
+                               std::vector<float> data) {
+    const std::string glsl = "#version 450\n" + float_modes_ +
                              "layout(local_size_x = 1) in;\n"
-                             "layout(std430, set = 0, binding = 0) buffer B { float d[]; } b;\n"
-                             "void main() { precise float x = b.d[0] * b.d[1]; b.d[2] = x; }\n";
-    const std::vector<uint32_t> spirv = compile_compute_spirv(glsl, "rill_denormal_probe");
+                             "layout(std430, set = 0, binding = 0) buffer B { float v[]; } b;\n"
+                             "void main() {\n" +
+                             main_body + "}\n";
+    const std::vector<uint32_t> spirv = compile_compute_spirv(glsl, what);
     VulkanKernel::Pass p;
-    std::unique_ptr<Buffer> buf = make_buffer(session_, 16, "the denormal probe");
-    const float in[4] = {std::numeric_limits<float>::denorm_min(), 2.0f, 1.0f, 0};
-    std::memcpy(buf->mapped, in, sizeof in);
+    const size_t bytes = data.size() * sizeof(float);
+    std::unique_ptr<Buffer> buf =
+        make_buffer(session_, static_cast<int64_t>(bytes), "the probe " + what);
+    std::memcpy(buf->mapped, data.data(), bytes);
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    float out = 1.0f;
     try {
-      make_pipeline(c, spirv, 1, VK_NULL_HANDLE, p, "the denormal probe");
+      make_pipeline(c, spirv, 1, VK_NULL_HANDLE, p, "the probe " + what);
       VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
       auto di = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
       di.maxSets = 1;
@@ -410,7 +450,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
       auto begin = make<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
       begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
       check(c.api.vkResetCommandBuffer(c.commands, 0), "resetting the command buffer");
-      check(c.api.vkBeginCommandBuffer(c.commands, &begin), "recording the denormal probe");
+      check(c.api.vkBeginCommandBuffer(c.commands, &begin), "recording the probe " + what);
       c.api.vkCmdBindPipeline(c.commands, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
       c.api.vkCmdBindDescriptorSets(c.commands, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1,
                                     &set, 0, nullptr);
@@ -421,9 +461,9 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
       c.api.vkCmdPipelineBarrier(c.commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                                  VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr, 0,
                                  nullptr);
-      check(c.api.vkEndCommandBuffer(c.commands), "recording the denormal probe");
-      c.submit_and_wait("probing how the device treats denormals");
-      std::memcpy(&out, static_cast<const float*>(buf->mapped) + 2, sizeof out);
+      check(c.api.vkEndCommandBuffer(c.commands), "recording the probe " + what);
+      c.submit_and_wait("running the probe " + what);
+      std::memcpy(data.data(), buf->mapped, bytes);
     } catch (...) {
       destroy_pass(c, p);
       if (pool) c.api.vkDestroyDescriptorPool(c.device, pool, nullptr);
@@ -431,7 +471,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     }
     destroy_pass(c, p);
     c.api.vkDestroyDescriptorPool(c.device, pool, nullptr);
-    return out == 0.0f;
+    return data;
   }
 
   std::shared_ptr<Session> session_ = std::make_shared<Session>();
@@ -449,6 +489,25 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
 
 std::unique_ptr<Backend> make_backend() {
   return std::make_unique<VulkanBackend>();
+}
+
+std::vector<std::string> device_lines() {
+  const DeviceListing l = list_devices();
+  std::vector<std::string> lines;
+  if (l.devices.empty()) return lines;
+  lines.push_back("Vulkan devices (choose with RILL_VULKAN_DEVICE=N or a name fragment):");
+  for (size_t i = 0; i < l.devices.size(); ++i) {
+    const DeviceSummary& d = l.devices[i];
+    std::string line = std::to_string(i) + "  " + d.name + "  " + device_type_name(d.type) +
+                       "  Vulkan " + std::to_string(VK_API_VERSION_MAJOR(d.api)) + "." +
+                       std::to_string(VK_API_VERSION_MINOR(d.api)) + "." +
+                       std::to_string(VK_API_VERSION_PATCH(d.api));
+    if (d.subgroup_size) line += "  subgroups of " + std::to_string(d.subgroup_size);
+    if (static_cast<int>(i) == l.chosen) line += "  <- used: " + l.why;
+    lines.push_back(line);
+  }
+  if (!l.error.empty()) lines.push_back("none used: " + l.error);
+  return lines;
 }
 
 }  // namespace rill::vk

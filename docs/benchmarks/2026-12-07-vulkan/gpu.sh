@@ -1,0 +1,67 @@
+#!/bin/bash
+# The GPU run of the vulkan backend (issue 54 items 2 and 4), not yet run: the strict
+# conformance suite on vulkan through NVIDIA's Vulkan driver, then frames of the ray tracer on
+# opencl, glsl-compute and vulkan side by side. Run on the GPU machine from the repository
+# root, as docs/benchmarks/2026-12-07-glsl-strict/gpu.sh does: rill-trace and rill-conformance
+# with their shared libraries in .devcarry/ (bin/, lib/), and there too the Vulkan loader
+# libvulkan.so.1 (Debian's libvulkan1: the machine has NVIDIA's driver and ICD file,
+# /usr/share/vulkan/icd.d/nvidia_icd.json, but no loader); the GL and OpenCL loaders' Debian
+# packages in .gl/ (NVIDIA's Vulkan ICD is libGLX_nvidia.so.0, which needs libglvnd).
+# Output: $OUT/info.txt (the GPU, the backends' lines, the Vulkan devices, the conformance
+# verdicts), $OUT/conformance-*.txt, $OUT/table.md.
+for f in .gl/libegl1*.deb .gl/libglvnd0*.deb .gl/libopengl0*.deb .gl/libgl1*.deb .gl/libglx0*.deb .gl/libgles2*.deb; do dpkg -x $f /; done; ldconfig
+mkdir -p /tmp/x /tmp/icd; for f in .gl/ocl-icd*.deb; do dpkg -x $f /tmp/x; done
+export LD_LIBRARY_PATH=/tmp/x/usr/lib/x86_64-linux-gnu:$PWD/.devcarry/lib
+echo libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd; export OCL_ICD_VENDORS=/tmp/icd
+export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+# The loader finds NVIDIA's ICD through its file (older loaders read VK_ICD_FILENAMES, newer
+# VK_DRIVER_FILES); the backend would take a discrete GPU first anyway, NVIDIA names it.
+export VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/nvidia_icd.json VK_DRIVER_FILES=/usr/share/vulkan/icd.d/nvidia_icd.json
+export RILL_GL=egl RILL_OPENCL_DEVICE=nvidia RILL_VULKAN_DEVICE=nvidia RILL_CACHE_DIR=/tmp/rill-cache
+B=.devcarry/bin
+ls -l .devcarry/lib/libvulkan.so.1* /usr/share/vulkan/icd.d/ 2>&1 | tee $OUT/info.txt
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee -a $OUT/info.txt
+# The backends' lines (strict / and sqrt, the fma probe's verdict, float controls, subgroups)
+# and the Vulkan devices the loader sees.
+$B/rill-trace info 2>&1 | sed -n '/^backends:/,/^built-in/p' | grep -vE "^built-in" | tee -a $OUT/info.txt
+# Bitwise: the strict conformance suite on vulkan with the corrections' residual as probed
+# (auto), split (Dekker) and fused (one fma); glsl-compute's auto for comparison.
+for run in "vulkan auto" "vulkan split" "vulkan fused" "glsl-compute auto"; do
+  be=${run% *}; fma=${run#* }
+  RILL_GLSL_FMA=$fma timeout 300 $B/rill-conformance --backend $be --accuracy strict > $OUT/conformance-$be-$fma.txt 2>&1
+  rc=$?
+  echo "conformance $be strict RILL_GLSL_FMA=$fma: rc=$rc, $(tail -1 $OUT/conformance-$be-$fma.txt)" | tee -a $OUT/info.txt
+done
+echo "| scene | backend | accuracy | frame ms (median of 20) | kernel ms | compile ms |" | tee $OUT/table.md
+echo "| --- | --- | --- | --- | --- | --- |" | tee -a $OUT/table.md
+row() { # scene extra-args label backend env...
+  local scene=$1 args=$2 label=$3 be=$4; shift 4
+  env RILL_X=1 "$@" timeout 150 $B/rill-trace render $scene $args --size 1920x1080 --backend $be \
+    --bench-frames 20 --out /tmp/o-$be.png --stats-json /tmp/s.json > /tmp/row.log 2>&1 || {
+    echo "| $scene | $be | $label | failed: $(tail -1 /tmp/row.log | tr '|' '/') | | |" | tee -a $OUT/table.md; return; }
+  python3 - /tmp/s.json "$scene" "$be" "$label" <<'PY' | tee -a $OUT/table.md
+import json, sys
+j = json.load(open(sys.argv[1])); b = j["bench_frames"]
+k = b["median_split_ms"].get("kernel", -1)
+first = j["time_ms"]["compile"]
+print(f"| {sys.argv[2]} | {sys.argv[3]} | {sys.argv[4]} | {b['median_ms']:.2f} | {k:.2f} | {first:.1f} |")
+PY
+}
+# Twice over: the first round fills the kernel caches (the compile column then shows the disk
+# cache's effect), the second is the one to quote.
+for k in 1 2; do
+for s in "builtin:thesis-a|" "builtin:thesis-c|" "builtin:glass|" "builtin:cornell-path|--max-depth 8 --spp 1"; do
+  scene=${s%%|*}; args=${s#*|}
+  for be in opencl glsl-compute vulkan; do
+    row "$scene" "$args" strict $be
+  done
+  # Same bits on all three under strict: compare the last images.
+  if cmp -s /tmp/o-opencl.png /tmp/o-vulkan.png && cmp -s /tmp/o-opencl.png /tmp/o-glsl-compute.png; then
+    echo "$scene: images identical on opencl, glsl-compute, vulkan" | tee -a $OUT/info.txt
+  else
+    echo "$scene: IMAGES DIFFER" | tee -a $OUT/info.txt; cp /tmp/o-*.png $OUT/ 2>/dev/null
+  fi
+  for be in opencl vulkan; do
+    row "$scene" "$args --accuracy fast" fast $be
+  done
+done; done
