@@ -22,15 +22,17 @@ void destroy_pass(Context& c, VulkanKernel::Pass& p) {
   p.module = VK_NULL_HANDLE;
 }
 
+void VulkanKernel::release(Context& c) noexcept {
+  for (Pass& p : passes_) destroy_pass(c, p);
+  if (pool_) c.api.vkDestroyDescriptorPool(c.device, pool_, nullptr);
+  pool_ = VK_NULL_HANDLE;
+}
+
 VulkanKernel::~VulkanKernel() {
   std::lock_guard<std::recursive_mutex> lock(session_->mutex);
-  Context* c = session_->context.get();
-  if (!c) {
-    for (Pass& p : passes_) p.params.reset();  // skips its Vulkan calls too
-    return;
-  }
-  for (Pass& p : passes_) destroy_pass(*c, p);
-  if (pool_) c->api.vkDestroyDescriptorPool(c->device, pool_, nullptr);
+  session_->live.erase(this);
+  if (Context* c = session_->context.get()) release(*c);
+  for (Pass& p : passes_) p.params.reset();  // its own entry in `live`
 }
 
 LaunchResult VulkanKernel::run(const LaunchArgs& a) {

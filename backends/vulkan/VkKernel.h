@@ -49,7 +49,10 @@ class VulkanKernel : public CompiledKernel {
         fn_(std::move(f)),
         passes_(std::move(passes)),
         pool_(pool),
-        source_(std::move(source)) {}
+        source_(std::move(source)) {
+    std::lock_guard<std::recursive_mutex> lock(session_->mutex);
+    session_->live[this] = [this](Context& c) { release(c); };
+  }
   ~VulkanKernel() override;
   LaunchResult run(const LaunchArgs& a) override;
   const std::string& source() const override { return source_; }
@@ -58,6 +61,7 @@ class VulkanKernel : public CompiledKernel {
   void warm_up() override { run(WarmUpLaunch(fn_).args()); }
 
  private:
+  void release(Context& c) noexcept;  // frees the passes' objects and the pool
   Backend& be_;
   std::shared_ptr<Session> session_;
   const LaunchSetup& setup_;  // the backend's, which outlives run()

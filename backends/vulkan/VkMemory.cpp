@@ -8,13 +8,27 @@
 
 namespace rill::vk {
 
+void Session::shut_down() noexcept {
+  std::lock_guard<std::recursive_mutex> lock(mutex);
+  if (context)
+    for (auto& entry : live) entry.second(*context);
+  live.clear();
+  context.reset();
+}
+
+void Buffer::release(Context& c) noexcept {
+  if (buf) c.api.vkDestroyBuffer(c.device, buf, nullptr);
+  if (mem) c.api.vkFreeMemory(c.device, mem, nullptr);
+  buf = VK_NULL_HANDLE;
+  mem = VK_NULL_HANDLE;
+  mapped = nullptr;
+}
+
 Buffer::~Buffer() {
-  if (!buf && !mem) return;
+  if (!session) return;
   std::lock_guard<std::recursive_mutex> lock(session->mutex);
-  Context* c = session->context.get();
-  if (!c) return;
-  if (buf) c->api.vkDestroyBuffer(c->device, buf, nullptr);
-  if (mem) c->api.vkFreeMemory(c->device, mem, nullptr);
+  session->live.erase(this);
+  if (Context* c = session->context.get()) release(*c);
 }
 
 std::unique_ptr<Buffer> make_buffer(const std::shared_ptr<Session>& session, int64_t bytes,
@@ -29,6 +43,11 @@ std::unique_ptr<Buffer> make_buffer(const std::shared_ptr<Session>& session, int
   auto b = std::make_unique<Buffer>();
   b->session = session;
   b->bytes = bytes;
+  {
+    std::lock_guard<std::recursive_mutex> lock(session->mutex);
+    Buffer* raw = b.get();
+    session->live[raw] = [raw](Context& ctx) { raw->release(ctx); };
+  }
   auto bi = make<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
   bi.size = static_cast<VkDeviceSize>(bytes);
   bi.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;

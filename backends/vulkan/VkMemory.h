@@ -4,6 +4,8 @@
 // launch waits for its dispatches, so a read-back never races a kernel.
 #pragma once
 
+#include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 
@@ -14,10 +16,15 @@ namespace rill::vk {
 
 // The context and its lock, shared by the backend, its kernels and buffers: a kernel or
 // buffer destroyed after the backend shut down (at exit) finds `context` null and skips its
-// Vulkan calls (destroying the device freed everything made with it).
+// Vulkan calls. Destroying a device does not free what was made with it (the application
+// must, and drivers such as lavapipe leak it otherwise), so every buffer and kernel alive
+// registers in `live` what frees its objects, and the backend's shutdown runs those first.
 struct Session {
   std::recursive_mutex mutex;  // recursive: replacing a buffer inside a launch frees the old one
   std::unique_ptr<Context> context;
+  std::map<const void*, std::function<void(Context&)>> live;  // under the lock
+  // Frees every live object's Vulkan objects, then the device and instance (at exit).
+  void shut_down() noexcept;
 };
 
 // One buffer and its memory, mapped.
@@ -28,6 +35,7 @@ struct Buffer : detail::DeviceBuffer {
   void* mapped = nullptr;
   int64_t bytes = 0;
   ~Buffer() override;
+  void release(Context& c) noexcept;  // frees buf and mem (under the session's lock)
 };
 
 // A buffer of `bytes` (at least 16) for storage; throws Error naming the size when the

@@ -332,7 +332,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
   void shutdown() noexcept override {
     std::lock_guard<std::recursive_mutex> lock(session_->mutex);
     counter_.reset();
-    session_->context.reset();
+    session_->shut_down();
   }
 
  private:
