@@ -2,24 +2,16 @@
 # The GPU run of the vulkan backend (issue 54 items 2 and 4), not yet run: the strict
 # conformance suite on vulkan through NVIDIA's Vulkan driver, then frames of the ray tracer on
 # opencl, glsl-compute and vulkan side by side. Run on the GPU machine from the repository
-# root, as docs/benchmarks/2026-12-07-glsl-strict/gpu.sh does: rill-trace and rill-conformance
-# with their shared libraries in .devcarry/ (bin/, lib/), and there too the Vulkan loader
-# libvulkan.so.1 (Debian's libvulkan1: the machine has NVIDIA's driver and ICD file,
+# root, set up by scripts/gpu-setup.sh: rill-trace and rill-conformance with their shared
+# libraries in .devcarry/ (bin/, lib/), and there too the Vulkan loader libvulkan.so.1
+# (Debian's libvulkan1: the machine has NVIDIA's driver and ICD file,
 # /usr/share/vulkan/icd.d/nvidia_icd.json, but no loader); the GL and OpenCL loaders' Debian
 # packages in .gl/ (NVIDIA's Vulkan ICD is libGLX_nvidia.so.0, which needs libglvnd).
+# ROUNDS (default 2) and SCENES (default: thesis A, thesis C, glass, cornell-path) shorten it.
 # Output: $OUT/info.txt (the GPU, the backends' lines, the Vulkan devices, the conformance
 # verdicts), $OUT/conformance-*.txt, $OUT/table.md.
-for f in .gl/libegl1*.deb .gl/libglvnd0*.deb .gl/libopengl0*.deb .gl/libgl1*.deb .gl/libglx0*.deb .gl/libgles2*.deb; do dpkg -x $f /; done; ldconfig
-mkdir -p /tmp/x /tmp/icd; for f in .gl/ocl-icd*.deb; do dpkg -x $f /tmp/x; done
-export LD_LIBRARY_PATH=/tmp/x/usr/lib/x86_64-linux-gnu:$PWD/.devcarry/lib
-echo libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd; export OCL_ICD_VENDORS=/tmp/icd
-export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-# The loader finds NVIDIA's ICD through its file (older loaders read VK_ICD_FILENAMES, newer
-# VK_DRIVER_FILES); the backend would take a discrete GPU first anyway, NVIDIA names it.
-export VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/nvidia_icd.json VK_DRIVER_FILES=/usr/share/vulkan/icd.d/nvidia_icd.json
-export RILL_GL=egl RILL_OPENCL_DEVICE=nvidia RILL_VULKAN_DEVICE=nvidia RILL_CACHE_DIR=/tmp/rill-cache
-B=.devcarry/bin
-ls -l .devcarry/lib/libvulkan.so.1* /usr/share/vulkan/icd.d/ 2>&1 | tee $OUT/info.txt
+source scripts/gpu-setup.sh
+ls -l $B/../lib/libvulkan.so.1* /usr/share/vulkan/icd.d/ 2>&1 | tee $OUT/info.txt
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee -a $OUT/info.txt
 # The backends' lines (strict / and sqrt, the fma probe's verdict, float controls, subgroups)
 # and the Vulkan devices the loader sees.
@@ -49,8 +41,10 @@ PY
 }
 # Twice over: the first round fills the kernel caches (the compile column then shows the disk
 # cache's effect), the second is the one to quote.
-for k in 1 2; do
-for s in "builtin:thesis-a|" "builtin:thesis-c|" "builtin:glass|" "builtin:cornell-path|--max-depth 8 --spp 1"; do
+default_scenes=("builtin:thesis-a|" "builtin:thesis-c|" "builtin:glass|" "builtin:cornell-path|--max-depth 8 --spp 1")
+if [ -n "${SCENES:-}" ]; then IFS=";" read -r -a scenes <<< "$SCENES"; else scenes=("${default_scenes[@]}"); fi
+for k in $(seq 1 "${ROUNDS:-2}"); do
+for s in "${scenes[@]}"; do
   scene=${s%%|*}; args=${s#*|}
   for be in opencl glsl-compute vulkan; do
     row "$scene" "$args" strict $be

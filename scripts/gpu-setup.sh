@@ -1,0 +1,21 @@
+# Sourced by the GPU machine's scripts (scripts/gpu-run, docs/benchmarks/*/gpu.sh): makes NVIDIA's
+# OpenGL (EGL), OpenCL and Vulkan drivers reachable from Rill's binaries carried in .devcarry/.
+# The GPU machine has NVIDIA's drivers but no package registry, so the loaders come as Debian
+# packages in .gl/ (libglvnd's EGL/GL, ocl-icd) and .devcarry/lib/ (the Vulkan loader and the
+# binaries' other shared libraries); large files travel xz-compressed (*.xz, unpacked here).
+# Run from the repository root. Sets B (the binaries' folder) and the drivers' variables.
+for f in .gl/libegl1*.deb .gl/libglvnd0*.deb .gl/libopengl0*.deb .gl/libgl1*.deb .gl/libglx0*.deb .gl/libgles2*.deb; do dpkg -x "$f" /; done
+ldconfig
+mkdir -p /tmp/x /tmp/icd /tmp/rill-gpu/bin /tmp/rill-gpu/lib
+for f in .gl/ocl-icd*.deb; do dpkg -x "$f" /tmp/x; done
+cp -a .devcarry/bin/. /tmp/rill-gpu/bin/; cp -a .devcarry/lib/. /tmp/rill-gpu/lib/
+for f in /tmp/rill-gpu/bin/*.xz /tmp/rill-gpu/lib/*.xz; do [ -e "$f" ] && xz -d -f "$f"; done
+chmod +x /tmp/rill-gpu/bin/*
+export LD_LIBRARY_PATH=/tmp/x/usr/lib/x86_64-linux-gnu:/tmp/rill-gpu/lib
+echo libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd
+export OCL_ICD_VENDORS=/tmp/icd
+export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+# Older Vulkan loaders read VK_ICD_FILENAMES, newer VK_DRIVER_FILES.
+export VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/nvidia_icd.json VK_DRIVER_FILES=/usr/share/vulkan/icd.d/nvidia_icd.json
+export RILL_GL=egl RILL_OPENCL_DEVICE=nvidia RILL_VULKAN_DEVICE=nvidia RILL_CACHE_DIR=/tmp/rill-cache
+B=/tmp/rill-gpu/bin
