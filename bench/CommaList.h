@@ -1,4 +1,5 @@
-// The benchmarks' list options ("cpu,opencl", "1,4,8"): comma-separated, empty items dropped.
+// The benchmarks' list options ("cpu,opencl", "1,4,8"): comma-separated, empty items dropped;
+// and back.
 #pragma once
 
 #include <sstream>
@@ -13,6 +14,12 @@ inline std::vector<std::string> split_list(const std::string& s) {
   for (std::string item; std::getline(in, item, ',');)
     if (!item.empty()) v.push_back(item);
   return v;
+}
+
+inline std::string join_list(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& item : v) s += (s.empty() ? "" : ",") + item;
+  return s;
 }
 
 }  // namespace rill::bench

@@ -71,6 +71,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "CommaList.h"
 #include "HitAgreement.h"
 #include "Timing.h"
@@ -84,6 +86,7 @@
 namespace {
 
 using rill::bench::Clock;
+using rill::bench::join_list;
 using rill::bench::median;
 using rill::bench::ms_since;
 using rill::bench::split_list;
@@ -154,6 +157,8 @@ struct Options {
   int bounce = 2;
   int spp = 1;
   int64_t seed = -1;  // -1: the scene's
+  // The shared section's child: measure this backend alone and write the figures here.
+  std::string shared_alone, shared_out;
   std::string md, csv;
   double min_agree = 0.999;
   int width = 0, height = 0;
@@ -854,6 +859,150 @@ class Bench {
   static double mrays(double rays, double ms) {
     return ms > 0 ? rays / (ms * 1e3) : 0.0;
   }
+  // The shared-process section (issue 52 item 1): each GPU backend measured in a process of
+  // its own (this program again, started before this one opens any GPU backend), then all of
+  // them in this one process, one backend after the other and then launch by launch
+  // interleaved, then alone again in a child while this process holds every backend open.
+  // Wall time of the primary-ray launch and of a full frame, with the device's own timing of
+  // the kernels beside them (a slower kernel on the device, or the same kernel and a slower
+  // launch, point at different causes), and each against the backend's figure alone.
+  struct SharedFigures {
+    double prim_ms = -1, prim_kernel_ms = -1, full_ms = -1, full_kernel_ms = -1;
+  };
+  // Measures `bes` on `spec` in this process; `interleaved`: launch by launch, else each
+  // backend's repeats together.
+  std::vector<SharedFigures> shared_measure(const std::string& spec,
+                                            const std::vector<std::string>& bes, bool interleaved) {
+    rt::Scene scene = load(spec, o_);
+    std::vector<std::unique_ptr<rt::Grid>> grids;
+    std::vector<std::unique_ptr<rt::Tracer>> tracers;
+    std::vector<std::unique_ptr<RayRun>> runs;
+    std::vector<rt::RenderResult> results(bes.size());
+    const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
+    for (const auto& be : bes) {
+      rt::Scene with = scene;
+      with.options.subgrid_min = rt::subgrid_min_for(scene.options.subgrid_min, be);
+      grids.push_back(std::make_unique<rt::Grid>(rt::build_grid_for(with)));
+      tracers.push_back(std::make_unique<rt::Tracer>(scene, *grids.back()));
+      const std::vector<glm::vec3> dirs =
+          tracers.back()->camera_rays("cpu", scene.camera, scene.width, scene.height);
+      runs.push_back(std::make_unique<RayRun>(*tracers.back(), be,
+                                              std::vector<glm::vec3>(n, scene.camera.eye), dirs,
+                                              scene.width, scene.height, o_.acc));
+      runs.back()->run();  // warm-up: uploads, driver compiles
+      tracers.back()->render(settings(be, scene, -1, o_.acc), scene.camera, results.back());
+    }
+    std::vector<std::vector<double>> pw(bes.size()), pk(bes.size()), fw(bes.size()), fk(bes.size());
+    auto one = [&](size_t b) {
+      pw[b].push_back(runs[b]->run());
+      pk[b].push_back(runs[b]->kernel.last_launch().device_ms);
+      tracers[b]->render(settings(bes[b], scene, -1, o_.acc), scene.camera, results[b]);
+      fw[b].push_back(results[b].trace_ms);
+      fk[b].push_back(results[b].times.kernel);
+    };
+    if (interleaved) {
+      for (int r = 0; r < o_.repeats; ++r)
+        for (size_t b = 0; b < bes.size(); ++b) one(b);
+    } else {
+      for (size_t b = 0; b < bes.size(); ++b)
+        for (int r = 0; r < o_.repeats; ++r) one(b);
+    }
+    std::vector<SharedFigures> out(bes.size());
+    for (size_t b = 0; b < bes.size(); ++b)
+      out[b] = {median(pw[b]), median(pk[b]), median(fw[b]), median(fk[b])};
+    return out;
+  }
+  // This program again, measuring `be` alone on every scene; false (reported) if it failed.
+  bool shared_child(const std::string& be, std::map<std::string, SharedFigures>& out) {
+    char tmpl[] = "/tmp/rill-bench-shared-XXXXXX";
+    const int fd = mkstemp(tmpl);
+    if (fd < 0) return false;
+    close(fd);
+    const std::string cmd = std::filesystem::read_symlink("/proc/self/exe").string() +
+                            " --sections shared" + " --shared-alone " + be + " --shared-out " +
+                            tmpl + " --backends " + be + " --scenes " + o_.scenes + " --size " +
+                            o_.size + " --repeats " + std::to_string(o_.repeats) + " --accuracy " +
+                            o_.accuracy + " > /dev/null";
+    const bool ran = std::system(cmd.c_str()) == 0;
+    std::ifstream f(tmpl);
+    std::string spec;
+    SharedFigures fig;
+    while (ran &&
+           f >> spec >> fig.prim_ms >> fig.prim_kernel_ms >> fig.full_ms >> fig.full_kernel_ms)
+      out[spec] = fig;
+    std::filesystem::remove(tmpl);
+    ok = ok && ran;
+    if (!ran)
+      std::fprintf(stderr, "rill-bench-trace: the child measuring %s failed: %s\n", be.c_str(),
+                   cmd.c_str());
+    return ran;
+  }
+
+ public:
+  void shared_process() {
+    if (!o_.shared_alone.empty()) {  // the child
+      std::ofstream f(o_.shared_out);
+      for (const auto& spec : split_list(o_.scenes)) {
+        const SharedFigures g = shared_measure(spec, {o_.shared_alone}, false)[0];
+        f << spec << ' ' << g.prim_ms << ' ' << g.prim_kernel_ms << ' ' << g.full_ms << ' '
+          << g.full_kernel_ms << '\n';
+      }
+      if (!f) throw rt::SceneError("cannot write " + o_.shared_out);
+      return;
+    }
+    // The GPU backends asked for, by name only: opening one here before the children ran
+    // would make their "alone" figures those of a machine where another process holds it.
+    std::vector<std::string> want;
+    if (o_.backends == "all")
+      for (rill::Backend* b : rill::backends()) want.push_back(b->name());
+    else
+      want = split_list(o_.backends);
+    want.erase(std::remove_if(want.begin(), want.end(),
+                              [](const std::string& b) { return b == "cpu" || b == "simd"; }),
+               want.end());
+    std::map<std::string, std::map<std::string, SharedFigures>> alone, alone_held;
+    for (const auto& be : want) shared_child(be, alone[be]);
+    std::vector<std::string> bes;
+    for (const auto& be : want)
+      if (!alone[be].empty()) bes.push_back(be);
+    bes = usable_backends(join_list(bes));
+    if (bes.size() < 2) {
+      std::printf("note: the shared section needs two GPU backends that run here (%zu did)\n",
+                  bes.size());
+      return;
+    }
+    std::map<std::string, std::vector<SharedFigures>> seq, inter;
+    for (const auto& spec : split_list(o_.scenes)) {
+      seq[spec] = shared_measure(spec, bes, false);
+      inter[spec] = shared_measure(spec, bes, true);
+    }
+    for (const auto& be : bes) shared_child(be, alone_held[be]);
+    const std::string acc = rill::accuracy_name(o_.acc);
+    Table t{"GPU backends sharing a process, " + size_str() + ", " + acc + ", median of " +
+                std::to_string(o_.repeats) +
+                " (ms: wall / the device's kernel time; x: against alone)",
+            {"scene", "backend", "primary alone", "primary shared", "x", "primary interleaved", "x",
+             "primary alone, others held open elsewhere", "frame alone", "frame shared", "x",
+             "frame interleaved", "x"},
+            {}};
+    auto wk = [](double w, double k) {
+      return k < 0 ? fmt("%.2f", w) : fmt("%.2f", w) + " / " + fmt("%.2f", k);
+    };
+    for (const auto& spec : split_list(o_.scenes))
+      for (size_t b = 0; b < bes.size(); ++b) {
+        const SharedFigures a = alone[bes[b]][spec], h = alone_held[bes[b]][spec];
+        const SharedFigures s = seq[spec][b], i = inter[spec][b];
+        t.rows.push_back({spec, bes[b], wk(a.prim_ms, a.prim_kernel_ms),
+                          wk(s.prim_ms, s.prim_kernel_ms), fmt("%.2f", s.prim_ms / a.prim_ms),
+                          wk(i.prim_ms, i.prim_kernel_ms), fmt("%.2f", i.prim_ms / a.prim_ms),
+                          wk(h.prim_ms, h.prim_kernel_ms), wk(a.full_ms, a.full_kernel_ms),
+                          wk(s.full_ms, s.full_kernel_ms), fmt("%.2f", s.full_ms / a.full_ms),
+                          wk(i.full_ms, i.full_kernel_ms), fmt("%.2f", i.full_ms / a.full_ms)});
+      }
+    add(t);
+  }
+
+ private:
   std::string size_str() const {
     return std::to_string(o_.width) + "x" + std::to_string(o_.height);
   }
@@ -879,7 +1028,9 @@ int main(int argc, char** argv) {
       "rill-bench-trace: the ray tracer's benchmarks (primary and full-shading "
       "throughput, Embree, grid and depth sweeps, kernel specialization, the path tracer's "
       "bounce rays against Embree)"};
-  app.add_option("--sections", o.sections, "comma list of throughput,embree,grid,depth,spec,bounce")
+  app.add_option("--sections", o.sections,
+                 "comma list of throughput,embree,grid,depth,spec,bounce,shared (shared: the GPU "
+                 "backends in one process against each alone)")
       ->default_str(o.sections);
   app.add_option("--size", o.size, "image size WxH")->default_str(o.size);
   app.add_option("--scenes", o.scenes, "comma list: builtin:NAME, OBJ or JSON files")
@@ -933,6 +1084,8 @@ int main(int argc, char** argv) {
   app.add_option("--min-agree", o.min_agree, "fraction of rays Embree and Rill must agree on")
       ->check(CLI::Range(0.0, 1.0))
       ->default_str("0.999");
+  app.add_option("--shared-alone", o.shared_alone)->group("");  // the shared section's child
+  app.add_option("--shared-out", o.shared_out)->group("");
   app.add_option("--md", o.md, "also write the tables as Markdown to this file");
   app.add_option("--csv", o.csv, "also write the tables as CSV to this file");
   try {
@@ -965,9 +1118,9 @@ int main(int argc, char** argv) {
     };
     for (const auto& s : sections)
       if (s != "throughput" && s != "embree" && s != "grid" && s != "depth" && s != "spec" &&
-          s != "bounce")
+          s != "bounce" && s != "shared")
         throw rt::SceneError("--sections: unknown section '" + s +
-                             "' (throughput, embree, grid, depth, spec, bounce)");
+                             "' (throughput, embree, grid, depth, spec, bounce, shared)");
     std::printf("rill-bench-trace: %dx%d, %d repeats, %d threads\n", o.width, o.height, o.repeats,
                 tbb::info::default_concurrency());
     Bench b(o);
@@ -977,6 +1130,7 @@ int main(int argc, char** argv) {
     if (has("depth")) b.depth_sweep();
     if (has("spec")) b.specialization();
     if (has("bounce")) b.bounce_rays();
+    if (has("shared")) b.shared_process();
     if (!o.md.empty()) {
       std::ofstream f(o.md);
       for (const auto& t : b.tables) f << t.markdown();
