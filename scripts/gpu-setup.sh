@@ -7,10 +7,13 @@
 for f in .gl/libegl1*.deb .gl/libglvnd0*.deb .gl/libopengl0*.deb .gl/libgl1*.deb .gl/libglx0*.deb .gl/libgles2*.deb; do dpkg -x "$f" /; done
 ldconfig
 mkdir -p /tmp/x /tmp/icd /tmp/rill-gpu/bin /tmp/rill-gpu/lib
-for f in .gl/ocl-icd*.deb; do dpkg -x "$f" /tmp/x; done
-cp -a .devcarry/bin/. /tmp/rill-gpu/bin/; cp -a .devcarry/lib/. /tmp/rill-gpu/lib/
-for f in /tmp/rill-gpu/bin/*.xz /tmp/rill-gpu/lib/*.xz; do [ -e "$f" ] && xz -d -f "$f"; done
-chmod +x /tmp/rill-gpu/bin/*
+for f in .gl/ocl-icd*.deb .gl/libtbb*.deb .gl/libtinyobj*.deb; do [ -e "$f" ] && dpkg -x "$f" /tmp/x; done
+if [ -d .devcarry ]; then
+  cp -a .devcarry/bin/. /tmp/rill-gpu/bin/
+  cp -a .devcarry/lib/. /tmp/rill-gpu/lib/
+  for f in /tmp/rill-gpu/bin/*.xz /tmp/rill-gpu/lib/*.xz; do [ -e "$f" ] && xz -d -f "$f"; done
+  chmod +x /tmp/rill-gpu/bin/*
+fi
 export LD_LIBRARY_PATH=/tmp/x/usr/lib/x86_64-linux-gnu:/tmp/rill-gpu/lib
 echo libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd
 export OCL_ICD_VENDORS=/tmp/icd
@@ -18,4 +21,5 @@ export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d
 # Older Vulkan loaders read VK_ICD_FILENAMES, newer VK_DRIVER_FILES.
 export VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/nvidia_icd.json VK_DRIVER_FILES=/usr/share/vulkan/icd.d/nvidia_icd.json
 export RILL_GL=egl RILL_OPENCL_DEVICE=nvidia RILL_VULKAN_DEVICE=nvidia RILL_CACHE_DIR=/tmp/rill-cache
-B=/tmp/rill-gpu/bin
+# RILL_GPU_BIN: binaries carried elsewhere (their libraries on LD_LIBRARY_PATH).
+B=${RILL_GPU_BIN:-/tmp/rill-gpu/bin}

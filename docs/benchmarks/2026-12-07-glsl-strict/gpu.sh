@@ -5,13 +5,8 @@
 # machine from the repository root, rill-trace and rill-conformance with their shared libraries
 # in .devcarry/ (bin/, lib/), the GL and OpenCL loaders' Debian packages in .gl/, as
 # docs/benchmarks/2026-12-07-path/h200.sh does. Output: $OUT/conformance-*.txt, $OUT/table.md.
-for f in .gl/libegl1*.deb .gl/libglvnd0*.deb .gl/libopengl0*.deb .gl/libgl1*.deb .gl/libglx0*.deb .gl/libgles2*.deb; do dpkg -x $f /; done; ldconfig
-mkdir -p /tmp/x /tmp/icd; for f in .gl/ocl-icd*.deb; do dpkg -x $f /tmp/x; done
-export LD_LIBRARY_PATH=/tmp/x/usr/lib/x86_64-linux-gnu:$PWD/.devcarry/lib
-echo libnvidia-opencl.so.1 > /tmp/icd/nvidia.icd; export OCL_ICD_VENDORS=/tmp/icd
-export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-export RILL_GL=egl RILL_OPENCL_DEVICE=nvidia RILL_CACHE_DIR=/tmp/rill-cache
-B=.devcarry/bin; here=docs/benchmarks/2026-12-07-glsl-strict
+source scripts/gpu-setup.sh  # the drivers, the carried binaries: B
+here=docs/benchmarks/2026-12-07-glsl-strict
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee $OUT/info.txt
 $B/rill-trace info 2>&1 | grep -E "^  (opencl|glsl)" | tee -a $OUT/info.txt
 # Bitwise: the strict conformance suite with the rule's default (auto: fused on NVIDIA) and split.
