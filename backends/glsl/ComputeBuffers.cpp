@@ -2,6 +2,9 @@
 #include "ComputeBuffers.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <string>
 
 #include "GLSession.h"
 
@@ -73,12 +76,47 @@ GLuint ComputeBuffers::texture_of(const GL& gl, detail::Storage& s) {
   return b.tex;
 }
 
+bool ComputeBuffers::staging_from_environment() {
+  const char* v = std::getenv("RILL_GLSL_READBACK");
+  if (!v || !*v || std::string(v) == "get") return false;
+  if (std::string(v) == "staging") return true;
+  throw Error(std::string("RILL_GLSL_READBACK='") + v + "' is not one of get, staging");
+}
+
 void ComputeBuffers::read_back(const GL& gl, const detail::Storage& s, uint32_t* host) {
   auto* b = s.device_buffer<Buffer>(&owner_);
   if (s.words() == 0) return;
+  const auto bytes = static_cast<GLsizeiptr>(s.words() * 4);
+  if (staging_ < 0) staging_ = staging_from_environment() ? 1 : 0;
   gl.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, b->buf);
-  gl.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(s.words() * 4), host);
+  if (staging_ == 0) {
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, b->buf);
+    gl.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, bytes, host);
+    check(gl, "reading a buffer back", kComputeWho);
+    return;
+  }
+  // The device copies into the staging buffer; mapping it waits for that copy.
+  Buffer& st = staging_buffer_;
+  if (st.bytes < bytes) {
+    if (!st.buf) {
+      st.session = session_;
+      gl.glGenBuffers(1, &st.buf);
+    }
+    gl.glBindBuffer(GL_COPY_WRITE_BUFFER, st.buf);
+    gl.glBufferData(GL_COPY_WRITE_BUFFER, bytes, nullptr, GL_STREAM_READ);
+    check(gl, "allocating the read-back buffer", kComputeWho);
+    st.bytes = bytes;
+  }
+  gl.glBindBuffer(GL_COPY_READ_BUFFER, b->buf);
+  gl.glBindBuffer(GL_COPY_WRITE_BUFFER, st.buf);
+  gl.glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, bytes);
+  const void* mapped = gl.glMapBufferRange(GL_COPY_WRITE_BUFFER, 0, bytes, GL_MAP_READ_BIT);
+  if (!mapped) {
+    check(gl, "mapping the read-back buffer", kComputeWho);
+    throw Error(std::string(kComputeWho) + ": mapping the read-back buffer failed");
+  }
+  std::memcpy(host, mapped, static_cast<size_t>(bytes));
+  gl.glUnmapBuffer(GL_COPY_WRITE_BUFFER);
   check(gl, "reading a buffer back", kComputeWho);
 }
 

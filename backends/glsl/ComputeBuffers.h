@@ -41,12 +41,18 @@ class ComputeBuffers {
   Buffer& to_device(const GL& gl, detail::Storage& s);
   // The buffer texture over s's buffer, for gathers.
   GLuint texture_of(const GL& gl, detail::Storage& s);
-  // Copies s's buffer to host (s.words() words).
+  // Copies s's buffer to host (s.words() words): with glGetBufferSubData, or (staging) copied
+  // on the device into a buffer the driver keeps in host memory (GL_STREAM_READ), then mapped.
   void read_back(const GL& gl, const detail::Storage& s, uint32_t* host);
+  // How read_back copies: RILL_GLSL_READBACK=get (default) or staging, for measuring which
+  // the driver streams faster (issue 52 item 2). Throws for another value.
+  static bool staging_from_environment();
 
  private:
   GLBackend& owner_;
   std::shared_ptr<Session> session_;
+  int staging_ = -1;       // staging_from_environment(), read at the first read-back
+  Buffer staging_buffer_;  // grown to the largest read-back (staging only)
 };
 
 }  // namespace rill::glsl
