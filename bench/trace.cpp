@@ -1,6 +1,6 @@
 // rill-bench-trace: the ray tracer's benchmarks (issue #6, docs/raytracer.md, Performance).
 //
-//   rill-bench-trace [--sections throughput,embree,grid,depth,spec,bounce] [--size WxH]
+//   rill-bench-trace [--sections throughput,embree,grid,depth,spec,bounce,shared] [--size WxH]
 //                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends
 //                    all|cpu,simd,opencl,glsl,glsl-compute]
 //                    [--repeats R] [--subgrids N|off|auto] [--grid-density D] [--grid-scene S]
