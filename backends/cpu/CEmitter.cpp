@@ -210,8 +210,8 @@ size_t spread(std::vector<std::pair<size_t, size_t>> items, std::vector<size_t>&
 // max_units, and no more than one per unit_cost of the kernel's cost, so that a unit's
 // compile outweighs the cost of a compiler run. With two units or more, the parts that run
 // no loop (OutlinedPart::loops) may go to units of their own at the end, `cold` of them,
-// compiled at -O1 (kColdUnitsMark): the layout whose largest unit is the smallest, a cold
-// part's compile counted at half its cost (GCC 12's -O1 took 0.37-0.48 s of CPU on the
+// compiled at -O1 (kColdUnitsMark): the layout whose largest unit is the smallest (ties:
+// the most cold units), a cold part's compile counted at half its cost (GCC 12's -O1 took 0.37-0.48 s of CPU on the
 // gallery's loop-free parts, -O2 0.97; docs/benchmarks/2026-12-07-first-image.md).
 std::vector<int> assign_units(const OutlinePlan& plan, const CLayout& layout, int& units,
                               int& cold) {
@@ -237,7 +237,8 @@ std::vector<int> assign_units(const OutlinePlan& plan, const CLayout& layout, in
     load[0] = plan.root_cost;
     const size_t largest = std::max(spread(hot, load, 0, units - c, unit),
                                     spread(loop_free, load, units - c, c, unit));
-    if (largest < best_load) best_load = largest, best = unit, cold = c;
+    // Ties go to more units at -O1: the same largest unit, less compiling in all.
+    if (largest <= best_load) best_load = largest, best = unit, cold = c;
   }
   return best;
 }
