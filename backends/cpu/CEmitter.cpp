@@ -210,9 +210,9 @@ size_t spread(std::vector<std::pair<size_t, size_t>> items, std::vector<size_t>&
 // max_units, and no more than one per unit_cost of the kernel's cost, so that a unit's
 // compile outweighs the cost of a compiler run. With two units or more, the parts that run
 // no loop (OutlinedPart::loops) may go to units of their own at the end, `cold` of them,
-// compiled at -O1 (kColdUnitsMark): the layout whose largest unit is the smallest (ties:
-// the most cold units), a cold part's compile counted at half its cost (GCC 12's -O1 took 0.37-0.48 s of CPU on the
-// gallery's loop-free parts, -O2 0.97; docs/benchmarks/2026-12-07-first-image.md).
+// compiled at -O1 (kColdUnitsMark): the layout whose largest unit is the smallest (ties: the
+// most cold units), a cold part's compile counted at half its cost: GCC 12 at -O1 took about
+// half its -O2 time on the gallery's loop-free parts (docs/benchmarks/2026-12-07-first-image.md).
 std::vector<int> assign_units(const OutlinePlan& plan, const CLayout& layout, int& units,
                               int& cold) {
   size_t total = plan.root_cost;
@@ -242,10 +242,6 @@ std::vector<int> assign_units(const OutlinePlan& plan, const CLayout& layout, in
   }
   return best;
 }
-
-}  // namespace
-
-namespace {
 
 // The number after the first line that starts with `mark`, or `absent`.
 int mark_value(const std::string& source, const char* mark, int absent) {
