@@ -188,38 +188,76 @@ class PartPrinter {
   bool source_map_;
 };
 
-// Spreads the parts over translation units, largest first onto the least loaded (unit 0
-// carries the entry function); at most max_units, and no more than one per unit_cost of
-// the kernel's cost, so that a unit's compile outweighs the cost of a compiler run.
-std::vector<int> assign_units(const OutlinePlan& plan, const CLayout& layout, int& units) {
+// Spreads `items` (cost, part index) over `units` translation units from `first` on, the
+// largest first onto the least loaded, starting from the loads in `load`; returns the
+// largest load.
+size_t spread(std::vector<std::pair<size_t, size_t>> items, std::vector<size_t>& load, int first,
+              int units, std::vector<int>& unit) {
+  // Parts nested in others are counted in their own cost only: the outer part's cost
+  // counts a nested part as a call.
+  std::stable_sort(items.begin(), items.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  const auto begin = load.begin() + first, end = begin + units;
+  for (const auto& item : items) {
+    const auto u = std::min_element(begin, end);
+    unit[item.second] = static_cast<int>(u - load.begin());
+    *u += item.first;
+  }
+  return *std::max_element(begin, end);
+}
+
+// Spreads the parts over translation units (unit 0 carries the entry function); at most
+// max_units, and no more than one per unit_cost of the kernel's cost, so that a unit's
+// compile outweighs the cost of a compiler run. With two units or more, the parts that run
+// no loop (OutlinedPart::loops) may go to units of their own at the end, `cold` of them,
+// compiled at -O1 (kColdUnitsMark): the layout whose largest unit is the smallest (ties: the
+// most cold units), a cold part's compile counted at half its cost: GCC 12 at -O1 took about
+// half its -O2 time on the gallery's loop-free parts (docs/benchmarks/2026-12-07-first-image.md).
+std::vector<int> assign_units(const OutlinePlan& plan, const CLayout& layout, int& units,
+                              int& cold) {
   size_t total = plan.root_cost;
   for (const OutlinedPart& part : plan.parts) total += part.cost;
   units = static_cast<int>(std::clamp<size_t>(total / std::max<size_t>(layout.unit_cost, 1), 1,
                                               static_cast<size_t>(std::max(layout.max_units, 1))));
-  std::vector<size_t> order(plan.parts.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  // Parts nested in others are counted in their own cost only: the outer part's cost
-  // counts a nested part as a call.
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return plan.parts[a].cost > plan.parts[b].cost; });
+  std::vector<std::pair<size_t, size_t>> all, hot, loop_free;
+  for (size_t i = 0; i < plan.parts.size(); ++i) {
+    const OutlinedPart& part = plan.parts[i];
+    all.emplace_back(part.cost, i);
+    (part.loops || !layout.cold_units ? hot : loop_free).emplace_back(part.cost, i);
+  }
+  for (auto& item : loop_free) item.first = (item.first + 1) / 2;
+  std::vector<int> unit(plan.parts.size(), 0), best = unit;
   std::vector<size_t> load(static_cast<size_t>(units), 0);
   load[0] = plan.root_cost;
-  std::vector<int> unit(plan.parts.size(), 0);
-  for (size_t i : order) {
-    const size_t u = static_cast<size_t>(std::min_element(load.begin(), load.end()) - load.begin());
-    unit[i] = static_cast<int>(u);
-    load[u] += plan.parts[i].cost;
+  size_t best_load = spread(all, load, 0, units, best);
+  cold = 0;
+  if (loop_free.empty()) return best;
+  for (int c = 1; c < units; ++c) {
+    std::fill(load.begin(), load.end(), 0);
+    load[0] = plan.root_cost;
+    const size_t largest = std::max(spread(hot, load, 0, units - c, unit),
+                                    spread(loop_free, load, units - c, c, unit));
+    // Ties go to more units at -O1: the same largest unit, less compiling in all.
+    if (largest <= best_load) best_load = largest, best = unit, cold = c;
   }
-  return unit;
+  return best;
+}
+
+// The number after the first line that starts with `mark`, or `absent`.
+int mark_value(const std::string& source, const char* mark, int absent) {
+  const size_t at = source.find(std::string("\n") + mark);
+  if (at == std::string::npos) return absent;
+  return std::atoi(source.c_str() + at + 1 + std::char_traits<char>::length(mark));
 }
 
 }  // namespace
 
 int c_units(const std::string& source) {
-  const size_t at = source.find(std::string("\n") + kUnitsMark);
-  if (at == std::string::npos) return 1;
-  return std::max(1,
-                  std::atoi(source.c_str() + at + 1 + std::char_traits<char>::length(kUnitsMark)));
+  return std::max(1, mark_value(source, kUnitsMark, 1));
+}
+
+int c_cold_units(const std::string& source) {
+  return std::clamp(mark_value(source, kColdUnitsMark, 0), 0, c_units(source) - 1);
 }
 
 std::string emit_c(const Function& f, Accuracy accuracy, const CLayout& layout) {
@@ -241,8 +279,10 @@ std::string emit_c(const Function& f, Accuracy accuracy, const CLayout& layout) 
     // static functions of this one; with it, unit k defines its own parts and calls the
     // others' through hidden symbols of the shared object. noinline: GCC would otherwise
     // inline a part called once back into its caller, which is the size it is split from.
-    const std::vector<int> unit = assign_units(plan, layout, units);
+    int cold = 0;
+    const std::vector<int> unit = assign_units(plan, layout, units, cold);
     src += "\n" + std::string(kUnitsMark) + std::to_string(units) + " */\n";
+    if (cold > 0) src += std::string(kColdUnitsMark) + std::to_string(cold) + " */\n";
     src +=
         "#ifdef RILL_TU\n#define RILL_PART __attribute__((visibility(\"hidden\"), noinline))\n"
         "#else\n#define RILL_PART static __attribute__((noinline))\n#endif\n";

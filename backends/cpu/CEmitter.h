@@ -19,6 +19,8 @@ struct CLayout {
   size_t outline_min_cost = 0;
   int max_units = 1;
   size_t unit_cost = 3000;  // at most one unit per this much cost (Outline.h's measure)
+  // Loop-free parts may be compiled at -O1 in units of their own (kColdUnitsMark).
+  bool cold_units = false;
   // With #line directives naming the user's lines (codegen/SourceMap.h).
   bool source_map = false;
 };
@@ -29,6 +31,14 @@ std::string emit_c(const ir::Function& optimized, Accuracy accuracy, const CLayo
 // that starts with this mark says how many: "/* rill-units: N */". Returns 1 without it.
 inline constexpr const char* kUnitsMark = "/* rill-units: ";
 int c_units(const std::string& source);
+// Of those units, the last ones that hold only outlined parts that run no loop
+// (OutlinedPart::loops), compiled at -O1 instead of -O2: "/* rill-cold-units: K */" on the
+// line after the units mark; 0 without it. Straight-line code runs once per call, so where
+// a kernel's time goes (its loops: the grid walk) stays at -O2, and the compile of a large
+// kernel's first image is shorter. -O1 and -O2 compute the same bits: strict kernels are
+// compiled without FMA contraction, excess precision or fast math at every level.
+inline constexpr const char* kColdUnitsMark = "/* rill-cold-units: ";
+int c_cold_units(const std::string& source);
 
 // Pieces every C translation unit of the CPU backends shares (the scalar one above and the
 // lockstep one in simd/LockstepEmitter.h):

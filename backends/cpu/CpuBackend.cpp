@@ -68,6 +68,7 @@ bool has_sse41() {
 
 CLayout c_layout() {
   CLayout layout{kOutlineMinCost, 4};
+  layout.cold_units = true;
   const char* knob = std::getenv("RILL_CPU_OUTLINE");
   if (!knob || !*knob) return layout;
   const std::string v = knob;
@@ -110,7 +111,8 @@ std::unique_ptr<CompiledKernel> compile_scalar_c(const std::string& backend, con
   SharedObject so = codegen::reporting_user_lines(
       source, [&] { return emit_c(f, a, mapped); },
       [&] {
-        return compile_shared_object(backend, f.name, source, flags, "rill_run", c_units(source));
+        return compile_shared_object(backend, f.name, source, flags, "rill_run", c_units(source),
+                                     c_cold_units(source));
       });
   auto k = make_host_kernel(std::move(source), std::move(so), 0);
   k->set_build_times(codegen_ms, stage.lap());

@@ -157,6 +157,16 @@ void scan_part(const Block& b, int loop_depth, OutlinedPart& part) {
   }
 }
 
+// Whether b runs a loop itself (an outlined nested block is a call: its loops are its own).
+bool runs_loop(const Block& b, const Parts& parts) {
+  for (const Stmt& s : b) {
+    if (s.kind == StmtKind::Loop) return true;
+    for (const Block* inner : {&s.then_body, &s.else_body})
+      if (!parts.called(*inner) && runs_loop(*inner, parts)) return true;
+  }
+  return false;
+}
+
 class Planner {
  public:
   Planner(const Function& f, size_t min_cost) : f_(f), min_cost_(min_cost) {
@@ -166,7 +176,7 @@ class Planner {
 
   // The cost of b once its large nested blocks are outlined; outlines b too when it may be
   // (an if side or a loop body) and is large.
-  size_t block(const Block& b, bool may_outline, bool in_loop) {
+  size_t block(const Block& b, bool may_outline, bool in_loop, bool loop_body = false) {
     size_t cost = 0;
     for (const Stmt& s : b) {
       switch (s.kind) {
@@ -178,7 +188,7 @@ class Planner {
           cost += 1 + block(s.then_body, true, in_loop) + block(s.else_body, true, in_loop);
           break;
         case StmtKind::Loop:
-          cost += 1 + block(s.cond_body, false, true) + block(s.body, true, true) +
+          cost += 1 + block(s.cond_body, false, true) + block(s.body, true, true, true) +
                   block(s.step, false, true);
           break;
         default:
@@ -187,14 +197,14 @@ class Planner {
       }
     }
     if (!may_outline || b.empty() || cost < min_cost_) return cost;
-    outline(b, in_loop, cost);
+    outline(b, in_loop, loop_body, cost);
     return 2;  // the call
   }
 
   OutlinePlan plan;
 
  private:
-  void outline(const Block& b, bool in_loop, size_t cost) {
+  void outline(const Block& b, bool in_loop, bool loop_body, size_t cost) {
     OutlinedPart part;
     part.block = &b;
     part.id = static_cast<int>(plan.parts.size());
@@ -226,6 +236,7 @@ class Planner {
         part.by_value.push_back(r);
     }
     scan_part(b, 0, part);
+    part.loops = loop_body || runs_loop(b, parts);
     std::sort(part.arrays.begin(), part.arrays.end());
     part.arrays.erase(std::unique(part.arrays.begin(), part.arrays.end()), part.arrays.end());
     plan.index[&b] = plan.parts.size();

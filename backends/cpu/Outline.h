@@ -45,6 +45,10 @@ struct OutlinedPart {
   bool element_index = false;                    // reads rill_i
   bool element_coord = false;                    // reads rill_x, rill_y
   bool exits[4] = {false, false, false, false};  // which OutlineExit codes it may return
+  // It is a loop's body or runs a loop of its own (nested parts' loops are theirs): where a
+  // kernel's time goes. A part without is straight-line code run once per call, which the
+  // C emitter may compile at a cheaper optimisation level (CEmitter.h's kColdUnitsMark).
+  bool loops = false;
 };
 
 struct OutlinePlan {

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
@@ -166,10 +167,11 @@ int run_compiler(const std::vector<std::string>& argv, const fs::path& log, std:
 // Compiles the C file src (whose text is `source`) into out; throws rill::Error with the
 // compiler's messages and the numbered source. The callers remove out (TemporaryFiles).
 // A source of several translation units (CEmitter.h's c_units) is compiled once per unit,
-// with -DRILL_TU=k, all units at the same time, and the objects linked into out.
+// with -DRILL_TU=k, all units at the same time, and the objects linked into out; the last
+// cold_units of them at -O1.
 void compile_file(const std::string& cc, const std::vector<std::string>& flags, const fs::path& src,
                   const fs::path& out, const fs::path& log, const std::string& source,
-                  int units = 1) {
+                  int units = 1, int cold_units = 0) {
   std::string messages;
   if (units <= 1) {
     std::vector<std::string> argv{cc};
@@ -188,6 +190,8 @@ void compile_file(const std::string& cc, const std::vector<std::string>& flags, 
     logs.push_back(log.string() + "." + k);
     std::vector<std::string> argv{cc};
     argv.insert(argv.end(), flags.begin(), flags.end());
+    if (u >= units - cold_units)
+      std::replace(argv.begin(), argv.end(), std::string("-O2"), std::string("-O1"));
     argv.insert(argv.end(), {"-c", "-DRILL_TU=" + k, "-o", objects.back().string(), src.string()});
     pids.push_back(spawn(argv, logs.back()));
   }
@@ -308,7 +312,7 @@ std::string profile_directory() {
 
 SharedObject compile_shared_object(const std::string& backend, const std::string& kernel,
                                    const std::string& source, const std::vector<std::string>& flags,
-                                   const std::string& entry, int units) {
+                                   const std::string& entry, int units, int cold_units) {
   if (const std::string dir = profile_directory(); !dir.empty())
     return compile_for_profiling(dir, backend, kernel, source, flags, entry);
   const std::string cc = c_compiler();
@@ -344,7 +348,7 @@ SharedObject compile_shared_object(const std::string& backend, const std::string
   {
     const TemporaryFiles temporaries{{src, tmp}};
     write_text(src, source);
-    compile_file(cc, flags, src, tmp, dir / (tag + ".log"), source, units);
+    compile_file(cc, flags, src, tmp, dir / (tag + ".log"), source, units, cold_units);
     binary = read_file(tmp);
   }
   cache::store(backend, key_text, binary);

@@ -42,10 +42,12 @@ struct SharedObject {
 // and looks up `entry`. Throws rill::Error with the compiler's messages and the numbered
 // source on failure. `kernel` (the program's name) names the files when profiling. units > 1:
 // the source is that many translation units (CEmitter.h's c_units), compiled at the same
-// time and linked (when profiling, as the one translation unit it also is).
+// time and linked (when profiling, as the one translation unit it also is); the last
+// cold_units of them with -O1 in place of flags' -O2 (CEmitter.h's c_cold_units; the source,
+// which says so, is in the cache key).
 SharedObject compile_shared_object(const std::string& backend, const std::string& kernel,
                                    const std::string& source, const std::vector<std::string>& flags,
-                                   const std::string& entry, int units = 1);
+                                   const std::string& entry, int units = 1, int cold_units = 0);
 // Unloads the object and closes its memory file.
 void release(SharedObject& so);
 

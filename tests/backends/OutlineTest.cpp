@@ -148,8 +148,82 @@ TEST_P(OutlineTest, PlanListsEachScalarOnce) {
   for (size_t i = 0; i < plan.parts.size(); ++i) EXPECT_EQ(again.parts[i].cost, plan.parts[i].cost);
 }
 
+// A kernel whose loop body has a branch with a loop of its own on one side and
+// straight-line code on the other: the side with the loop (and the inner loop's body) are
+// parts that run loops, the other side is loop-free, and so compiled at -O1 in a unit of
+// its own (CEmitter.h's kColdUnitsMark).
+Program probe_loops() {
+  return program("outline_probe_loops", [&] {
+    Input<Float> x("x");
+    Output<Float> y("y");
+    Float acc = 0.0f;
+    Int i = 0;
+    RILL_WHILE(i < 3) {
+      RILL_IF(x > 0.0f) {
+        Int j = 0;
+        RILL_WHILE(j < 4) {
+          acc = chain(x + acc, acc * 0.25f, 40);
+          j = j + 1;
+        }
+        RILL_ENDWHILE;
+        acc = chain(acc, x, 40);  // enough beside the loop for this side to be a part too
+      }
+      RILL_ELSE {
+        acc = acc - chain(x - acc, Float(2.0f), 40) * 0.5f;
+      }
+      RILL_ENDIF;
+      i = i + 1;
+    }
+    RILL_ENDWHILE;
+    y = acc;
+  });
+}
+
+TEST_P(OutlineTest, LoopFreePartsAreColdAndComputeTheSameBits) {
+  const Program p = probe_loops();
+  const ir::Function f = passes::optimize(p.ir(), PassOptions{}, Accuracy::Strict);
+  const cpu::OutlinePlan plan = cpu::plan_outlining(f, 50);
+  size_t loop_parts = 0, loop_free = 0;
+  for (const cpu::OutlinedPart& part : plan.parts) ++(part.loops ? loop_parts : loop_free);
+  EXPECT_GE(loop_parts, 2u) << "the inner loop's body and the side that runs it";
+  EXPECT_EQ(loop_free, 1u) << "the straight-line side";
+  // Without cold units in the layout, every unit is -O2.
+  cpu::CLayout layout{50, 4, 100};
+  EXPECT_EQ(cpu::c_cold_units(cpu::emit_c(f, Accuracy::Strict, layout)), 0);
+  layout.cold_units = true;
+  const std::string cold_source = cpu::emit_c(f, Accuracy::Strict, layout);
+  const int units = cpu::c_units(cold_source), cold = cpu::c_cold_units(cold_source);
+  EXPECT_GE(units, 2);
+  EXPECT_GE(cold, 1);
+  EXPECT_LT(cold, units) << "unit 0 holds the entry function, at -O2";
+
+  // The backend's kernel, its loop-free part compiled at -O1, against the kernel printed as
+  // one function at -O2: the same bits.
+  std::vector<float> xs = sweep_floats(1, 2048);
+  for (float& v : xs)
+    if (!std::isfinite(v)) v = 0.0f;
+  std::vector<float> whole_y, split_y;
+  {
+    ScopedEnv env("RILL_CPU_OUTLINE", "off");
+    clear_kernel_cache();
+    Kernel k = compile(p);
+    whole_y = run_kernel<Float>(k, static_cast<int64_t>(xs.size()), xs);
+  }
+  {
+    ScopedEnv env("RILL_CPU_OUTLINE", "50:100");
+    clear_kernel_cache();
+    Kernel k = compile(p);
+    EXPECT_GE(cpu::c_cold_units(k.source()), 1);
+    split_y = run_kernel<Float>(k, static_cast<int64_t>(xs.size()), xs);
+  }
+  clear_kernel_cache();
+  EXPECT_TRUE(bits_equal(split_y, whole_y));
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, OutlineTest, ::testing::Values(std::string("cpu")),
-                         [](const ::testing::TestParamInfo<std::string>& info) { return param_name(info.param); });
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return param_name(info.param);
+                         });
 
 }  // namespace
 }  // namespace rill::testing

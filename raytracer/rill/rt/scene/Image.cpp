@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -44,15 +45,14 @@ void write_png_rgb8(const std::string& path, int w, int h, const std::vector<uns
   image.format = PNG_FORMAT_RGB;
   // Encoded in memory, then written through the checked writer: libpng's own file writer
   // removes the file it could not write, which in place is the device itself (as root,
-  // --out /dev/full deleted /dev/full).
-  png_alloc_size_t size = 0;
-  if (!png_image_write_get_memory_size(image, size, 0, px.data(), 0, nullptr))
+  // --out /dev/full deleted /dev/full). Encoded once, into libpng's bound on the encoded
+  // size (asking for the exact size first compresses the image twice: 15 ms of a 640x320
+  // first image); the bound's pages that the encoder does not reach are never touched.
+  png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(image);
+  const std::unique_ptr<char[]> bytes(new char[size]);
+  if (!png_image_write_to_memory(&image, bytes.get(), &size, 0, px.data(), 0, nullptr))
     throw std::runtime_error("cannot write " + path + ": " + image.message);
-  std::string bytes(size, '\0');
-  if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, px.data(), 0, nullptr))
-    throw std::runtime_error("cannot write " + path + ": " + image.message);
-  bytes.resize(size);
-  write_output_file(path, bytes);
+  write_output_file(path, std::string_view(bytes.get(), size));
 }
 
 namespace {
