@@ -147,23 +147,35 @@ RILL_FN rill_vi rill_mask(rill_vi c) { return -(c != 0); }
 #if defined(RILL_AVX2) && !defined(RILL_NO_HW_GATHER) /* RILL_AVX2: __has_builtin exists */
 #if __has_builtin(__builtin_ia32_gathersiv8sf) && __has_builtin(__builtin_ia32_gathersiv8si)
 #define RILL_HW_GATHER 1
-RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) {
-  return __builtin_ia32_gathersiv8sf((rill_vr){0}, base, i, (rill_vr)rill_splat_i(-1), 4);
-}
-RILL_FN rill_vi rill_gather_i(const int32_t* base, rill_vi i) {
-  return __builtin_ia32_gathersiv8si((rill_vi){0}, (const int*)base, i, rill_splat_i(-1), 4);
-}
+#define RILL_GATHER_PS(base, i) \
+  __builtin_ia32_gathersiv8sf((rill_vr){0}, (base), (i), (rill_vr)rill_splat_i(-1), 4)
+#define RILL_GATHER_D(base, i) \
+  __builtin_ia32_gathersiv8si((rill_vi){0}, (const int*)(base), (i), rill_splat_i(-1), 4)
 #elif __has_builtin(__builtin_ia32_gatherd_ps256) && __has_builtin(__builtin_ia32_gatherd_d256)
 #define RILL_HW_GATHER 1
-RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) {
-  return __builtin_ia32_gatherd_ps256((rill_vr){0}, base, i, (rill_vr)rill_splat_i(-1), 4);
-}
-RILL_FN rill_vi rill_gather_i(const int32_t* base, rill_vi i) {
-  return __builtin_ia32_gatherd_d256((rill_vi){0}, (const int*)base, i, rill_splat_i(-1), 4);
-}
+#define RILL_GATHER_PS(base, i) \
+  __builtin_ia32_gatherd_ps256((rill_vr){0}, (base), (i), (rill_vr)rill_splat_i(-1), 4)
+#define RILL_GATHER_D(base, i) \
+  __builtin_ia32_gatherd_d256((rill_vi){0}, (const int*)(base), (i), rill_splat_i(-1), 4)
 #endif
 #endif
 #ifdef RILL_HW_GATHER
+/* Whether every lane has the same index (lanes that are off included: they may not, and then
+   the gather runs). Where the lanes walk the same voxel, they load the same triangle ids and
+   the same triangles: one load and a broadcast then, the same values. Measured for the int
+   gathers and vec3 elements only (2026-12-07-simd-gathers.md): 1.3x on thesis B, within the
+   noise on thesis C and the bunny, whose groups diverge more. -DRILL_NO_SAME_INDEX turns the
+   test off, to measure it. */
+#ifdef RILL_NO_SAME_INDEX
+RILL_FN int rill_same_index(rill_vi i) { return 0; }
+#else
+RILL_FN int rill_same_index(rill_vi i) { return !rill_any(RILL_CMP(i != rill_splat_i(i[0]))); }
+#endif
+RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) { return RILL_GATHER_PS(base, i); }
+RILL_FN rill_vi rill_gather_i(const int32_t* base, rill_vi i) {
+  if (rill_same_index(i)) return rill_splat_i(base[i[0]]);
+  return RILL_GATHER_D(base, i);
+}
 #elif RILL_W == 8
 RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) {
   return (rill_vr){base[i[0]], base[i[1]], base[i[2]], base[i[3]], base[i[4]], base[i[5]], base[i[6]], base[i[7]]};
@@ -202,6 +214,13 @@ RILL_FN void rill_transpose_lanes(const rill_v4f q[8], rill_vr* x, rill_vr* y, r
 /* With gather instructions, a gather per component (measured faster than the load and
    transpose below for vec3; vec4 keeps the transpose, unmeasured). */
 RILL_FN void rill_gather3_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z) {
+  if (rill_same_index(i)) {
+    const float* p = base + i[0];
+    *x = rill_splat_r(p[0]);
+    *y = rill_splat_r(p[1]);
+    *z = rill_splat_r(p[2]);
+    return;
+  }
   *x = rill_gather_r(base, i);
   *y = rill_gather_r(base + 1, i);
   *z = rill_gather_r(base + 2, i);
