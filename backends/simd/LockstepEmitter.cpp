@@ -137,9 +137,46 @@ RILL_FN rill_vr rill_sel_r(rill_vi c, rill_vr a, rill_vr b) {
 RILL_FN rill_vi rill_mask(rill_vi c) { return -(c != 0); }
 #define RILL_CMP(x) __builtin_convertvector((x), rill_vi)
 
-/* Gathers: each lane loads base[i]. Built from scalar loads (a vector initializer), which
-   measured as fast as AVX2's microcoded gather instructions on the reference machine. */
-#if RILL_W == 8
+/* Gathers: each lane loads base[i]. With AVX2, one gather instruction (vgatherdps,
+   vpgatherdd) per component: GCC compiled the scalar loads of a vector initializer or a
+   per-lane loop into a loop through the stack, and the instruction measured 4-15% faster on
+   the ray tracer's traversal (docs/benchmarks/2026-12-07-simd-gathers.md). The builtins'
+   names differ between GCC and clang; without either, scalar loads (a vector initializer).
+   Each lane reads exactly base[i[l]], as the scalar loads do. Compiling a kernel with
+   -DRILL_NO_HW_GATHER (a RILL_CC wrapper) gives the earlier loads, to measure the two. */
+#if defined(RILL_AVX2) && !defined(RILL_NO_HW_GATHER) /* RILL_AVX2: __has_builtin exists */
+#if __has_builtin(__builtin_ia32_gathersiv8sf) && __has_builtin(__builtin_ia32_gathersiv8si)
+#define RILL_HW_GATHER 1
+#define RILL_GATHER_PS(base, i) \
+  __builtin_ia32_gathersiv8sf((rill_vr){0}, (base), (i), (rill_vr)rill_splat_i(-1), 4)
+#define RILL_GATHER_D(base, i) \
+  __builtin_ia32_gathersiv8si((rill_vi){0}, (const int*)(base), (i), rill_splat_i(-1), 4)
+#elif __has_builtin(__builtin_ia32_gatherd_ps256) && __has_builtin(__builtin_ia32_gatherd_d256)
+#define RILL_HW_GATHER 1
+#define RILL_GATHER_PS(base, i) \
+  __builtin_ia32_gatherd_ps256((rill_vr){0}, (base), (i), (rill_vr)rill_splat_i(-1), 4)
+#define RILL_GATHER_D(base, i) \
+  __builtin_ia32_gatherd_d256((rill_vi){0}, (const int*)(base), (i), rill_splat_i(-1), 4)
+#endif
+#endif
+#ifdef RILL_HW_GATHER
+/* Whether every lane has the same index (lanes that are off included: they may not, and then
+   the gather runs). Where the lanes walk the same voxel, they load the same triangle ids and
+   the same triangles: one load and a broadcast then, the same values. Measured for the int
+   gathers and vec3 elements only (2026-12-07-simd-gathers.md): 1.3x on thesis B, within the
+   noise on thesis C and the bunny, whose groups diverge more. -DRILL_NO_SAME_INDEX turns the
+   test off, to measure it. */
+#ifdef RILL_NO_SAME_INDEX
+RILL_FN int rill_same_index(rill_vi i) { return 0; }
+#else
+RILL_FN int rill_same_index(rill_vi i) { return !rill_any(RILL_CMP(i != rill_splat_i(i[0]))); }
+#endif
+RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) { return RILL_GATHER_PS(base, i); }
+RILL_FN rill_vi rill_gather_i(const int32_t* base, rill_vi i) {
+  if (rill_same_index(i)) return rill_splat_i(base[i[0]]);
+  return RILL_GATHER_D(base, i);
+}
+#elif RILL_W == 8
 RILL_FN rill_vr rill_gather_r(const float* base, rill_vi i) {
   return (rill_vr){base[i[0]], base[i[1]], base[i[2]], base[i[3]], base[i[4]], base[i[5]], base[i[6]], base[i[7]]};
 }
@@ -173,17 +210,40 @@ RILL_FN void rill_transpose_lanes(const rill_v4f q[8], rill_vr* x, rill_vr* y, r
   *z = __builtin_shufflevector(t2, t3, 0, 1, 8, 9, 4, 5, 12, 13);
   if (w) *w = __builtin_shufflevector(t2, t3, 2, 3, 10, 11, 6, 7, 14, 15);
 }
+#ifdef RILL_HW_GATHER
+/* With gather instructions, a gather per component (measured faster than the load and
+   transpose below for vec3; vec4 keeps the transpose, unmeasured). */
+RILL_FN void rill_gather3_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z) {
+  if (rill_same_index(i)) {
+    const float* p = base + i[0];
+    *x = rill_splat_r(p[0]);
+    *y = rill_splat_r(p[1]);
+    *z = rill_splat_r(p[2]);
+    return;
+  }
+  *x = rill_gather_r(base, i);
+  *y = rill_gather_r(base + 1, i);
+  *z = rill_gather_r(base + 2, i);
+}
+#else
 RILL_FN void rill_gather3_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z) {
   const rill_v4i m = {-1, -1, -1, 0};
   rill_v4f q[8];
   for (int l = 0; l < 8; ++l) q[l] = __builtin_ia32_maskloadps((const rill_v4f*)(base + i[l]), m);
   rill_transpose_lanes(q, x, y, z, 0);
 }
+#endif
 RILL_FN void rill_gather4_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
   rill_v4f q[8];
   for (int l = 0; l < 8; ++l) q[l] = *(const rill_v4f_u*)(base + i[l]);
   rill_transpose_lanes(q, x, y, z, w);
 }
+#ifdef RILL_HW_GATHER
+RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi* y) {
+  *x = rill_gather_i(base, i);
+  *y = rill_gather_i(base + 1, i);
+}
+#else
 /* Two consecutive ints per lane (an ivec2 element): one 8-byte load per lane and a transpose
    (the shuffles of _mm_unpacklo_epi64, _mm256_insertf128_si256, _mm256_shuffle_ps 0x88/0xdd). */
 RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi* y) {
@@ -198,6 +258,7 @@ RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi*
   *x = __builtin_shufflevector(lo, hi, 0, 2, 8, 10, 4, 6, 12, 14);
   *y = __builtin_shufflevector(lo, hi, 1, 3, 9, 11, 5, 7, 13, 15);
 }
+#endif
 #define RILL_HAVE_GATHER34 1
 #endif
 

@@ -28,12 +28,28 @@ std::string vector_isa() {
   return avx2 ? "AVX2" : "SSE2";
 }
 
+// Whether strict kernels also get AVX-512 (F, VL, BW, DQ). The lanes stay 8 binary32 in
+// 256-bit registers, but AVX-512VL gives 32 of them instead of 16, mask registers and
+// three-input logic: a lockstep kernel keeps hundreds of vectors live, and the ray tracer's
+// traversal spilled a third fewer of them (docs/benchmarks/2026-12-07-simd-gathers.md).
+// The same IEEE operations in the same order, so the same bits. Not for `fast`: with
+// AVX-512F GCC contracts a * b + c into FMA under -ffp-contract=fast, and FMA stays off.
+bool avx512_registers(Accuracy a) {
+  static const bool have = vector_isa() == "AVX2" && __builtin_cpu_supports("avx512f") &&
+                           __builtin_cpu_supports("avx512vl") &&
+                           __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+  return have && a == Accuracy::Strict;
+}
+
 class SimdBackend : public Backend {
  public:
   std::string name() const override { return "simd"; }
   std::string description() const override {
+    const std::string isa =
+        vector_isa() +
+        (avx512_registers(Accuracy::Strict) ? "; AVX-512VL registers in strict" : "");
     return cpu::host_backend_description(name(), "lockstep C, " + std::to_string(kLockstepLanes) +
-                                                     " lanes (" + vector_isa() + "), compiled by ");
+                                                     " lanes (" + isa + "), compiled by ");
   }
   bool supports(Accuracy) const override { return true; }
   std::string accuracy_note(Accuracy a) const override {
@@ -51,6 +67,8 @@ class SimdBackend : public Backend {
     const double codegen_ms = stage.lap();
     std::vector<std::string> flags = cpu::compiler_flags(o.accuracy);
     if (vector_isa() == "AVX2") flags.push_back("-mavx2");
+    if (avx512_registers(o.accuracy))
+      flags.insert(flags.end(), {"-mavx512f", "-mavx512vl", "-mavx512bw", "-mavx512dq"});
     cpu::SharedObject so = codegen::reporting_user_lines(
         source, [&] { return emit_c_lockstep(f, o.accuracy, kLockstepLanes, true); },
         [&] { return cpu::compile_shared_object(name(), f.name, source, flags, "rill_run"); });

@@ -193,6 +193,69 @@ TEST_P(GatherBoundaryTest, OneElementArrays) {
   }
 }
 
+// Groups of 8 consecutive elements (the simd backend's lanes) whose indices are all the same,
+// all the same but one, all different, the same index clamped from outside, and a short last
+// group: with gather instructions, simd loads a shared index once and broadcasts it
+// (rill_same_index), and every other group gathers; both must read each element's own value.
+// Int, Float, Float3 and Int2 elements, against the host.
+TEST_P(GatherBoundaryTest, LanesThatShareAnIndexReadTheirOwnElement) {
+  const int32_t n = 11;
+  std::vector<int32_t> ai(n);
+  std::vector<float> af(n);
+  std::vector<F3> a3(n);
+  std::vector<I2> a2(n);
+  for (int32_t e = 0; e < n; ++e) {
+    const size_t u = static_cast<size_t>(e);
+    ai[u] = 1000 + e;
+    af[u] = 0.25f * static_cast<float>(e) - 1.0f;
+    a3[u] = F3(static_cast<float>(e), -static_cast<float>(e), 0.5f + static_cast<float>(e));
+    a2[u] = I2(e, -7 * e);
+  }
+  std::vector<int32_t> is;
+  auto group = [&](std::initializer_list<int32_t> g) { is.insert(is.end(), g); };
+  group({4, 4, 4, 4, 4, 4, 4, 4});          // all the same
+  group({2, 2, 2, 2, 2, 2, 2, 9});          // all but the last
+  group({9, 2, 2, 2, 2, 2, 2, 2});          // all but the first
+  group({0, 1, 2, 3, 4, 5, 6, 7});          // all different
+  group({-3, -3, -3, -3, -3, -3, -3, -3});  // the same, clamped to 0
+  group({40, 40, 40, 40, 40, 40, 40, 40});  // the same, clamped to n - 1
+  group({-1, 0, -1, 0, -1, 0, -1, 0});      // different indices, one element
+  group({10, 10, 10, 10, 10, 10, 10, 10});  // the last element
+  group({6, 6, 6});                         // a short group (spare lanes repeat 6)
+  Array<Int> arr_i(ai, "ints");
+  Array<Float> arr_f(af, "floats");
+  Array<Float3> arr_3(a3, "vec3s");
+  Array<Int2> arr_2(a2, "ivec2s");
+  Program p = program("shared_index", [&] {
+    Input<Int> i("i");
+    Output<Int> gi("gi");
+    Output<Float> gf("gf");
+    Output<Float3> g3("g3");
+    Output<Int2> g2("g2");
+    gi = arr_i[i];
+    gf = arr_f[i];
+    g3 = arr_3[i];
+    g2 = arr_2[i];
+  });
+  auto [gi, gf, g3, g2] = run<Int, Float, Float3, Int2>(p, is);
+  std::vector<int32_t> wi;
+  std::vector<float> wf;
+  std::vector<F3> w3;
+  std::vector<I2> w2;
+  for (int32_t i : is) {
+    const size_t k = static_cast<size_t>(clamp_ref(i, n));
+    wi.push_back(ai[k]);
+    wf.push_back(af[k]);
+    w3.push_back(a3[k]);
+    w2.push_back(a2[k]);
+  }
+  Describe d = describe_inputs(is);
+  EXPECT_TRUE(bits_equal(gi, wi, d));
+  EXPECT_TRUE(bits_equal(gf, wf, d));
+  EXPECT_TRUE(bits_equal(g3, w3, d));
+  EXPECT_TRUE(bits_equal(g2, w2, d));
+}
+
 RILL_BACKEND_TEST_SUITE(GatherBoundaryTest);
 
 }  // namespace
