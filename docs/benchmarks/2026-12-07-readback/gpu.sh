@@ -2,11 +2,12 @@
 # Issue 52 item 2's read-back: glsl-compute's frame read-back with glGetBufferSubData (get)
 # against a device copy into a GL_STREAM_READ buffer that is then mapped (staging), OpenCL's
 # beside them; rill-trace render --bench-frames 20 at 1920x1080, the median frame's split.
-# Run on the GPU machine from the repository root. Output: $OUT/readback.md.
+# Run on the GPU machine from the repository root; ROUNDS (default 2) shortens it.
+# Output: $OUT/readback.md.
 source scripts/gpu-setup.sh
 echo "| scene | backend | read-back | frame ms | kernel ms | read-back ms |" | tee $OUT/readback.md
 echo "| --- | --- | --- | --- | --- | --- |" | tee -a $OUT/readback.md
-for k in 1 2; do for scene in builtin:thesis-a builtin:thesis-c; do
+for k in $(seq 1 "${ROUNDS:-2}"); do for scene in builtin:thesis-a builtin:thesis-c; do
   for run in "opencl -" "glsl-compute get" "glsl-compute staging"; do
     be=${run% *}; rb=${run#* }
     RILL_GLSL_READBACK=${rb/-/get} timeout 120 $B/rill-trace render $scene --size 1920x1080 --backend $be \
