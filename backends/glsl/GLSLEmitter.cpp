@@ -373,7 +373,7 @@ std::string helper_definitions(const Function& f, Accuracy accuracy, const Drive
          codegen::helper_bodies(codegen::Language::Glsl,
                                 accuracy == Accuracy::Fast
                                     ? std::vector{codegen::Variant::Fast}
-                                    : divsqrt_variants(rules.divsqrt, rules.fused_fma)) +
+                                    : divsqrt_variants(rules.divsqrt, rules.fused_fma, rules.lean)) +
          codegen::on_demand_bodies(codegen::Language::Glsl, f);
 }
 
