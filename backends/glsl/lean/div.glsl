@@ -1,11 +1,14 @@
 // Correctly rounded a / b where the driver's fma is fused (glsl/DivSqrt.h, the lean rule):
 // special operands (0, inf, NaN; subnormals count as zero) and quotients outside the normal
 // range are decided from the bits, as in the split rule; the significands are scaled into
-// [1, 2), so every other quotient takes one branch-free path. The driver's reciprocal (within
-// 2.5 ulp) is refined by one Newton step, then Markstein's two fmas give the correctly
-// rounded quotient: the residual d = ma - q0*mb is exact, and q0 + d*r rounds once. The
-// quotient of floats is never halfway between two floats, so there are no ties. Proved with
-// the driver's reciprocal anywhere within 3 ulp by tools/divsqrt-check (this exact text).
+// [1, 2), so every other quotient takes one branch-free path. From the driver's reciprocal r
+// (within 2.5 ulp), q0 = ma * r is corrected once by its residual (Markstein's step: q1 =
+// q0 + (ma - q0 mb) r, in fmas), which leaves q1 within an ulp; then q1's exact residual
+// decides between q1 and its neighbours. (Markstein's step alone rounds correctly only with
+// a correctly rounded reciprocal, which one Newton step does not give for divisors near 2:
+// tools/divsqrt-check found a / (2 - 2^-23) wrong that way.) A quotient of floats is never
+// halfway between two floats, so there are no ties. Proved with the driver's reciprocal any
+// float within 3 of the correctly rounded one by tools/divsqrt-check (this exact text).
 float rill_div_f(float a, float b) {
   uint ua = floatBitsToUint(a), ub = floatBitsToUint(b);
   uint sign = (ua ^ ub) & 0x80000000u;
@@ -25,11 +28,19 @@ float rill_div_f(float a, float b) {
   if (exact_exp >= 255) return uintBitsToFloat(sign | 0x7f800000u);
   RILL_PRECISE float ma = uintBitsToFloat(fa | 0x3f800000u);
   RILL_PRECISE float mb = uintBitsToFloat(fb | 0x3f800000u);
-  RILL_PRECISE float r0 = rill_native_div(RILL_ONE, mb);
-  RILL_PRECISE float t = fma(-mb, r0, RILL_ONE);
-  RILL_PRECISE float r = fma(r0, t, r0);
+  RILL_PRECISE float r = rill_native_div(RILL_ONE, mb);
   RILL_PRECISE float q0 = ma * r;
-  RILL_PRECISE float d = fma(-q0, mb, ma);
-  RILL_PRECISE float q = fma(d, r, q0);
-  return uintBitsToFloat(sign | (floatBitsToUint(q) + (uint(e) << 23)));
+  RILL_PRECISE float d0 = fma(-q0, mb, ma);
+  RILL_PRECISE float q1 = fma(d0, r, q0);
+  RILL_PRECISE float d1 = fma(-q1, mb, ma);
+  // q1 is within an ulp of ma / mb, so d1 is exact, and which neighbour is nearest follows
+  // from the signs of ma - (q1 +- half an ulp) mb: one rounding of an exact value each (the
+  // half ulp below a power of two is a quarter of the one above).
+  uint bq = floatBitsToUint(q1);
+  RILL_PRECISE float half_up = uintBitsToFloat((bq & 0x7f800000u) - (24u << 23));
+  RILL_PRECISE float half_down = (bq & 0x7fffffu) == 0u ? 0.5 * half_up : half_up;
+  RILL_PRECISE float above = fma(-half_up, mb, d1);
+  RILL_PRECISE float below = fma(half_down, mb, d1);
+  bq = above > 0.0 ? bq + 1u : (below < 0.0 ? bq - 1u : bq);
+  return uintBitsToFloat(sign | (bq + (uint(e) << 23)));
 }
