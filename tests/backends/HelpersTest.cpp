@@ -198,7 +198,7 @@ TEST(Helpers, TheLeanCorrectionNeedsAFusedFma) {
       rules.fused_fma = fused;
       rules.lean = true;
       const std::string text = glsl::glsl_helpers(probe(), Accuracy::Strict, rules, true);
-      EXPECT_EQ(text.find("RILL_PRECISE float q = fma(d, r, q0);") != std::string::npos, fused);
+      EXPECT_EQ(text.find("RILL_PRECISE float q1 = fma(d0, r, q0);") != std::string::npos, fused);
       EXPECT_EQ(text.find("rill_native_rsqrt(m)") != std::string::npos, fused);
       EXPECT_EQ(text.find("rill_residual") == std::string::npos, fused);
       for (const char* f : {"float rill_div_f(", "float rill_sqrt("}) {
