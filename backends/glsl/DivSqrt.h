@@ -21,12 +21,12 @@
 //
 // Where the driver's fma is fused, the lean rule (the default) replaces steps 2-3 with a
 // shorter correction (glsl/lean/div.glsl, sqrt.glsl): every normal operand pair is scaled as
-// in step 1 and takes one branch-free path, the driver's reciprocal (inversesqrt) refined by
-// one Newton step in fmas, then Markstein's exact residual and one fused correction, which
-// rounds correctly: one driver operation instead of two, nothing to compare after step 1.
-// tools/divsqrt-check proves the exact GLSL text on the host with the driver's estimate any
-// float within 3 of the correctly rounded one (GLSL allows 2.5 ulp): every sqrt input,
-// division's hardest quotients and every pair of exponents.
+// in step 1 and takes one branch-free path. Division: Markstein's step from the driver's
+// reciprocal, then the signs of exact residuals at q +- half an ulp pick the neighbour. Square
+// root: the driver's inversesqrt, one coupled Newton step and a fused final correction. One
+// driver operation instead of two. tools/divsqrt-check proves the exact GLSL text on the host
+// with the driver's estimate any float within 3 of the correctly rounded one (GLSL allows 2.5
+// ulp): every sqrt input, division's hardest quotients and every pair of exponents.
 //
 // The mode comes from RILL_GLSL_DIVSQRT (see divsqrt_mode); two test modes replace the
 // driver's operations with NVIDIA-like inexact ones, so that the correction can be tested
