@@ -34,8 +34,8 @@ float rill_div_f(float a, float b) {
   RILL_PRECISE float q1 = fma(d0, r, q0);
   RILL_PRECISE float d1 = fma(-q1, mb, ma);
   // q1 is within an ulp of ma / mb, so d1 is exact, and which neighbour is nearest follows
-  // from the signs of ma - (q1 +- half an ulp) mb: one rounding of an exact value each (the
-  // half ulp below a power of two is a quarter of the one above).
+  // from the signs of ma - (q1 +- half an ulp) mb: one rounding of an exact value each (below
+  // a power of two the ulp is half the one above it).
   uint bq = floatBitsToUint(q1);
   RILL_PRECISE float half_up = uintBitsToFloat((bq & 0x7f800000u) - (24u << 23));
   RILL_PRECISE float half_down = (bq & 0x7fffffu) == 0u ? 0.5 * half_up : half_up;
