@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <string_view>
 
+#include "codegen/LeanDivSqrt.h"  // generated from backends/glsl/lean/*.glsl
 #include "rill/ir/Ops.h"
 
 namespace rill::codegen {
@@ -265,6 +266,11 @@ float rill_native_div(float a, float b) { RILL_PRECISE float y = RILL_ONE / b; R
         {Glsl,
          R"(float rill_native_sqrt(float x) { RILL_PRECISE float y = inversesqrt(x); RILL_PRECISE float s = x * y; return s; })",
          Variant::InexactOps}}},
+      // The lean correction starts from the driver's inversesqrt (the test modes' too).
+      {"native_rsqrt",
+       {{Glsl,
+         R"(float rill_native_rsqrt(float x) { RILL_PRECISE float y = inversesqrt(x); return y; })",
+         Variant::Lean}}},
       // Operands of the exact steps lie in [0.5, 4], so nothing overflows or underflows.
       {"residual",
        {{Glsl,
@@ -330,7 +336,8 @@ float rill_residual(float a, float q, float b) { RILL_PRECISE float r = fma(-q, 
   else if (minus_r > half_down) bq -= 1u;
   return uintBitsToFloat(sign | (bq + (uint(e) << 23)));
 })",
-         Variant::Corrected}}},
+         Variant::Corrected},
+        {Glsl, kLeanDivGlsl, Variant::Lean}}},
       // a - b * floor(a / b), each step rounded (fmod and GLSL's mod differ).
       {"mod_f",
        {{C, R"(RILL_FN rill_real rill_mod_f(rill_real a, rill_real b) {
@@ -379,6 +386,7 @@ float rill_residual(float a, float q, float b) { RILL_PRECISE float r = fma(-q, 
   return uintBitsToFloat(bs + (uint((k - odd) / 2) << 23));
 })",
          Variant::Corrected},
+        {Glsl, kLeanSqrtGlsl, Variant::Lean},
         {Lockstep, R"(#ifdef RILL_AVX2
 RILL_FN rill_vr rill_v_sqrt(rill_vr a) { return __builtin_ia32_sqrtps256(a); }
 #else

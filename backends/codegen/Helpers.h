@@ -34,7 +34,9 @@ enum class Language { C, OpenCL, Glsl, Lockstep };
 // (glsl/DivSqrt.h): Fast, the fast mode's; in strict mode, DriverOps or InexactOps (the
 // driver's `/` and sqrt, or the inexact test stand-ins) and Uncorrected or Corrected, and for
 // Corrected the exact residual's form: SplitResidual (Dekker's product, any driver) or
-// FusedResidual (one fma, drivers whose fma rounds once).
+// FusedResidual (one fma, drivers whose fma rounds once); or, in place of Corrected and the
+// residual, Lean (the short correction by fmas of glsl/lean/*.glsl, drivers whose fma rounds
+// once).
 enum class Variant {
   Any,
   Fast,
@@ -43,7 +45,8 @@ enum class Variant {
   Uncorrected,
   Corrected,
   SplitResidual,
-  FusedResidual
+  FusedResidual,
+  Lean
 };
 
 struct Body {

@@ -70,7 +70,7 @@ class ComputeBackend : public GLBackend {
     const GLContext& c = self->context();
     return std::string(kName) + ": compute shaders; " + c.kind() + ", " + c.renderer +
            "; strict / and sqrt: " +
-           divsqrt_description(driver_.rules.divsqrt, driver_.rules.fused_fma) +
+           divsqrt_description(driver_.rules.divsqrt, driver_.rules.fused_fma, driver_.rules.lean) +
            ", comparisons: " + compare_name(driver_.rules.native_compare) +
            "; denormals: " + (device_.flushes_denormals ? "flushed" : "kept") + "; " +
            std::to_string(device_.limits.storage_blocks) + " storage buffers, " +

@@ -42,22 +42,32 @@ std::optional<bool> fused_fma_mode() {
   throw Error("RILL_GLSL_FMA='" + v + "' is not one of auto, fused, split");
 }
 
+bool lean_fused_mode() {
+  const char* env = std::getenv("RILL_GLSL_FUSED");
+  const std::string v = env ? env : "lean";
+  if (v == "lean" || v.empty()) return true;
+  if (v == "residual") return false;
+  throw Error("RILL_GLSL_FUSED='" + v + "' is not one of lean, residual");
+}
+
 bool divsqrt_corrects(DivSqrt m) {
   return m == DivSqrt::Corrected || m == DivSqrt::InexactCorrected;
 }
 
-std::vector<codegen::Variant> divsqrt_variants(DivSqrt m, bool fused_fma) {
+std::vector<codegen::Variant> divsqrt_variants(DivSqrt m, bool fused_fma, bool lean) {
   using codegen::Variant;
   bool inexact = m == DivSqrt::Inexact || m == DivSqrt::InexactCorrected;
   if (!divsqrt_corrects(m))
     return {inexact ? Variant::InexactOps : Variant::DriverOps, Variant::Uncorrected};
+  if (fused_fma && lean) return {inexact ? Variant::InexactOps : Variant::DriverOps, Variant::Lean};
   return {inexact ? Variant::InexactOps : Variant::DriverOps, Variant::Corrected,
           fused_fma ? Variant::FusedResidual : Variant::SplitResidual};
 }
 
-std::string divsqrt_description(DivSqrt m, bool fused_fma) {
+std::string divsqrt_description(DivSqrt m, bool fused_fma, bool lean) {
   std::string s = divsqrt_name(m);
-  if (divsqrt_corrects(m)) s += fused_fma ? ", fused residual" : ", split residual";
+  if (divsqrt_corrects(m))
+    s += !fused_fma ? ", split residual" : lean ? ", fused lean" : ", fused residual";
   return s;
 }
 

@@ -19,6 +19,15 @@
 //      float are flushed to zero judging by the exact result (tininess before rounding, as
 //      llvmpipe does), results too large become infinity.
 //
+// Where the driver's fma is fused, the lean rule (the default) replaces steps 2-3 with a
+// shorter correction (glsl/lean/div.glsl, sqrt.glsl): every normal operand pair is scaled as
+// in step 1 and takes one branch-free path. Division: Markstein's step from the driver's
+// reciprocal, then the signs of exact residuals at q +- half an ulp pick the neighbour. Square
+// root: the driver's inversesqrt, one coupled Newton step and a fused final correction. One
+// driver operation instead of two. tools/divsqrt-check proves the exact GLSL text on the host
+// with the driver's estimate any float within 3 of the correctly rounded one (GLSL allows 2.5
+// ulp): every sqrt input, division's hardest quotients and every pair of exponents.
+//
 // The mode comes from RILL_GLSL_DIVSQRT (see divsqrt_mode); two test modes replace the
 // driver's operations with NVIDIA-like inexact ones, so that the correction can be tested
 // on any machine (tests/backends, conformance). The GLSL bodies of rill_div_f, rill_sqrt and
@@ -58,11 +67,18 @@ bool divsqrt_corrects(DivSqrt m);
 // unknown value.
 std::optional<bool> fused_fma_mode();
 
-// The variants of the helper table's GLSL bodies that define rill_div_f(a, b) and
-// rill_sqrt(x) for strict kernels in mode m, with their residual fused or split.
-std::vector<codegen::Variant> divsqrt_variants(DivSqrt m, bool fused_fma);
+// Which correction a fused fma gets: the lean one (true) or the fused residual in the split
+// rule's steps (false, to compare the two on one binary).
+// RILL_GLSL_FUSED = lean (default) | residual. Throws on an unknown value.
+bool lean_fused_mode();
 
-// What rill-info says of the rule: "native", "corrected", "corrected, fused residual", ...
-std::string divsqrt_description(DivSqrt m, bool fused_fma);
+// The variants of the helper table's GLSL bodies that define rill_div_f(a, b) and
+// rill_sqrt(x) for strict kernels in mode m: with a fused fma the lean correction (`lean`) or
+// the residual fused, else the residual split.
+std::vector<codegen::Variant> divsqrt_variants(DivSqrt m, bool fused_fma, bool lean);
+
+// What rill-info says of the rule: "native", "corrected", "corrected, fused residual",
+// "corrected, fused lean", ...
+std::string divsqrt_description(DivSqrt m, bool fused_fma, bool lean);
 
 }  // namespace rill::glsl

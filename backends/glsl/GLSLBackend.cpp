@@ -62,7 +62,8 @@ class GLSLBackend : public GLBackend {
     auto* self = const_cast<GLSLBackend*>(this);
     return "glsl: fragment shaders; " + self->context().kind() + ", " + self->context().renderer +
            "; strict / and sqrt: " +
-           divsqrt_description(self->driver_.rules.divsqrt, self->driver_.rules.fused_fma) +
+           divsqrt_description(self->driver_.rules.divsqrt, self->driver_.rules.fused_fma,
+                               self->driver_.rules.lean) +
            ", comparisons: " + compare_name(self->driver_.rules.native_compare) + "; disk cache: " +
            (self->driver_.binary_formats > 0
                 ? std::string("program binaries")

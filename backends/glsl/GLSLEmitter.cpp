@@ -370,10 +370,11 @@ std::string helper_definitions(const Function& f, Accuracy accuracy, const Drive
                                bool flushes_denormals) {
   return std::string("#define RILL_NATIVE_COMPARE ") + (rules.native_compare ? "1" : "0") +
          "\n#define RILL_FLUSHES_DENORMALS " + (flushes_denormals ? "1" : "0") + "\n" +
-         codegen::helper_bodies(codegen::Language::Glsl,
-                                accuracy == Accuracy::Fast
-                                    ? std::vector{codegen::Variant::Fast}
-                                    : divsqrt_variants(rules.divsqrt, rules.fused_fma)) +
+         codegen::helper_bodies(
+             codegen::Language::Glsl,
+             accuracy == Accuracy::Fast
+                 ? std::vector{codegen::Variant::Fast}
+                 : divsqrt_variants(rules.divsqrt, rules.fused_fma, rules.lean)) +
          codegen::on_demand_bodies(codegen::Language::Glsl, f);
 }
 

@@ -28,7 +28,8 @@ constexpr int kMaskValues = 8;
 struct DriverRules {
   DivSqrt divsqrt = DivSqrt::Native;  // strict / and sqrt (DivSqrt.h)
   bool fused_fma = false;             // their residual by one fma (DivSqrt.h, fused_fma_mode)
-  bool native_compare = false;        // strict float comparisons: the driver's, or on bits
+  bool lean = true;             // with fused_fma: the lean correction (DivSqrt.h, lean_fused_mode)
+  bool native_compare = false;  // strict float comparisons: the driver's, or on bits
   // Mesa's llvmpipe ends every loop of a shader once a batch of lanes has run 65535 loop
   // iterations in all (LP_MAX_TGSI_LOOP_ITERATIONS), silently. With the guard an element
   // checks, where it ends, whether that limit was spent (GLSLEmitter.cpp, loop_check), and

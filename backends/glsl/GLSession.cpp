@@ -43,6 +43,7 @@ Driver describe_driver(const GL& gl, const std::string& renderer_line) {
   const bool probe = !fused && divsqrt_corrects(d.rules.divsqrt) &&
                      (d.major > 4 || (d.major == 4 && d.minor >= 3));
   d.rules.fused_fma = fused ? *fused : probe && probe_fused_fma(gl, d, "GLSL backend");
+  d.rules.lean = lean_fused_mode();
   d.rules.native_compare = native_compare_mode(renderer_line);
   d.rules.loop_guard = loop_guard_mode(renderer_line);
   return d;

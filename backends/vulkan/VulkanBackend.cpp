@@ -186,8 +186,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     modes = modes.empty() ? "none offered" : modes.substr(0, modes.size() - 2);
     return std::string(kName) + ": compute shaders (SPIR-V by " + spirv_compiler_version() + "); " +
            d.name + " (" + device_type_name(d.type) + "), " + d.driver + ", Vulkan " +
-           version(d.api) +
-           "; strict / and sqrt: " + glsl::divsqrt_description(rules_.divsqrt, rules_.fused_fma) +
+           version(d.api) + "; strict / and sqrt: " +
+           glsl::divsqrt_description(rules_.divsqrt, rules_.fused_fma, rules_.lean) +
            ", comparisons: " + glsl::compare_name(rules_.native_compare) +
            "; float controls: " + modes +
            "; denormals: " + (flushes_denormals_ ? "flushed" : "kept") + "; lane groups: " +
@@ -395,6 +395,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
               : glsl::divsqrt_corrects(rules_.divsqrt) &&
                     glsl::fma_probe_fused(run_probe(c, "rill_fma_probe", glsl::kFmaProbeBody,
                                                     glsl::fma_probe_data()));
+    rules_.lean = glsl::lean_fused_mode();
     c.check_validation("setting up the device");
   }
 

@@ -155,16 +155,18 @@ TEST(Helpers, EveryHelperHasAGlslBodyUnderEveryDriverRule) {
     for (glsl::DivSqrt ds : {glsl::DivSqrt::Native, glsl::DivSqrt::Corrected,
                              glsl::DivSqrt::Inexact, glsl::DivSqrt::InexactCorrected})
       for (bool flushes : {false, true})
-        for (bool fused : {false, true}) {
-          glsl::DriverRules rules;
-          rules.divsqrt = ds;
-          rules.fused_fma = fused;
-          const std::string text = glsl::glsl_helpers(probe(), a, rules, flushes);
-          for (const Helper& h : table_helpers())
-            EXPECT_TRUE(defines(text, "rill_" + h.name))
-                << "op '" << h.op << "': no rill_" << h.name << " in the GLSL prelude ("
-                << accuracy_name(a) << ")";
-        }
+        for (bool fused : {false, true})
+          for (bool lean : {false, true}) {
+            glsl::DriverRules rules;
+            rules.divsqrt = ds;
+            rules.fused_fma = fused;
+            rules.lean = lean;
+            const std::string text = glsl::glsl_helpers(probe(), a, rules, flushes);
+            for (const Helper& h : table_helpers())
+              EXPECT_TRUE(defines(text, "rill_" + h.name))
+                  << "op '" << h.op << "': no rill_" << h.name << " in the GLSL prelude ("
+                  << accuracy_name(a) << ")";
+          }
 }
 
 // The corrections' residual is one fma exactly when the rule says the driver's fma is fused,
@@ -174,6 +176,7 @@ TEST(Helpers, TheCorrectionsResidualFollowsTheFmaRule) {
     glsl::DriverRules rules;
     rules.divsqrt = glsl::DivSqrt::Corrected;
     rules.fused_fma = fused;
+    rules.lean = false;
     const std::string text = glsl::glsl_helpers(probe(), Accuracy::Strict, rules, true);
     EXPECT_EQ(text.find("fma(-q, b, a)") != std::string::npos, fused);
     EXPECT_EQ(text.find("4097.0 * q") != std::string::npos, !fused);
@@ -182,6 +185,28 @@ TEST(Helpers, TheCorrectionsResidualFollowsTheFmaRule) {
   native.fused_fma = true;
   EXPECT_EQ(glsl::glsl_helpers(probe(), Accuracy::Strict, native, true).find("rill_residual"),
             std::string::npos);
+}
+
+// The lean correction (glsl/lean/*.glsl) only with a fused fma, in place of the residual's
+// steps: each of rill_div_f and rill_sqrt defined once, no residual, no second driver
+// division; the split rule keeps its steps whatever RILL_GLSL_FUSED says.
+TEST(Helpers, TheLeanCorrectionNeedsAFusedFma) {
+  for (glsl::DivSqrt ds : {glsl::DivSqrt::Corrected, glsl::DivSqrt::InexactCorrected})
+    for (bool fused : {false, true}) {
+      glsl::DriverRules rules;
+      rules.divsqrt = ds;
+      rules.fused_fma = fused;
+      rules.lean = true;
+      const std::string text = glsl::glsl_helpers(probe(), Accuracy::Strict, rules, true);
+      EXPECT_EQ(text.find("RILL_PRECISE float q1 = fma(d0, r, q0);") != std::string::npos, fused);
+      EXPECT_EQ(text.find("rill_native_rsqrt(m)") != std::string::npos, fused);
+      EXPECT_EQ(text.find("rill_residual") == std::string::npos, fused);
+      for (const char* f : {"float rill_div_f(", "float rill_sqrt("}) {
+        const size_t first = text.find(f);
+        ASSERT_NE(first, std::string::npos) << f;
+        EXPECT_EQ(text.find(f, first + 1), std::string::npos) << f << " defined twice";
+      }
+    }
 }
 #endif
 
