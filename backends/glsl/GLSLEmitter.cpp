@@ -497,7 +497,8 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   std::string src = vulkan
                         ? header(f, accuracy, "compute, Vulkan",
                                  (vulkan->ballot || vulkan->subgroups ? subgroups : "") +
-                                     (vulkan->subgroups ? group_ops : "") + vulkan->execution_modes,
+                                     (vulkan->subgroups ? group_ops : "") + vulkan->execution_modes +
+                                     "#define RILL_ABS_ON_BITS\n",
                                  true)
                         : header(f, accuracy, "compute", subgroups);
   src += "layout(local_size_x = " + std::to_string(local_size) + ") in;\n";

@@ -278,6 +278,7 @@ void Context::describe_device() {
                    (sub.supportedOperations & group_ops) == group_ops && sub.subgroupSize <= 128;
   if (info.float_controls) {
     info.denorm_preserve = fc.shaderDenormPreserveFloat32;
+    info.denorm_flush = fc.shaderDenormFlushToZeroFloat32;
     info.signed_zero_inf_nan = fc.shaderSignedZeroInfNanPreserveFloat32;
     info.rte = fc.shaderRoundingModeRTEFloat32;
   }
