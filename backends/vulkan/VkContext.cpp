@@ -304,6 +304,52 @@ void Context::describe_device() {
     throw Error(std::string(kWho) + ": the Vulkan device '" + info.name +
                 "' has no host-visible coherent memory type");
   info.memory_type = static_cast<uint32_t>(best);
+  choose_stream_memory(mem);
+}
+
+void Context::choose_stream_memory(const VkPhysicalDeviceMemoryProperties& mem) {
+  if (const char* m = std::getenv("RILL_VULKAN_MEMORY"); m && *m) info.memory_mode = m;
+  const std::string& mode = info.memory_mode;
+  if (mode != "auto" && mode != "staged" && mode != "mapped")
+    throw Error("RILL_VULKAN_MEMORY='" + mode + "' is not one of auto, staged, mapped");
+  const VkMemoryPropertyFlags host =
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  auto flags = [&](uint32_t i) { return mem.memoryTypes[i].propertyFlags; };
+  auto large = [&](uint32_t i) {
+    return mem.memoryHeaps[mem.memoryTypes[i].heapIndex].size > (uint64_t{1} << 30);
+  };
+  // Read-back staging: the first host-visible coherent type, a host-cached one before others.
+  int readback = -1;
+  for (uint32_t i = 0; i < mem.memoryTypeCount; ++i) {
+    if ((flags(i) & host) != host) continue;
+    const bool cached = flags(i) & VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    if (readback < 0 || (cached && !info.readback_cached)) {
+      readback = static_cast<int>(i);
+      info.readback_cached = cached;
+    }
+  }
+  info.readback_memory_type = static_cast<uint32_t>(readback);  // memory_type exists: >= 0
+  // Streams: a device-local type on a large heap, one the host maps before one it does not
+  // (unless staged); with none, memory_type.
+  int streams = -1;
+  bool mapped = false;
+  for (uint32_t i = 0; i < mem.memoryTypeCount && mode != "mapped"; ++i) {
+    if (!(flags(i) & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) || !large(i)) continue;
+    const bool m = mode == "auto" && (flags(i) & host) == host;
+    if (streams < 0 || (m && !mapped)) {
+      streams = static_cast<int>(i);
+      mapped = m;
+    }
+  }
+  if (streams < 0) {
+    streams = static_cast<int>(info.memory_type);
+    mapped = true;
+  }
+  info.stream_memory_type = static_cast<uint32_t>(streams);
+  info.streams_mapped = mapped;
+  // `mapped` reads through the mapping whatever the caching, as before.
+  const bool cached = flags(info.stream_memory_type) & VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+  info.streams_cached = mapped && (cached || mode == "mapped");
 }
 
 void Context::make_device() {

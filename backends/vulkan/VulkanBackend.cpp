@@ -197,10 +197,25 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
                              (d.group_ops ? " (RILL_VULKAN_SUBGROUPS=off)"
                                           : " (the device lacks subgroup operations)")) +
            "; " + std::to_string(d.limits.maxPerStageDescriptorStorageBuffers) +
-           " storage buffers; memory: " +
-           (d.memory_device_local ? "device-local, host-visible" : "host-visible") +
+           " storage buffers; memory: " + memory_description(d) +
            "; validation: " + (session_->context->validation ? "on" : "off") +
            "; disk cache: SPIR-V and the driver's pipeline cache";
+  }
+
+  // Where streams live and how they move (RILL_VULKAN_MEMORY, VkContext.h).
+  static std::string memory_description(const DeviceInfo& d) {
+    const std::string mode =
+        d.memory_mode == "auto" ? "" : "RILL_VULKAN_MEMORY=" + d.memory_mode + ": ";
+    if (d.memory_mode == "mapped")
+      return mode + "streams in " +
+             (d.memory_device_local ? "device-local, host-visible" : "host-visible") +
+             " memory, read through the mapping";
+    return mode + "streams device-local, " +
+           (d.streams_mapped ? "written through the mapping" : "written through a staging copy") +
+           ", " +
+           (d.streams_cached ? "read through the mapping (host-cached)"
+                             : std::string("read through a staging copy (") +
+                                   (d.readback_cached ? "host-cached" : "host-visible") + ")");
   }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
@@ -330,7 +345,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
 
   void read_back(const detail::Storage& s, uint32_t* host) override {
     std::lock_guard<std::recursive_mutex> lock(session_->mutex);
-    vk::read_back(*this, s, host);
+    vk::read_back(*this, session_, staging_, s, host);
   }
 
   // Frees the counter buffer and destroys the device and instance (at exit, before the
@@ -338,6 +353,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
   void shutdown() noexcept override {
     std::lock_guard<std::recursive_mutex> lock(session_->mutex);
     counter_.reset();
+    staging_.up.reset();
+    staging_.down.reset();
     session_->shut_down();
   }
 
@@ -385,6 +402,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     }
     counter_ = make_buffer(session_, 16, "the launch counters");
     setup_.counter = counter_.get();
+    setup_.staging = &staging_;
     choose_denormals(c);
     // The corrections' residual by one fma where the device's fma is fused (RILL_GLSL_FMA, else
     // probed as on the glsl backends); probed only where the corrections run.
@@ -583,6 +601,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
   bool group_ops_ = false;         // lane groups are subgroups
   std::string float_modes_;        // the strict kernels' execution-mode lines
   std::unique_ptr<Buffer> counter_;
+  Staging staging_;
   LaunchSetup setup_;
 };
 
