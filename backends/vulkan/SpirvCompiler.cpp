@@ -24,6 +24,27 @@ void initialize_glslang() {
   std::call_once(once, [] { glslang::InitializeProcess(); });
 }
 
+// The module without its OpName instructions (debug names, no meaning). glslang names every
+// temporary it makes for a call's argument "param", and the validator's name mapper makes
+// each repeated name unique by trying suffixes one after another: quadratic in the number of
+// calls, minutes for a kernel of thousands of helper calls (a strict kernel that flushes
+// denormals itself: VulkanBackend.cpp).
+std::vector<uint32_t> without_names(const std::vector<uint32_t>& spirv) {
+  constexpr uint32_t kHeaderWords = 5, kOpName = 5;
+  if (spirv.size() < kHeaderWords) return spirv;
+  std::vector<uint32_t> out(spirv.begin(), spirv.begin() + kHeaderWords);
+  out.reserve(spirv.size());
+  for (size_t i = kHeaderWords; i < spirv.size();) {
+    const size_t words = spirv[i] >> 16;
+    if (words == 0 || i + words > spirv.size()) return spirv;  // malformed: the validator says
+    if ((spirv[i] & 0xffffu) != kOpName)
+      out.insert(out.end(), spirv.begin() + static_cast<std::ptrdiff_t>(i),
+                 spirv.begin() + static_cast<std::ptrdiff_t>(i + words));
+    i += words;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::string& kernel) {
@@ -48,6 +69,7 @@ std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::
   glslang::SpvOptions options;
   options.disableOptimizer = true;  // the driver optimizes; glslang's would only cost time
   glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), spirv, &options);
+  spirv = without_names(spirv);
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_1);
   std::string log;
   tools.SetMessageConsumer(
