@@ -494,13 +494,12 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
       "#extension GL_KHR_shader_subgroup_vote : require\n"
       "#extension GL_KHR_shader_subgroup_arithmetic : require\n"
       "#extension GL_KHR_shader_subgroup_shuffle : require\n";
-  std::string src = vulkan
-                        ? header(f, accuracy, "compute, Vulkan",
-                                 (vulkan->ballot || vulkan->subgroups ? subgroups : "") +
-                                     (vulkan->subgroups ? group_ops : "") + vulkan->execution_modes +
-                                     "#define RILL_ABS_ON_BITS\n",
-                                 true)
-                        : header(f, accuracy, "compute", subgroups);
+  std::string src = vulkan ? header(f, accuracy, "compute, Vulkan",
+                                    (vulkan->ballot || vulkan->subgroups ? subgroups : "") +
+                                        (vulkan->subgroups ? group_ops : "") +
+                                        vulkan->execution_modes + "#define RILL_ABS_ON_BITS\n",
+                                    true)
+                           : header(f, accuracy, "compute", subgroups);
   src += "layout(local_size_x = " + std::to_string(local_size) + ") in;\n";
   const std::string set = vulkan ? "set = 0, " : "";
   auto block = [&](const std::string& name, int binding, ScalarKind k, bool readonly) {
