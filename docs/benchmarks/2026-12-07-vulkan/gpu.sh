@@ -31,7 +31,7 @@ for run in "vulkan fma-auto RILL_GLSL_FMA=auto" "vulkan fma-split RILL_GLSL_FMA=
   env $setting timeout 300 $B/rill-conformance --backend $be --accuracy strict > $OUT/conformance-$be-$label.txt 2>&1
   rc=$?
   echo "conformance $be strict $setting: rc=$rc, $(head -1 $OUT/conformance-$be-$label.txt | cut -c1-120), $(tail -1 $OUT/conformance-$be-$label.txt)" | tee -a $OUT/info.txt
-  env $setting $B/rill-info 2>&1 | grep -o "denormals: [^;]*" | sed "s/^/  $setting: /" | tee -a $OUT/info.txt
+  env $setting $B/rill-trace info 2>&1 | sed -n "s/.* vulkan: .*; \(denormals: .*\); lane groups.*/  $setting: \1/p" | tee -a $OUT/info.txt
 done
 fi
 [ "${PART:-all}" = conformance ] && exit 0
