@@ -47,7 +47,8 @@ std::vector<uint32_t> without_names(const std::vector<uint32_t>& spirv) {
 
 }  // namespace
 
-std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::string& kernel) {
+std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::string& kernel,
+                                            bool scalar_layout) {
   initialize_glslang();
   auto fail = [&](const std::string& stage, const std::string& log) {
     return Error(std::string(kWho) + ": kernel '" + kernel + "' did not " + stage + ":\n" + log +
@@ -76,7 +77,10 @@ std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::
       [&](spv_message_level_t, const char*, const spv_position_t& at, const char* message) {
         log += "word " + std::to_string(at.index) + ": " + message + "\n";
       });
-  if (!tools.Validate(spirv)) throw fail("validate (SPIRV-Tools)", log);
+  spvtools::ValidatorOptions options_v;
+  options_v.SetScalarBlockLayout(scalar_layout);
+  if (!tools.Validate(spirv.data(), spirv.size(), options_v))
+    throw fail("validate (SPIRV-Tools)", log);
   return spirv;
 }
 

@@ -371,6 +371,15 @@ void Context::make_device() {
   q.queueFamilyIndex = family;
   q.queueCount = 1;
   q.pQueuePriorities = &priority;
+  // scalarBlockLayout, for parameters in a uniform buffer (RILL_VULKAN_PARAMS=uniform).
+  auto scalar = make<VkPhysicalDeviceScalarBlockLayoutFeatures>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SCALAR_BLOCK_LAYOUT_FEATURES);
+  if (info.api >= VK_API_VERSION_1_2) {
+    auto f2 = make<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+    f2.pNext = &scalar;
+    api.vkGetPhysicalDeviceFeatures2(physical, &f2);
+    info.scalar_layout = scalar.scalarBlockLayout;
+  }
   std::vector<const char*> extensions;
   if (info.float_controls && info.api < VK_API_VERSION_1_2)
     extensions.push_back(VK_KHR_SHADER_FLOAT_CONTROLS_EXTENSION_NAME);
@@ -379,6 +388,7 @@ void Context::make_device() {
   ci.pQueueCreateInfos = &q;
   ci.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
   ci.ppEnabledExtensionNames = extensions.data();
+  if (info.scalar_layout) ci.pNext = &scalar;
   check(api.vkCreateDevice(physical, &ci, nullptr, &device),
         "creating the Vulkan device for '" + info.name + "' (vkCreateDevice)");
   api.load_device(device);

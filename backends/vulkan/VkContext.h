@@ -32,9 +32,10 @@ struct DeviceInfo {
   bool group_ops = false;
   // SPV_KHR_float_controls for 32-bit floats: what the device can be asked to keep.
   bool float_controls = false, denorm_preserve = false, signed_zero_inf_nan = false, rte = false;
-  bool denorm_flush = false;  // shaderDenormFlushToZeroFloat32: DenormFlushToZero is offered
-  bool timestamps = false;    // the compute queue writes timestamps
-  double timestamp_ns = 1;    // nanoseconds per tick
+  bool denorm_flush = false;   // shaderDenormFlushToZeroFloat32: DenormFlushToZero is offered
+  bool scalar_layout = false;  // scalarBlockLayout (Vulkan 1.2), enabled where offered
+  bool timestamps = false;     // the compute queue writes timestamps
+  double timestamp_ns = 1;     // nanoseconds per tick
   // Parameters, counters, probes and upload staging: host-visible, coherent (device-local too
   // where such a heap is large).
   uint32_t memory_type = 0;

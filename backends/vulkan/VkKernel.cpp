@@ -87,6 +87,11 @@ LaunchResult VulkanKernel::run(const LaunchArgs& a) {
     for (auto* arr : a.arrays)
       for (int d = 0; d < 3; ++d) words_.push_back(static_cast<uint32_t>(arr->shape[d]));
     const int64_t bytes = static_cast<int64_t>(words_.size()) * 4;
+    if (setup_.params_uniform && static_cast<uint64_t>(bytes) > c.info.limits.maxUniformBufferRange)
+      throw Error(std::string(kWho) + ": " + who + ": its parameters take " +
+                  std::to_string(bytes) + " bytes, over the device's uniform buffer range (" +
+                  std::to_string(c.info.limits.maxUniformBufferRange) +
+                  "); run without RILL_VULKAN_PARAMS=uniform");
     if (!p.params || p.params->bytes < bytes)
       p.params = make_buffer(session_, bytes, who + ": its parameters");
     std::memcpy(p.params->mapped, words_.data(), static_cast<size_t>(bytes));
@@ -102,13 +107,21 @@ LaunchResult VulkanKernel::run(const LaunchArgs& a) {
     at(bind.mask, mask);
     for (size_t i = 0; i < arrays.size(); ++i) at(bind.arrays + static_cast<int>(i), arrays[i]);
     at(bind.params, p.params->buf);
-    auto w = make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-    w.dstSet = p.set;
-    w.dstBinding = 0;
-    w.descriptorCount = static_cast<uint32_t>(infos.size());
-    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = infos.data();
-    c.api.vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+    // The parameters are the last binding; a uniform buffer, a write of their own.
+    const bool uniform = setup_.params_uniform;
+    VkWriteDescriptorSet w[2];
+    w[0] = make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    w[0].dstSet = p.set;
+    w[0].dstBinding = 0;
+    w[0].descriptorCount = static_cast<uint32_t>(infos.size()) - (uniform ? 1u : 0u);
+    w[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w[0].pBufferInfo = infos.data();
+    w[1] = w[0];
+    w[1].dstBinding = static_cast<uint32_t>(bind.params);
+    w[1].descriptorCount = 1;
+    w[1].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    w[1].pBufferInfo = &infos[static_cast<size_t>(bind.params)];
+    c.api.vkUpdateDescriptorSets(c.device, uniform ? 2 : 1, w, 0, nullptr);
   }
   // The dispatches, timed by two timestamps where the queue has them.
   VkCommandBuffer cb = c.commands;

@@ -25,8 +25,9 @@ struct LaunchSetup {
   int local_size = 64;  // invocations per work group (RILL_VULKAN_LOCAL_SIZE)
   bool tiles = true;    // 2D launches in 8 x 4 tiles
   bool loop_guard = false;
-  Buffer* counter = nullptr;   // written, selected, loops cut
-  Staging* staging = nullptr;  // uploads to device-only memory
+  Buffer* counter = nullptr;    // written, selected, loops cut
+  Staging* staging = nullptr;   // uploads to device-only memory
+  bool params_uniform = false;  // the parameters are a uniform buffer (RILL_VULKAN_PARAMS)
 };
 
 class VulkanKernel : public CompiledKernel {

@@ -58,7 +58,8 @@ std::unique_ptr<Buffer> make_buffer(const std::shared_ptr<Session>& session, int
   auto bi = make<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
   bi.size = static_cast<VkDeviceSize>(bytes);
   bi.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-             VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+             VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+             (where == Memory::Host ? VkBufferUsageFlags{VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT} : 0u);
   bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   check(c.api.vkCreateBuffer(c.device, &bi, nullptr, &b->buf), "creating a buffer for " + what);
   VkMemoryRequirements req{};

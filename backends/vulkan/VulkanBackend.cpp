@@ -56,8 +56,10 @@ std::string execution_mode(int mode, int capability) {
 }
 
 // A compute pipeline (and its layout) over `bindings` storage buffers of set 0.
+// `uniform_binding` (-1: none) is a uniform buffer.
 void make_pipeline(Context& c, const std::vector<uint32_t>& spirv, int bindings,
-                   VkPipelineCache cache, VulkanKernel::Pass& p, const std::string& what) {
+                   VkPipelineCache cache, VulkanKernel::Pass& p, const std::string& what,
+                   int uniform_binding = -1) {
   auto mi = make<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
   mi.codeSize = spirv.size() * 4;
   mi.pCode = spirv.data();
@@ -65,8 +67,10 @@ void make_pipeline(Context& c, const std::vector<uint32_t>& spirv, int bindings,
         "creating the shader module of " + what);
   std::vector<VkDescriptorSetLayoutBinding> b(static_cast<size_t>(bindings));
   for (int i = 0; i < bindings; ++i)
-    b[static_cast<size_t>(i)] = {static_cast<uint32_t>(i), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                                 VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    b[static_cast<size_t>(i)] = {static_cast<uint32_t>(i),
+                                 i == uniform_binding ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                                      : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   auto li =
       make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   li.bindingCount = static_cast<uint32_t>(b.size());
@@ -197,7 +201,9 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
                              (d.group_ops ? " (RILL_VULKAN_SUBGROUPS=off)"
                                           : " (the device lacks subgroup operations)")) +
            "; " + std::to_string(d.limits.maxPerStageDescriptorStorageBuffers) +
-           " storage buffers; memory: " + memory_description(d) +
+           " storage buffers; memory: " + memory_description(d) + "; parameters: " +
+           (setup_.params_uniform ? "uniform buffer (RILL_VULKAN_PARAMS=uniform)"
+                                  : "storage buffer") +
            "; validation: " + (session_->context->validation ? "on" : "off") +
            "; disk cache: SPIR-V and the driver's pipeline cache";
   }
@@ -240,6 +246,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     glsl::VulkanTarget target;
     target.ballot = c.info.ballot;
     target.subgroups = group_ops_;
+    target.params_uniform = setup_.params_uniform;
     if (o.accuracy != Accuracy::Fast) target.execution_modes = float_modes_;
     Stopwatch stage;
     double codegen_ms = 0, compile_ms = 0;
@@ -282,7 +289,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
       modules = std::move(cached->first);
     } else {
       for (size_t i = 0; i < passes.size(); ++i)
-        modules.push_back(compile_compute_spirv(sources[i], f.name));
+        modules.push_back(compile_compute_spirv(sources[i], f.name, setup_.params_uniform));
     }
     auto pci = make<VkPipelineCacheCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO);
     // An entry whose driver data does not fit is stored again with the driver's own.
@@ -298,8 +305,10 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     try {
       int descriptors = 0;
       for (size_t i = 0; i < passes.size(); ++i) {
-        make_pipeline(c, modules[i], passes[i].bindings, pcache, passes[i],
-                      "kernel '" + f.name + "'");
+        make_pipeline(
+            c, modules[i], passes[i].bindings, pcache, passes[i], "kernel '" + f.name + "'",
+            setup_.params_uniform ? glsl::compute_bindings(f, passes[i].outputs.size()).params
+                                  : -1);
         descriptors += passes[i].bindings;
       }
       if (!fits) {
@@ -312,12 +321,14 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
         }
         cache::store(kName, key, pack(modules, data));
       }
-      VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                static_cast<uint32_t>(descriptors)};
+      const uint32_t uniforms = setup_.params_uniform ? static_cast<uint32_t>(passes.size()) : 0;
+      VkDescriptorPoolSize sizes[2] = {
+          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, static_cast<uint32_t>(descriptors) - uniforms},
+          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms}};
       auto di = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
       di.maxSets = static_cast<uint32_t>(passes.size());
-      di.poolSizeCount = 1;
-      di.pPoolSizes = &size;
+      di.poolSizeCount = uniforms ? 2 : 1;
+      di.pPoolSizes = sizes;
       check(c.api.vkCreateDescriptorPool(c.device, &di, nullptr, &pool),
             "creating a descriptor pool");
       for (auto& p : passes) {
@@ -403,6 +414,18 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     counter_ = make_buffer(session_, 16, "the launch counters");
     setup_.counter = counter_.get();
     setup_.staging = &staging_;
+    // RILL_VULKAN_PARAMS = storage (default) | uniform: the launch parameters and strict
+    // constants in a read-only storage buffer, or a uniform buffer (which drivers may keep in
+    // a constant cache, as GL's uniforms), for measuring.
+    if (const char* pu = std::getenv("RILL_VULKAN_PARAMS"); pu && *pu) {
+      const std::string v = pu;
+      if (v != "storage" && v != "uniform")
+        throw Error("RILL_VULKAN_PARAMS='" + v + "' is not one of storage, uniform");
+      if (v == "uniform" && !d.scalar_layout)
+        throw Error(std::string(kWho) + ": RILL_VULKAN_PARAMS=uniform needs scalarBlockLayout " +
+                    "(Vulkan 1.2), which " + d.name + " does not offer");
+      setup_.params_uniform = v == "uniform";
+    }
     choose_denormals(c);
     // The corrections' residual by one fma where the device's fma is fused (RILL_GLSL_FMA, else
     // probed as on the glsl backends); probed only where the corrections run.

@@ -73,8 +73,11 @@ for s in "${scenes[@]}"; do
   done
   # vulkan's memory (RILL_VULKAN_MEMORY: auto above; mapped = every buffer in BAR memory read
   # through the mapping, as before the fix; staged = uploads through staging copies too) and
-  # strict kernels that flush denormals themselves (RILL_VULKAN_DENORMALS=emulate).
-  for v in RILL_VULKAN_MEMORY=mapped RILL_VULKAN_MEMORY=staged RILL_VULKAN_DENORMALS=emulate; do
+  # strict kernels that flush denormals themselves (RILL_VULKAN_DENORMALS=emulate), and the
+  # launch parameters and strict constants in a uniform buffer (RILL_VULKAN_PARAMS=uniform:
+  # GL's uniforms are in NVIDIA's constant bank; vulkan reads them from a storage buffer).
+  for v in RILL_VULKAN_MEMORY=mapped RILL_VULKAN_MEMORY=staged RILL_VULKAN_DENORMALS=emulate \
+           RILL_VULKAN_PARAMS=uniform; do
     row "$scene" "$args" strict vulkan $v
     cmp -s /tmp/strict-opencl.png /tmp/o-vulkan.png ||
       { echo "$scene: vulkan $v: IMAGE DIFFERS from opencl's" | tee -a $OUT/info.txt; cp /tmp/o-vulkan.png "$OUT/vulkan-${v#*=}.png"; }
