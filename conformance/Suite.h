@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "Conformance.h"
+#include "rill/ir/FlushModel.h"
 
 namespace rill::conformance {
 
@@ -151,9 +152,9 @@ struct Special {
 const std::vector<Special>& specials();
 Case specials_case();
 
-// The flush-to-zero model of a backend that flushes denormals (FlushModel.cpp): every
+// The flush-to-zero model of a backend that flushes denormals (rill/ir/FlushModel.h): every
 // arithmetic operation reads denormal operands as zeros and flushes denormal results.
-ir::Function flush_model(const ir::Function& optimized);
+using ir::flush_model;
 
 // Shared by runner and tests.
 std::string describe_words(ir::Type t, const uint32_t* w);

@@ -206,7 +206,14 @@ RILL_FN rill_real rill_min_f(rill_real a, rill_real b) { return b < a ? b : a; }
 })"}}},
       {"abs_f",
        {{C, R"(RILL_FN rill_real rill_abs_f(rill_real x) { return RILL_M(fabs)(x); })"},
-        {Glsl, R"(float rill_abs_f(float x) { return abs(x); })"},
+        {Glsl,
+         R"(// RILL_ABS_ON_BITS (the Vulkan dialect): the sign bit cleared, as abs is data movement
+// (the denormal rule); NVIDIA's Vulkan compiler makes abs an add that flushes denormals.
+#ifdef RILL_ABS_ON_BITS
+float rill_abs_f(float x) { return intBitsToFloat(floatBitsToInt(x) & 0x7fffffff); }
+#else
+float rill_abs_f(float x) { return abs(x); }
+#endif)"},
         {Lockstep,
          R"(RILL_FN rill_vr rill_v_abs_f(rill_vr a) { return (rill_vr)((rill_vi)a & 0x7fffffff); })"}}},
       // Rounding to an integer is exact everywhere. Lockstep C uses AVX's rounding

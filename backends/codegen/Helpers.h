@@ -11,7 +11,8 @@
 //     RILL_M(fn) (the math library function for rill_real: sqrtf / sqrt), RILL_FN (the
 //     storage class of helpers, "static inline"), int32_t, uint32_t, int64_t; lockstep C
 //     also its vector types, rill_sel_i/r, RILL_CMP, RILL_AVX2 and RILL_LANES1/2.
-//   GLSL: RILL_PRECISE, RILL_ONE, RILL_ZERO_I, RILL_NATIVE_COMPARE, RILL_FLUSHES_DENORMALS.
+//   GLSL: RILL_PRECISE, RILL_ONE, RILL_ZERO_I, RILL_NATIVE_COMPARE, RILL_FLUSHES_DENORMALS,
+//   RILL_ABS_ON_BITS (the Vulkan dialect).
 // An op's HELPER form (dsl/include/rill/ir/Ops.def) names its entry; tests/backends/
 // HelpersTest.cpp fails when a dialect's generated source lacks one of them.
 #pragma once

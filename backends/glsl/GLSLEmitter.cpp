@@ -352,9 +352,12 @@ std::string uniform_declarations(const Function& f, const GLSLDialect& d) {
 // are named as GL's uniforms, so the body reads them alike. std430 packs the arrays as the
 // host's words (a uniform buffer's std140 would pad each element to 16 bytes, and push
 // constants may be as small as 128 bytes).
-std::string vulkan_params_block(const Function& f, const GLSLDialect& d, int binding) {
-  std::string src = "layout(std430, set = 0, binding = " + std::to_string(binding) +
-                    ") readonly buffer rill_params_b {\n  int rill_count; int rill_width; int "
+std::string vulkan_params_block(const Function& f, const GLSLDialect& d, int binding,
+                                bool uniform) {
+  std::string src = std::string(uniform ? "layout(scalar, " : "layout(std430, ") +
+                    "set = 0, binding = " + std::to_string(binding) +
+                    (uniform ? ") uniform" : ") readonly buffer") +
+                    " rill_params_b {\n  int rill_count; int rill_width; int "
                     "rill_tiled; int rill_nvalues; uint rill_one;\n  int rill_values[" +
                     std::to_string(kMaskValues) + "];\n";
   if (!d.constants.empty()) src += "  uint rill_k[" + std::to_string(d.constants.size()) + "];\n";
@@ -495,12 +498,17 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
       "#extension GL_KHR_shader_subgroup_vote : require\n"
       "#extension GL_KHR_shader_subgroup_arithmetic : require\n"
       "#extension GL_KHR_shader_subgroup_shuffle : require\n";
-  std::string src = vulkan
-                        ? header(f, accuracy, "compute, Vulkan",
-                                 (vulkan->ballot || vulkan->subgroups ? subgroups : "") +
-                                     (vulkan->subgroups ? group_ops : "") + vulkan->execution_modes,
-                                 true)
-                        : header(f, accuracy, "compute", subgroups);
+  // Extensions before the execution modes, which are declarations.
+  std::string src =
+      vulkan
+          ? header(f, accuracy, "compute, Vulkan",
+                   (vulkan->ballot || vulkan->subgroups ? subgroups : "") +
+                       (vulkan->subgroups ? group_ops : "") +
+                       (vulkan->params_uniform ? "#extension GL_EXT_scalar_block_layout : require\n"
+                                               : "") +
+                       vulkan->execution_modes + "#define RILL_ABS_ON_BITS\n",
+                   true)
+          : header(f, accuracy, "compute", subgroups);
   src += "layout(local_size_x = " + std::to_string(local_size) + ") in;\n";
   const std::string set = vulkan ? "set = 0, " : "";
   auto block = [&](const std::string& name, int binding, ScalarKind k, bool readonly) {
@@ -522,7 +530,7 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
     for (size_t i = 0; i < f.arrays.size(); ++i)
       src += block("rill_arr" + std::to_string(i), bind.arrays + static_cast<int>(i),
                    f.arrays[i].elem.kind, true);
-    src += vulkan_params_block(f, d, bind.params);
+    src += vulkan_params_block(f, d, bind.params, vulkan->params_uniform);
   } else {
     for (size_t i = 0; i < f.arrays.size(); ++i)
       src += "layout(binding = " + std::to_string(i) + ") uniform " +

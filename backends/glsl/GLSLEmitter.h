@@ -71,6 +71,9 @@ struct VulkanTarget {
   bool subgroups = false;
   // Lines placed after #version: GL_EXT_spirv_intrinsics float-controls execution modes.
   std::string execution_modes;
+  // The parameters as a uniform buffer in scalar layout (GL_EXT_scalar_block_layout) rather
+  // than a read-only storage buffer (RILL_VULKAN_PARAMS=uniform, for measuring).
+  bool params_uniform = false;
 };
 GLSLShader emit_glsl_compute(const ir::Function& optimized, Accuracy accuracy,
                              const std::vector<int>& outputs, bool counts, const DriverRules& rules,

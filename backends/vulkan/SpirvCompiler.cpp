@@ -24,9 +24,31 @@ void initialize_glslang() {
   std::call_once(once, [] { glslang::InitializeProcess(); });
 }
 
+// The module without its OpName instructions (debug names, no meaning). glslang names every
+// temporary it makes for a call's argument "param", and the validator's name mapper makes
+// each repeated name unique by trying suffixes one after another: quadratic in the number of
+// calls, minutes for a kernel of thousands of helper calls (a strict kernel that flushes
+// denormals itself: VulkanBackend.cpp).
+std::vector<uint32_t> without_names(const std::vector<uint32_t>& spirv) {
+  constexpr uint32_t kHeaderWords = 5, kOpName = 5;
+  if (spirv.size() < kHeaderWords) return spirv;
+  std::vector<uint32_t> out(spirv.begin(), spirv.begin() + kHeaderWords);
+  out.reserve(spirv.size());
+  for (size_t i = kHeaderWords; i < spirv.size();) {
+    const size_t words = spirv[i] >> 16;
+    if (words == 0 || i + words > spirv.size()) return spirv;  // malformed: the validator says
+    if ((spirv[i] & 0xffffu) != kOpName)
+      out.insert(out.end(), spirv.begin() + static_cast<std::ptrdiff_t>(i),
+                 spirv.begin() + static_cast<std::ptrdiff_t>(i + words));
+    i += words;
+  }
+  return out;
+}
+
 }  // namespace
 
-std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::string& kernel) {
+std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::string& kernel,
+                                            bool scalar_layout) {
   initialize_glslang();
   auto fail = [&](const std::string& stage, const std::string& log) {
     return Error(std::string(kWho) + ": kernel '" + kernel + "' did not " + stage + ":\n" + log +
@@ -48,13 +70,17 @@ std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::
   glslang::SpvOptions options;
   options.disableOptimizer = true;  // the driver optimizes; glslang's would only cost time
   glslang::GlslangToSpv(*program.getIntermediate(EShLangCompute), spirv, &options);
+  spirv = without_names(spirv);
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_1);
   std::string log;
   tools.SetMessageConsumer(
       [&](spv_message_level_t, const char*, const spv_position_t& at, const char* message) {
         log += "word " + std::to_string(at.index) + ": " + message + "\n";
       });
-  if (!tools.Validate(spirv)) throw fail("validate (SPIRV-Tools)", log);
+  spvtools::ValidatorOptions options_v;
+  options_v.SetScalarBlockLayout(scalar_layout);
+  if (!tools.Validate(spirv.data(), spirv.size(), options_v))
+    throw fail("validate (SPIRV-Tools)", log);
   return spirv;
 }
 

@@ -11,7 +11,10 @@ namespace rill::vk {
 
 // The SPIR-V of a compute shader; throws Error with glslang's or the validator's log and the
 // numbered source when it does not compile. `kernel` names the kernel in messages.
-std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::string& kernel);
+// `scalar_layout`: the module may use scalar block layouts (the device's scalarBlockLayout is
+// enabled), which the validator then allows.
+std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::string& kernel,
+                                            bool scalar_layout = false);
 
 // "glslang 12.0.0", for the disk cache's key and rill-info.
 std::string spirv_compiler_version();

@@ -278,6 +278,7 @@ void Context::describe_device() {
                    (sub.supportedOperations & group_ops) == group_ops && sub.subgroupSize <= 128;
   if (info.float_controls) {
     info.denorm_preserve = fc.shaderDenormPreserveFloat32;
+    info.denorm_flush = fc.shaderDenormFlushToZeroFloat32;
     info.signed_zero_inf_nan = fc.shaderSignedZeroInfNanPreserveFloat32;
     info.rte = fc.shaderRoundingModeRTEFloat32;
   }
@@ -303,6 +304,52 @@ void Context::describe_device() {
     throw Error(std::string(kWho) + ": the Vulkan device '" + info.name +
                 "' has no host-visible coherent memory type");
   info.memory_type = static_cast<uint32_t>(best);
+  choose_stream_memory(mem);
+}
+
+void Context::choose_stream_memory(const VkPhysicalDeviceMemoryProperties& mem) {
+  if (const char* m = std::getenv("RILL_VULKAN_MEMORY"); m && *m) info.memory_mode = m;
+  const std::string& mode = info.memory_mode;
+  if (mode != "auto" && mode != "staged" && mode != "mapped")
+    throw Error("RILL_VULKAN_MEMORY='" + mode + "' is not one of auto, staged, mapped");
+  const VkMemoryPropertyFlags host =
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  auto flags = [&](uint32_t i) { return mem.memoryTypes[i].propertyFlags; };
+  auto large = [&](uint32_t i) {
+    return mem.memoryHeaps[mem.memoryTypes[i].heapIndex].size > (uint64_t{1} << 30);
+  };
+  // Read-back staging: the first host-visible coherent type, a host-cached one before others.
+  int readback = -1;
+  for (uint32_t i = 0; i < mem.memoryTypeCount; ++i) {
+    if ((flags(i) & host) != host) continue;
+    const bool cached = flags(i) & VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    if (readback < 0 || (cached && !info.readback_cached)) {
+      readback = static_cast<int>(i);
+      info.readback_cached = cached;
+    }
+  }
+  info.readback_memory_type = static_cast<uint32_t>(readback);  // memory_type exists: >= 0
+  // Streams: a device-local type on a large heap, one the host maps before one it does not
+  // (unless staged); with none, memory_type.
+  int streams = -1;
+  bool mapped = false;
+  for (uint32_t i = 0; i < mem.memoryTypeCount && mode != "mapped"; ++i) {
+    if (!(flags(i) & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) || !large(i)) continue;
+    const bool m = mode == "auto" && (flags(i) & host) == host;
+    if (streams < 0 || (m && !mapped)) {
+      streams = static_cast<int>(i);
+      mapped = m;
+    }
+  }
+  if (streams < 0) {
+    streams = static_cast<int>(info.memory_type);
+    mapped = true;
+  }
+  info.stream_memory_type = static_cast<uint32_t>(streams);
+  info.streams_mapped = mapped;
+  // `mapped` reads through the mapping whatever the caching, as before.
+  const bool cached = flags(info.stream_memory_type) & VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+  info.streams_cached = mapped && (cached || mode == "mapped");
 }
 
 void Context::make_device() {
@@ -324,6 +371,15 @@ void Context::make_device() {
   q.queueFamilyIndex = family;
   q.queueCount = 1;
   q.pQueuePriorities = &priority;
+  // scalarBlockLayout, for parameters in a uniform buffer (RILL_VULKAN_PARAMS=uniform).
+  auto scalar = make<VkPhysicalDeviceScalarBlockLayoutFeatures>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SCALAR_BLOCK_LAYOUT_FEATURES);
+  if (info.api >= VK_API_VERSION_1_2) {
+    auto f2 = make<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+    f2.pNext = &scalar;
+    api.vkGetPhysicalDeviceFeatures2(physical, &f2);
+    info.scalar_layout = scalar.scalarBlockLayout;
+  }
   std::vector<const char*> extensions;
   if (info.float_controls && info.api < VK_API_VERSION_1_2)
     extensions.push_back(VK_KHR_SHADER_FLOAT_CONTROLS_EXTENSION_NAME);
@@ -332,6 +388,7 @@ void Context::make_device() {
   ci.pQueueCreateInfos = &q;
   ci.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
   ci.ppEnabledExtensionNames = extensions.data();
+  if (info.scalar_layout) ci.pNext = &scalar;
   check(api.vkCreateDevice(physical, &ci, nullptr, &device),
         "creating the Vulkan device for '" + info.name + "' (vkCreateDevice)");
   api.load_device(device);

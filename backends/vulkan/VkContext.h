@@ -32,10 +32,26 @@ struct DeviceInfo {
   bool group_ops = false;
   // SPV_KHR_float_controls for 32-bit floats: what the device can be asked to keep.
   bool float_controls = false, denorm_preserve = false, signed_zero_inf_nan = false, rte = false;
-  bool timestamps = false;   // the compute queue writes timestamps
-  double timestamp_ns = 1;   // nanoseconds per tick
-  uint32_t memory_type = 0;  // host-visible, coherent (device-local too where it is large)
+  bool denorm_flush = false;   // shaderDenormFlushToZeroFloat32: DenormFlushToZero is offered
+  bool scalar_layout = false;  // scalarBlockLayout (Vulkan 1.2), enabled where offered
+  bool timestamps = false;     // the compute queue writes timestamps
+  double timestamp_ns = 1;     // nanoseconds per tick
+  // Parameters, counters, probes and upload staging: host-visible, coherent (device-local too
+  // where such a heap is large).
+  uint32_t memory_type = 0;
   bool memory_device_local = false;
+  // Streams and arrays (RILL_VULKAN_MEMORY = auto | staged | mapped): device-local; mapped
+  // where that memory is host-visible and coherent too (resizable BAR, integrated GPUs, CPU
+  // devices) and not `staged`; read through the mapping only where it is also host-cached
+  // (reads of write-combined BAR memory cross the bus uncached, word by word), else copied
+  // to a host-cached staging buffer first. `mapped` keeps the streams in memory_type, read
+  // through the mapping, as before (for measuring).
+  std::string memory_mode = "auto";
+  uint32_t stream_memory_type = 0;
+  bool streams_mapped = false, streams_cached = false;
+  // Read-back staging: host-visible, coherent, host-cached where there is such a type.
+  uint32_t readback_memory_type = 0;
+  bool readback_cached = false;
 };
 
 class Context {
@@ -70,6 +86,7 @@ class Context {
  private:
   void choose_device();
   void describe_device();
+  void choose_stream_memory(const VkPhysicalDeviceMemoryProperties& mem);
   void make_device();
   void release() noexcept;  // destroys what exists, in reverse order
 

@@ -46,13 +46,16 @@ LaunchResult VulkanKernel::run(const LaunchArgs& a) {
   const std::string who = "kernel '" + fn_.name + "'";
   // Streams and arrays on the device. With several passes, an input that is also an output
   // is read from a copy taken before the first pass stores into it.
+  // (The copies are the launch's first commands.)
   std::vector<std::unique_ptr<Buffer>> copies;
+  std::vector<std::pair<VkBuffer, int64_t>> copied;  // each copy's source and size
+  Staging& staging = *setup_.staging;
   auto readable = [&](detail::StreamState* s, const std::string& what) -> VkBuffer {
-    Buffer& b = to_device(be_, session_, *s, who + ": " + what);
+    Buffer& b = to_device(be_, session_, staging, *s, who + ": " + what);
     const bool also_output = std::find(a.outputs.begin(), a.outputs.end(), s) != a.outputs.end();
     if (!also_output || passes_.size() == 1) return b.buf;
-    copies.push_back(make_buffer(session_, b.bytes, who + ": a copy of " + what));
-    std::memcpy(copies.back()->mapped, b.mapped, static_cast<size_t>(b.bytes));
+    copies.push_back(make_buffer(session_, b.bytes, who + ": a copy of " + what, Memory::Streams));
+    copied.emplace_back(b.buf, b.bytes);
     return copies.back()->buf;
   };
   std::vector<VkBuffer> inputs, arrays;
@@ -60,11 +63,13 @@ LaunchResult VulkanKernel::run(const LaunchArgs& a) {
     inputs.push_back(readable(a.inputs[i], "input " + std::to_string(i)));
   const VkBuffer mask = a.mask ? readable(a.mask, "the mask") : setup_.counter->buf;
   for (auto* arr : a.arrays)
-    arrays.push_back(to_device(be_, session_, *arr, who + ": array '" + arr->name + "'").buf);
+    arrays.push_back(
+        to_device(be_, session_, staging, *arr, who + ": array '" + arr->name + "'").buf);
   std::vector<VkBuffer> outputs;
   for (size_t o = 0; o < a.outputs.size(); ++o)
     outputs.push_back(
-        to_device(be_, session_, *a.outputs[o], who + ": output " + std::to_string(o)).buf);
+        to_device(be_, session_, staging, *a.outputs[o], who + ": output " + std::to_string(o))
+            .buf);
   std::memset(setup_.counter->mapped, 0, 16);
   // Each pass's parameters and descriptor set (the last launch has finished: run() waits).
   const bool tiled = setup_.tiles && a.height > 1 && !a.warm_up;
@@ -82,6 +87,11 @@ LaunchResult VulkanKernel::run(const LaunchArgs& a) {
     for (auto* arr : a.arrays)
       for (int d = 0; d < 3; ++d) words_.push_back(static_cast<uint32_t>(arr->shape[d]));
     const int64_t bytes = static_cast<int64_t>(words_.size()) * 4;
+    if (setup_.params_uniform && static_cast<uint64_t>(bytes) > c.info.limits.maxUniformBufferRange)
+      throw Error(std::string(kWho) + ": " + who + ": its parameters take " +
+                  std::to_string(bytes) + " bytes, over the device's uniform buffer range (" +
+                  std::to_string(c.info.limits.maxUniformBufferRange) +
+                  "); run without RILL_VULKAN_PARAMS=uniform");
     if (!p.params || p.params->bytes < bytes)
       p.params = make_buffer(session_, bytes, who + ": its parameters");
     std::memcpy(p.params->mapped, words_.data(), static_cast<size_t>(bytes));
@@ -97,13 +107,21 @@ LaunchResult VulkanKernel::run(const LaunchArgs& a) {
     at(bind.mask, mask);
     for (size_t i = 0; i < arrays.size(); ++i) at(bind.arrays + static_cast<int>(i), arrays[i]);
     at(bind.params, p.params->buf);
-    auto w = make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-    w.dstSet = p.set;
-    w.dstBinding = 0;
-    w.descriptorCount = static_cast<uint32_t>(infos.size());
-    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = infos.data();
-    c.api.vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+    // The parameters are the last binding; a uniform buffer, a write of their own.
+    const bool uniform = setup_.params_uniform;
+    VkWriteDescriptorSet w[2];
+    w[0] = make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    w[0].dstSet = p.set;
+    w[0].dstBinding = 0;
+    w[0].descriptorCount = static_cast<uint32_t>(infos.size()) - (uniform ? 1u : 0u);
+    w[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w[0].pBufferInfo = infos.data();
+    w[1] = w[0];
+    w[1].dstBinding = static_cast<uint32_t>(bind.params);
+    w[1].descriptorCount = 1;
+    w[1].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    w[1].pBufferInfo = &infos[static_cast<size_t>(bind.params)];
+    c.api.vkUpdateDescriptorSets(c.device, uniform ? 2 : 1, w, 0, nullptr);
   }
   // The dispatches, timed by two timestamps where the queue has them.
   VkCommandBuffer cb = c.commands;
@@ -111,6 +129,15 @@ LaunchResult VulkanKernel::run(const LaunchArgs& a) {
   auto begin = make<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   check(c.api.vkBeginCommandBuffer(cb, &begin), "recording a launch");
+  for (size_t i = 0; i < copies.size(); ++i)
+    record_copy(c, cb, copied[i].first, copies[i]->buf, 0, 0, copied[i].second);
+  // The last launch's and copies' writes before this launch's reads.
+  auto before = make<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  before.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+  c.api.vkCmdPipelineBarrier(
+      cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
   if (c.timer) {
     c.api.vkCmdResetQueryPool(cb, c.timer, 0, 2);
     c.api.vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, c.timer, 0);

@@ -5,7 +5,8 @@
 // descriptor set at its streams, arrays, counters and parameters, records the dispatches
 // (one invocation per element, work groups of the device's local size over a 2D grid, 2D
 // launches in 8 x 4 tiles) with barriers between passes, submits them and waits, then reads
-// the counts of elements written and selected.
+// the counts of elements written and selected. The command buffer and fence are the
+// context's, reused by every launch; descriptor sets are the kernel's, made at compile time.
 #pragma once
 
 #include <memory>
@@ -24,7 +25,9 @@ struct LaunchSetup {
   int local_size = 64;  // invocations per work group (RILL_VULKAN_LOCAL_SIZE)
   bool tiles = true;    // 2D launches in 8 x 4 tiles
   bool loop_guard = false;
-  Buffer* counter = nullptr;  // written, selected, loops cut
+  Buffer* counter = nullptr;    // written, selected, loops cut
+  Staging* staging = nullptr;   // uploads to device-only memory
+  bool params_uniform = false;  // the parameters are a uniform buffer (RILL_VULKAN_PARAMS)
 };
 
 class VulkanKernel : public CompiledKernel {

@@ -1,7 +1,12 @@
 // The vulkan backend's device memory: every stream and array is one storage buffer in
-// host-visible coherent memory, mapped for its lifetime, holding the host's words as they are.
-// Uploads (of the stale words only) and read-backs are copies through the mapping; every
-// launch waits for its dispatches, so a read-back never races a kernel.
+// device-local memory (VkContext.h: DeviceInfo::stream_memory_type), holding the host's words
+// as they are. Where the host maps that memory, uploads (of the stale words only) are copies
+// through the mapping, else through an upload staging buffer and vkCmdCopyBuffer; read-backs
+// are copies through the mapping only where the memory is host-cached, else the device
+// copies the buffer to a host-cached staging buffer first (reads of write-combined memory
+// across the bus are slow). The staging buffers grow as needed and are kept. Parameters and
+// counters live in host-visible memory, mapped. Every launch and copy waits for its fence, so
+// a read-back never races a kernel.
 #pragma once
 
 #include <functional>
@@ -27,26 +32,42 @@ struct Session {
   void shut_down() noexcept;
 };
 
-// One buffer and its memory, mapped.
+// One buffer and its memory, mapped where the host can map it.
 struct Buffer : detail::DeviceBuffer {
   std::shared_ptr<Session> session;
   VkBuffer buf = VK_NULL_HANDLE;
   VkDeviceMemory mem = VK_NULL_HANDLE;
-  void* mapped = nullptr;
+  void* mapped = nullptr;  // null: device-only memory
+  bool cached = false;     // mapped and fast for the host to read
   int64_t bytes = 0;
   ~Buffer() override;
   void release(Context& c) noexcept;  // frees buf and mem (under the session's lock)
 };
 
-// A buffer of `bytes` (at least 16) for storage; throws Error naming the size when the
-// device's storage-buffer range or memory does not allow it.
+// Where a buffer lives: Host (memory_type: parameters, counters, probes, upload staging),
+// Streams (stream_memory_type), Readback (readback_memory_type).
+enum class Memory { Host, Streams, Readback };
+
+// A buffer of `bytes` (at least 16) for storage and copies; throws Error naming the size when
+// the device's storage-buffer range or memory does not allow it.
 std::unique_ptr<Buffer> make_buffer(const std::shared_ptr<Session>& session, int64_t bytes,
-                                    const std::string& what);
+                                    const std::string& what, Memory where = Memory::Host);
+
+// The staging buffers of copies to and from device-only memory, grown as needed, kept.
+struct Staging {
+  std::unique_ptr<Buffer> up, down;
+};
 
 // The buffer holding s on behalf of `owner`, current with the host copy.
-Buffer& to_device(Backend& owner, const std::shared_ptr<Session>& session, detail::Storage& s,
-                  const std::string& what);
+Buffer& to_device(Backend& owner, const std::shared_ptr<Session>& session, Staging& staging,
+                  detail::Storage& s, const std::string& what);
 // Copies s's buffer to host (s.words() words).
-void read_back(const Backend& owner, const detail::Storage& s, uint32_t* host);
+void read_back(const Backend& owner, const std::shared_ptr<Session>& session, Staging& staging,
+               const detail::Storage& s, uint32_t* host);
+// Records into the command buffer being recorded a copy of `bytes` from `from` to `to`
+// (offsets in bytes), after every earlier shader or transfer write and before later
+// shader and transfer accesses.
+void record_copy(Context& c, VkCommandBuffer cb, VkBuffer from, VkBuffer to, int64_t from_offset,
+                 int64_t to_offset, int64_t bytes);
 
 }  // namespace rill::vk

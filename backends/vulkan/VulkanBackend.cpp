@@ -38,15 +38,17 @@
 #include "VkMemory.h"
 #include "rill/Error.h"
 #include "rill/Stopwatch.h"
+#include "rill/ir/FlushModel.h"
 
 namespace rill::vk {
 
 namespace {
 
 // SPIR-V execution modes and capabilities of SPV_KHR_float_controls.
-constexpr int kDenormPreserve = 4459, kSignedZeroInfNanPreserve = 4461, kRoundingModeRTE = 4462;
-constexpr int kCapDenormPreserve = 4464, kCapSignedZeroInfNanPreserve = 4466,
-              kCapRoundingModeRTE = 4467;
+constexpr int kDenormPreserve = 4459, kDenormFlushToZero = 4460, kSignedZeroInfNanPreserve = 4461,
+              kRoundingModeRTE = 4462;
+constexpr int kCapDenormPreserve = 4464, kCapDenormFlushToZero = 4465,
+              kCapSignedZeroInfNanPreserve = 4466, kCapRoundingModeRTE = 4467;
 
 std::string execution_mode(int mode, int capability) {
   return "spirv_execution_mode(extensions = [\"SPV_KHR_float_controls\"], capabilities = [" +
@@ -54,8 +56,10 @@ std::string execution_mode(int mode, int capability) {
 }
 
 // A compute pipeline (and its layout) over `bindings` storage buffers of set 0.
+// `uniform_binding` (-1: none) is a uniform buffer.
 void make_pipeline(Context& c, const std::vector<uint32_t>& spirv, int bindings,
-                   VkPipelineCache cache, VulkanKernel::Pass& p, const std::string& what) {
+                   VkPipelineCache cache, VulkanKernel::Pass& p, const std::string& what,
+                   int uniform_binding = -1) {
   auto mi = make<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
   mi.codeSize = spirv.size() * 4;
   mi.pCode = spirv.data();
@@ -63,8 +67,10 @@ void make_pipeline(Context& c, const std::vector<uint32_t>& spirv, int bindings,
         "creating the shader module of " + what);
   std::vector<VkDescriptorSetLayoutBinding> b(static_cast<size_t>(bindings));
   for (int i = 0; i < bindings; ++i)
-    b[static_cast<size_t>(i)] = {static_cast<uint32_t>(i), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                                 VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    b[static_cast<size_t>(i)] = {static_cast<uint32_t>(i),
+                                 i == uniform_binding ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                                      : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   auto li =
       make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   li.bindingCount = static_cast<uint32_t>(b.size());
@@ -189,17 +195,33 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
            version(d.api) + "; strict / and sqrt: " +
            glsl::divsqrt_description(rules_.divsqrt, rules_.fused_fma, rules_.lean) +
            ", comparisons: " + glsl::compare_name(rules_.native_compare) +
-           "; float controls: " + modes +
-           "; denormals: " + (flushes_denormals_ ? "flushed" : "kept") + "; lane groups: " +
+           "; float controls: " + modes + "; denormals: " + denormals_ + "; lane groups: " +
            (group_ops_ ? "subgroups of " + std::to_string(d.subgroup_size)
                        : std::string("one element") +
                              (d.group_ops ? " (RILL_VULKAN_SUBGROUPS=off)"
                                           : " (the device lacks subgroup operations)")) +
            "; " + std::to_string(d.limits.maxPerStageDescriptorStorageBuffers) +
-           " storage buffers; memory: " +
-           (d.memory_device_local ? "device-local, host-visible" : "host-visible") +
+           " storage buffers; memory: " + memory_description(d) + "; parameters: " +
+           (setup_.params_uniform ? "uniform buffer (RILL_VULKAN_PARAMS=uniform)"
+                                  : "storage buffer") +
            "; validation: " + (session_->context->validation ? "on" : "off") +
            "; disk cache: SPIR-V and the driver's pipeline cache";
+  }
+
+  // Where streams live and how they move (RILL_VULKAN_MEMORY, VkContext.h).
+  static std::string memory_description(const DeviceInfo& d) {
+    const std::string mode =
+        d.memory_mode == "auto" ? "" : "RILL_VULKAN_MEMORY=" + d.memory_mode + ": ";
+    if (d.memory_mode == "mapped")
+      return mode + "streams in " +
+             (d.memory_device_local ? "device-local, host-visible" : "host-visible") +
+             " memory, read through the mapping";
+    return mode + "streams device-local, " +
+           (d.streams_mapped ? "written through the mapping" : "written through a staging copy") +
+           ", " +
+           (d.streams_cached ? "read through the mapping (host-cached)"
+                             : std::string("read through a staging copy (") +
+                                   (d.readback_cached ? "host-cached" : "host-visible") + ")");
   }
 
   std::unique_ptr<CompiledKernel> compile(const ir::Function& f, const CompileOptions& o) override {
@@ -224,9 +246,15 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     glsl::VulkanTarget target;
     target.ballot = c.info.ballot;
     target.subgroups = group_ops_;
+    target.params_uniform = setup_.params_uniform;
     if (o.accuracy != Accuracy::Fast) target.execution_modes = float_modes_;
     Stopwatch stage;
     double codegen_ms = 0, compile_ms = 0;
+    // Strict kernels on a device that keeps some denormals: every arithmetic operation
+    // flushes its operands and result in the kernel itself (rill/ir/FlushModel.h).
+    ir::Function flushed;
+    if (emulate_flush_ && o.accuracy != Accuracy::Fast) flushed = ir::flush_model(f);
+    const ir::Function& g = emulate_flush_ && o.accuracy != Accuracy::Fast ? flushed : f;
     std::vector<VulkanKernel::Pass> passes;
     std::vector<std::string> sources;
     std::string source;
@@ -237,7 +265,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
            ++k)
         p.outputs.push_back(static_cast<int>(k));
       glsl::GLSLShader shader =
-          glsl::emit_glsl_compute(f, o.accuracy, p.outputs, passes.empty(), rules_,
+          glsl::emit_glsl_compute(g, o.accuracy, p.outputs, passes.empty(), rules_,
                                   flushes_denormals_, setup_.local_size, &target, o.source_map);
       p.constants = std::move(shader.constants);
       p.bindings = fixed + static_cast<int>(p.outputs.size());
@@ -261,7 +289,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
       modules = std::move(cached->first);
     } else {
       for (size_t i = 0; i < passes.size(); ++i)
-        modules.push_back(compile_compute_spirv(sources[i], f.name));
+        modules.push_back(compile_compute_spirv(sources[i], f.name, setup_.params_uniform));
     }
     auto pci = make<VkPipelineCacheCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO);
     // An entry whose driver data does not fit is stored again with the driver's own.
@@ -277,8 +305,10 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     try {
       int descriptors = 0;
       for (size_t i = 0; i < passes.size(); ++i) {
-        make_pipeline(c, modules[i], passes[i].bindings, pcache, passes[i],
-                      "kernel '" + f.name + "'");
+        make_pipeline(
+            c, modules[i], passes[i].bindings, pcache, passes[i], "kernel '" + f.name + "'",
+            setup_.params_uniform ? glsl::compute_bindings(f, passes[i].outputs.size()).params
+                                  : -1);
         descriptors += passes[i].bindings;
       }
       if (!fits) {
@@ -291,12 +321,14 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
         }
         cache::store(kName, key, pack(modules, data));
       }
-      VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                static_cast<uint32_t>(descriptors)};
+      const uint32_t uniforms = setup_.params_uniform ? static_cast<uint32_t>(passes.size()) : 0;
+      VkDescriptorPoolSize sizes[2] = {
+          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, static_cast<uint32_t>(descriptors) - uniforms},
+          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniforms}};
       auto di = make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
       di.maxSets = static_cast<uint32_t>(passes.size());
-      di.poolSizeCount = 1;
-      di.pPoolSizes = &size;
+      di.poolSizeCount = uniforms ? 2 : 1;
+      di.pPoolSizes = sizes;
       check(c.api.vkCreateDescriptorPool(c.device, &di, nullptr, &pool),
             "creating a descriptor pool");
       for (auto& p : passes) {
@@ -324,7 +356,7 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
 
   void read_back(const detail::Storage& s, uint32_t* host) override {
     std::lock_guard<std::recursive_mutex> lock(session_->mutex);
-    vk::read_back(*this, s, host);
+    vk::read_back(*this, session_, staging_, s, host);
   }
 
   // Frees the counter buffer and destroys the device and instance (at exit, before the
@@ -332,6 +364,8 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
   void shutdown() noexcept override {
     std::lock_guard<std::recursive_mutex> lock(session_->mutex);
     counter_.reset();
+    staging_.up.reset();
+    staging_.down.reset();
     session_->shut_down();
   }
 
@@ -377,16 +411,22 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
         throw Error("RILL_VULKAN_SUBGROUPS='" + v + "' is not one of on, off");
       group_ops_ = group_ops_ && v == "on";
     }
-    float_modes_.clear();
-    if (d.signed_zero_inf_nan)
-      float_modes_ += execution_mode(kSignedZeroInfNanPreserve, kCapSignedZeroInfNanPreserve);
-    if (d.denorm_preserve) float_modes_ += execution_mode(kDenormPreserve, kCapDenormPreserve);
-    if (d.rte) float_modes_ += execution_mode(kRoundingModeRTE, kCapRoundingModeRTE);
-    if (!float_modes_.empty())
-      float_modes_ = "#extension GL_EXT_spirv_intrinsics : require\n" + float_modes_;
     counter_ = make_buffer(session_, 16, "the launch counters");
     setup_.counter = counter_.get();
-    flushes_denormals_ = probe_flushes_denormals(c);
+    setup_.staging = &staging_;
+    // RILL_VULKAN_PARAMS = storage (default) | uniform: the launch parameters and strict
+    // constants in a read-only storage buffer, or a uniform buffer (which drivers may keep in
+    // a constant cache, as GL's uniforms), for measuring.
+    if (const char* pu = std::getenv("RILL_VULKAN_PARAMS"); pu && *pu) {
+      const std::string v = pu;
+      if (v != "storage" && v != "uniform")
+        throw Error("RILL_VULKAN_PARAMS='" + v + "' is not one of storage, uniform");
+      if (v == "uniform" && !d.scalar_layout)
+        throw Error(std::string(kWho) + ": RILL_VULKAN_PARAMS=uniform needs scalarBlockLayout " +
+                    "(Vulkan 1.2), which " + d.name + " does not offer");
+      setup_.params_uniform = v == "uniform";
+    }
+    choose_denormals(c);
     // The corrections' residual by one fma where the device's fma is fused (RILL_GLSL_FMA, else
     // probed as on the glsl backends); probed only where the corrections run.
     const std::optional<bool> fused = glsl::fused_fma_mode();
@@ -399,13 +439,113 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     c.check_validation("setting up the device");
   }
 
-  // Whether the device's arithmetic flushes denormals in strict kernels: 2 * the smallest
-  // denormal, computed by one invocation under the same execution modes, comes back as zero.
-  bool probe_flushes_denormals(Context& c) {
-    const std::vector<float> out =
-        run_probe(c, "rill_denormal_probe", "  precise float x = b.v[0] * b.v[1];\n  b.v[2] = x;\n",
-                  {std::numeric_limits<float>::denorm_min(), 2.0f, 1.0f, 0});
-    return out[2] == 0.0f;
+  // The strict kernels' execution modes: signed zeros, infinities and NaN preserved and
+  // round to nearest even where offered, plus `denorm_mode` (DenormPreserve,
+  // DenormFlushToZero or none: 0), each where the device offers it.
+  static std::string modes(const DeviceInfo& d, int denorm_mode) {
+    std::string m;
+    if (d.signed_zero_inf_nan)
+      m += execution_mode(kSignedZeroInfNanPreserve, kCapSignedZeroInfNanPreserve);
+    if (denorm_mode == kDenormPreserve) m += execution_mode(kDenormPreserve, kCapDenormPreserve);
+    if (denorm_mode == kDenormFlushToZero)
+      m += execution_mode(kDenormFlushToZero, kCapDenormFlushToZero);
+    if (d.rte) m += execution_mode(kRoundingModeRTE, kCapRoundingModeRTE);
+    return m.empty() ? m : "#extension GL_EXT_spirv_intrinsics : require\n" + m;
+  }
+
+  // What the device's arithmetic does with denormals under float_modes_: each probed
+  // operation, and whether it kept them. A device may flush in some instructions and not in
+  // others (NVIDIA's Vulkan driver without a denormal mode keeps them in mul and add but
+  // flushes them in abs, min, comparisons and sqrt), so several are probed.
+  struct DenormalProbe {
+    std::vector<std::pair<std::string, bool>> ops;  // name, kept
+    bool all(bool kept) const {
+      return std::all_of(ops.begin(), ops.end(),
+                         [kept](const auto& o) { return o.second == kept; });
+    }
+    // "mul, add keep them, min, lt, sqrt flush them", "all keep them"
+    std::string text() const {
+      if (all(true)) return "all keep them";
+      if (all(false)) return "all flush them";
+      std::string keep, flush;
+      for (const auto& o : ops) {
+        std::string& list = o.second ? keep : flush;
+        list += (list.empty() ? "" : ", ") + o.first;
+      }
+      return keep + " keep them, " + flush + " flush them";
+    }
+  };
+  DenormalProbe probe_denormals(Context& c) {
+    const float d = std::numeric_limits<float>::denorm_min();
+    const std::vector<float> out = run_probe(c, "rill_denormal_probe",
+                                             "  precise float m = b.v[0] * b.v[1];\n"
+                                             "  b.v[4] = m;\n"
+                                             "  precise float a = b.v[0] + b.v[2];\n"
+                                             "  b.v[5] = a;\n"
+                                             "  b.v[6] = min(b.v[2], b.v[3]);\n"
+                                             "  b.v[7] = b.v[2] < b.v[0] ? 1.0 : 0.0;\n"
+                                             "  precise float r = sqrt(b.v[0]);\n"
+                                             "  b.v[8] = r;\n",
+                                             {d, 2.0f, 0.0f, -d, 0, 0, 0, 0, 0});
+    // On bits: a host with denormals-are-zero set would read a kept one as zero.
+    auto bits = [&](size_t i) {
+      uint32_t b;
+      std::memcpy(&b, &out[i], sizeof b);
+      return b;
+    };
+    DenormalProbe p;
+    p.ops = {{"mul", (bits(4) & 0x7fffffffu) != 0},
+             {"add", (bits(5) & 0x7fffffffu) != 0},
+             {"min", bits(6) == bits(3)},
+             {"lt", out[7] == 1.0f},
+             {"sqrt", (bits(8) & 0x7fffffffu) != 0}};
+    return p;
+  }
+
+  // How strict kernels treat denormals (RILL_VULKAN_DENORMALS = auto | flush | emulate):
+  // kept where every probed operation keeps them under DenormPreserve (where offered, else no
+  // denormal mode); else flushed, by the device under DenormFlushToZero where every probed
+  // operation then flushes them, else by the kernels themselves (emulate_flush_). `flush`
+  // skips the first probe, `emulate` both. Flushed, comparisons treat denormals as zeros (as
+  // on glsl-compute) and the conformance suite compares with the denormal rule.
+  void choose_denormals(Context& c) {
+    const DeviceInfo& d = c.info;
+    std::string want = "auto";
+    if (const char* e = std::getenv("RILL_VULKAN_DENORMALS"); e && *e) want = e;
+    if (want != "auto" && want != "flush" && want != "emulate")
+      throw Error("RILL_VULKAN_DENORMALS='" + want + "' is not one of auto, flush, emulate");
+    const int keep_mode = d.denorm_preserve ? kDenormPreserve : 0;
+    const std::string keep_name = d.denorm_preserve ? "DenormPreserve" : "no denormal mode";
+    const std::string keep_modes = modes(d, keep_mode);
+    float_modes_ = keep_modes;
+    const DenormalProbe kept = probe_denormals(c);
+    const std::string probed = "probed with " + keep_name + ": " + kept.text();
+    emulate_flush_ = false;
+    flushes_denormals_ = false;
+    if (want == "auto" && kept.all(true)) {
+      denormals_ = "kept (" + probed + ")";
+      return;
+    }
+    const std::string forced = want == "auto" ? "" : "RILL_VULKAN_DENORMALS=" + want + "; ";
+    flushes_denormals_ = true;
+    if (want != "emulate" && d.denorm_flush) {
+      float_modes_ = modes(d, kDenormFlushToZero);
+      const DenormalProbe ftz = probe_denormals(c);
+      if (ftz.all(false)) {
+        denormals_ = "flushed by DenormFlushToZero (" + forced + probed +
+                     "; with DenormFlushToZero: " + ftz.text() + ")";
+        return;
+      }
+      denormals_ = "flushed by the kernels (" + forced + probed +
+                   "; with DenormFlushToZero: " + ftz.text() + ")";
+    } else {
+      denormals_ = "flushed by the kernels (" + forced + probed +
+                   (d.denorm_flush ? "" : "; DenormFlushToZero not offered") + ")";
+    }
+    // The kernels flush every operation's operands and results; the device's own arithmetic
+    // runs as in the first probe (helpers' intermediate values then round as on the host).
+    float_modes_ = keep_modes;
+    emulate_flush_ = true;
   }
 
   // Runs `main_body` (GLSL statements over `buffer B { float v[]; } b`) in one invocation
@@ -479,10 +619,13 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
   std::string init_error_;
   bool started_ = false;
   glsl::DriverRules rules_;
-  bool flushes_denormals_ = true;
-  bool group_ops_ = false;   // lane groups are subgroups
-  std::string float_modes_;  // the strict kernels' execution-mode lines
+  bool flushes_denormals_ = true;  // strict kernels flush denormals (choose_denormals())
+  bool emulate_flush_ = false;     // ... in the kernels themselves (rill/ir/FlushModel.h)
+  std::string denormals_;          // how, for description()
+  bool group_ops_ = false;         // lane groups are subgroups
+  std::string float_modes_;        // the strict kernels' execution-mode lines
   std::unique_ptr<Buffer> counter_;
+  Staging staging_;
   LaunchSetup setup_;
 };
 

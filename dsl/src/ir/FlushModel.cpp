@@ -4,15 +4,21 @@
 // (copies, swizzles, select, neg, abs, bit reinterpretation) leaves bits alone.
 //
 // flush_model() rewrites an optimized function that way, so that the reference interpreter
-// computes what such a backend must compute, intermediate values included.
-#include "Suite.h"
+// computes what such a backend must compute, intermediate values included (the conformance
+// suite), and so that a backend on a device that keeps some denormals and flushes others can
+// flush them all itself (the vulkan backend's emulated flushing, VulkanBackend.cpp).
+#include "rill/ir/FlushModel.h"
+
 #include "rill/ir/Visitor.h"
 
-namespace rill::conformance {
+namespace rill::ir {
 
 namespace {
 
-using namespace ir;
+// The denormal rule on bits: a denormal becomes a zero of the same sign.
+uint32_t flush_bits(uint32_t b) {
+  return (b & 0x7f800000u) == 0 ? (b & 0x80000000u) : b;
+}
 
 Operand int_const(uint32_t bits) {
   Constant c = Constant::of_int(static_cast<int32_t>(bits));
@@ -139,11 +145,11 @@ class Rewriter : public Mutator {
 
 }  // namespace
 
-ir::Function flush_model(const ir::Function& f) {
-  ir::Function out = f;
+Function flush_model(const Function& f) {
+  Function out = f;
   Rewriter r(out);
   r.mutate(out.body);
   return out;
 }
 
-}  // namespace rill::conformance
+}  // namespace rill::ir
