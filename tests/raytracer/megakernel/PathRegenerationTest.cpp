@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "RenderCompare.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
@@ -34,15 +33,26 @@ RenderSettings settings(const std::string& backend, int width, int height, int s
   return rs;
 }
 
-void expect_same(const RenderResult& a, const RenderResult& b, const std::string& what) {
-  ASSERT_EQ(a.color.size(), b.color.size()) << what;
-  EXPECT_EQ(std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(glm::vec3)), 0)
-      << what;
-  testing::expect_identical(a, b, what);
-  ASSERT_EQ(a.albedo.size(), b.albedo.size()) << what;
-  EXPECT_EQ(std::memcmp(a.albedo.data(), b.albedo.data(), a.albedo.size() * sizeof(glm::vec3)), 0)
-      << what;
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+// The same image, AOVs (the last sample's camera ray's) and samples, byte for byte; and the
+// same rays where both traced all their samples.
+void expect_same(const RenderResult& a, const RenderResult& b, const std::string& what,
+                 bool rays = true) {
+  ASSERT_FALSE(a.color.empty()) << what;
+  ASSERT_FALSE(a.depth.empty()) << what;
+  EXPECT_TRUE(same_bytes(a.color, b.color)) << what << ": colour";
+  EXPECT_TRUE(same_bytes(a.depth, b.depth)) << what << ": depth";
+  EXPECT_TRUE(same_bytes(a.prim, b.prim)) << what << ": prim";
+  EXPECT_TRUE(same_bytes(a.normal, b.normal)) << what << ": normal";
+  EXPECT_TRUE(same_bytes(a.albedo, b.albedo)) << what << ": albedo";
   EXPECT_EQ(a.spp, b.spp) << what;
+  if (rays) {
+    EXPECT_EQ(a.rays, b.rays) << what;
+  }
 }
 
 // The scene rendered with 1, 2, 3 and 7 samples per launch: the same bits, in
@@ -68,8 +78,8 @@ TEST_P(PathRegeneration, CornellPathIsTheSameImageWhateverTheSamplesPerLaunch) {
   ASSERT_EQ(s.options.integrator, Integrator::Path);
   // The view moved right by half the box's width: its left half looks into the box, its right
   // half past it (camera rays that miss, beside paths that bounce).
-  s.camera.eye.x += 278.0f;
-  s.camera.look_at.x += 278.0f;
+  s.camera.eye.x += 0.278f;  // (the box is 0.556 wide)
+  s.camera.look_at.x += 0.278f;
   expect_any_samples_per_launch(s, GetParam(), 24, 16, "cornell-path");
 }
 
@@ -95,8 +105,9 @@ TEST_P(PathRegeneration, ResumedAndStoppedRendersCountTheirSamples) {
   RenderSettings rest = settings(GetParam(), 16, 12, 6, 3);
   rest.resume = &two.accumulation;
   const RenderResult resumed = t.render(rest, s.camera);
-  EXPECT_EQ(resumed.launches, 2);  // samples 2-4, then 5
-  expect_same(whole, resumed, "resumed after 2 samples");
+  EXPECT_EQ(resumed.launches, 2);                                 // samples 2-4, then 5
+  expect_same(whole, resumed, "resumed after 2 samples", false);  // (rays: its 4 samples')
+  EXPECT_EQ(two.rays + resumed.rays, whole.rays);
 
   RenderSettings stopped = settings(GetParam(), 16, 12, 6, 2);
   std::vector<int> calls;
