@@ -128,14 +128,18 @@ Program Megakernel::capture_path() const {
       carry = next.carry;
       rays += path.rays;
     };
-    PathItem path = P.start(Ray{S_.camera.eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)});
+    // A new path, its ray from the eye (aimed by the camera where it is traced).
+    auto new_path = [&] {
+      return P.start(Ray{S_.camera.eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)});
+    };
+    PathItem path = new_path();
     FirstHit first;
     first.depth = as_float(Int(0x7f800000));
     const Bool sees = S_.F.geometry ? S_.camera.may_see_scene(pix, S_.F.dynamic) : Bool(true);
     RILL_IF(max_iter_ > 0 && !sees) {
       // The camera ray would miss: what shading a miss gives, without making the ray.
       RILL_WHILE(sample < end) {
-        path = P.start(Ray{S_.camera.eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)});
+        path = new_path();
         (void)P.shade(path, Hit{Float(0.0f), Float2(0.0f), Int(-1)}, pix);
         add(path);
         sample += 1;
@@ -167,7 +171,7 @@ Program Megakernel::capture_path() const {
           sample += 1;
           RILL_IF(sample < end) {
             offset = sample_offsets_[sample];
-            path = P.start(Ray{S_.camera.eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)});
+            path = new_path();
             S_.camera.aim(path.ray, pix);
             // The AOVs are the last sample's camera ray's, as when each sample was a launch.
             first.depth = as_float(Int(0x7f800000));
