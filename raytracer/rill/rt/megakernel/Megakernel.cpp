@@ -20,10 +20,20 @@ using namespace rill;
 // Tracer's constructor (the other loop runs the same shader code); the other at its first use.
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
   if (path()) path_ = std::make_unique<PathIntegrator>(S_, S_.path_lights, S_.options);
+  for (int k = 0; k < kPathSamplesPerLaunch; ++k)
+    sample_offsets_.push_back(std::make_unique<Uniform<Float2>>(
+        glm::vec2(0.5f), "path_sample_offset" + std::to_string(k)));
   (void)program(MegakernelLoop::Segment);
 }
 
 Megakernel::~Megakernel() = default;
+
+Float2 Megakernel::launch_sample_offset(const Int& i) const {
+  Float2 o = *sample_offsets_[0];
+  for (size_t k = 1; k < sample_offsets_.size(); ++k)
+    o = select(i == static_cast<int>(k), static_cast<const Float2&>(*sample_offsets_[k]), o);
+  return o;
+}
 
 const Program& Megakernel::program(MegakernelLoop loop, bool packets) const {
   if (loop == MegakernelLoop::Auto)
@@ -117,7 +127,7 @@ Program Megakernel::capture_path() const {
     // The sample being traced, and its offset in the pixel: the camera and the random numbers
     // read these variables where the one-sample kernels read their uniforms.
     Int sample = path_first_;
-    Float2 offset = sample_offsets_[sample];
+    Float2 offset = *sample_offsets_[0];
     S_.camera.sample_offset_var = &offset;
     S_.camera.lens_sample_var = &sample;
     path_->sample_var = &sample;
@@ -170,7 +180,7 @@ Program Megakernel::capture_path() const {
           add(path);
           sample += 1;
           RILL_IF(sample < end) {
-            offset = sample_offsets_[sample];
+            offset = launch_sample_offset(sample - path_first_);
             path = new_path();
             S_.camera.aim(path.ray, pix);
             // The AOVs are the last sample's camera ray's, as when each sample was a launch.
@@ -520,7 +530,7 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
 }
 
 int path_samples_per_launch(int setting) {
-  if (setting > 0) return setting;
+  if (setting > 0) return std::min(setting, kPathSamplesPerLaunch);
   static const int from_environment = [] {
     const char* v = std::getenv("RILL_PATH_REGENERATE");
     if (v == nullptr || std::string(v) == "on") return kPathSamplesPerLaunch;
@@ -632,13 +642,6 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
     Stream<Float3>& sum = sums ? *film_sums.sum : out.color;
     Stream<Float3>& carry = sums ? *film_sums.carry : out.carry;
     k.bind("sum_in", sum).bind("carry_in", carry).bind("color", sum).bind("carry", carry);
-    if (offsets_ < spp) {
-      std::vector<glm::vec2> offsets(static_cast<size_t>(spp));
-      for (int s = 0; s < spp; ++s) offsets[static_cast<size_t>(s)] = sample_offset(s);
-      sample_offsets_.resize(spp);
-      sample_offsets_.upload(offsets);
-      offsets_ = spp;
-    }
   }
   r.times.setup += setup.ms();
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
@@ -667,6 +670,8 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
       path_first_.set(s);
       path_samples_.set(n);
       path_accumulate_.set(sums ? 1 : 0);
+      for (int i = 0; i < n; ++i)
+        sample_offsets_[static_cast<size_t>(i)]->set(sample_offset(s + i));
     }
     if (S_.F.area_lights) S_.shading.sample_index.set(s);
     step.lap();

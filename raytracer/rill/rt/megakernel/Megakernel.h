@@ -49,6 +49,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "rill/rt/film/Film.h"
 #include "rill/rt/integrator/PathIntegrator.h"
@@ -113,12 +114,14 @@ class Megakernel final : public RenderStrategy {
   // The loop's iteration limit; 0 skips all tracing (render()'s warm-up launch).
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
   // The path program's samples: the launch's first and count, whether they add to the sums
-  // read (else each restarts the sum), and every sample's offset in its pixel (sample_offset,
-  // made on the host; offsets_ of them uploaded).
+  // read (else each restarts the sum), and the offset in its pixel (sample_offset, made on the
+  // host) of each: uniforms, not an array, since the glsl backend's kernels have 32 textures
+  // at most and a textured scene's path kernel uses them all.
   rill::Uniform<Int> path_first_{0, "path_first_sample"}, path_samples_{1, "path_samples"};
   rill::Uniform<Int> path_accumulate_{0, "path_accumulate"};
-  rill::Array<Float2> sample_offsets_{1, "sample_offsets"};
-  int offsets_ = 0;
+  std::vector<std::unique_ptr<rill::Uniform<Float2>>> sample_offsets_;
+  // The offset of the launch's sample path_first_ + i (i < kPathSamplesPerLaunch).
+  Float2 launch_sample_offset(const Int& i) const;
   // Captured on demand, from const accessors (Tracer::program is const): a GPU never needs
   // Segment's program beyond the constructor's, a CPU backend never Ray's.
   mutable std::map<std::pair<MegakernelLoop, bool>, rill::Program> programs_;
