@@ -86,6 +86,9 @@ rt::RenderResult render_progressive(const RenderOptions& o, Prepared& p, const r
   bool out_of_time = false;
   rt::RenderSettings rs = p.rs;
   rs.spp = target;
+  // A time limit is checked after each launch: one sample each, so that it stops on time (the
+  // path megakernel otherwise runs several per launch, Megakernel.h).
+  if (o.time_limit > 0) rs.path_samples_per_launch = 1;
   rs.after_pass = [&](int done) {
     progress.update(done);
     out_of_time = o.time_limit > 0 && progress.seconds() >= o.time_limit;

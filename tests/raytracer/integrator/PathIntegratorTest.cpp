@@ -399,8 +399,10 @@ TEST(PathProgressive, ResumedAndStoppedRendersAreTheRendersOfTheirSamples) {
               0);
     rest_var.resume = &part.accumulation;
     EXPECT_TRUE(tracer.render(rest_var, s.camera).variance.empty());
-    // Stopped after the fourth pass: the render of 4 samples.
+    // Stopped after the fourth pass: the render of 4 samples. (Passes of one sample: the
+    // megakernel's otherwise take up to 16, PathRegeneration.* stops those.)
     RenderSettings stop = rs;
+    stop.path_samples_per_launch = 1;
     stop.after_pass = [](int done) { return done < 4; };
     RenderSettings four = rs;
     four.spp = 4;

@@ -51,19 +51,20 @@ struct Film::Buffers {
   std::optional<Stream<Int3>> packed;  // the 8-bit image as bytes, 4 pixels per element
 };
 
+FilmSum film_add(const Float3& sum, const Float3& carry, const Float3& color, const Bool& first) {
+  Float3 s = sum + color;
+  Float3 back = s - sum;
+  Float3 error = (sum - (s - back)) + (color - back);
+  return FilmSum{select(first, color, s), select(first, Float3(0.0f), carry + error)};
+}
+
 Film::Film() {
-  // sum + colour as a float and the error that rounding dropped (Knuth's two-sum, exact
-  // without FMA contraction or reassociation, which strict rules out); the errors add up
-  // in the carry. The first sample starts both.
   add_ = program("rill_film_add", [&] {
     Input<Float3> sum("sum"), carry("carry"), color("color");
     Output<Float3> new_sum("new_sum"), new_carry("new_carry");
-    Float3 s = sum + color;
-    Float3 back = s - sum;
-    Float3 error = (sum - (s - back)) + (color - back);
-    Bool first = first_ != 0;
-    new_sum = select(first, color, s);
-    new_carry = select(first, Float3(0.0f), carry + error);
+    const FilmSum next = film_add(sum, carry, color, first_ != 0);
+    new_sum = next.sum;
+    new_carry = next.carry;
   });
   // The samples' squares, summed in float for the variance (an estimate: no carry).
   add_squares_ = program("rill_film_add_squares", [&] {
@@ -178,6 +179,11 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
   }
   single_.reset();
   accumulate_ms_ = 0;
+}
+
+Film::Sums Film::sums() {
+  if (!summing_ || squares_) return Sums{};
+  return Sums{&*now_->sum, &*now_->carry};
 }
 
 void Film::add_sample(const Stream<Float3>& color, int s) {

@@ -31,6 +31,17 @@ namespace rt {
 // (2, 3) sequence): the same on every machine and strategy.
 glm::vec2 sample_offset(int k);
 
+// The film's running sum after one more sample `color`: a compensated sum (a float sum and
+// the rounding error it dropped, Knuth's two-sum, exact without FMA contraction or
+// reassociation, which strict rules out; the errors add up in the carry). `first` starts
+// both. The film's own sum kernel and a strategy that sums its samples in its kernel (the
+// path megakernel, Megakernel.h) use it, so both give the same bits.
+struct FilmSum {
+  rill::Float3 sum, carry;
+};
+FilmSum film_add(const rill::Float3& sum, const rill::Float3& carry, const rill::Float3& color,
+                 const rill::Bool& first);
+
 // The first sample's AOV streams, as a strategy wrote them.
 struct AovStreams {
   rill::Stream<rill::Float> depth;
@@ -57,6 +68,16 @@ class Film {
   void prepare_encoder(const rill::Stream<rill::Float3>& color);
   // Sample s's colour, just written by the strategy on the frame's backend.
   void add_sample(const rill::Stream<rill::Float3>& color, int s);
+  // The running sums (film_add) of a frame that keeps them and no squares, for a strategy
+  // that adds samples to them in its own kernel (then it calls added_samples);
+  // both null otherwise.
+  struct Sums {
+    rill::Stream<rill::Float3>* sum = nullptr;
+    rill::Stream<rill::Float3>* carry = nullptr;
+  };
+  Sums sums();
+  // n samples added to sums() by the strategy, in order after those before.
+  void added_samples(int n) { samples_done_ += n; }
   // The mean of the samples added (and resumed), encoded and read back as `want` asks, with
   // the first sample's AOVs; r.spp is their count. Adds the time it took to r.times.
   void finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r);

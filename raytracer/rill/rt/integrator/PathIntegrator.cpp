@@ -29,7 +29,8 @@ PathIntegrator::PathIntegrator(const DeviceScene& scene, const LightSampler& lig
 }
 
 Float4 PathIntegrator::random(const Int2& pixel, const Int& depth, int purpose) const {
-  const Int4 counter(pixel.x(), pixel.y(), sample_index, depth * 4 + purpose);
+  const Int& sample = sample_var ? *sample_var : static_cast<const Int&>(sample_index);
+  const Int4 counter(pixel.x(), pixel.y(), sample, depth * 4 + purpose);
   return unit_float(philox4x32(counter, Int2(seed, Int(kKey1))));
 }
 

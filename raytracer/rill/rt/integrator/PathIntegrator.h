@@ -59,6 +59,9 @@ class PathIntegrator {
   // field. Where in the pixel the camera ray goes is the camera's sample offset.
   rill::Uniform<Int> sample_index{0, "sample_index"};
   rill::Uniform<Int> seed{0, "path_seed"};
+  // Set while a kernel that runs several samples per launch is captured: its variable holding
+  // the sample's index, used instead of sample_index.
+  const Int* sample_var = nullptr;
 
   // A new path along the camera ray.
   PathItem start(const Ray& camera_ray) const;

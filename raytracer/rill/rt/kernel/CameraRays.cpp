@@ -89,6 +89,11 @@ Bool CameraRays::may_see_scene(const Int2& launch_pix, bool moving) const {
 // (Each value made where it is declared: a DSL variable declared first and assigned later would
 // add a declaration to the kernel, and the pinhole's kernels must stay as they were.)
 CameraRays::ScreenPoint CameraRays::screen(const Int2& pix) const {
+  if (sample_offset_var) {
+    const Float2& o = *sample_offset_var;
+    return ScreenPoint{((to_float(pix.x()) + o.x()) / size.x() * 2.0f - 1.0f) * tan_half * aspect,
+                       (1.0f - (to_float(pix.y()) + o.y()) / size.y() * 2.0f) * tan_half};
+  }
   return ScreenPoint{
       ((to_float(pix.x()) + offset.x()) / size.x() * 2.0f - 1.0f) * tan_half * aspect,
       (1.0f - (to_float(pix.y()) + offset.y()) / size.y() * 2.0f) * tan_half};
@@ -122,7 +127,8 @@ void CameraRays::aim(Ray& ray, const Int2& launch_pix) const {
 // Philox4x32-10 of (pixel, sample, 0) under the key (seed, "Lens"), and the concentric mapping
 // with its sine and cosine polynomials (Camera.cpp's lens_disk, the same operations).
 Float2 CameraRays::lens_point(const Int2& pix) const {
-  const Int4 counter(pix.x(), pix.y(), lens_sample, Int(0));
+  const Int& sample = lens_sample_var ? *lens_sample_var : static_cast<const Int&>(lens_sample);
+  const Int4 counter(pix.x(), pix.y(), sample, Int(0));
   const Float4 u = unit_float(philox4x32(counter, Int2(lens_seed, Int(int32_t(kLensKey)))));
   const Float a = u.x() * 2.0f - 1.0f, b = u.y() * 2.0f - 1.0f;
   const Bool wide = abs(a) > abs(b);

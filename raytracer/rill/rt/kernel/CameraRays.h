@@ -37,6 +37,12 @@ struct CameraRays {
   // sample offset. (The pinhole's kernels read none of these.)
   rill::Uniform<Float> lens_radius{0.0f, "lens_radius"}, lens_k{0.0f, "lens_k"};
   rill::Uniform<Int> lens_seed{0, "lens_seed"}, lens_sample{0, "lens_sample"};
+  // A kernel that runs several samples of its pixel in one launch (the path megakernel's path
+  // regeneration) sets these while it is captured: its own variables then stand for the
+  // sample offset and the lens sample, the same values as those uniforms would hold. Null:
+  // the uniforms (every other kernel's source stays as it was).
+  const Float2* sample_offset_var = nullptr;
+  const Int* lens_sample_var = nullptr;
   // The rays the kernels generate, fixed when they are captured (Features::camera).
   CameraKind kind = CameraKind::Pinhole;
 

@@ -1,6 +1,8 @@
 // The megakernel (Megakernel.h): its program and its render loop over samples.
 #include "rill/rt/megakernel/Megakernel.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <future>
 #include <optional>
 #include <stdexcept>
@@ -18,10 +20,20 @@ using namespace rill;
 // Tracer's constructor (the other loop runs the same shader code); the other at its first use.
 Megakernel::Megakernel(DeviceScene& scene) : S_(scene) {
   if (path()) path_ = std::make_unique<PathIntegrator>(S_, S_.path_lights, S_.options);
+  for (int k = 0; k < kPathSamplesPerLaunch; ++k)
+    sample_offsets_.push_back(std::make_unique<Uniform<Float2>>(
+        glm::vec2(0.5f), "path_sample_offset" + std::to_string(k)));
   (void)program(MegakernelLoop::Segment);
 }
 
 Megakernel::~Megakernel() = default;
+
+Float2 Megakernel::launch_sample_offset(const Int& i) const {
+  Float2 o = *sample_offsets_[0];
+  for (size_t k = 1; k < sample_offsets_.size(); ++k)
+    o = select(i == static_cast<int>(k), static_cast<const Float2&>(*sample_offsets_[k]), o);
+  return o;
+}
 
 const Program& Megakernel::program(MegakernelLoop loop, bool packets) const {
   if (loop == MegakernelLoop::Auto)
@@ -97,25 +109,58 @@ void write_rays_and_aovs(const Int& rays, const Float& depth, const Int& prim,
 
 }  // namespace
 
-// The path integrator's kernel: one path per instance, for the launch's sample. Each
-// iteration traces the path's ray, shades what it found (PathIntegrator::shade) and traces the
-// light sample's shadow ray.
+// The path integrator's kernel: samples path_first_ .. path_first_ + path_samples_ - 1 of
+// its pixel, one path after the other (path regeneration, Megakernel.h). Each iteration traces
+// the path's ray, shades what it found (PathIntegrator::shade) and traces the light sample's
+// shadow ray; the iteration that ends a path adds its radiance to the pixel's sum (film_add,
+// the film's operations) and starts the next sample's camera ray. Under path_accumulate_ = 0
+// the sum restarts at each sample: a launch of one sample writes that sample's colour, for
+// the film to add.
 Program Megakernel::capture_path() const {
   return rill::program("rill_path", [&] {
     const Int2 pix = element_coord();
     const PathIntegrator& P = *path_;
-    PathItem path = P.start(Ray{S_.camera.eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)});
+    Input<Float3> sum_in("sum_in"), carry_in("carry_in");
+    Float3 sum = sum_in, carry = carry_in;
+    const Bool accumulate = path_accumulate_ != 0;
+    const Int end = path_first_ + path_samples_;
+    // The sample being traced, and its offset in the pixel: the camera and the random numbers
+    // read these variables where the one-sample kernels read their uniforms.
+    Int sample = path_first_;
+    Float2 offset = *sample_offsets_[0];
+    S_.camera.sample_offset_var = &offset;
+    S_.camera.lens_sample_var = &sample;
+    path_->sample_var = &sample;
+    Int rays = 0;
+    auto add = [&](const PathItem& path) {
+      const FilmSum next = film_add(sum, carry, path.radiance, !accumulate || sample == 0);
+      sum = next.sum;
+      carry = next.carry;
+      rays += path.rays;
+    };
+    // A new path, its ray from the eye (aimed by the camera where it is traced).
+    auto new_path = [&] {
+      return P.start(Ray{S_.camera.eye, Float3(0.0f, 0.0f, 1.0f), Float(kBig)});
+    };
+    PathItem path = new_path();
     FirstHit first;
     first.depth = as_float(Int(0x7f800000));
     const Bool sees = S_.F.geometry ? S_.camera.may_see_scene(pix, S_.F.dynamic) : Bool(true);
     RILL_IF(max_iter_ > 0 && !sees) {
       // The camera ray would miss: what shading a miss gives, without making the ray.
-      (void)P.shade(path, Hit{Float(0.0f), Float2(0.0f), Int(-1)}, pix);
+      RILL_WHILE(sample < end) {
+        path = new_path();
+        (void)P.shade(path, Hit{Float(0.0f), Float2(0.0f), Int(-1)}, pix);
+        add(path);
+        sample += 1;
+      }
+      RILL_ENDWHILE;
     }
     RILL_ELSE_IF(max_iter_ > 0) {
       S_.camera.aim(path.ray, pix);
       const Int2 image_pix = pix + S_.camera.origin;
       Int iter = 0;
+      Bool finished = false;
       RILL_DO {
         Hit hit{Float(0.0f), Float2(0.0f), Int(-1)};
         if (S_.F.geometry) hit = S_.intersector.intersect(path.ray, nullptr);
@@ -129,13 +174,39 @@ Program Megakernel::capture_path() const {
         }
         iter += 1;
         path.done = path.done || iter >= max_iter_;
+        // The path ended: the next sample starts here, without waiting for the paths of the
+        // pixels that run along with this one (a lockstep group, a GPU's warp).
+        RILL_IF(path.done) {
+          add(path);
+          sample += 1;
+          RILL_IF(sample < end) {
+            offset = launch_sample_offset(sample - path_first_);
+            path = new_path();
+            S_.camera.aim(path.ray, pix);
+            // The AOVs are the last sample's camera ray's, as when each sample was a launch.
+            first.depth = as_float(Int(0x7f800000));
+            first.prim = -1;
+            first.normal = Float3(0.0f);
+            first.albedo = Float3(0.0f);
+            iter = 0;
+          }
+          RILL_ELSE {
+            finished = true;
+          }
+          RILL_ENDIF;
+        }
+        RILL_ENDIF;
       }
-      RILL_UNTIL(path.done);
+      RILL_UNTIL(finished);
     }
     RILL_ENDIF;
-    Output<Float3> out_color("color");
-    out_color = path.radiance;
-    write_rays_and_aovs(path.rays, first.depth, first.prim, first.normal);
+    S_.camera.sample_offset_var = nullptr;
+    S_.camera.lens_sample_var = nullptr;
+    path_->sample_var = nullptr;
+    Output<Float3> out_color("color"), out_carry("carry");
+    out_color = sum;
+    out_carry = carry;
+    write_rays_and_aovs(rays, first.depth, first.prim, first.normal);
     Output<Float3> albedo("albedo");
     albedo = first.albedo;
   });
@@ -458,6 +529,18 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
   RILL_ENDIF;
 }
 
+int path_samples_per_launch(int setting) {
+  if (setting > 0) return std::min(setting, kPathSamplesPerLaunch);
+  static const int from_environment = [] {
+    const char* v = std::getenv("RILL_PATH_REGENERATE");
+    if (v == nullptr || std::string(v) == "on") return kPathSamplesPerLaunch;
+    if (std::string(v) == "off") return 1;
+    throw std::invalid_argument("RILL_PATH_REGENERATE='" + std::string(v).substr(0, 40) +
+                                "': expected on or off");
+  }();
+  return from_environment;
+}
+
 // "backend/accuracy/loop": a compiled kernel's key, and its warm-up's.
 std::string Megakernel::kernel_key(const std::string& backend_name, Accuracy a,
                                    MegakernelLoop loop) {
@@ -484,12 +567,14 @@ struct Megakernel::Buffers {
         dist(w, h, "depth"),
         prim(w, h, "prim"),
         rays(w, h, "rays"),
-        albedo(w, h, "albedo") {}
+        albedo(w, h, "albedo"),
+        carry(w, h, "carry") {}
   int width, height;
   Stream<Float3> color, normal;
   Stream<Float> dist;
   Stream<Int> prim, rays;
   Stream<Float3> albedo;  // the path program's
+  Stream<Float3> carry;   // the path program's, where it sums no more than one sample
 };
 
 void Megakernel::render(const Frame& frame, RenderResult& r) {
@@ -546,7 +631,18 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   setup.lap();
   k.bind("rays", out.rays).bind("color", out.color);
   k.bind("depth", out.dist).bind("prim", out.prim).bind("normal", out.normal);
-  if (path()) k.bind("albedo", out.albedo);
+  // The path program adds its samples into the film's sums where the film keeps them (and no
+  // squares) and a launch takes more than one; otherwise it writes one sample's colour (and a
+  // carry of zeros) for the film to add.
+  const int per_launch = path() ? path_samples_per_launch(rs.path_samples_per_launch) : 1;
+  const Film::Sums film_sums = per_launch > 1 ? film.sums() : Film::Sums{};
+  const bool sums = film_sums.sum != nullptr;
+  if (path()) {
+    k.bind("albedo", out.albedo);
+    Stream<Float3>& sum = sums ? *film_sums.sum : out.color;
+    Stream<Float3>& carry = sums ? *film_sums.carry : out.carry;
+    k.bind("sum_in", sum).bind("carry_in", carry).bind("color", sum).bind("carry", carry);
+  }
   r.times.setup += setup.ms();
   // A first launch at this size that traces nothing (max_iter = 0): drivers that finish
   // compiling at the first launch of a size (PoCL, Mesa) do it here, so that the trace time
@@ -566,10 +662,17 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   r.compile_ms = since_start.ms() - r.times.setup;
 
   Stopwatch trace, step;
-  for (int s = frame.first_sample; s < spp; ++s) {
+  for (int s = frame.first_sample; s < spp;) {
+    const int n = sums ? std::min(per_launch, spp - s) : 1;  // this launch's samples
     S_.camera.offset.set(sample_offset(s));
     S_.camera.lens_sample.set(s);
-    if (path_) path_->sample_index.set(s);
+    if (path_) {
+      path_first_.set(s);
+      path_samples_.set(n);
+      path_accumulate_.set(sums ? 1 : 0);
+      for (int i = 0; i < n; ++i)
+        sample_offsets_[static_cast<size_t>(i)]->set(sample_offset(s + i));
+    }
     if (S_.F.area_lights) S_.shading.sample_index.set(s);
     step.lap();
     k.execute();
@@ -578,8 +681,12 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
     r.times.add_kernel(k.last_launch().device_ms);
     r.rays += rill::sum(out.rays);  // on the device: only the total comes back
     r.times.reduce += step.lap();
-    film.add_sample(out.color, s);
-    if (!frame.more_after(s)) break;
+    if (sums)
+      film.added_samples(n);
+    else
+      film.add_sample(out.color, s);
+    s += n;
+    if (!frame.more_after(s - 1)) break;
   }
   film.finish(AovStreams{out.dist, out.prim, out.normal, path() ? &out.albedo : nullptr},
               rs.outputs, r);

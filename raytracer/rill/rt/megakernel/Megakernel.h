@@ -17,8 +17,18 @@
 // compile costs seconds.
 //
 // Under the path integrator (SceneOptions::integrator, integrator/PathIntegrator.h) the kernel
-// is another: each instance follows one path of its pixel for the launch's sample index, and
-// the loop shapes below do not apply (both names give the one path program).
+// is another, and the loop shapes below do not apply (both names give the one path program).
+// Each instance follows the paths of its pixel for several samples in one launch, one after
+// the other (path regeneration): an instance whose path ended starts its next sample's camera
+// ray in the next iteration, so the instances that run together (a simd lockstep group of 8
+// pixels, a GPU's warp) do not wait, sample after sample, for the longest of their paths, as
+// they did with one sample per launch, where Russian roulette ends a group's paths at
+// different depths. The kernel adds each sample to the pixel's running sum itself, with the
+// film's operations in the film's order (film_add), into the film's sum streams: every
+// sample's arithmetic and the sum's are as with one sample per launch, and so the bits.
+// RenderSettings::path_samples_per_launch (RILL_PATH_REGENERATE=off: 1) sets how many samples
+// a launch takes; with 1, or where the film keeps no sums or also the squares, each launch is
+// one sample that the film adds.
 //
 // The loop has two shapes (MegakernelLoop, Tracer.h), with the same operations in the same
 // order and so the same bits:
@@ -39,6 +49,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "rill/rt/film/Film.h"
 #include "rill/rt/integrator/PathIntegrator.h"
@@ -48,6 +59,15 @@
 #include "rill/rt/strategy/RenderStrategy.h"
 
 namespace rt {
+
+// The path megakernel's samples per launch when RenderSettings::path_samples_per_launch is 0
+// and RILL_PATH_REGENERATE is not off: enough that a pixel's samples, not its longest path,
+// set a launch's length; few enough that a render's after_pass (progress, a time limit, an
+// interrupt) comes every few seconds at most.
+constexpr int kPathSamplesPerLaunch = 16;
+// RenderSettings::path_samples_per_launch as resolved (Megakernel.h): 1 or more. Throws for
+// a RILL_PATH_REGENERATE other than on or off, naming it.
+int path_samples_per_launch(int setting);
 
 class Megakernel final : public RenderStrategy {
  public:
@@ -93,6 +113,15 @@ class Megakernel final : public RenderStrategy {
   std::unique_ptr<PathIntegrator> path_;  // under Integrator::Path
   // The loop's iteration limit; 0 skips all tracing (render()'s warm-up launch).
   rill::Uniform<Int> max_iter_{64, "max_iterations"};
+  // The path program's samples: the launch's first and count, whether they add to the sums
+  // read (else each restarts the sum), and the offset in its pixel (sample_offset, made on the
+  // host) of each: uniforms, not an array, since the glsl backend's kernels have 32 textures
+  // at most and a textured scene's path kernel uses them all.
+  rill::Uniform<Int> path_first_{0, "path_first_sample"}, path_samples_{1, "path_samples"};
+  rill::Uniform<Int> path_accumulate_{0, "path_accumulate"};
+  std::vector<std::unique_ptr<rill::Uniform<Float2>>> sample_offsets_;
+  // The offset of the launch's sample path_first_ + i (i < kPathSamplesPerLaunch).
+  Float2 launch_sample_offset(const Int& i) const;
   // Captured on demand, from const accessors (Tracer::program is const): a GPU never needs
   // Segment's program beyond the constructor's, a CPU backend never Ray's.
   mutable std::map<std::pair<MegakernelLoop, bool>, rill::Program> programs_;

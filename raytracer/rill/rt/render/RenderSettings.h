@@ -66,6 +66,12 @@ struct RenderSettings {
   std::string backend = "cpu";
   Strategy strategy = Strategy::Megakernel;
   MegakernelLoop loop = MegakernelLoop::Auto;  // the megakernel strategy's loop
+  // The path megakernel's samples per launch (path regeneration, megakernel/Megakernel.h):
+  // within a launch, a pixel whose path ended starts its next sample at once. 1: one sample
+  // per launch, summed by the film; more: up to kPathSamplesPerLaunch (16); 0:
+  // RILL_PATH_REGENERATE's choice (off: 1, on or unset: 16). `after_pass` is called after each
+  // launch. Images have the same bits whatever it is.
+  int path_samples_per_launch = 0;
   rill::Accuracy accuracy = rill::Accuracy::Strict;
   // 0: the scene's (Scene::width, height; each side on its own); otherwise within the image
   // limits, 1..16384 a side and 2^25 pixels (scene/ImageLimits.h), or Tracer::render throws.
