@@ -3,7 +3,7 @@
 //   rill-bench-trace [--sections throughput,embree,grid,depth,spec,bounce,shared] [--size WxH]
 //                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends
 //                    all|cpu,simd,opencl,glsl,glsl-compute]
-//                    [--repeats R] [--subgrids N|off|auto] [--grid-density D] [--grid-scene S]
+//                    [--repeats R] [--subgrids N|off|auto] [--grid-density D|auto] [--grid-scene S]
 //                    [--grids auto,16,32,...] [--loops auto|ray,segment]
 //                    [--packets auto|on|off,...]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu]
@@ -138,7 +138,7 @@ struct Options {
   std::string grid_scene = "builtin:thesis-c";
   std::string grids = "auto,16,20,32,48,64,96,128";
   std::string subgrids;             // empty: the scene's (default auto: per backend)
-  std::string grid_density;         // empty: the scene's (default 4)
+  std::string grid_density;         // empty: the scene's (default auto: per backend)
   std::string accuracy = "strict";  // of the throughput and Embree sections
   rill::Accuracy acc = rill::Accuracy::Strict;
   // The megakernel loops of the throughput section's full frames, side by side (Tracer.h).
@@ -367,10 +367,12 @@ class Bench {
              {}};
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
-      // Each backend renders with the grid rill-trace would build for it (subgrid_min_for:
-      // the CPU and GPUs may want different ones); backends that want the same share it.
+      // Each backend renders with the grid rill-trace would build for it (subgrid_min_for,
+      // grid_density_for: the CPU and GPUs may want different ones); backends that want the
+      // same share it.
       struct Setup {
         int32_t subgrid_min;
+        double density;
         rt::Packets packets;
         rt::Grid grid;
         std::unique_ptr<rt::Tracer> tracer;
@@ -380,14 +382,18 @@ class Bench {
       for (size_t b = 0; b < bes.size(); ++b) {
         const std::string& be = bes[b];
         const int32_t want = rt::subgrid_min_for(scene.options.subgrid_min, be);
+        const double density =
+            rt::grid_density_for(scene.options.grid_density, be, scene.triangle_count());
         const rt::Packets pk = pks[b];
         auto it = std::find_if(setups.begin(), setups.end(), [&](const auto& u) {
-          return u->subgrid_min == want && u->packets == pk;
+          return u->subgrid_min == want && u->density == density && u->packets == pk;
         });
         if (it == setups.end()) {
           rt::Scene with = scene;
           with.options.subgrid_min = want;
-          auto u = std::make_unique<Setup>(Setup{want, pk, rt::build_grid_for(with), nullptr});
+          with.options.grid_density = density;
+          auto u =
+              std::make_unique<Setup>(Setup{want, density, pk, rt::build_grid_for(with), nullptr});
           rt::TracerOptions knobs;
           knobs.packets = pk;
           u->tracer = std::make_unique<rt::Tracer>(scene, u->grid, knobs);
@@ -563,7 +569,9 @@ class Bench {
       scene.options.spp = o_.spp;
       if (o_.seed >= 0) scene.options.seed = static_cast<uint32_t>(o_.seed);
       scene.validate();
-      // cpu and simd want the same grid (subgrid_min_for: both run on the CPU).
+      // cpu and simd want the same subgrids (subgrid_min_for: both run on the CPU); this
+      // section traces both on the cpu backend's grid (simd may get a denser one by default,
+      // grid_density_for; images do not depend on it).
       const rt::Grid grid = rt::build_grid_for(scene, "cpu");
       rt::Tracer tracer(scene, grid);
       std::printf("%s: %zu triangles, grid %s, max_depth %d, seed %u\n", scene.name.c_str(),
@@ -717,8 +725,9 @@ class Bench {
       if (g != "auto" && (*end != '\0' || p.res < 1 || p.res > 512))
         throw rt::SceneError("--grids: 'auto' or 1..512 (got " + g + ")");
       for (int r = 0; r < o_.repeats; ++r) {  // the build time is a median too
-        p.grid = rt::build_grid(scene, p.res, rt::subgrid_min_for(scene.options.subgrid_min, "cpu"),
-                                scene.options.grid_density);
+        p.grid = rt::build_grid(
+            scene, p.res, rt::subgrid_min_for(scene.options.subgrid_min, "cpu"),
+            rt::grid_density_for(scene.options.grid_density, "cpu", scene.triangle_count()));
         p.build.push_back(p.grid.build_ms);
       }
       p.tracer = std::make_unique<rt::Tracer>(scene, p.grid);
@@ -1049,7 +1058,8 @@ int main(int argc, char** argv) {
       "renderer's choice per backend, 12 on the CPU and off on a GPU; the grid, depth and spec "
       "sections build one grid, the CPU's)");
   app.add_option("--grid-density", o.grid_density,
-                 "voxels per triangle of the auto grid, 0.125..256 (default: the scene's, 4)");
+                 "voxels per triangle of the auto grid, 0.125..256, or auto (default: the "
+                 "scene's, auto: the renderer's choice per backend and scene)");
   app.add_option("--accuracy", o.accuracy,
                  "accuracy of the throughput and Embree sections: strict or fast (fast: hits "
                  "may differ between backends, and are reported, not checked)")

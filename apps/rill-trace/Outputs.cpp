@@ -76,7 +76,8 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
   j["max_depth"] = scene.options.max_depth;
   j["features"] = p.tracer->features().str();
   j["grid"] = {{"resolution", {grid.res.x, grid.res.y, grid.res.z}},
-               {"density", scene.options.grid_density},
+               {"density", rt::grid_density_for(scene.options.grid_density, o.backend,
+                                                scene.triangle_count())},
                {"subgrids", grid.subgrids},
                {"references", grid.elements.size()},
                {"triangles", grid.usable},

@@ -81,8 +81,8 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   add_parsed_option(r, "--grid", o.grid, parse_grid, "voxels per axis, or auto")
       ->check(non_empty());
   add_parsed_option(r, "--grid-density", o.grid_density, rt::parse_grid_density,
-                    "voxels per triangle of the auto grid, 0.125..256 (default 4; 16 is faster on "
-                    "the CPU backends for large meshes, at 3.5x the memory)")
+                    "voxels per triangle of the auto grid, 0.125..256, or auto (default: 16 "
+                    "on simd for a scene of 10000 triangles or more, else 4)")
       ->check(non_empty());
   add_parsed_option(
       r, "--subgrids", o.subgrid_min, rt::parse_subgrid_min,

@@ -5,7 +5,7 @@
 //                           [--size WxH] [--out FILE.png] [--pfm FILE.pfm] [--depth FILE.pfm]
 //                           [--prim FILE.pfm] [--normal FILE.pfm] [--exr FILE.exr]
 //                           [--max-depth N] [--spp N]
-//                           [--grid N|auto] [--grid-density D] [--subgrids N|off|auto]
+//                           [--grid N|auto] [--grid-density D|auto] [--subgrids N|off|auto]
 //                           [--light-buffer N|off|auto]
 //                           [--strategy megakernel|multipass] [--loop auto|ray|segment]
 //                           [--stats-json FILE] [--source FILE] [--quiet]

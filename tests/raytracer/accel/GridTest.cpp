@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <random>
 
+#include "RenderCompare.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
@@ -273,6 +274,63 @@ TEST(Grid, SubgridsLeftOpenFollowTheBackendsDevice) {
   EXPECT_EQ(build_grid_for(s, "cpu").subgrids, 0);
 }
 
+// A density left to the renderer (kGridDensityAuto, the default) follows the rule in Grid.h:
+// kGridDensitySimdLarge for simd and a scene of kGridDensityLargeScene triangles or more,
+// kGridDensity otherwise; a density the user gave is kept on every backend.
+TEST(Grid, DensityLeftOpenFollowsTheBackendAndTheScene) {
+  EXPECT_EQ(SceneOptions{}.grid_density, kGridDensityAuto);
+  const size_t large = kGridDensityLargeScene, small = kGridDensityLargeScene - 1;
+  EXPECT_EQ(grid_density_for(kGridDensityAuto, "simd", large), kGridDensitySimdLarge);
+  EXPECT_EQ(grid_density_for(kGridDensityAuto, "simd", small), kGridDensity);
+  EXPECT_EQ(grid_density_for(kGridDensityAuto, "simd", 36), kGridDensity);
+  EXPECT_EQ(grid_density_for(kGridDensityAuto, "cpu", large), kGridDensity);
+  for (rill::Backend* b : rill::backends()) {
+    const bool simd = b->name() == std::string("simd");
+    EXPECT_EQ(grid_density_for(kGridDensityAuto, b->name(), large),
+              simd ? kGridDensitySimdLarge : kGridDensity)
+        << b->description();
+    EXPECT_EQ(grid_density_for(kGridDensityAuto, b->name(), small), kGridDensity)
+        << b->description();
+    EXPECT_EQ(grid_density_for(2.5, b->name(), large), 2.5) << b->description();
+    EXPECT_EQ(grid_density_for(4.0, b->name(), large), 4.0) << b->description();
+  }
+  // The grids build_grid_for gives: thesis C (61,562 triangles) at simd's large-scene density
+  // and cpu's kGridDensity, thesis A (36) at kGridDensity, as when asked for by number.
+  Scene c = builtin_scene("thesis-c");
+  ASSERT_GE(c.triangle_count(), kGridDensityLargeScene);
+  Scene c16 = c, c4 = c;
+  c16.options.grid_density = kGridDensitySimdLarge;
+  c4.options.grid_density = kGridDensity;
+  EXPECT_EQ(build_grid_for(c, "simd").res, build_grid_for(c16, "simd").res);
+  EXPECT_EQ(build_grid_for(c, "cpu").res, build_grid_for(c4, "cpu").res);
+  EXPECT_NE(build_grid_for(c, "simd").res, build_grid_for(c, "cpu").res);
+  Scene a = builtin_scene("thesis-a");
+  ASSERT_LT(a.triangle_count(), kGridDensityLargeScene);
+  Scene a4 = a;
+  a4.options.grid_density = kGridDensity;
+  EXPECT_EQ(build_grid_for(a, "simd").res, build_grid_for(a4, "simd").res);
+  // With no backend to choose for, build_grid takes kGridDensity.
+  EXPECT_EQ(build_grid(c, 0, kNoSubgrids, kGridDensityAuto).res,
+            build_grid(c, 0, kNoSubgrids, kGridDensity).res);
+  EXPECT_NE(build_grid(c, 0, kNoSubgrids, kGridDensitySimdLarge).res,
+            build_grid(c, 0, kNoSubgrids, kGridDensity).res);
+}
+
+// The rule gives simd a denser grid than cpu for thesis C; the images stay bitwise the same
+// (the grid only decides which triangles a ray tests, never which hit it keeps), so the
+// backend tests' comparisons between backends hold with each backend's own grid.
+TEST(Grid, DensityLeftOpenKeepsTheImageOnEachBackend) {
+  Scene c = builtin_scene("thesis-c");
+  c.width = 64;
+  c.height = 48;
+  const Grid cpu_grid = build_grid_for(c, "cpu"), simd_grid = build_grid_for(c, "simd");
+  ASSERT_NE(cpu_grid.res, simd_grid.res);
+  const RenderResult a = Tracer(c, cpu_grid).render(testing::compared_settings(c, "cpu"), c.camera);
+  const RenderResult b =
+      Tracer(c, simd_grid).render(testing::compared_settings(c, "simd"), c.camera);
+  testing::expect_identical(a, b, "thesis C, cpu at its grid against simd at its grid");
+}
+
 TEST(Grid, DensitySetsVoxelsPerTriangle) {
   // The automatic resolution gives about `density` voxels per triangle, in cubic cells.
   for (double density : {0.125, 1.0, 4.0, 16.0, 64.0}) {
@@ -286,6 +344,7 @@ TEST(Grid, DensitySetsVoxelsPerTriangle) {
             auto_grid_resolution(glm::dvec3(1.0), 1000));
   // The scene's options choose the grid; a denser one lists fewer triangles per voxel.
   Scene s = builtin_scene("thesis-c");
+  s.options.grid_density = 4.0;
   const Grid g4 = build_grid_for(s);
   s.options.grid_density = 32.0;
   const Grid g32 = build_grid_for(s);
@@ -306,6 +365,8 @@ TEST(Grid, DensitySetsVoxelsPerTriangle) {
         << bad;
   EXPECT_EQ(parse_grid_density("16"), 16.0);
   EXPECT_EQ(parse_grid_density("0.125"), 0.125);
+  EXPECT_EQ(parse_grid_density("auto"), kGridDensityAuto);
+  EXPECT_THROW(parse_grid_density("AUTO"), SceneError);
   EXPECT_THROW(auto_grid_resolution(glm::dvec3(1.0), 10, 0.0), SceneError);
 }
 

@@ -96,9 +96,10 @@ TEST(Cli, BadCommandLinesAndInputs) {
   expect_clean_failure("render builtin:thesis-a --subgrids 0", "--subgrids expects auto, off");
   expect_clean_failure("render builtin:thesis-a --subgrids some", "(got 'some')");
   expect_clean_failure("render builtin:thesis-a --grid-density 0",
-                       "--grid-density expects a number of voxels per triangle in 0.125..256 "
-                       "(got '0')");
+                       "--grid-density expects auto or a number of voxels per triangle in "
+                       "0.125..256 (got '0')");
   expect_clean_failure("render builtin:thesis-a --grid-density lots", "--grid-density");
+  expect_clean_failure("render builtin:thesis-a --grid-density Auto", "(got 'Auto')");
   // An empty file name would read as the option not given; an option given twice names it.
   expect_clean_failure("render builtin:thesis-a --size 4x4 --out ''", "--out: an empty file name");
   expect_clean_failure("render builtin:thesis-a --size 4x4 --stats-json ''",

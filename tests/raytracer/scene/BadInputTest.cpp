@@ -779,6 +779,14 @@ TEST(BadInput, MalformedJson) {
             std::string::npos);
   EXPECT_NE(err("{\"options\": {\"grid_density\": \"dense\"}}").find("options.grid_density"),
             std::string::npos);
+  // The one word it takes is "auto"; the message says so.
+  EXPECT_NE(err("{\"options\": {\"grid_density\": \"AUTO\"}}")
+                .find("options.grid_density must be \"auto\" or a number"),
+            std::string::npos);
+  EXPECT_NE(err("{\"options\": {\"grid_density\": 300}}").find("options.grid_density"),
+            std::string::npos);
+  EXPECT_NE(err("{\"options\": {\"grid_density\": true}}").find("options.grid_density"),
+            std::string::npos);
   EXPECT_NE(err("{\"options\": {\"max_depth\": 65}}").find("max_depth"), std::string::npos);
   EXPECT_NE(err("{\"builtin\": \"nope\"}").find(": builtin: unknown built-in scene 'nope'"),
             std::string::npos);

@@ -241,7 +241,10 @@ TEST(Scene, JsonShapesOptionsAndBuiltinBase) {
   EXPECT_EQ(s.options.grid, 7);
   EXPECT_EQ(s.options.subgrid_min, 30);
   EXPECT_EQ(s.options.grid_density, 12.5);
-  EXPECT_EQ(parse_json_scene("{}", ".", "default.json").options.grid_density, kGridDensity);
+  EXPECT_EQ(parse_json_scene("{}", ".", "default.json").options.grid_density, kGridDensityAuto);
+  EXPECT_EQ(parse_json_scene(R"({"options": {"grid_density": "auto"}})", ".", "auto.json")
+                .options.grid_density,
+            kGridDensityAuto);
   EXPECT_EQ(
       parse_json_scene(R"({"options": {"subgrids": "off"}})", ".", "off.json").options.subgrid_min,
       kNoSubgrids);

@@ -207,17 +207,20 @@ double checked_grid_density(double d) {
 }
 
 double parse_grid_density(const std::string& s) {
+  if (s == "auto") return kGridDensityAuto;
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (s.empty() || end == s.c_str() || *end != '\0' ||
       !(v >= kGridDensityMin && v <= kGridDensityMax))
-    throw SceneError("--grid-density expects a number of voxels per triangle in 0.125..256 (got '" +
-                     s + "')");
+    throw SceneError(
+        "--grid-density expects auto or a number of voxels per triangle in 0.125..256 (got '" + s +
+        "')");
   return v;
 }
 
-static_assert(kGridDensity == SceneOptions{}.grid_density,
-              "SceneOptions::grid_density's default is kGridDensity");
+static_assert(kGridDensityAuto == SceneOptions{}.grid_density,
+              "SceneOptions::grid_density's default is kGridDensityAuto");
+static_assert(kGridDensityAuto < kGridDensityMin, "kGridDensityAuto is no density");
 static_assert(kNoSubgrids == 0, "SceneOptions::subgrid_min's default (0) is kNoSubgrids");
 
 void build_subgrids(Grid& g, const Scene& s, int32_t min_count) {
@@ -340,9 +343,15 @@ int32_t subgrid_min_for(int32_t subgrid_min, const std::string& backend) {
   return rill::backend(backend).runs_on_gpu() ? kNoSubgrids : kSubgridMin;
 }
 
+double grid_density_for(double density, const std::string& backend, size_t triangles) {
+  if (density != kGridDensityAuto) return density;
+  return backend == "simd" && triangles >= kGridDensityLargeScene ? kGridDensitySimdLarge
+                                                                  : kGridDensity;
+}
+
 Grid build_grid_for(const Scene& s, const std::string& backend) {
   return build_grid(s, s.options.grid, subgrid_min_for(s.options.subgrid_min, backend),
-                    s.options.grid_density);
+                    grid_density_for(s.options.grid_density, backend, s.triangle_count()));
 }
 
 uint64_t grid_memory_limit() {
@@ -388,6 +397,8 @@ void check_grid_memory(const glm::ivec3& res, uint64_t voxels, uint64_t refs, ui
 
 Grid build_grid(const Scene& s, int resolution, int32_t subgrid_min, double density) {
   const auto start = std::chrono::steady_clock::now();
+  // Left to the renderer with no backend named (tools, fuzzing): the GPU backends' density.
+  if (density == kGridDensityAuto) density = kGridDensity;
   Grid g;
   const size_t n = s.triangle_count();
   std::vector<uint8_t> usable(n);

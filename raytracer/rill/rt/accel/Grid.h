@@ -32,11 +32,11 @@
 // (count 0: empty).
 //
 // Resolution: --grid N gives N^3 voxels. "auto" chooses cells of equal size, about
-// `density` voxels per triangle (--grid-density, kGridDensity = 4 by default): with the box
-// extents d and n triangles, res_a = round(d_a * cbrt(density * n / (d_x d_y d_z))), each
+// `density` voxels per triangle (--grid-density; by default chosen by grid_density_for): with the
+// box extents d and n triangles, res_a = round(d_a * cbrt(density * n / (d_x d_y d_z))), each
 // clamped to 1..256 and the total to 2^22 voxels (flat extents are taken as 1/256 of the
 // largest). Denser grids trade memory for fewer triangle tests per ray: measured in
-// docs/raytracer.md, 16 suits the CPU backends on large meshes.
+// docs/raytracer.md; the default rule gives simd 16 on large scenes (grid_density_for).
 //
 // Triangles with a non-finite vertex or zero area (in double precision) are left out of the
 // grid: they are never hit, but keep their primitive ids.
@@ -97,10 +97,22 @@ constexpr int32_t kMaxSkip = 1 << 16;
 // The --subgrids value: "auto" (kSubgridsAuto), "off" (kNoSubgrids) or a triangle count in
 // 1..2^20; throws SceneError naming the option and the bad value.
 int32_t parse_subgrid_min(const std::string& s);
-// The --grid-density value: voxels per triangle in kGridDensityMin..Max; throws SceneError
-// naming the option and the bad value.
+// The --grid-density value: "auto" (kGridDensityAuto) or voxels per triangle in
+// kGridDensityMin..Max; throws SceneError naming the option and the bad value.
 double parse_grid_density(const std::string& s);
 double checked_grid_density(double d);  // the same range check on a number
+
+// The density rule (--grid-density auto, the default), measured in
+// docs/benchmarks/2026-12-07-simd-gathers.md: the simd backend gets kGridDensitySimdLarge
+// voxels per triangle for a scene of at least kGridDensityLargeScene triangles (the bunny:
+// 0.54 against 0.44 of Embree's speed on primary rays), every other case kGridDensity: denser
+// grids did not pay on scenes of a few thousand triangles, nor for `cpu` (thesis C slower),
+// and cost NVIDIA's OpenCL (docs/gpu.md). Images never depend on it: the grid is exact.
+constexpr double kGridDensitySimdLarge = 16.0;
+constexpr size_t kGridDensityLargeScene = 10000;
+// The density a grid for `backend` gets: `density` itself unless it is kGridDensityAuto, then
+// the rule above for a scene of `triangles` triangles.
+double grid_density_for(double density, const std::string& backend, size_t triangles);
 
 // The subgrid threshold a grid for `backend` gets: `subgrid_min` itself unless it is
 // kSubgridsAuto, then kSubgridMin when the backend runs on the CPU and kNoSubgrids when it
@@ -116,13 +128,15 @@ uint64_t grid_memory_limit();
 constexpr uint64_t kGridBytesPerVoxel = 24;
 constexpr uint64_t kGridBytesPerReference = 12;
 
-// resolution: voxels per axis, 0 = auto (at `density` voxels per triangle). subgrid_min:
+// resolution: voxels per axis, 0 = auto (at `density` voxels per triangle; kGridDensityAuto,
+// with no backend to choose for: kGridDensity). subgrid_min:
 // voxels listing more triangles than this get a subgrid (kNoSubgrids, or any value <= 0,
 // kSubgridsAuto included: a one-level grid; build_grid_for resolves kSubgridsAuto).
 Grid build_grid(const Scene& s, int resolution = 0, int32_t subgrid_min = kNoSubgrids,
                 double density = kGridDensity);
 // The grid the scene's options ask for (grid, subgrid_min, grid_density), with the settings
-// left to the renderer chosen for `backend` (subgrid_min_for). Images never depend on them.
+// left to the renderer chosen for `backend` (subgrid_min_for, grid_density_for). Images never
+// depend on them.
 Grid build_grid_for(const Scene& s, const std::string& backend = "cpu");
 
 }  // namespace rt

@@ -589,10 +589,20 @@ Scene parse_json_scene(const std::string& text, const std::string& base_dir,
           s.options.grid = integer(c, o["grid"], "options.grid", 1, 512);
       }
       if (o.contains("grid_density")) {
-        const double d = num(c, o["grid_density"], "options.grid_density");
-        if (!(d >= kGridDensityMin && d <= kGridDensityMax))
-          fail(c, "options.grid_density must be in [0.125, 256] (voxels per triangle)");
-        s.options.grid_density = d;
+        if (o["grid_density"].is_string() && o["grid_density"].get<std::string>() == "auto") {
+          s.options.grid_density = kGridDensityAuto;
+        } else {
+          if (o["grid_density"].is_string())
+            fail(c,
+                 "options.grid_density must be \"auto\" or a number in [0.125, 256] (voxels "
+                 "per triangle)");
+          const double d = num(c, o["grid_density"], "options.grid_density");
+          if (!(d >= kGridDensityMin && d <= kGridDensityMax))
+            fail(c,
+                 "options.grid_density must be \"auto\" or in [0.125, 256] (voxels per "
+                 "triangle)");
+          s.options.grid_density = d;
+        }
       }
       if (o.contains("subgrids")) {
         if (o["subgrids"].is_string() && o["subgrids"].get<std::string>() == "off")

@@ -128,6 +128,9 @@ struct Camera {
 // The values of SceneOptions' accelerator settings, which the scene formats and the command
 // line accept and accel/ acts on (Grid.h, LightBuffer.h).
 constexpr double kGridDensity = 4.0;  // voxels per triangle of the automatic resolution
+// grid_density left to the renderer: chosen from the scene and the backend (Grid.h,
+// grid_density_for).
+constexpr double kGridDensityAuto = -1.0;
 constexpr double kGridDensityMin = 0.125, kGridDensityMax = 256.0;
 constexpr int32_t kNoSubgrids = 0;     // a one-level grid
 constexpr int32_t kSubgridsAuto = -1;  // subgrids where the backend runs on the CPU
@@ -156,7 +159,9 @@ struct SceneOptions {
   // Voxels listing more triangles get a subgrid; 0 = none; -1 (kSubgridsAuto, the default):
   // chosen for the backend that renders (Grid.h, subgrid_min_for).
   int subgrid_min = kSubgridsAuto;
-  double grid_density = kGridDensity;  // voxels per triangle of the automatic resolution
+  // Voxels per triangle of the automatic resolution; kGridDensityAuto (the default): chosen
+  // for the scene and the backend that renders (Grid.h, grid_density_for).
+  double grid_density = kGridDensityAuto;
   // The shadow rays' light buffer (accel/LightBuffer.h): -1 (kLightBufferAuto) chosen from
   // the scene, 0 off (shadow rays walk the grid), or cells per cube face edge.
   int light_buffer = kLightBufferAuto;
