@@ -1,0 +1,60 @@
+#!/bin/bash
+# The evening's one GPU run (2026-12-07), every part short enough to fit one call of the GPU
+# machine: (1) the strict conformance suite on glsl-compute, glsl and vulkan with their
+# defaults (the fused lean division and square root where the fma is fused; Vulkan's denormal
+# probe and memory placement); (2) frames at 1920x1080 of OpenCL against glsl-compute (lean,
+# the old fused residual, the staging read-back) and vulkan, with the strict images compared;
+# (3) rill-bench-trace --sections shared; (4) path regeneration on and off. The longer
+# scripts of each part: 2026-12-07-glsl-strict/gpu-lean.sh, 2026-12-07-vulkan/gpu.sh,
+# 2026-12-07-shared-process/gpu.sh, 2026-12-07-readback/gpu.sh, 2026-12-07-divergent/regen-gpu.sh.
+# Run from the repository root on the GPU machine. Output: $OUT/info.txt, $OUT/frames.md,
+# $OUT/shared.md, $OUT/regen.md, $OUT/conformance.txt.
+source scripts/gpu-setup.sh
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee $OUT/info.txt
+$B/rill-trace info 2>&1 | grep -E "^  (opencl|glsl|vulkan)" | tee -a $OUT/info.txt
+# (1)
+timeout 200 $B/rill-conformance --backend glsl-compute,glsl,vulkan --accuracy strict > $OUT/conformance.txt 2>&1
+echo "conformance strict glsl-compute,glsl,vulkan: rc=$?" | tee -a $OUT/info.txt
+grep -E "^(glsl|glsl-compute|vulkan) strict|FAIL" $OUT/conformance.txt | head -30 | tee -a $OUT/info.txt
+# (2)
+echo "| scene | backend | setting | frame ms (median of 20) | kernel ms | read-back ms |" | tee $OUT/frames.md
+echo "| --- | --- | --- | --- | --- | --- |" | tee -a $OUT/frames.md
+row() { # scene args label backend env...
+  local scene=$1 args=$2 label=$3 be=$4; shift 4
+  local png=/tmp/o-$(printf %s "$be-$label" | tr -c 'a-z0-9-' '_').png
+  env RILL_X=1 "$@" timeout 60 $B/rill-trace render $scene $args --size 1920x1080 --backend $be \
+    --bench-frames 20 --out $png --stats-json /tmp/s.json > /tmp/row.log 2>&1 || {
+    echo "| $scene | $be | $label | failed: $(tail -1 /tmp/row.log | tr '|' '/') | | |" | tee -a $OUT/frames.md; return; }
+  python3 - /tmp/s.json "$(basename $scene .json)" "$be" "$label" <<'PY' | tee -a $OUT/frames.md
+import json, sys
+b = json.load(open(sys.argv[1]))["bench_frames"]; s = b["median_split_ms"]
+print(f"| {sys.argv[2]} | {sys.argv[3]} | {sys.argv[4]} | {b['median_ms']:.2f} | {s.get('kernel', -1):.2f} | {s.get('read_back', -1):.2f} |")
+PY
+}
+area=docs/benchmarks/2026-12-07-path/thesis-c-area.json
+for s in "builtin:cornell-path|--max-depth 8 --spp 1" "$area|--max-depth 8 --spp 1" "builtin:thesis-a|" "builtin:thesis-c|"; do
+  scene=${s%%|*}; args=${s#*|}
+  row "$scene" "$args" strict opencl
+  row "$scene" "$args" "strict lean" glsl-compute
+  row "$scene" "$args" "strict residual" glsl-compute RILL_GLSL_FUSED=residual
+  row "$scene" "$args" "strict lean staging" glsl-compute RILL_GLSL_READBACK=staging
+  row "$scene" "$args" "strict" vulkan
+  row "$scene" "$args" "native div-sqrt" glsl-compute RILL_GLSL_DIVSQRT=native
+  for p in /tmp/o-glsl-compute-strict*.png /tmp/o-vulkan-strict*.png; do
+    cmp -s /tmp/o-opencl-strict.png "$p" || echo "$scene: $(basename $p) DIFFERS from opencl's" | tee -a $OUT/info.txt
+  done
+  echo "$scene: strict images compared" | tee -a $OUT/info.txt; rm -f /tmp/o-*.png
+done
+# (3)
+timeout 150 $B/rill-bench-trace --sections shared --backends opencl,glsl-compute,vulkan --size 1920x1080 \
+  --scenes builtin:thesis-c,builtin:thesis-a --repeats 5 --md $OUT/shared.md > $OUT/shared.txt 2>&1
+echo "shared section rc=$?" | tee -a $OUT/info.txt
+# (4)
+echo "| scene | backend | regenerate | frame ms | kernel ms |" > $OUT/regen.md
+for be in opencl glsl-compute; do for r in off on; do
+  RILL_PATH_REGENERATE=$r timeout 60 $B/rill-trace render builtin:cornell-path --size 1920x1080 --spp 16 --backend $be \
+    --bench-frames 5 --out /tmp/r-$be-$r.png --stats-json /tmp/s.json > /dev/null 2>&1 || { echo "| cornell-path 16spp | $be | $r | failed | |" >> $OUT/regen.md; continue; }
+  python3 -c "
+import json; b=json.load(open('/tmp/s.json'))['bench_frames']; print(f\"| cornell-path 16 spp | $be | $r | {b['median_ms']:.2f} | {b['median_split_ms'].get('kernel',-1):.2f} |\")" >> $OUT/regen.md
+done; cmp -s /tmp/r-$be-on.png /tmp/r-$be-off.png && echo "regen $be: same PNG on and off" | tee -a $OUT/info.txt; done
+cat $OUT/regen.md
