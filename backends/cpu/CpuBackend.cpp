@@ -67,7 +67,7 @@ bool has_sse41() {
 }
 
 CLayout c_layout() {
-  CLayout layout{kOutlineMinCost, 4};
+  CLayout layout{.outline_min_cost = kOutlineMinCost, .max_units = 4};
   layout.cold_units = true;
   const char* knob = std::getenv("RILL_CPU_OUTLINE");
   if (!knob || !*knob) return layout;

@@ -188,7 +188,7 @@ TEST_P(OutlineTest, LoopFreePartsAreColdAndComputeTheSameBits) {
   EXPECT_GE(loop_parts, 2u) << "the inner loop's body and the side that runs it";
   EXPECT_EQ(loop_free, 1u) << "the straight-line side";
   // Without cold units in the layout, every unit is -O2.
-  cpu::CLayout layout{50, 4, 100};
+  cpu::CLayout layout{.outline_min_cost = 50, .max_units = 4, .unit_cost = 100};
   EXPECT_EQ(cpu::c_cold_units(cpu::emit_c(f, Accuracy::Strict, layout)), 0);
   layout.cold_units = true;
   const std::string cold_source = cpu::emit_c(f, Accuracy::Strict, layout);

@@ -98,7 +98,8 @@ std::vector<Emitter> emitters() {
       // Outlined into functions over two units (backends/cpu/Outline.h), as large kernels are.
       {"C, outlined", true,
        [](const ir::Function& f, bool map) {
-         cpu::CLayout layout{1, 2, 1, map};
+         cpu::CLayout layout{
+             .outline_min_cost = 1, .max_units = 2, .unit_cost = 1, .source_map = map};
          return cpu::emit_c(f, Accuracy::Strict, layout);
        }},
       {"lockstep C", true, [](const ir::Function& f, bool map) {
