@@ -19,18 +19,7 @@ grep -E "^(glsl|glsl-compute|vulkan) strict|FAIL" $OUT/conformance.txt | head -3
 # (2)
 echo "| scene | backend | setting | frame ms (median of 20) | kernel ms | read-back ms |" | tee $OUT/frames.md
 echo "| --- | --- | --- | --- | --- | --- |" | tee -a $OUT/frames.md
-row() { # scene args label backend env...
-  local scene=$1 args=$2 label=$3 be=$4; shift 4
-  local png=/tmp/o-$(printf %s "$be-$label" | tr -c 'a-z0-9-' '_').png
-  env RILL_X=1 "$@" timeout 60 $B/rill-trace render $scene $args --size 1920x1080 --backend $be \
-    --bench-frames 20 --out $png --stats-json /tmp/s.json > /tmp/row.log 2>&1 || {
-    echo "| $scene | $be | $label | failed: $(tail -1 /tmp/row.log | tr '|' '/') | | |" | tee -a $OUT/frames.md; return; }
-  python3 - /tmp/s.json "$(basename $scene .json)" "$be" "$label" <<'PY' | tee -a $OUT/frames.md
-import json, sys
-b = json.load(open(sys.argv[1]))["bench_frames"]; s = b["median_split_ms"]
-print(f"| {sys.argv[2]} | {sys.argv[3]} | {sys.argv[4]} | {b['median_ms']:.2f} | {s.get('kernel', -1):.2f} | {s.get('read_back', -1):.2f} |")
-PY
-}
+row() { frame_row $OUT/frames.md "$@"; }
 area=docs/benchmarks/2026-12-07-path/thesis-c-area.json
 for s in "builtin:cornell-path|--max-depth 8 --spp 1" "$area|--max-depth 8 --spp 1" "builtin:thesis-a|" "builtin:thesis-c|"; do
   scene=${s%%|*}; args=${s#*|}

@@ -26,21 +26,9 @@ if [ "$part" != frames ]; then
   done
 fi
 [ "$part" = conformance ] && exit 0
-echo "| scene | backend | rule | frame ms (median of 20) | kernel ms |" | tee $OUT/table.md
-echo "| --- | --- | --- | --- | --- |" | tee -a $OUT/table.md
-row() { # scene extra-args label backend env...
-  local scene=$1 args=$2 label=$3 be=$4; shift 4
-  local png=/tmp/o-$(printf %s "$be-$label" | tr -c 'a-z0-9-' '_').png
-  env RILL_X=1 "$@" timeout 120 $B/rill-trace render $scene $args --size 1920x1080 --backend $be \
-    --bench-frames 20 --out $png --stats-json /tmp/s.json > /tmp/row.log 2>&1 || {
-    echo "| $scene | $be | $label | failed: $(tail -1 /tmp/row.log | tr '|' '/') | |" | tee -a $OUT/table.md; return; }
-  python3 - /tmp/s.json "$(basename $scene .json)" "$be" "$label" <<'PY' | tee -a $OUT/table.md
-import json, sys
-j = json.load(open(sys.argv[1])); b = j["bench_frames"]
-k = b["median_split_ms"].get("kernel", -1)
-print(f"| {sys.argv[2]} | {sys.argv[3]} | {sys.argv[4]} | {b['median_ms']:.2f} | {k:.2f} |")
-PY
-}
+echo "| scene | backend | rule | frame ms (median of 20) | kernel ms | read-back ms |" | tee $OUT/table.md
+echo "| --- | --- | --- | --- | --- | --- |" | tee -a $OUT/table.md
+row() { frame_row $OUT/table.md "$@"; }
 default_scenes=("builtin:cornell-path|--max-depth 8 --spp 1" "$here/../2026-12-07-path/thesis-c-area.json|--max-depth 8 --spp 1" "builtin:thesis-a|" "builtin:thesis-c|" "builtin:glass|")
 if [ -n "${SCENES:-}" ]; then IFS=";" read -r -a scenes <<< "$SCENES"; else scenes=("${default_scenes[@]}"); fi
 for k in $(seq 1 "${ROUNDS:-2}"); do
