@@ -408,6 +408,11 @@ TEST(MeshFile, BadPlyIsAnErrorNamingFileAndPlace) {
       {"word", replaced(ascii, "\n4.000000 1.000000", "\nfour 1.000000"),
        "element 'vertex' number 6 (of 14 declared, counting from 0), property 'x': 'four' is "
        "not a number"},
+      // Beyond uint64_t's range: converting it unchecked was undefined (fuzz.ply found it).
+      {"huge-count", replaced(ascii, "\n4 0 1 2 3", "\n1e30 0 1 2 3"),
+       "property 'vertex_indices': list count '1e30' is not a count"},
+      {"nul", replaced(ascii, "\n4.000000 1.000000", std::string("\n4.000000\0 1.000000", 19)),
+       "property 'x': '4.000000\\x00' is not a number"},
       {"not-ply", "solid cube\nfacet normal 0 0 1\n", "not a PLY file"},
       {"no-end", "ply\nformat ascii 1.0\nelement vertex 3\n", "the header has no end_header"},
       {"type", replaced(ascii, "property float z", "property float3 z"),

@@ -195,7 +195,8 @@ PlyLayout check_ply(const std::string& bytes, const std::string& path) {
       if (!token(t)) truncated(e, i);
       char* end = nullptr;
       const double v = std::strtod(t.c_str(), &end);
-      if (*end != '\0')
+      // The whole token, not up to a NUL byte inside it ("1\0" or a lone "\0" is no number).
+      if (end != t.c_str() + t.size())
         fail(at(e, i) + ", property '" + clipped(p.name) + "': '" + clipped(t) +
              "' is not a number");
       return v;
@@ -208,8 +209,10 @@ PlyLayout check_ply(const std::string& bytes, const std::string& path) {
             continue;
           }
           const double n = number(e, i, p);
-          if (!(n >= 0) || n != static_cast<double>(static_cast<uint64_t>(n)) ||
-              n > static_cast<double>(bytes.size()))
+          // The range check comes first: converting a double beyond uint64_t's range (a
+          // count like 1e30) is undefined behaviour.
+          if (!(n >= 0) || n > static_cast<double>(bytes.size()) ||
+              n != static_cast<double>(static_cast<uint64_t>(n)))
             fail(at(e, i) + ", property '" + clipped(p.name) + "': list count '" + clipped(t) +
                  "' is not a count");
           for (uint64_t k = 0; k < static_cast<uint64_t>(n); ++k) number(e, i, p);
