@@ -71,6 +71,9 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "CommaList.h"
@@ -927,17 +930,45 @@ class Bench {
     const int fd = mkstemp(tmpl);
     if (fd < 0) return false;
     close(fd);
-    const std::string cmd = std::filesystem::read_symlink("/proc/self/exe").string() +
-                            " --sections shared" + " --shared-alone " + be + " --shared-out " +
-                            tmpl + " --backends " + be + " --scenes " + o_.scenes + " --size " +
-                            o_.size + " --repeats " + std::to_string(o_.repeats) + " --accuracy " +
-                            o_.accuracy + " > /dev/null";
-    const bool ran = std::system(cmd.c_str()) == 0;
+    // An argument vector, not a shell line: scene paths may hold spaces or quotes.
+    const std::vector<std::string> args = {std::filesystem::read_symlink("/proc/self/exe").string(),
+                                           "--sections",
+                                           "shared",
+                                           "--shared-alone",
+                                           be,
+                                           "--shared-out",
+                                           tmpl,
+                                           "--backends",
+                                           be,
+                                           "--scenes",
+                                           o_.scenes,
+                                           "--size",
+                                           o_.size,
+                                           "--repeats",
+                                           std::to_string(o_.repeats),
+                                           "--accuracy",
+                                           o_.accuracy};
+    std::vector<char*> argv;
+    std::string cmd;  // for the message
+    for (const std::string& a : args) {
+      argv.push_back(const_cast<char*>(a.c_str()));
+      cmd += (cmd.empty() ? "" : " ") + a;
+    }
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t quiet;  // the child's own report would interleave with ours
+    posix_spawn_file_actions_init(&quiet);
+    posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+    pid_t pid = 0;
+    int status = 0;
+    const bool ran = posix_spawn(&pid, argv[0], &quiet, nullptr, argv.data(), environ) == 0 &&
+                     waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
+                     WEXITSTATUS(status) == 0;
+    posix_spawn_file_actions_destroy(&quiet);
     std::ifstream f(tmpl);
     std::string spec;
     SharedFigures fig;
-    while (ran &&
-           f >> spec >> fig.prim_ms >> fig.prim_kernel_ms >> fig.full_ms >> fig.full_kernel_ms)
+    while (ran && f >> fig.prim_ms >> fig.prim_kernel_ms >> fig.full_ms >> fig.full_kernel_ms &&
+           f.get() == ' ' && std::getline(f, spec))
       out[spec] = fig;
     std::filesystem::remove(tmpl);
     ok = ok && ran;
@@ -953,8 +984,9 @@ class Bench {
       std::ofstream f(o_.shared_out);
       for (const auto& spec : split_list(o_.scenes)) {
         const SharedFigures g = shared_measure(spec, {o_.shared_alone}, false)[0];
-        f << spec << ' ' << g.prim_ms << ' ' << g.prim_kernel_ms << ' ' << g.full_ms << ' '
-          << g.full_kernel_ms << '\n';
+        // The figures first, the scene last: the rest of the line, whatever blanks it holds.
+        f << g.prim_ms << ' ' << g.prim_kernel_ms << ' ' << g.full_ms << ' ' << g.full_kernel_ms
+          << ' ' << spec << '\n';
       }
       if (!f) throw rt::SceneError("cannot write " + o_.shared_out);
       return;
