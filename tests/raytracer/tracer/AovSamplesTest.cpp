@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "RenderCompare.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
@@ -110,20 +111,17 @@ TEST_P(AovSamples, SeveralSamplesHaveSampleZerosAovsInEveryStrategy) {
   expect_sample_zeros_aovs(path_scene(), path_ways(), true, GetParam());
 }
 
-// The whole render's pixels that a window covers: its AOVs, as a RenderResult of the window.
-RenderResult crop_aovs(const RenderResult& whole, const RenderSettings::Window& w) {
-  RenderResult c;
-  c.width = w.width;
-  c.height = w.height;
-  for (int y = w.y; y < w.y + w.height; ++y)
-    for (int x = w.x; x < w.x + w.width; ++x) {
-      const size_t p = static_cast<size_t>(y) * static_cast<size_t>(whole.width) + x;
-      c.depth.push_back(whole.depth[p]);
-      c.prim.push_back(whole.prim[p]);
-      c.normal.push_back(whole.normal[p]);
-      if (!whole.albedo.empty()) c.albedo.push_back(whole.albedo[p]);
-    }
-  return c;
+// A render of `to` samples (in `window`, if not empty) resumed from one of `from`.
+RenderResult resumed(Tracer& t, const Camera& camera, RenderSettings rs, int from, int to,
+                     const RenderSettings::Window& window = {}) {
+  rs.window = window;
+  RenderSettings first = rs;
+  first.spp = from;
+  first.outputs.accumulation = true;
+  const RenderResult earlier = t.render(first, camera);
+  rs.spp = to;
+  rs.resume = &earlier.accumulation;
+  return t.render(rs, camera);
 }
 
 // Resumed renders: after 2 samples to 5 (whole image and a window), and from 5 to 5.
@@ -132,51 +130,36 @@ void expect_resumed_aovs(const Scene& s, const std::vector<Way>& ways, bool path
   Tracer t(s, build_grid_for(s));
   for (const Way& way : ways) {
     const std::string what = s.name + ", " + way.what;
+    const RenderSettings rs = settings(backend, way, 5);
     const RenderResult one = t.render(settings(backend, way, 1), s.camera);
-    const RenderResult whole = t.render(settings(backend, way, 5), s.camera);
-    RenderSettings first = settings(backend, way, 2);
-    first.outputs.accumulation = true;
-    const RenderResult two = t.render(first, s.camera);
-    RenderSettings rest = settings(backend, way, 5);
-    rest.resume = &two.accumulation;
-    const RenderResult resumed = t.render(rest, s.camera);
-    EXPECT_TRUE(same_bytes(whole.color, resumed.color)) << what << ": resumed colour";
-    expect_same_aovs(one, resumed, path, what + ", resumed after 2 samples");
+    const RenderResult whole = t.render(rs, s.camera);
+    const RenderResult after_two = resumed(t, s.camera, rs, 2, 5);
+    EXPECT_TRUE(same_bytes(whole.color, after_two.color)) << what << ": resumed colour";
+    expect_same_aovs(one, after_two, path, what + ", resumed after 2 samples");
 
     // Without an AOV asked for, sample 0 is not traced again: one launch (Whitted
     // megakernel, path megakernel) or one pass of each of the first bounce's kernels fewer.
-    RenderSettings plain = rest;
+    RenderSettings plain = rs;
     plain.outputs.depth = plain.outputs.prim = plain.outputs.normal = false;
     plain.outputs.albedo = false;
-    const RenderResult no_aovs = t.render(plain, s.camera);
+    const RenderResult no_aovs = resumed(t, s.camera, plain, 2, 5);
     EXPECT_TRUE(same_bytes(whole.color, no_aovs.color)) << what << ": resumed colour, no AOVs";
     EXPECT_TRUE(no_aovs.depth.empty() && no_aovs.prim.empty() && no_aovs.albedo.empty()) << what;
     if (way.strategy == Strategy::Megakernel)
-      EXPECT_EQ(resumed.launches, no_aovs.launches + 1) << what;
+      EXPECT_EQ(after_two.launches, no_aovs.launches + 1) << what;
     else
-      EXPECT_GT(resumed.launches, no_aovs.launches) << what;
+      EXPECT_GT(after_two.launches, no_aovs.launches) << what;
 
     // Resumed from all 5 samples: nothing left to trace but sample 0's camera rays.
-    RenderSettings again = settings(backend, way, 5);
-    RenderSettings keep = again;
-    keep.outputs.accumulation = true;
-    const RenderResult all = t.render(keep, s.camera);
-    again.resume = &all.accumulation;
-    const RenderResult nothing_left = t.render(again, s.camera);
+    const RenderResult nothing_left = resumed(t, s.camera, rs, 5, 5);
     EXPECT_EQ(nothing_left.spp, 5) << what;
     EXPECT_TRUE(same_bytes(whole.color, nothing_left.color)) << what << ": colour, 5 of 5";
     expect_same_aovs(one, nothing_left, path, what + ", resumed with 5 of 5 samples");
 
     // A window resumed from its own sums, as a distributed render's tile in a later round.
     const RenderSettings::Window w{3, 2, 11, 9};
-    RenderSettings tile_first = first;
-    tile_first.window = w;
-    const RenderResult tile_two = t.render(tile_first, s.camera);
-    RenderSettings tile_rest = rest;
-    tile_rest.window = w;
-    tile_rest.resume = &tile_two.accumulation;
-    const RenderResult tile = t.render(tile_rest, s.camera);
-    expect_same_aovs(crop_aovs(one, w), tile, path, what + ", a window resumed after 2 samples");
+    expect_same_aovs(testing::crop(one, w), resumed(t, s.camera, rs, 2, 5, w), path,
+                     what + ", a window resumed after 2 samples");
   }
 }
 
