@@ -4,7 +4,8 @@
 // A strategy launches its kernels once per sample and hands each sample's colour stream to
 // the film, which adds it to a running sum on the same backend (a compensated sum: a float
 // sum and the rounding error it dropped, so many samples lose almost nothing). At the end,
-// the film makes the mean and reads back only what FrameOutputs asks for: the 8-bit image
+// the film makes the mean and reads back only what FrameOutputs asks for (the AOVs, sample
+// 0's, it read right after the launch that traced them: read_aovs): the 8-bit image
 // is encoded on the device (Srgb8.h) into the very bytes of RenderResult::rgb8, so a PNG
 // costs 3 bytes per pixel to read back and nothing to unpack.
 //
