@@ -7,6 +7,7 @@
 #include <bit>
 #include <functional>
 #include <span>
+#include <stdexcept>
 
 #include "rill/Stopwatch.h"
 
@@ -95,6 +96,15 @@ glm::vec2 sample_offset(int k) {
 
 namespace {
 
+// An output asked for, read straight into the result (whose memory a caller that renders
+// frame after frame into one RenderResult keeps); one not asked for is emptied.
+template <typename S, typename V>
+void read_into(const S& stream, V& into, bool wanted) {
+  if (!wanted) return into.clear();
+  into.resize(static_cast<size_t>(stream.size()));
+  stream.download_into(std::span(into));
+}
+
 // Element i makes pixels 4i .. 4i + 3 into 12 bytes, R G B R G B ..., as three little-endian
 // Ints: the memory of the 8-bit image itself, which is read back into RenderResult::rgb8 as
 // it is, with nothing to unpack on the host. rgb(x, y) gives a pixel's three bytes.
@@ -179,6 +189,7 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
   }
   single_.reset();
   accumulate_ms_ = 0;
+  aovs_read_ = false;
 }
 
 Film::Sums Film::sums() {
@@ -218,7 +229,24 @@ void Film::prepare_encoder(const Stream<Float3>& color) {
   encoder_for(source, static_cast<int>(source.width()), static_cast<int>(source.height()));
 }
 
-void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r) {
+bool wants_aovs(const FrameOutputs& want) {
+  return want.depth || want.prim || want.normal || want.albedo;
+}
+
+void Film::read_aovs(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r) {
+  Stopwatch step;
+  read_into(aovs.depth, r.depth, want.depth);
+  read_into(aovs.prim, r.prim, want.prim);
+  read_into(aovs.normal, r.normal, want.normal);
+  if (aovs.albedo)
+    read_into(*aovs.albedo, r.albedo, want.albedo);
+  else
+    r.albedo.clear();
+  aovs_read_ = true;
+  r.times.read_back += step.ms();
+}
+
+void Film::finish(const FrameOutputs& want, RenderResult& r) {
   Stopwatch step;
   // The colour stream: one sample's or the mean.
   const Stream<Float3> color = summing_ ? *now_->mean_color : *single_;
@@ -230,30 +258,25 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     accumulate_ms_ += step.lap();
   }
   r.times.accumulate += accumulate_ms_;
-  // Each output asked for is read straight into the result (whose memory a caller that
-  // renders frame after frame into one RenderResult keeps); the others are emptied.
-  auto read = [](const auto& stream, auto& into, bool wanted) {
-    if (!wanted) return into.clear();
-    into.resize(static_cast<size_t>(stream.size()));
-    stream.download_into(std::span(into));
-  };
-  read(color, r.color, want.color);
-  read(aovs.depth, r.depth, want.depth);
-  read(aovs.prim, r.prim, want.prim);
-  read(aovs.normal, r.normal, want.normal);
-  if (aovs.albedo)
-    read(*aovs.albedo, r.albedo, want.albedo);
-  else
+  if (!aovs_read_) {
+    // A strategy that does not read its AOVs would give empty ones where they were asked for.
+    if (wants_aovs(want))
+      throw std::logic_error("Film::finish: AOVs were asked for and the strategy read none");
+    r.depth.clear();
+    r.prim.clear();
+    r.normal.clear();
     r.albedo.clear();
+  }
+  read_into(color, r.color, want.color);
   r.variance.clear();
   if (want.variance && squares_) {
     // (squares / n - mean^2) n / (n - 1) / n, in double on the host; 0 below 2 samples.
     std::vector<glm::vec3> sq, mean;
-    read(*now_->squares, sq, true);
+    read_into(*now_->squares, sq, true);
     if (want.color)
       mean = r.color;
     else
-      read(color, mean, true);
+      read_into(color, mean, true);
     const double n = samples_done_;
     r.variance.resize(sq.size());
     for (size_t p = 0; p < sq.size(); ++p)
@@ -267,9 +290,9 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     r.accumulation.width = static_cast<int>(now_->sum->width());
     r.accumulation.height = static_cast<int>(now_->sum->height());
     r.accumulation.samples = samples_done_;
-    read(*now_->sum, r.accumulation.sum, true);
-    read(*now_->carry, r.accumulation.carry, true);
-    if (squares_) read(*now_->squares, r.accumulation.squares, true);
+    read_into(*now_->sum, r.accumulation.sum, true);
+    read_into(*now_->carry, r.accumulation.carry, true);
+    if (squares_) read_into(*now_->squares, r.accumulation.squares, true);
   }
   if (!want.rgb8) r.rgb8.clear();
   if (want.rgb8) {
