@@ -75,6 +75,11 @@ class EmbreeScene {
   double build_ms() const { return build_ms_; }
   // Bytes Embree holds for the scene (after the build).
   int64_t bytes() const { return bytes_.load(); }
+  // For the packet and stream modes (trace_embree_modes.h): the device (its properties), the
+  // committed scene, and the Rill primitive id of an Embree primID.
+  RTCDevice device() const { return device_; }
+  RTCScene handle() const { return scene_; }
+  int32_t rill_id(unsigned prim_id) const { return ids_[prim_id]; }
 
   // Closest hit of rays (eye, dirs[i]), t in (0, inf): primitive id (-1: miss), distance.
   void trace(const glm::vec3& eye, const std::vector<glm::vec3>& dirs, int32_t* prim,
