@@ -192,9 +192,8 @@ void trace_packets(const EmbreeScene& e, const Tiles& tiles, const glm::vec3& ey
                         P::intersect(valid, e.handle(), &ctx, &rh);
                         for (int k = 0; k < N; ++k) {
                           if (!valid[k]) continue;
-                          const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-                          prim[pixel[k]] = hit ? e.rill_id(rh.hit.primID[k]) : -1;
-                          dist[pixel[k]] = hit ? rh.ray.tfar[k] : inf;
+                          e.answer(rh.hit.geomID[k], rh.hit.primID[k], rh.ray.tfar[k],
+                                   prim[pixel[k]], dist[pixel[k]]);
                         }
                       }
                     });
@@ -202,7 +201,6 @@ void trace_packets(const EmbreeScene& e, const Tiles& tiles, const glm::vec3& ey
 
 inline void trace_streams(const EmbreeScene& e, const Tiles& tiles, const glm::vec3& eye,
                           const std::vector<glm::vec3>& dirs, int32_t* prim, float* dist) {
-  const float inf = std::numeric_limits<float>::infinity();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.count(), tiles.grain()),
                     [&](const tbb::blocked_range<size_t>& r) {
                       RTCIntersectContext ctx;
@@ -219,28 +217,12 @@ inline void trace_streams(const EmbreeScene& e, const Tiles& tiles, const glm::v
                           for (int x = x0; x < std::min(x0 + tiles.tw, tiles.width); ++x, ++m) {
                             pixel[m] = static_cast<size_t>(y) * static_cast<size_t>(tiles.width) +
                                        static_cast<size_t>(x);
-                            const glm::vec3& d = dirs[pixel[m]];
-                            RTCRayHit& rh = rays[m];
-                            rh.ray.org_x = eye.x;
-                            rh.ray.org_y = eye.y;
-                            rh.ray.org_z = eye.z;
-                            rh.ray.dir_x = d.x;
-                            rh.ray.dir_y = d.y;
-                            rh.ray.dir_z = d.z;
-                            rh.ray.tnear = 0.0f;
-                            rh.ray.tfar = inf;
-                            rh.ray.time = 0.0f;
-                            rh.ray.mask = 0xffffffffu;
-                            rh.ray.id = m;
-                            rh.ray.flags = 0;
-                            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                            rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+                            EmbreeScene::set_ray(rays[m], eye, dirs[pixel[m]], m);
                           }
                         rtcIntersect1M(e.handle(), &ctx, rays.data(), m, sizeof(RTCRayHit));
                         for (unsigned k = 0; k < m; ++k) {
-                          const bool hit = rays[k].hit.geomID != RTC_INVALID_GEOMETRY_ID;
-                          prim[pixel[k]] = hit ? e.rill_id(rays[k].hit.primID) : -1;
-                          dist[pixel[k]] = hit ? rays[k].ray.tfar : inf;
+                          e.answer(rays[k].hit.geomID, rays[k].hit.primID, rays[k].ray.tfar,
+                                   prim[pixel[k]], dist[pixel[k]]);
                         }
                       }
                     });
