@@ -18,4 +18,4 @@ for round in 1 2 3; do
     --md "$OUT/embree-modes-$round.md" > "$OUT/embree-modes-$round.txt" 2>&1
   echo "round $round rc=$?"
 done
-grep -h -A12 "ray modes" "$OUT"/embree-modes-*.md
+grep -h -A20 "ray modes" "$OUT"/embree-modes-*.md
