@@ -1217,14 +1217,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  try {  // a command-line error: exit status 2
-    o.embree_mode_list = bench::parse_embree_modes(split_list(o.embree_modes));
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "rill-bench-trace: %s\n", e.what());
-    return 2;
-  }
-  int rc = 0;
+  // Command-line errors (a value the option does not take): exit status 2, as rill-trace's.
+  std::vector<std::string> sections;
   try {
+    o.embree_mode_list = bench::parse_embree_modes(split_list(o.embree_modes));
     parse_size(o.size, o.width, o.height);
     o.acc = rill::parse_accuracy(o.accuracy);
     o.loop_list.clear();
@@ -1232,25 +1228,26 @@ int main(int argc, char** argv) {
       o.loop_list.push_back(rt::parse_megakernel_loop(l));
     if (o.loop_list.empty()) throw rt::SceneError("--loops: name at least one loop");
     o.packets_list.clear();
-    for (const std::string& p : split_list(o.packets)) {
-      try {
-        o.packets_list.push_back(rt::parse_packets(p));
-      } catch (const std::invalid_argument& e) {
-        throw rt::SceneError(e.what());
-      }
-    }
+    for (const std::string& p : split_list(o.packets))
+      o.packets_list.push_back(rt::parse_packets(p));
     if (o.packets_list.empty()) throw rt::SceneError("--packets: name at least one setting");
     if (o.acc == rill::Accuracy::Double)
       throw rt::SceneError("--accuracy: strict or fast (double is the accuracy reference)");
-    const auto sections = split_list(o.sections);
-    auto has = [&](const char* s) {
-      return std::find(sections.begin(), sections.end(), s) != sections.end();
-    };
+    sections = split_list(o.sections);
     for (const auto& s : sections)
       if (s != "throughput" && s != "embree" && s != "grid" && s != "depth" && s != "spec" &&
           s != "bounce" && s != "shared")
         throw rt::SceneError("--sections: unknown section '" + s +
                              "' (throughput, embree, grid, depth, spec, bounce, shared)");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rill-bench-trace: %s\n", e.what());
+    return 2;
+  }
+  auto has = [&](const char* s) {
+    return std::find(sections.begin(), sections.end(), s) != sections.end();
+  };
+  int rc = 0;
+  try {
     std::printf("rill-bench-trace: %dx%d, %d repeats, %d threads\n", o.width, o.height, o.repeats,
                 tbb::info::default_concurrency());
     Bench b(o);
