@@ -176,6 +176,22 @@ struct Options {
   int width = 0, height = 0;
 };
 
+// One entry of --grids: 0 for auto, else the resolution, 1..512.
+int parse_grid_res(const std::string& g) {
+  if (g == "auto") return 0;
+  char* end = nullptr;
+  const long res = std::strtol(g.c_str(), &end, 10);
+  if (g.empty() || *end != '\0' || res < 1 || res > 512)
+    throw rt::SceneError("--grids: 'auto' or 1..512 (got '" + g + "')");
+  return static_cast<int>(res);
+}
+
+// --depths FIRST-LAST, within 0..64.
+void parse_depths(const std::string& s, int& first, int& last) {
+  if (std::sscanf(s.c_str(), "%d-%d", &first, &last) != 2 || first < 0 || last < first || last > 64)
+    throw rt::SceneError("--depths expects FIRST-LAST within 0..64 (got '" + s + "')");
+}
+
 void parse_size(const std::string& s, int& w, int& h) {
   char x = 0;
   long a = 0, b = 0;
@@ -800,10 +816,7 @@ class Bench {
     const std::vector<glm::vec3> origins(n, scene.camera.eye);
     for (const auto& g : split_list(o_.grids)) {
       Point p;
-      char* end = nullptr;
-      p.res = g == "auto" ? 0 : static_cast<int>(std::strtol(g.c_str(), &end, 10));
-      if (g != "auto" && (*end != '\0' || p.res < 1 || p.res > 512))
-        throw rt::SceneError("--grids: 'auto' or 1..512 (got " + g + ")");
+      p.res = parse_grid_res(g);
       for (int r = 0; r < o_.repeats; ++r) {  // the build time is a median too
         p.grid = rt::build_grid(
             scene, p.res, rt::subgrid_min_for(scene.options.subgrid_min, "cpu"),
@@ -853,8 +866,7 @@ class Bench {
     const auto bes = usable_backends(o_.sweep_backends);
     rt::Scene scene = load(spec, o_);
     int d0 = 1, d1 = 8;
-    if (std::sscanf(o_.depths.c_str(), "%d-%d", &d0, &d1) != 2 || d0 < 0 || d1 < d0 || d1 > 64)
-      throw rt::SceneError("--depths expects FIRST-LAST within 0..64 (got '" + o_.depths + "')");
+    parse_depths(o_.depths, d0, d1);
     rt::Grid grid = rt::build_grid_for(scene);
     rt::Tracer tracer(scene, grid);
     const double n = static_cast<double>(scene.width) * scene.height;
@@ -1008,28 +1020,19 @@ class Bench {
     if (fd < 0) return false;
     close(fd);
     // An argument vector, not a shell line: scene paths may hold spaces or quotes.
-    const std::vector<std::string> args = {std::filesystem::read_symlink("/proc/self/exe").string(),
-                                           "--sections",
-                                           "shared",
-                                           "--shared-alone",
-                                           be,
-                                           "--shared-out",
-                                           tmpl,
-                                           "--backends",
-                                           be,
-                                           "--scenes",
-                                           o_.scenes,
-                                           "--size",
-                                           o_.size,
-                                           "--repeats",
-                                           std::to_string(o_.repeats),
-                                           "--accuracy",
-                                           o_.accuracy};
+    // The child measures what this process does: the same scenes, grid and kernel settings.
+    std::vector<std::string> args = {std::filesystem::read_symlink("/proc/self/exe").string()};
+    args.insert(args.end(), {"--sections", "shared", "--shared-alone", be, "--shared-out", tmpl});
+    args.insert(args.end(), {"--backends", be, "--scenes", o_.scenes, "--size", o_.size});
+    args.insert(args.end(), {"--repeats", std::to_string(o_.repeats), "--accuracy", o_.accuracy});
+    args.insert(args.end(), {"--packets", o_.packets, "--loops", o_.loops});
+    if (!o_.subgrids.empty()) args.insert(args.end(), {"--subgrids", o_.subgrids});
+    if (!o_.grid_density.empty()) args.insert(args.end(), {"--grid-density", o_.grid_density});
     std::vector<char*> argv;
     std::string cmd;  // for the message
     for (const std::string& a : args) {
       argv.push_back(const_cast<char*>(a.c_str()));
-      cmd += (cmd.empty() ? "" : " ") + a;
+      cmd += (cmd.empty() ? "'" : " '") + a + "'";  // quoted: the message names each argument
     }
     argv.push_back(nullptr);
     posix_spawn_file_actions_t quiet;  // the child's own report would interleave with ours
@@ -1214,25 +1217,40 @@ int main(int argc, char** argv) {
   app.add_option("--csv", o.csv, "also write the tables as CSV to this file");
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {  // an unknown option, a value out of range: status 2
+    std::fprintf(stderr, "rill-bench-trace: %s (see --help)\n", e.what());
+    return 2;
   }
-  // Command-line errors (a value the option does not take): exit status 2, as rill-trace's.
+  // Command-line errors (a value the option does not take): exit status 2, as rill-trace's,
+  // before any scene loads.
   std::vector<std::string> sections;
   try {
     o.embree_mode_list = bench::parse_embree_modes(split_list(o.embree_modes));
     parse_size(o.size, o.width, o.height);
+    if (o.accuracy != "strict" && o.accuracy != "fast")
+      throw rt::SceneError("--accuracy: strict or fast (got '" + o.accuracy +
+                           "'; double is the accuracy reference)");
     o.acc = rill::parse_accuracy(o.accuracy);
     o.loop_list.clear();
-    for (const std::string& l : split_list(o.loops))
-      o.loop_list.push_back(rt::parse_megakernel_loop(l));
+    for (const std::string& l : split_list(o.loops)) {
+      try {
+        o.loop_list.push_back(rt::parse_megakernel_loop(l));
+      } catch (const std::invalid_argument&) {
+        throw rt::SceneError("--loops: unknown loop '" + l + "' (auto, ray, segment)");
+      }
+    }
+    for (const std::string& g : split_list(o.grids)) parse_grid_res(g);
+    int first = 0, last = 0;
+    parse_depths(o.depths, first, last);
+    if (!o.subgrids.empty()) rt::parse_subgrid_min(o.subgrids);
+    if (!o.grid_density.empty()) rt::parse_grid_density(o.grid_density);
     if (o.loop_list.empty()) throw rt::SceneError("--loops: name at least one loop");
     o.packets_list.clear();
     for (const std::string& p : split_list(o.packets))
       o.packets_list.push_back(rt::parse_packets(p));
     if (o.packets_list.empty()) throw rt::SceneError("--packets: name at least one setting");
-    if (o.acc == rill::Accuracy::Double)
-      throw rt::SceneError("--accuracy: strict or fast (double is the accuracy reference)");
     sections = split_list(o.sections);
     for (const auto& s : sections)
       if (s != "throughput" && s != "embree" && s != "grid" && s != "depth" && s != "spec" &&

@@ -96,15 +96,19 @@ rt::RenderResult render_progressive(const RenderOptions& o, Prepared& p, const r
     return !out_of_time && interrupted() == 0;
   };
   const bool chunks = o.save_every > 0;
-  rt::RenderResult total;
+  rt::RenderResult total, first_chunk;  // first_chunk: sample 0's AOVs (RenderResult.h)
+  const rt::FrameOutputs outputs = rs.outputs;
   int64_t rays = 0;
   double trace_ms = 0;
+  int chunk = 0;
   do {
     const int done = sums ? sums->samples : 0;
     rs.spp = chunks ? std::min(target, done + o.save_every) : target;
     rs.resume = sums ? &*sums : nullptr;
+    rs.outputs = chunk == 0 ? outputs : outputs.without_aovs();
     rs.outputs.accumulation = !o.save.empty() || (chunks && rs.spp < target);
     p.tracer->render(rs, camera, total);
+    if (chunk++ == 0) rt::move_aovs(total, first_chunk);
     rays += total.rays;
     trace_ms += total.trace_ms;
     if (rs.outputs.accumulation) {
@@ -113,6 +117,7 @@ rt::RenderResult render_progressive(const RenderOptions& o, Prepared& p, const r
     }
   } while (chunks && !out_of_time && interrupted() == 0 && sums && sums->samples < target);
   progress.finish();
+  rt::move_aovs(first_chunk, total);
   total.rays = rays;
   total.trace_ms = trace_ms;
   if (!o.quiet && (o.time_limit > 0 || first > 0) && interrupted() == 0)

@@ -68,6 +68,15 @@ TEST(CliPath, AovsAreSampleZerosAtOnceResumedInChunksAndTimed) {
       EXPECT_TRUE(testing::read_text(dir.path(name + std::string(aov))) == want)
           << name << aov << " differs from one" << aov;
   }
+  // Only the first chunk traces sample 0's camera rays: the later ones (each a resumed render)
+  // ask for no AOV, so the last chunk (sample 8 alone) runs as many launches with AOVs asked
+  // for as without (one more each if it traced sample 0 again).
+  auto launches = [&](const std::string& args) {
+    EXPECT_EQ(
+        run_path("--spp 9 --save-every 2 --save l.acc --stats-json l.json" + args, dir).status, 0);
+    return nlohmann::json::parse(testing::read_text(dir.path("l.json"))).at("launches").get<int>();
+  };
+  EXPECT_EQ(launches(aovs("again")), launches(" --out /dev/null"));
 }
 
 // --albedo writes the first hit's albedo as PFM, and with --exr the same floats as channels

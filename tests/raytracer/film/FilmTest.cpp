@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 
 #include "RenderCompare.h"
 #include "TestUtil.h"
@@ -131,6 +132,20 @@ TEST_P(FilmTest, SamplesAddUpWithoutLosingSmallOnes) {
   EXPECT_EQ(r.color[0].y, 0.5f);
   EXPECT_EQ(r.color[0].z, 0.0f);
   EXPECT_EQ(r.color[1].x, exact_mean(2.0, 6e-8f));
+}
+
+// A strategy that asks for an AOV and never hands the film its streams (Film::read_aovs) is a
+// bug in that strategy: finish says so instead of returning an empty AOV.
+TEST(Film, FinishingWithoutTheAovsAskedForIsALogicError) {
+  rt::Film film;
+  film.begin("cpu", Accuracy::Strict, 2, 1, 1);
+  Stream<Float3> sample(2, 1, "sample");
+  sample.upload(std::vector<glm::vec3>{glm::vec3(0.5f), glm::vec3(1.0f)});
+  film.add_sample(sample, 0);
+  RenderResult r;
+  FrameOutputs want;
+  want.depth = true;
+  EXPECT_THROW(film.finish(want, r), std::logic_error);
 }
 
 // The 8-bit image's bytes, 4 pixels to an element, straight from colour streams whose

@@ -413,6 +413,8 @@ TEST(MeshFile, BadPlyIsAnErrorNamingFileAndPlace) {
        "property 'vertex_indices': list count '1e30' is not a count"},
       {"nul", replaced(ascii, "\n4.000000 1.000000", std::string("\n4.000000\0 1.000000", 19)),
        "property 'x': '4.000000\\x00' is not a number"},
+      {"nul-count", replaced(ascii, "element vertex 14", std::string("element vertex 14\0x", 19)),
+       "line 4 of the header: an element needs a name and a count"},
       {"not-ply", "solid cube\nfacet normal 0 0 1\n", "not a PLY file"},
       {"no-end", "ply\nformat ascii 1.0\nelement vertex 3\n", "the header has no end_header"},
       {"type", replaced(ascii, "property float z", "property float3 z"),

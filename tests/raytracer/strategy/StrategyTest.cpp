@@ -45,12 +45,16 @@ class FlatStrategy final : public RenderStrategy {
     Stream<Float> depth(f.width, f.height);
     Stream<Int> prim(f.width, f.height);
     k.outputs(color, depth, prim, normal);
-    f.film.begin(rs.backend, rs.accuracy, f.width, f.height, f.spp);
-    for (int s = 0; s < f.spp; ++s) {
+    f.film.begin(rs.backend, rs.accuracy, f.width, f.height, f.spp, rs.resume, f.summing(),
+                 rs.outputs.variance);
+    for (int s = f.first_sample; s < f.spp; ++s) {
       k.execute();
       ++r.launches;
-      if (s == 0) f.film.read_aovs(AovStreams{depth, prim, normal}, rs.outputs, r);
+      // Every sample has the same AOVs here, so a resumed frame's first launch stands in for
+      // sample 0's (RenderStrategy::render's contract).
+      if (s == f.first_sample) f.film.read_aovs(AovStreams{depth, prim, normal}, rs.outputs, r);
       f.film.add_sample(color, s);
+      if (!f.more_after(s)) break;
     }
     f.film.finish(rs.outputs, r);
   }
@@ -103,6 +107,17 @@ TEST(Strategies, AProgramRegistersItsOwn) {
     EXPECT_EQ(flat.prim[p], -1) << p;
   }
   EXPECT_EQ(flat.launches, 2);
+  // Resumed from its own sums of 2 samples to 4: two launches more, the same mean, its AOVs.
+  rs.outputs.accumulation = true;
+  const RenderResult two = tracer.render(rs, scene.camera);
+  rs.outputs.accumulation = false;
+  rs.resume = &two.accumulation;
+  rs.spp = 4;
+  const RenderResult four = tracer.render(rs, scene.camera);
+  rs.resume = nullptr;
+  EXPECT_EQ(four.launches, 2);
+  EXPECT_EQ(four.color, flat.color);
+  EXPECT_EQ(four.prim, flat.prim);
   // The same tracer still renders with the built-in strategy.
   rs.strategy = Strategy::Megakernel;
   const RenderResult lit = tracer.render(rs, scene.camera);

@@ -1,5 +1,7 @@
 #include "rill/rt/render/RenderResult.h"
 
+#include <utility>
+
 namespace rt {
 
 void add_stages(RenderResult& r, const rill::CompileInfo& k) {
@@ -12,6 +14,13 @@ void add_stages(RenderResult& r, const rill::CompileInfo& k) {
   s.driver_finish_ms += k.driver_finish_ms;
   s.compile_ms += k.compile_ms;
   if (s.execution.empty()) s.execution = k.execution;
+}
+
+void move_aovs(RenderResult& from, RenderResult& to) {
+  to.depth = std::move(from.depth);
+  to.prim = std::move(from.prim);
+  to.normal = std::move(from.normal);
+  to.albedo = std::move(from.albedo);
 }
 
 }  // namespace rt

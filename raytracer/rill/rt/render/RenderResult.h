@@ -99,4 +99,11 @@ struct RenderResult {
 // Adds one kernel's compile stages to r.stages.
 void add_stages(RenderResult& r, const rill::CompileInfo& k);
 
+// A render in parts (the chunks of --save-every, the rounds of a distributed progressive
+// render: each part after the first a resumed render) has sample 0's AOVs from the part that
+// traced sample 0; a later part that asked for them again would trace sample 0's camera rays
+// once more (Frame::retrace_aovs). The caller asks the later parts for none (FrameOutputs:
+// depth, prim, normal and albedo off) and moves the first part's into the last result:
+void move_aovs(RenderResult& from, RenderResult& to);
+
 }  // namespace rt

@@ -60,6 +60,12 @@ struct FrameOutputs {
   bool albedo = false;    // RenderResult::albedo (the path integrator's; empty under Whitted)
   bool variance = false;  // RenderResult::variance (2 samples or more; resumed: if it kept squares)
   bool accumulation = false;  // RenderResult::accumulation: the running sums, to resume from
+  // These outputs with no AOV (RenderResult.h, move_aovs: the later parts of a render in parts).
+  FrameOutputs without_aovs() const {
+    FrameOutputs o = *this;
+    o.depth = o.prim = o.normal = o.albedo = false;
+    return o;
+  }
 };
 
 struct RenderSettings {

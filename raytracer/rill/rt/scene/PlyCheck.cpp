@@ -102,7 +102,7 @@ PlyLayout check_ply(const std::string& bytes, const std::string& path) {
       words >> e.name >> count;
       char* end = nullptr;
       e.count = std::strtoull(count.c_str(), &end, 10);
-      if (e.name.empty() || count.empty() || *end != '\0' || count[0] == '-')
+      if (e.name.empty() || count.empty() || end != count.c_str() + count.size() || count[0] == '-')
         bad("an element needs a name and a count (\"element vertex 8\")");
       elements.push_back(e);
     } else if (word == "property") {

@@ -84,6 +84,13 @@ class RenderStrategy {
   // Renders frame.spp samples of frame.width x frame.height pixels through the camera set in
   // the scene's CameraRays into r (a fresh result; its image vectors may hold the memory of
   // an earlier frame). Throws std::runtime_error for a backend that cannot run the frame.
+  // The contract with the film (film/Film.h): begin it with frame.settings.resume and
+  // frame.summing(); trace samples frame.first_sample .. frame.spp - 1, each added in order
+  // (add_sample, or added_samples for samples summed on the device), stopping where
+  // frame.more_after says; call Film::read_aovs right after the launch that traced sample 0,
+  // or, when frame.retrace_aovs() (a resumed frame), after tracing sample 0's camera rays once
+  // more without adding them; then Film::finish, which throws std::logic_error if an AOV was
+  // asked for and never read.
   virtual void render(const Frame& frame, RenderResult& r) = 0;
 };
 
