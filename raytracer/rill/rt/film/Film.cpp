@@ -13,6 +13,7 @@
 #include "rill/rt/film/Srgb8.h"
 #include "rill/rt/kernel/Compile.h"
 #include "rill/rt/kernel/PerBackend.h"
+#include "rill/rt/render/OutputsInFlight.h"
 
 namespace rt {
 
@@ -231,11 +232,19 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
   }
   r.times.accumulate += accumulate_ms_;
   // Each output asked for is read straight into the result (whose memory a caller that
-  // renders frame after frame into one RenderResult keeps); the others are emptied.
-  auto read = [](const auto& stream, auto& into, bool wanted) {
+  // renders frame after frame into one RenderResult keeps); the others are emptied. Read
+  // later: the read-backs are started (the backend keeps a copy of what they read, so the
+  // next frame's kernels may write these streams at once) and left in r.in_flight. The
+  // variance and the accumulation are computed and read on the host now.
+  std::shared_ptr<OutputsInFlight> flight;
+  if (later_ && !want.variance && !want.accumulation) flight = std::make_shared<OutputsInFlight>();
+  auto read = [&flight](const auto& stream, auto& into, bool wanted) {
     if (!wanted) return into.clear();
     into.resize(static_cast<size_t>(stream.size()));
-    stream.download_into(std::span(into));
+    if (flight)
+      flight->reads.push_back(stream.download_async(std::span(into)));
+    else
+      stream.download_into(std::span(into));
   };
   read(color, r.color, want.color);
   read(aovs.depth, r.depth, want.depth);
@@ -286,11 +295,24 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     // Read straight into the image's memory (a frame of the last one's size keeps it and
     // does not clear it), with room for the last group's padding, then cut to 3 n bytes.
     r.rgb8.resize(static_cast<size_t>(groups) * 12);
-    now_->packed->download_into(
-        std::span(reinterpret_cast<glm::ivec3*>(r.rgb8.data()), static_cast<size_t>(groups)));
-    r.rgb8.resize(static_cast<size_t>(n) * 3);
+    const std::span<glm::ivec3> words(reinterpret_cast<glm::ivec3*>(r.rgb8.data()),
+                                      static_cast<size_t>(groups));
+    if (flight) {
+      flight->reads.push_back(now_->packed->download_async(words));
+      flight->rgb8_bytes = static_cast<size_t>(n) * 3;
+    } else {
+      now_->packed->download_into(words);
+      r.rgb8.resize(static_cast<size_t>(n) * 3);
+    }
   }
   r.times.read_back += step.ms();
+  // Nothing left in flight (a backend that reads back at once): finished here.
+  if (flight) {
+    const bool any = std::any_of(flight->reads.begin(), flight->reads.end(),
+                                 [](const ReadBack& b) { return b.in_flight(); });
+    r.in_flight = std::move(flight);
+    if (!any) r.wait_outputs();
+  }
 }
 
 }  // namespace rt

@@ -81,6 +81,9 @@ class Film {
   // The mean of the samples added (and resumed), encoded and read back as `want` asks, with
   // the first sample's AOVs; r.spp is their count. Adds the time it took to r.times.
   void finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r);
+  // Whether finish() may leave the images' read-back in flight (RenderSettings::
+  // read_back_later, set by the Tracer per frame): r.in_flight then holds it.
+  void read_back_later(bool later) { later_ = later; }
 
  private:
   struct Buffers;
@@ -102,6 +105,7 @@ class Film {
   int samples_done_ = 0;  // samples in the sums (resumed ones included)
   std::optional<rill::Stream<rill::Float3>> single_;  // spp == 1: the sample itself
   double accumulate_ms_ = 0;
+  bool later_ = false;
 };
 
 }  // namespace rt

@@ -1,5 +1,8 @@
 #include "rill/rt/render/RenderResult.h"
 
+#include "rill/Stopwatch.h"
+#include "rill/rt/render/OutputsInFlight.h"
+
 namespace rt {
 
 void add_stages(RenderResult& r, const rill::CompileInfo& k) {
@@ -12,6 +15,18 @@ void add_stages(RenderResult& r, const rill::CompileInfo& k) {
   s.driver_finish_ms += k.driver_finish_ms;
   s.compile_ms += k.compile_ms;
   if (s.execution.empty()) s.execution = k.execution;
+}
+
+void RenderResult::wait_outputs() {
+  if (!in_flight) return;
+  // Taken first: a read-back that fails is not waited for again.
+  const std::shared_ptr<OutputsInFlight> f = std::move(in_flight);
+  rill::Stopwatch waited;
+  for (rill::ReadBack& read : f->reads) read.wait();
+  if (f->rgb8_bytes) rgb8.resize(f->rgb8_bytes);  // the last group's padding cut off
+  const double ms = waited.ms();
+  times.read_back += ms;
+  trace_ms += ms;
 }
 
 }  // namespace rt
