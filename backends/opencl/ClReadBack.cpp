@@ -26,7 +26,7 @@ bool late_read_backs() {
 struct ClReadBacks::Staging {
   explicit Staging(Device& d) : device(d) {}
   ~Staging() {
-    for (auto& [mem, bytes] : free) clReleaseMemObject(mem);
+    for (auto& kept : free) clReleaseMemObject(kept.first);
     if (transfers) clReleaseCommandQueue(transfers);
   }
   Staging(const Staging&) = delete;

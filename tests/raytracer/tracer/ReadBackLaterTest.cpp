@@ -81,7 +81,9 @@ void expect_same_frames(const std::vector<RenderResult>& want, const std::vector
     EXPECT_EQ(want[i].albedo.size(), got[i].albedo.size()) << frame;
     EXPECT_TRUE(want[i].albedo == got[i].albedo) << frame;
     EXPECT_EQ(want[i].rays, got[i].rays) << frame;
-    if (i > 0) EXPECT_NE(want[i - 1].rgb8, want[i].rgb8) << frame << ": the same as the one before";
+    if (i > 0) {
+      EXPECT_NE(want[i - 1].rgb8, want[i].rgb8) << frame << ": the same as the one before";
+    }
   }
 }
 
