@@ -4,11 +4,12 @@
 // bytes of that frame rendered on its own: colour, 8-bit image, AOVs, albedo, with frames that
 // differ (a dynamic scene, a moving camera) and with one and several samples.
 //
-// OpenCL leaves the read-back in flight (checked); RILL_OPENCL_READBACK=late holds its transfer
-// until the wait, after the next frame has traced: a read-back that did not keep its own copy
-// of the outputs (rill/ReadBack.h), or a frame that wrote the streams or the memory still being
-// read, would then give the next frame's bytes, which differ from its own (checked too). The
-// other backends read back before render returns.
+// OpenCL and glsl-compute leave the read-back in flight (checked). glsl-compute maps its copy
+// at the wait, after the next frame has traced; RILL_OPENCL_READBACK=late holds OpenCL's
+// transfer until then too: a read-back that did not keep its own copy of the outputs
+// (rill/ReadBack.h), or a frame that wrote the streams or the memory still being read, would
+// then give the next frame's bytes, which differ from its own (checked too). The other
+// backends read back before render returns.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -49,7 +50,8 @@ std::vector<RenderResult> one_at_a_time(Tracer& t, const RenderSettings& rs, con
 // after frame i + 1 has rendered, into the other of two results.
 std::vector<RenderResult> overlapped(Tracer& t, RenderSettings rs, const FrameAt& at, int n) {
   rs.read_back_later = true;
-  const bool in_flight = rs.backend == "opencl";  // the backend that reads back asynchronously
+  // The backends that read back asynchronously.
+  const bool in_flight = rs.backend == "opencl" || rs.backend == "glsl-compute";
   RenderResult results[2];
   std::vector<RenderResult> frames;
   for (int i = 0; i < n; ++i) {
