@@ -6,13 +6,13 @@
 #    plus waiting for it after the next frame traced); the PNGs of on and off compared;
 #  - rill-trace render builtin:bounce --frames 0:20 on opencl and glsl-compute, the wall time
 #    of the command (kernels from the disk cache after the first round), the frames compared.
-# Run on the GPU machine from the repository root; ROUNDS (default 3) sets the rounds.
+# Run on the GPU machine from the repository root; ROUNDS (default 2: one call of the GPU machine) sets the rounds.
 # Output: $OUT/overlap.md.
 source scripts/gpu-setup.sh
 T=$OUT/overlap.md
 echo "| scene | backend | overlap | frame ms | kernel ms | read-back ms |" | tee "$T"
 echo "| --- | --- | --- | --- | --- | --- |" | tee -a "$T"
-for k in $(seq 1 "${ROUNDS:-3}"); do
+for k in $(seq 1 "${ROUNDS:-2}"); do
   for scene in builtin:thesis-a builtin:thesis-c; do
     for be in opencl glsl-compute; do
       for ov in on off; do frame_row "$T" "$scene" "--overlap $ov" "$ov" "$be"; done
