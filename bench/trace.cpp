@@ -5,7 +5,7 @@
 //                    all|cpu,simd,opencl,glsl,glsl-compute]
 //                    [--repeats R] [--subgrids N|off|auto] [--grid-density D|auto] [--grid-scene S]
 //                    [--grids auto,16,32,...] [--loops auto|ray,segment]
-//                    [--packets auto|on|off,...]
+//                    [--packets auto|on|off,...] [--embree-modes auto|4,8,16,1M]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu]
 //                    [--path-scenes default|S,...] [--bounce 2] [--spp 1] [--seed N]
 //                    [--md F] [--csv F]
@@ -26,7 +26,11 @@
 //               time, oneTBB over the same cores), interleaved with Rill's CPU backend:
 //               Mrays/s of both, the ratio, and how many rays agree (same primitive, or the
 //               same distance within 1e-5 relative: a ray through a shared edge may pick
-//               either triangle). Compiled out (with a note) when CMake found no Embree.
+//               either triangle). A second table: Embree's coherent modes on the same
+//               rays in the same rounds (--embree-modes: packets of 4/8/16 over pixel tiles,
+//               the stream rtcIntersect1M over 8x8 tiles; trace_embree_modes.h), each checked
+//               for agreement and set against each CPU backend. Compiled out (with a note) when
+//               CMake found no Embree.
 //   grid        one scene at several grid resolutions (N^3 voxels, and the heuristic):
 //               build time, bytes per triangle, primary and full-shading throughput.
 //   depth       scenes with mirrors (default thesis-b, and glass with refraction) at maximum
@@ -71,6 +75,9 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "CommaList.h"
@@ -82,6 +89,7 @@
 #include "rill/rt/render/BounceRays.h"
 #include "rill/rt/scene/Scene.h"
 #include "trace_embree.h"
+#include "trace_embree_modes.h"
 
 namespace {
 
@@ -148,6 +156,10 @@ struct Options {
   // sections).
   std::string packets = "auto";
   std::vector<rt::Packets> packets_list{rt::Packets::Auto};
+  // Embree's modes beside rtcIntersect1 in the Embree section (trace_embree_modes.h); empty:
+  // auto, the CPU's native packets and the stream.
+  std::string embree_modes = "auto";
+  std::vector<bench::EmbreeMode> embree_mode_list;
   std::string depth_scene = "builtin:thesis-b,builtin:glass";
   std::string depths = "1-8";
   std::string sweep_backends = "cpu";
@@ -365,6 +377,17 @@ class Bench {
               "Embree Mrays/s", "Rill/Embree", "same prim", "agree", "grid build ms", "grid B/tri",
               "Embree build ms", "Embree B/tri"},
              {}};
+    // Embree's modes (rtcIntersect1, packets, the stream) side by side on the same rays, each
+    // against every CPU row of Rill.
+    Table modes{"Embree " + embree_version() + "'s ray modes on the same primary rays, " +
+                    size_str() + ", Rill " + acc + ", " +
+                    std::to_string(tbb::info::default_concurrency()) + " threads, median of " +
+                    std::to_string(o_.repeats),
+                {"scene", "triangles", "Embree mode", "native", "Embree ms", "Embree Mrays/s",
+                 "same prim as rtcIntersect1", "agree with Rill"},
+                {}};
+    for (size_t b = 0; b < bes.size(); ++b)
+      if (bes[b] == "cpu" || bes[b] == "simd") modes.head.push_back(labels[b] + "/Embree");
     for (const auto& spec : split_list(o_.scenes)) {
       rt::Scene scene = load(spec, o_);
       // Each backend renders with the grid rill-trace would build for it (subgrid_min_for,
@@ -418,12 +441,31 @@ class Bench {
         runs.back()->run();  // warm-up: uploads, driver compiles
       }
 #ifdef RILL_BENCH_HAVE_EMBREE
+      // Each Embree mode's hits and times; calls[0] is rtcIntersect1, the Embree table's.
+      struct EmbreeCall {
+        bench::EmbreeMode mode;
+        std::vector<int32_t> prim;
+        std::vector<float> dist;
+        std::vector<double> ms;
+      };
       std::unique_ptr<bench::EmbreeScene> ebr;
-      std::vector<int32_t> e_prim(n);
-      std::vector<float> e_dist(n);
+      std::vector<EmbreeCall> calls;
       if (embree) {
         ebr = std::make_unique<bench::EmbreeScene>(scene);
-        ebr->trace(scene.camera.eye, dirs, e_prim.data(), e_dist.data());  // warm-up
+        std::vector<bench::EmbreeMode> ms{bench::EmbreeMode{}};
+        for (const bench::EmbreeMode& m : o_.embree_mode_list.empty()
+                                              ? bench::auto_embree_modes(ebr->device())
+                                              : o_.embree_mode_list)
+          ms.push_back(m);
+        for (const bench::EmbreeMode& m : ms) {
+          // -2 is no answer: a pixel that a mode's tiles never reach fails the agreement.
+          calls.push_back({m,
+                           std::vector<int32_t>(n, -2),
+                           std::vector<float>(n, std::numeric_limits<float>::quiet_NaN()),
+                           {}});
+          bench::trace_image(*ebr, m, scene.camera.eye, dirs, scene.width, scene.height,
+                             calls.back().prim.data(), calls.back().dist.data());  // warm-up
+        }
       }
 #endif
       const std::vector<rt::MegakernelLoop>& loops = o_.loop_list;
@@ -436,7 +478,6 @@ class Bench {
       std::vector<std::vector<double>> prim_ms(bes.size());
       std::vector<std::vector<std::vector<double>>> full_ms(
           bes.size(), std::vector<std::vector<double>>(loops.size()));
-      std::vector<double> embree_ms;
       std::vector<std::vector<int64_t>> full_rays(bes.size(), std::vector<int64_t>(loops.size()));
       // One result per backend and loop, rendered into frame after frame as rill-trace's
       // --bench-frames does: its images' memory is allocated once, by the warm-up.
@@ -450,10 +491,14 @@ class Bench {
         for (size_t b = 0; b < bes.size(); ++b) {
           prim_ms[b].push_back(runs[b]->run());
 #ifdef RILL_BENCH_HAVE_EMBREE
-          if (ebr && b == 0) {  // beside the first cpu run
+          // Beside the first cpu run, every Embree mode, starting one later each round so
+          // that none always follows the same one.
+          for (size_t k = 0; ebr && b == 0 && k < calls.size(); ++k) {
+            EmbreeCall& c = calls[(k + static_cast<size_t>(r)) % calls.size()];
             const auto t = Clock::now();
-            ebr->trace(scene.camera.eye, dirs, e_prim.data(), e_dist.data());
-            embree_ms.push_back(ms_since(t));
+            bench::trace_image(*ebr, c.mode, scene.camera.eye, dirs, scene.width, scene.height,
+                               c.prim.data(), c.dist.data());
+            c.ms.push_back(ms_since(t));
           }
 #endif
         }
@@ -504,12 +549,13 @@ class Bench {
       }
 #ifdef RILL_BENCH_HAVE_EMBREE
       if (ebr) {
+        const std::vector<float> cpu_dist = runs[0]->dists(n);
         const bench::HitAgreement agreement =
-            bench::compare_hits(cpu_prim, runs[0]->dists(n), e_prim, e_dist);
+            bench::compare_hits(cpu_prim, cpu_dist, calls[0].prim, calls[0].dist);
         const size_t same = agreement.same;
         const double frac = agreement.fraction();
         ok = ok && frac >= o_.min_agree;
-        const double emm = median(embree_ms);
+        const double emm = median(calls[0].ms);
         for (size_t b = 0; b < bes.size(); ++b) {
           if (bes[b] != "cpu" && bes[b] != "simd") continue;
           // simd's hits equal cpu's (checked above when the throughput section runs).
@@ -524,6 +570,39 @@ class Bench {
                fmt("%.1f", static_cast<double>(ebr->bytes()) /
                                static_cast<double>(std::max<size_t>(scene.triangle_count(), 1)))});
         }
+        for (const EmbreeCall& c : calls) {
+          // Every pixel must have an answer, whatever --min-agree allows: a tile that was never
+          // traced may be a single corner pixel.
+          const auto untraced = static_cast<size_t>(std::count(c.prim.begin(), c.prim.end(), -2));
+          if (untraced) {
+            ok = false;
+            std::printf("error: %s: %s left %zu of the %zu pixels untraced\n", scene.name.c_str(),
+                        c.mode.function().c_str(), untraced, n);
+          }
+          const bench::HitAgreement a = bench::compare_hits(cpu_prim, cpu_dist, c.prim, c.dist);
+          if (a.fraction() < o_.min_agree) {
+            ok = false;
+            std::printf("error: %s: %s agrees with Rill on %.4f%% of the rays (%s)\n",
+                        scene.name.c_str(), c.mode.function().c_str(), 100.0 * a.fraction(),
+                        a.mismatch_str("Rill", "Embree").c_str());
+          }
+          size_t same_as_one = 0;
+          for (size_t i = 0; i < n; ++i) same_as_one += c.prim[i] == calls[0].prim[i];
+          const double cm = median(c.ms);
+          std::vector<std::string> row{
+              scene.name,
+              std::to_string(scene.triangle_count()),
+              c.mode.label(),
+              bench::embree_native(ebr->device(), c.mode),
+              fmt("%.2f", cm),
+              fmt("%.3f", mrays(static_cast<double>(n), cm)),
+              fmt("%.4f%%", 100.0 * static_cast<double>(same_as_one) / static_cast<double>(n)),
+              fmt("%.4f%%", 100.0 * a.fraction())};
+          for (size_t b = 0; b < bes.size(); ++b)
+            if (bes[b] == "cpu" || bes[b] == "simd")
+              row.push_back(fmt("%.3f", cm / median(prim_ms[b])));
+          modes.rows.push_back(row);
+        }
       }
 #endif
     }
@@ -531,6 +610,7 @@ class Bench {
     if (embree) {
 #ifdef RILL_BENCH_HAVE_EMBREE
       add(em);
+      add(modes);
 #else
       std::printf("note: built without Embree 3 (libembree-dev): no Embree comparison\n");
 #endif
@@ -927,17 +1007,45 @@ class Bench {
     const int fd = mkstemp(tmpl);
     if (fd < 0) return false;
     close(fd);
-    const std::string cmd = std::filesystem::read_symlink("/proc/self/exe").string() +
-                            " --sections shared" + " --shared-alone " + be + " --shared-out " +
-                            tmpl + " --backends " + be + " --scenes " + o_.scenes + " --size " +
-                            o_.size + " --repeats " + std::to_string(o_.repeats) + " --accuracy " +
-                            o_.accuracy + " > /dev/null";
-    const bool ran = std::system(cmd.c_str()) == 0;
+    // An argument vector, not a shell line: scene paths may hold spaces or quotes.
+    const std::vector<std::string> args = {std::filesystem::read_symlink("/proc/self/exe").string(),
+                                           "--sections",
+                                           "shared",
+                                           "--shared-alone",
+                                           be,
+                                           "--shared-out",
+                                           tmpl,
+                                           "--backends",
+                                           be,
+                                           "--scenes",
+                                           o_.scenes,
+                                           "--size",
+                                           o_.size,
+                                           "--repeats",
+                                           std::to_string(o_.repeats),
+                                           "--accuracy",
+                                           o_.accuracy};
+    std::vector<char*> argv;
+    std::string cmd;  // for the message
+    for (const std::string& a : args) {
+      argv.push_back(const_cast<char*>(a.c_str()));
+      cmd += (cmd.empty() ? "" : " ") + a;
+    }
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t quiet;  // the child's own report would interleave with ours
+    posix_spawn_file_actions_init(&quiet);
+    posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+    pid_t pid = 0;
+    int status = 0;
+    const bool ran = posix_spawn(&pid, argv[0], &quiet, nullptr, argv.data(), environ) == 0 &&
+                     waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
+                     WEXITSTATUS(status) == 0;
+    posix_spawn_file_actions_destroy(&quiet);
     std::ifstream f(tmpl);
     std::string spec;
     SharedFigures fig;
-    while (ran &&
-           f >> spec >> fig.prim_ms >> fig.prim_kernel_ms >> fig.full_ms >> fig.full_kernel_ms)
+    while (ran && f >> fig.prim_ms >> fig.prim_kernel_ms >> fig.full_ms >> fig.full_kernel_ms &&
+           f.get() == ' ' && std::getline(f, spec))
       out[spec] = fig;
     std::filesystem::remove(tmpl);
     ok = ok && ran;
@@ -953,8 +1061,9 @@ class Bench {
       std::ofstream f(o_.shared_out);
       for (const auto& spec : split_list(o_.scenes)) {
         const SharedFigures g = shared_measure(spec, {o_.shared_alone}, false)[0];
-        f << spec << ' ' << g.prim_ms << ' ' << g.prim_kernel_ms << ' ' << g.full_ms << ' '
-          << g.full_kernel_ms << '\n';
+        // The figures first, the scene last: the rest of the line, whatever blanks it holds.
+        f << g.prim_ms << ' ' << g.prim_kernel_ms << ' ' << g.full_ms << ' ' << g.full_kernel_ms
+          << ' ' << spec << '\n';
       }
       if (!f) throw rt::SceneError("cannot write " + o_.shared_out);
       return;
@@ -1067,6 +1176,11 @@ int main(int argc, char** argv) {
   app.add_option("--packets", o.packets,
                  "comma list of auto,on,off: the CPU backends once per setting, side by side")
       ->default_str(o.packets);
+  app.add_option("--embree-modes", o.embree_modes,
+                 "Embree's modes beside rtcIntersect1 in the embree section: auto (the packet "
+                 "widths of 8 and 16 this CPU runs natively, and the stream), or a comma list of "
+                 "4, 8, 16 (rtcIntersect4/8/16) and 1M (rtcIntersect1M)")
+      ->default_str(o.embree_modes);
   app.add_option("--loops", o.loops,
                  "the megakernel loops of the throughput section's full frames, side by side: "
                  "comma list of auto, ray, segment (Tracer.h: MegakernelLoop)")
@@ -1103,8 +1217,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  int rc = 0;
+  // Command-line errors (a value the option does not take): exit status 2, as rill-trace's.
+  std::vector<std::string> sections;
   try {
+    o.embree_mode_list = bench::parse_embree_modes(split_list(o.embree_modes));
     parse_size(o.size, o.width, o.height);
     o.acc = rill::parse_accuracy(o.accuracy);
     o.loop_list.clear();
@@ -1112,25 +1228,26 @@ int main(int argc, char** argv) {
       o.loop_list.push_back(rt::parse_megakernel_loop(l));
     if (o.loop_list.empty()) throw rt::SceneError("--loops: name at least one loop");
     o.packets_list.clear();
-    for (const std::string& p : split_list(o.packets)) {
-      try {
-        o.packets_list.push_back(rt::parse_packets(p));
-      } catch (const std::invalid_argument& e) {
-        throw rt::SceneError(e.what());
-      }
-    }
+    for (const std::string& p : split_list(o.packets))
+      o.packets_list.push_back(rt::parse_packets(p));
     if (o.packets_list.empty()) throw rt::SceneError("--packets: name at least one setting");
     if (o.acc == rill::Accuracy::Double)
       throw rt::SceneError("--accuracy: strict or fast (double is the accuracy reference)");
-    const auto sections = split_list(o.sections);
-    auto has = [&](const char* s) {
-      return std::find(sections.begin(), sections.end(), s) != sections.end();
-    };
+    sections = split_list(o.sections);
     for (const auto& s : sections)
       if (s != "throughput" && s != "embree" && s != "grid" && s != "depth" && s != "spec" &&
           s != "bounce" && s != "shared")
         throw rt::SceneError("--sections: unknown section '" + s +
                              "' (throughput, embree, grid, depth, spec, bounce, shared)");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rill-bench-trace: %s\n", e.what());
+    return 2;
+  }
+  auto has = [&](const char* s) {
+    return std::find(sections.begin(), sections.end(), s) != sections.end();
+  };
+  int rc = 0;
+  try {
     std::printf("rill-bench-trace: %dx%d, %d repeats, %d threads\n", o.width, o.height, o.repeats,
                 tbb::info::default_concurrency());
     Bench b(o);

@@ -75,6 +75,10 @@ class EmbreeScene {
   double build_ms() const { return build_ms_; }
   // Bytes Embree holds for the scene (after the build).
   int64_t bytes() const { return bytes_.load(); }
+  // For the packet and stream modes (trace_embree_modes.h): the device (its properties), the
+  // committed scene.
+  RTCDevice device() const { return device_; }
+  RTCScene handle() const { return scene_; }
 
   // Closest hit of rays (eye, dirs[i]), t in (0, inf): primitive id (-1: miss), distance.
   void trace(const glm::vec3& eye, const std::vector<glm::vec3>& dirs, int32_t* prim,
@@ -89,36 +93,43 @@ class EmbreeScene {
     trace_each([&](size_t i) -> const glm::vec3& { return origins[i]; }, dirs, prim, dist);
   }
 
+  // A ray (o, d) for t in (0, inf) with no hit yet, for rtcIntersect1 and the stream mode.
+  static void set_ray(RTCRayHit& rh, const glm::vec3& o, const glm::vec3& d, unsigned id) {
+    rh.ray.org_x = o.x;
+    rh.ray.org_y = o.y;
+    rh.ray.org_z = o.z;
+    rh.ray.dir_x = d.x;
+    rh.ray.dir_y = d.y;
+    rh.ray.dir_z = d.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = id;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  }
+  // A ray's answer in Rill's terms: the primitive id (-1: miss) and the distance (+inf).
+  void answer(unsigned geom_id, unsigned prim_id, float tfar, int32_t& prim, float& dist) const {
+    const bool hit = geom_id != RTC_INVALID_GEOMETRY_ID;
+    prim = hit ? ids_[prim_id] : -1;
+    dist = hit ? tfar : std::numeric_limits<float>::infinity();
+  }
+
  private:
   template <class OriginOf>
   void trace_each(const OriginOf& origin_of, const std::vector<glm::vec3>& dirs, int32_t* prim,
                   float* dist) const {
-    const float inf = std::numeric_limits<float>::infinity();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, dirs.size(), 1024),
                       [&](const tbb::blocked_range<size_t>& r) {
                         RTCIntersectContext ctx;
                         rtcInitIntersectContext(&ctx);
                         for (size_t i = r.begin(); i < r.end(); ++i) {
-                          const glm::vec3& o = origin_of(i);
                           RTCRayHit rh;
-                          rh.ray.org_x = o.x;
-                          rh.ray.org_y = o.y;
-                          rh.ray.org_z = o.z;
-                          rh.ray.dir_x = dirs[i].x;
-                          rh.ray.dir_y = dirs[i].y;
-                          rh.ray.dir_z = dirs[i].z;
-                          rh.ray.tnear = 0.0f;
-                          rh.ray.tfar = inf;
-                          rh.ray.time = 0.0f;
-                          rh.ray.mask = 0xffffffffu;
-                          rh.ray.id = 0;
-                          rh.ray.flags = 0;
-                          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                          rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+                          set_ray(rh, origin_of(i), dirs[i], 0);
                           rtcIntersect1(scene_, &ctx, &rh);
-                          const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-                          prim[i] = hit ? ids_[rh.hit.primID] : -1;
-                          dist[i] = hit ? rh.ray.tfar : inf;
+                          answer(rh.hit.geomID, rh.hit.primID, rh.ray.tfar, prim[i], dist[i]);
                         }
                       });
   }

@@ -9,11 +9,15 @@
 # 2026-12-07-shared-process/gpu.sh, 2026-12-07-readback/gpu.sh, 2026-12-07-divergent/regen-gpu.sh.
 # Run from the repository root on the GPU machine. Output: $OUT/info.txt, $OUT/frames.md,
 # $OUT/shared.md, $OUT/regen.md, $OUT/conformance.txt.
+# SHORT=1: what fits a call of about 200 s (the conformance suite for at most 90 s; OpenCL,
+# lean glsl-compute, its staging read-back and vulkan on cornell-path, thesis C and thesis A;
+# the shared section on thesis C, 3 repeats; no regeneration rows).
 source scripts/gpu-setup.sh
+short=${SHORT:-0}
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv | tee $OUT/info.txt
 $B/rill-trace info 2>&1 | grep -E "^  (opencl|glsl|vulkan)" | tee -a $OUT/info.txt
 # (1)
-timeout 200 $B/rill-conformance --backend glsl-compute,glsl,vulkan --accuracy strict > $OUT/conformance.txt 2>&1
+timeout $([ $short = 1 ] && echo 90 || echo 200) $B/rill-conformance --backend glsl-compute,glsl,vulkan --accuracy strict > $OUT/conformance.txt 2>&1
 echo "conformance strict glsl-compute,glsl,vulkan: rc=$?" | tee -a $OUT/info.txt
 grep -E "^(glsl|glsl-compute|vulkan) strict|FAIL" $OUT/conformance.txt | head -30 | tee -a $OUT/info.txt
 # (2)
@@ -21,24 +25,29 @@ echo "| scene | backend | setting | frame ms (median of 20) | kernel ms | read-b
 echo "| --- | --- | --- | --- | --- | --- |" | tee -a $OUT/frames.md
 row() { frame_row $OUT/frames.md "$@"; }
 area=docs/benchmarks/2026-12-07-path/thesis-c-area.json
-for s in "builtin:cornell-path|--max-depth 8 --spp 1" "$area|--max-depth 8 --spp 1" "builtin:thesis-a|" "builtin:thesis-c|"; do
+scenes=("builtin:cornell-path|--max-depth 8 --spp 1" "$area|--max-depth 8 --spp 1" "builtin:thesis-a|" "builtin:thesis-c|")
+[ $short = 1 ] && scenes=("builtin:cornell-path|--max-depth 8 --spp 1" "builtin:thesis-c|" "builtin:thesis-a|")
+for s in "${scenes[@]}"; do
   scene=${s%%|*}; args=${s#*|}
   row "$scene" "$args" strict opencl
   row "$scene" "$args" "strict lean" glsl-compute
-  row "$scene" "$args" "strict residual" glsl-compute RILL_GLSL_FUSED=residual
+  [ $short = 1 ] || row "$scene" "$args" "strict residual" glsl-compute RILL_GLSL_FUSED=residual
   row "$scene" "$args" "strict lean staging" glsl-compute RILL_GLSL_READBACK=staging
   row "$scene" "$args" "strict" vulkan
-  row "$scene" "$args" "native div-sqrt" glsl-compute RILL_GLSL_DIVSQRT=native
+  [ $short = 1 ] || row "$scene" "$args" "native div-sqrt" glsl-compute RILL_GLSL_DIVSQRT=native
   for p in /tmp/o-glsl-compute-strict*.png /tmp/o-vulkan-strict*.png; do
     cmp -s /tmp/o-opencl-strict.png "$p" || echo "$scene: $(basename $p) DIFFERS from opencl's" | tee -a $OUT/info.txt
   done
   echo "$scene: strict images compared" | tee -a $OUT/info.txt; rm -f /tmp/o-*.png
 done
 # (3)
+shared_scenes=builtin:thesis-c,builtin:thesis-a; repeats=5
+[ $short = 1 ] && shared_scenes=builtin:thesis-c && repeats=3
 timeout 150 $B/rill-bench-trace --sections shared --backends opencl,glsl-compute,vulkan --size 1920x1080 \
-  --scenes builtin:thesis-c,builtin:thesis-a --repeats 5 --md $OUT/shared.md > $OUT/shared.txt 2>&1
+  --scenes $shared_scenes --repeats $repeats --md $OUT/shared.md > $OUT/shared.txt 2>&1
 echo "shared section rc=$?" | tee -a $OUT/info.txt
 # (4)
+[ $short = 1 ] && exit 0
 echo "| scene | backend | regenerate | frame ms | kernel ms |" > $OUT/regen.md
 for be in opencl glsl-compute; do for r in off on; do
   RILL_PATH_REGENERATE=$r timeout 60 $B/rill-trace render builtin:cornell-path --size 1920x1080 --spp 16 --backend $be \

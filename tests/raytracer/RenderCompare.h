@@ -6,6 +6,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -56,6 +57,29 @@ inline void expect_identical(const RenderResult& a, const RenderResult& b,
   }
   EXPECT_EQ(diff, 0) << what;
   EXPECT_EQ(a.rays, b.rays) << what;
+}
+
+// The pixels of `whole` that a window covers, as a RenderResult of the window's size: each
+// per-pixel vector that `whole` holds (colour, AOVs, the 8-bit image's 3 bytes a pixel).
+inline RenderResult crop(const RenderResult& whole, const RenderSettings::Window& w) {
+  RenderResult c;
+  c.width = w.width;
+  c.height = w.height;
+  auto rows = [&](const auto& from, auto& to, size_t per_pixel) {
+    if (from.empty()) return;
+    for (int y = w.y; y < w.y + w.height; ++y) {
+      const size_t p = static_cast<size_t>(y) * static_cast<size_t>(whole.width) + w.x;
+      const auto begin = from.begin() + static_cast<std::ptrdiff_t>(p * per_pixel);
+      to.insert(to.end(), begin, begin + static_cast<std::ptrdiff_t>(w.width * per_pixel));
+    }
+  };
+  rows(whole.color, c.color, 1);
+  rows(whole.depth, c.depth, 1);
+  rows(whole.prim, c.prim, 1);
+  rows(whole.normal, c.normal, 1);
+  rows(whole.albedo, c.albedo, 1);
+  rows(whole.rgb8, c.rgb8, 3);
+  return c;
 }
 
 }  // namespace rt::testing

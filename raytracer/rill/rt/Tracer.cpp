@@ -388,7 +388,12 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
                                  megakernel_loop_name(rs.loop) + "/" + std::to_string(win.width) +
                                  "x" + std::to_string(win.height);
   I.film.read_back_later(rs.read_back_later);
-  I.strategy(rs.strategy).render(frame, r);
+  try {
+    I.strategy(rs.strategy).render(frame, r);
+  } catch (...) {
+    I.film.wait_read_backs();  // read into r, which the caller may drop now
+    throw;
+  }
   r.cold = I.traced.insert(traced_key).second;
 }
 

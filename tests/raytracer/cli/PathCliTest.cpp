@@ -45,6 +45,31 @@ TEST(CliPath, SavedAndResumedRendersAreTheRenderAtOnce) {
   EXPECT_EQ(testing::read_text(dir.path("again.pfm")), once);
 }
 
+// The AOVs are sample 0's however the render goes: 9 samples at once (16 per launch), resumed
+// from 4 (sample 0's camera rays traced again), saved in chunks of 2 (each chunk after the
+// first resumed) and under a time limit (one sample per launch): each AOV file is that of the
+// render of one sample, byte for byte.
+TEST(CliPath, AovsAreSampleZerosAtOnceResumedInChunksAndTimed) {
+  testing::TempDir dir;
+  auto aovs = [](const std::string& name) {
+    return " --depth " + name + "-d.pfm --prim " + name + "-p.pfm --normal " + name +
+           "-n.pfm --albedo " + name + "-a.pfm --out /dev/null";
+  };
+  ASSERT_EQ(run_path("--spp 1" + aovs("one"), dir).status, 0);
+  ASSERT_EQ(run_path("--spp 9" + aovs("nine"), dir).status, 0);
+  ASSERT_EQ(run_path("--spp 4 --save four.acc --out /dev/null", dir).status, 0);
+  ASSERT_EQ(run_path("--spp 9 --resume four.acc" + aovs("resumed"), dir).status, 0);
+  ASSERT_EQ(run_path("--spp 9 --save c.acc --save-every 2" + aovs("chunks"), dir).status, 0);
+  ASSERT_EQ(run_path("--spp 9 --time-limit 100000" + aovs("timed"), dir).status, 0);
+  for (const char* aov : {"-d.pfm", "-p.pfm", "-n.pfm", "-a.pfm"}) {
+    const std::string want = testing::read_text(dir.path(std::string("one") + aov));
+    ASSERT_FALSE(want.empty()) << aov;
+    for (const char* name : {"nine", "resumed", "chunks", "timed"})
+      EXPECT_TRUE(testing::read_text(dir.path(name + std::string(aov))) == want)
+          << name << aov << " differs from one" << aov;
+  }
+}
+
 // --albedo writes the first hit's albedo as PFM, and with --exr the same floats as channels
 // albedo.R, albedo.G, albedo.B; a miss is 0 (the camera sees the box's open front's edges).
 TEST(CliPath, TheAlbedoGoesToItsPfmAndToTheExr) {

@@ -208,10 +208,10 @@ const char* const kPathSuffixes[] = {".png",        ".pfm", "-depth.pfm", "-prim
 
 // A progressive render under mpirun goes in rounds (docs/distributed.md, "Rounds"): each
 // round a job over every tile, each tile going on from its slice of the sums rank 0 keeps.
-// The image, every AOV, the variance and the saved sums are the single-process render's of
-// the same spp, byte for byte: rounds of --save-every 2 (2, 4, 6, 7), and rounds doubling
-// under a time limit that is never reached (1, 3, 7), for 2 and 3 ranks and tiles of 7, which
-// divide neither side.
+// The image, every AOV (sample 0's), the variance and the saved sums are the single-process
+// render's of the same spp, byte for byte: rounds of --save-every 2 (2, 4, 6, 7), and rounds
+// doubling under a time limit that is never reached (1, 3, 7), for 2 and 3 ranks and tiles of 7,
+// which divide neither side.
 TEST_F(Distributed, RoundsAreTheSingleProcesssRenderAndSums) {
   RT_REQUIRE_MPI();
   TempDir dir;
@@ -221,6 +221,11 @@ TEST_F(Distributed, RoundsAreTheSingleProcesssRenderAndSums) {
   ASSERT_EQ(ref.status, 0) << ref.err;
   const std::string sums = read_text(dir.path("ref.acc"));
   ASSERT_EQ(sums.substr(0, 8), "RILLACC2");  // with the squares, for the variance
+  // The AOVs (so every round's, below) are sample 0's: those of the render of one sample.
+  const std::string one = " render builtin:cornell-path --size 40x30 --spp 1 --threads 1 --quiet";
+  ASSERT_EQ(run_command(kExe + one + path_outputs("one"), dir).status, 0);
+  const char* const kAovSuffixes[] = {"-depth.pfm", "-prim.pfm", "-normal.pfm", "-albedo.pfm"};
+  expect_same_files(dir, "one", "ref", kAovSuffixes, std::size(kAovSuffixes));
   for (auto [ranks, rounds] :
        {std::pair{2, std::string("--save-every 2")}, {3, std::string("--time-limit 100000")}}) {
     const std::string name = "np" + std::to_string(ranks);

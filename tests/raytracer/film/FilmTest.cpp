@@ -120,10 +120,7 @@ TEST_P(FilmTest, SamplesAddUpWithoutLosingSmallOnes) {
   RenderResult r;
   FrameOutputs want;
   want.depth = want.prim = want.normal = false;
-  Stream<Float> depth(2, 1);
-  Stream<Int> prim(2, 1);
-  Stream<Float3> normal(2, 1);
-  film.finish(AovStreams{depth, prim, normal}, want, r);
+  film.finish(want, r);
   ASSERT_EQ(r.color.size(), 2u);
   EXPECT_TRUE(r.depth.empty() && r.prim.empty() && r.normal.empty() && r.rgb8.empty());
   auto exact_mean = [&](double first, double rest) {
@@ -151,9 +148,6 @@ TEST_P(FilmTest, TheEightBitImageIsEveryPixelsBytesInOrder) {
   want.rgb8 = true;
   for (int w = 1; w <= 5; ++w)
     for (int h : {1, 2, 3, 7}) {
-      Stream<Float> depth(w, h);
-      Stream<Int> prim(w, h);
-      Stream<Float3> normal(w, h);
       for (int spp : {1, 1, 2}) {
         const std::string what = std::to_string(w) + "x" + std::to_string(h) + ", spp " +
                                  std::to_string(spp) + " on " + GetParam();
@@ -167,7 +161,7 @@ TEST_P(FilmTest, TheEightBitImageIsEveryPixelsBytesInOrder) {
           film.add_sample(sample, s);
           for (size_t p = 0; p < px.size(); ++p) mean[p] += px[p];
         }
-        film.finish(AovStreams{depth, prim, normal}, want, r);
+        film.finish(want, r);
         ASSERT_EQ(r.rgb8.size(), static_cast<size_t>(w * h * 3)) << what;
         for (size_t p = 0; p < mean.size(); ++p)
           for (int c = 0; c < 3; ++c) {

@@ -38,7 +38,7 @@ bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
-// The same image, AOVs (the last sample's camera ray's) and samples, byte for byte; and the
+// The same image, AOVs (sample 0's camera ray's) and samples, byte for byte; and the
 // same rays where both traced all their samples.
 void expect_same(const RenderResult& a, const RenderResult& b, const std::string& what,
                  bool rays = true) {
@@ -105,7 +105,7 @@ TEST_P(PathRegeneration, ResumedAndStoppedRendersCountTheirSamples) {
   RenderSettings rest = settings(GetParam(), 16, 12, 6, 3);
   rest.resume = &two.accumulation;
   const RenderResult resumed = t.render(rest, s.camera);
-  EXPECT_EQ(resumed.launches, 2);                                 // samples 2-4, then 5
+  EXPECT_EQ(resumed.launches, 3);  // sample 0's camera rays (the AOVs), samples 2-4, then 5
   expect_same(whole, resumed, "resumed after 2 samples", false);  // (rays: its 4 samples')
   EXPECT_EQ(two.rays + resumed.rays, whole.rays);
 

@@ -49,9 +49,10 @@ class FlatStrategy final : public RenderStrategy {
     for (int s = 0; s < f.spp; ++s) {
       k.execute();
       ++r.launches;
+      if (s == 0) f.film.read_aovs(AovStreams{depth, prim, normal}, rs.outputs, r);
       f.film.add_sample(color, s);
     }
-    f.film.finish(AovStreams{depth, prim, normal}, rs.outputs, r);
+    f.film.finish(rs.outputs, r);
   }
 
  private:

@@ -18,23 +18,6 @@ namespace {
 
 class Window : public ::testing::TestWithParam<std::string> {};
 
-// The whole render's pixels that a window covers, as a RenderResult of the window's size.
-RenderResult crop(const RenderResult& whole, const RenderSettings::Window& w) {
-  RenderResult c;
-  c.width = w.width;
-  c.height = w.height;
-  for (int y = w.y; y < w.y + w.height; ++y)
-    for (int x = w.x; x < w.x + w.width; ++x) {
-      const size_t p = static_cast<size_t>(y) * static_cast<size_t>(whole.width) + x;
-      c.color.push_back(whole.color[p]);
-      c.depth.push_back(whole.depth[p]);
-      c.prim.push_back(whole.prim[p]);
-      c.normal.push_back(whole.normal[p]);
-      c.rgb8.insert(c.rgb8.end(), whole.rgb8.begin() + 3 * p, whole.rgb8.begin() + 3 * p + 3);
-    }
-  return c;
-}
-
 // Renders the image in tiles of tw x th (the last row and column smaller) and checks each
 // against the whole render; the tiles' ray counts add up to the whole render's.
 void expect_tiles_match(Tracer& t, const Scene& s, RenderSettings rs, int tw, int th,
@@ -51,7 +34,7 @@ void expect_tiles_match(Tracer& t, const Scene& s, RenderSettings rs, int tw, in
       const RenderResult part = t.render(rs, s.camera);
       ASSERT_EQ(part.width, rs.window.width) << tile;
       ASSERT_EQ(part.height, rs.window.height) << tile;
-      RenderResult want = crop(whole, rs.window);
+      RenderResult want = testing::crop(whole, rs.window);
       want.rays = part.rays;  // compared as a sum below
       testing::expect_identical(want, part, tile);
       EXPECT_EQ(want.rgb8, part.rgb8) << tile;

@@ -7,6 +7,7 @@
 #include <bit>
 #include <functional>
 #include <span>
+#include <stdexcept>
 
 #include "rill/Stopwatch.h"
 
@@ -96,6 +97,20 @@ glm::vec2 sample_offset(int k) {
 
 namespace {
 
+// An output asked for, read straight into the result (whose memory a caller that renders
+// frame after frame into one RenderResult keeps); one not asked for is emptied.
+// With `flight`, the read-back is started and left there (the backend keeps a copy of what
+// it reads, so later launches may write the stream at once: rill/ReadBack.h).
+template <typename S, typename V>
+void read_into(const S& stream, V& into, bool wanted, OutputsInFlight* flight = nullptr) {
+  if (!wanted) return into.clear();
+  into.resize(static_cast<size_t>(stream.size()));
+  if (flight)
+    flight->reads.push_back(stream.download_async(std::span(into)));
+  else
+    stream.download_into(std::span(into));
+}
+
 // Element i makes pixels 4i .. 4i + 3 into 12 bytes, R G B R G B ..., as three little-endian
 // Ints: the memory of the 8-bit image itself, which is read back into RenderResult::rgb8 as
 // it is, with nothing to unpack on the host. rgb(x, y) gives a pixel's three bytes.
@@ -180,6 +195,14 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
   }
   single_.reset();
   accumulate_ms_ = 0;
+  aovs_read_ = false;
+  flight_.reset();
+}
+
+OutputsInFlight* Film::flight(const FrameOutputs& want) {
+  if (!later_ || want.variance || want.accumulation) return nullptr;
+  if (!flight_) flight_ = std::make_shared<OutputsInFlight>();
+  return flight_.get();
 }
 
 Film::Sums Film::sums() {
@@ -219,7 +242,25 @@ void Film::prepare_encoder(const Stream<Float3>& color) {
   encoder_for(source, static_cast<int>(source.width()), static_cast<int>(source.height()));
 }
 
-void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r) {
+bool wants_aovs(const FrameOutputs& want) {
+  return want.depth || want.prim || want.normal || want.albedo;
+}
+
+void Film::read_aovs(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r) {
+  Stopwatch step;
+  OutputsInFlight* later = flight(want);
+  read_into(aovs.depth, r.depth, want.depth, later);
+  read_into(aovs.prim, r.prim, want.prim, later);
+  read_into(aovs.normal, r.normal, want.normal, later);
+  if (aovs.albedo)
+    read_into(*aovs.albedo, r.albedo, want.albedo, later);
+  else
+    r.albedo.clear();
+  aovs_read_ = true;
+  r.times.read_back += step.ms();
+}
+
+void Film::finish(const FrameOutputs& want, RenderResult& r) {
   Stopwatch step;
   // The colour stream: one sample's or the mean.
   const Stream<Float3> color = summing_ ? *now_->mean_color : *single_;
@@ -231,38 +272,26 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     accumulate_ms_ += step.lap();
   }
   r.times.accumulate += accumulate_ms_;
-  // Each output asked for is read straight into the result (whose memory a caller that
-  // renders frame after frame into one RenderResult keeps); the others are emptied. Read
-  // later: the read-backs are started (the backend keeps a copy of what they read, so the
-  // next frame's kernels may write these streams at once) and left in r.in_flight. The
-  // variance and the accumulation are computed and read on the host now.
-  std::shared_ptr<OutputsInFlight> flight;
-  if (later_ && !want.variance && !want.accumulation) flight = std::make_shared<OutputsInFlight>();
-  auto read = [&flight](const auto& stream, auto& into, bool wanted) {
-    if (!wanted) return into.clear();
-    into.resize(static_cast<size_t>(stream.size()));
-    if (flight)
-      flight->reads.push_back(stream.download_async(std::span(into)));
-    else
-      stream.download_into(std::span(into));
-  };
-  read(color, r.color, want.color);
-  read(aovs.depth, r.depth, want.depth);
-  read(aovs.prim, r.prim, want.prim);
-  read(aovs.normal, r.normal, want.normal);
-  if (aovs.albedo)
-    read(*aovs.albedo, r.albedo, want.albedo);
-  else
+  if (!aovs_read_) {
+    // A strategy that does not read its AOVs would give empty ones where they were asked for.
+    if (wants_aovs(want))
+      throw std::logic_error("Film::finish: AOVs were asked for and the strategy read none");
+    r.depth.clear();
+    r.prim.clear();
+    r.normal.clear();
     r.albedo.clear();
+  }
+  OutputsInFlight* later = flight(want);
+  read_into(color, r.color, want.color, later);
   r.variance.clear();
   if (want.variance && squares_) {
     // (squares / n - mean^2) n / (n - 1) / n, in double on the host; 0 below 2 samples.
     std::vector<glm::vec3> sq, mean;
-    read(*now_->squares, sq, true);
+    read_into(*now_->squares, sq, true);
     if (want.color)
       mean = r.color;
     else
-      read(color, mean, true);
+      read_into(color, mean, true);
     const double n = samples_done_;
     r.variance.resize(sq.size());
     for (size_t p = 0; p < sq.size(); ++p)
@@ -276,9 +305,9 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     r.accumulation.width = static_cast<int>(now_->sum->width());
     r.accumulation.height = static_cast<int>(now_->sum->height());
     r.accumulation.samples = samples_done_;
-    read(*now_->sum, r.accumulation.sum, true);
-    read(*now_->carry, r.accumulation.carry, true);
-    if (squares_) read(*now_->squares, r.accumulation.squares, true);
+    read_into(*now_->sum, r.accumulation.sum, true);
+    read_into(*now_->carry, r.accumulation.carry, true);
+    if (squares_) read_into(*now_->squares, r.accumulation.squares, true);
   }
   if (!want.rgb8) r.rgb8.clear();
   if (want.rgb8) {
@@ -297,20 +326,20 @@ void Film::finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult
     r.rgb8.resize(static_cast<size_t>(groups) * 12);
     const std::span<glm::ivec3> words(reinterpret_cast<glm::ivec3*>(r.rgb8.data()),
                                       static_cast<size_t>(groups));
-    if (flight) {
-      flight->reads.push_back(now_->packed->download_async(words));
-      flight->rgb8_bytes = static_cast<size_t>(n) * 3;
+    if (later) {
+      later->reads.push_back(now_->packed->download_async(words));
+      later->rgb8_bytes = static_cast<size_t>(n) * 3;
     } else {
       now_->packed->download_into(words);
       r.rgb8.resize(static_cast<size_t>(n) * 3);
     }
   }
   r.times.read_back += step.ms();
-  // Nothing left in flight (a backend that reads back at once): finished here.
-  if (flight) {
-    const bool any = std::any_of(flight->reads.begin(), flight->reads.end(),
+  if (flight_) {
+    // Nothing left in flight (a backend that reads back at once): finished here.
+    const bool any = std::any_of(flight_->reads.begin(), flight_->reads.end(),
                                  [](const ReadBack& b) { return b.in_flight(); });
-    r.in_flight = std::move(flight);
+    r.in_flight = std::move(flight_);
     if (!any) r.wait_outputs();
   }
 }

@@ -4,7 +4,8 @@
 // A strategy launches its kernels once per sample and hands each sample's colour stream to
 // the film, which adds it to a running sum on the same backend (a compensated sum: a float
 // sum and the rounding error it dropped, so many samples lose almost nothing). At the end,
-// the film makes the mean and reads back only what FrameOutputs asks for: the 8-bit image
+// the film makes the mean and reads back only what FrameOutputs asks for (the AOVs, sample
+// 0's, it read right after the launch that traced them: read_aovs): the 8-bit image
 // is encoded on the device (Srgb8.h) into the very bytes of RenderResult::rgb8, so a PNG
 // costs 3 bytes per pixel to read back and nothing to unpack.
 //
@@ -42,13 +43,17 @@ struct FilmSum {
 FilmSum film_add(const rill::Float3& sum, const rill::Float3& carry, const rill::Float3& color,
                  const rill::Bool& first);
 
-// The first sample's AOV streams, as a strategy wrote them.
+// A strategy's AOV streams, holding sample 0's just after the launch that traced its camera
+// rays (the launches of later samples write over them).
 struct AovStreams {
   rill::Stream<rill::Float> depth;
   rill::Stream<rill::Int> prim;
   rill::Stream<rill::Float3> normal;
   const rill::Stream<rill::Float3>* albedo = nullptr;  // the path integrator's, or none
 };
+
+// Whether `want` asks for any AOV (depth, prim, normal, albedo).
+bool wants_aovs(const FrameOutputs& want);
 
 class Film {
  public:
@@ -78,12 +83,23 @@ class Film {
   Sums sums();
   // n samples added to sums() by the strategy, in order after those before.
   void added_samples(int n) { samples_done_ += n; }
+  // Sample 0's AOVs, read back into r now as `want` asks (the others emptied), once per frame:
+  // right after the launch that traced sample 0, or, in a resumed frame, after a launch that
+  // traced sample 0's camera rays once more without adding it to the film. The AOVs are
+  // sample 0's, the pixel centre's, however many samples follow and however they are
+  // launched. Adds the time it took to r.times.read_back.
+  void read_aovs(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r);
   // The mean of the samples added (and resumed), encoded and read back as `want` asks, with
-  // the first sample's AOVs; r.spp is their count. Adds the time it took to r.times.
-  void finish(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r);
-  // Whether finish() may leave the images' read-back in flight (RenderSettings::
-  // read_back_later, set by the Tracer per frame): r.in_flight then holds it.
+  // the AOVs read_aovs read; r.spp is their count. Adds the time it took to r.times. Throws
+  // std::logic_error where `want` asks for an AOV and read_aovs was not called.
+  void finish(const FrameOutputs& want, RenderResult& r);
+  // Whether read_aovs() and finish() may leave the read-backs in flight
+  // (RenderSettings::read_back_later, set by the Tracer per frame): finish() then puts them in
+  // r.in_flight. The variance and the accumulation are read at once.
   void read_back_later(bool later) { later_ = later; }
+  // Waits for the read-backs a frame that did not finish left in flight (its strategy threw),
+  // so that the result's memory may go.
+  void wait_read_backs() { flight_.reset(); }
 
  private:
   struct Buffers;
@@ -100,12 +116,19 @@ class Film {
   rill::Program add_, mean_, add_squares_;
   std::map<std::string, std::unique_ptr<Buffers>> buffers_;  // per backend and accuracy
   Buffers* now_ = nullptr;                                   // the frame's
-  bool summing_ = false;  // running sums (spp > 1, resumed, or their read-back wanted)
-  bool squares_ = false;  // and the sum of the samples' squares (FrameOutputs::variance)
-  int samples_done_ = 0;  // samples in the sums (resumed ones included)
+  bool summing_ = false;    // running sums (spp > 1, resumed, or their read-back wanted)
+  bool squares_ = false;    // and the sum of the samples' squares (FrameOutputs::variance)
+  int samples_done_ = 0;    // samples in the sums (resumed ones included)
+  bool aovs_read_ = false;  // read_aovs was called in this frame
   std::optional<rill::Stream<rill::Float3>> single_;  // spp == 1: the sample itself
   double accumulate_ms_ = 0;
   bool later_ = false;
+  // The frame's read-backs started so far when they may stay in flight (later_), handed to
+  // the result by finish().
+  std::shared_ptr<OutputsInFlight> flight_;
+  // The read-backs in flight for `want`, made at the frame's first; null when they are read
+  // at once.
+  OutputsInFlight* flight(const FrameOutputs& want);
 };
 
 }  // namespace rt

@@ -112,7 +112,7 @@ ShadowQuery PathIntegrator::shade(PathItem& path, const Hit& hit, const Int2& pi
     const Surface s = sh.surface(path.ray, hit);
     const MaterialTable::Slots slots = sh.material(s);
     if (first != nullptr) {
-      RILL_IF(path.depth == 0) {
+      RILL_IF(first->only_if ? path.depth == 0 && *first->only_if : path.depth == 0) {
         first->depth = hit.t;
         first->prim = hit.id;
         first->normal = s.ns;

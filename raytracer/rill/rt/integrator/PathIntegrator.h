@@ -49,6 +49,9 @@ struct FirstHit {
   Int prim = -1;
   Float3 normal{0.0f};
   Float3 albedo{0.0f};  // the shader's albedo (SurfaceShader::albedo); 0 for a miss
+  // If set, the camera ray's hit is recorded only where this holds (a kernel of several
+  // samples records its first sample's).
+  const Bool* only_if = nullptr;
 };
 
 class PathIntegrator {

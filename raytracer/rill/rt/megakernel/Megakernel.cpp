@@ -164,7 +164,12 @@ Program Megakernel::capture_path() const {
       RILL_DO {
         Hit hit{Float(0.0f), Float2(0.0f), Int(-1)};
         if (S_.F.geometry) hit = S_.intersector.intersect(path.ray, nullptr);
+        // The AOVs are the launch's first sample's (sample 0's in the launch that traces it):
+        // the later samples' camera rays leave them as they are.
+        const Bool launch_first = sample == path_first_;
+        first.only_if = &launch_first;
         const ShadowQuery shadow = P.shade(path, hit, image_pix, &first);
+        first.only_if = nullptr;
         if (P.shadow_rays()) {
           RILL_IF(shadow.active) {
             const Bool any_hit = true;
@@ -183,11 +188,6 @@ Program Megakernel::capture_path() const {
             offset = launch_sample_offset(sample - path_first_);
             path = new_path();
             S_.camera.aim(path.ray, pix);
-            // The AOVs are the last sample's camera ray's, as when each sample was a launch.
-            first.depth = as_float(Int(0x7f800000));
-            first.prim = -1;
-            first.normal = Float3(0.0f);
-            first.albedo = Float3(0.0f);
             iter = 0;
           }
           RILL_ELSE {
@@ -577,6 +577,37 @@ struct Megakernel::Buffers {
   Stream<Float3> carry;   // the path program's, where it sums no more than one sample
 };
 
+// Sample 0's camera rays once more, for their AOVs alone: its first iteration (max_iter_ 1,
+// set by the caller), which traces the camera ray and writes the AOVs as the launch that
+// traced sample 0 wrote them. The path program's colour, a path cut short, goes to the
+// kernel's own streams, never the film's sums; its rays are not counted.
+void Megakernel::retrace_aovs(Kernel& k, Buffers& out, const Film::Sums& film_sums,
+                              RenderResult& r) {
+  S_.camera.offset.set(sample_offset(0));
+  S_.camera.lens_sample.set(0);
+  if (S_.F.area_lights) S_.shading.sample_index.set(0);
+  const bool sums = film_sums.sum != nullptr;
+  if (path_) {
+    path_first_.set(0);
+    path_samples_.set(1);
+    path_accumulate_.set(0);
+    sample_offsets_[0]->set(sample_offset(0));
+    if (sums) {
+      k.bind("sum_in", out.color).bind("carry_in", out.carry);
+      k.bind("color", out.color).bind("carry", out.carry);
+    }
+  }
+  Stopwatch launch;
+  k.execute();
+  ++r.launches;
+  r.times.launch += launch.ms();
+  r.times.add_kernel(k.last_launch().device_ms);
+  if (path_ && sums) {
+    k.bind("sum_in", *film_sums.sum).bind("carry_in", *film_sums.carry);
+    k.bind("color", *film_sums.sum).bind("carry", *film_sums.carry);
+  }
+}
+
 void Megakernel::render(const Frame& frame, RenderResult& r) {
   const RenderSettings& rs = frame.settings;
   const int width = frame.width, height = frame.height, depth = frame.depth, spp = frame.spp;
@@ -658,10 +689,19 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
     r.first_launch_ms = first_launch.ms();
   }
   // A path has at most depth + 1 segments, one iteration each.
-  max_iter_.set(path_ ? depth + 2 : static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30)));
+  const int32_t max_iter =
+      path_ ? depth + 2 : static_cast<int32_t>(std::min<int64_t>(iters, 1 << 30));
+  max_iter_.set(max_iter);
   r.compile_ms = since_start.ms() - r.times.setup;
 
   Stopwatch trace, step;
+  const AovStreams aovs{out.dist, out.prim, out.normal, path() ? &out.albedo : nullptr};
+  if (frame.retrace_aovs()) {
+    max_iter_.set(1);  // the camera ray's iteration alone
+    retrace_aovs(k, out, film_sums, r);
+    film.read_aovs(aovs, rs.outputs, r);
+    max_iter_.set(max_iter);
+  }
   for (int s = frame.first_sample; s < spp;) {
     const int n = sums ? std::min(per_launch, spp - s) : 1;  // this launch's samples
     S_.camera.offset.set(sample_offset(s));
@@ -681,6 +721,9 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
     r.times.add_kernel(k.last_launch().device_ms);
     r.rays += rill::sum(out.rays);  // on the device: only the total comes back
     r.times.reduce += step.lap();
+    // A launch's AOVs are its first sample's: sample 0's, before the next launch writes over
+    // them.
+    if (s == 0) film.read_aovs(aovs, rs.outputs, r);
     if (sums)
       film.added_samples(n);
     else
@@ -688,8 +731,7 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
     s += n;
     if (!frame.more_after(s - 1)) break;
   }
-  film.finish(AovStreams{out.dist, out.prim, out.normal, path() ? &out.albedo : nullptr},
-              rs.outputs, r);
+  film.finish(rs.outputs, r);
   r.trace_ms = trace.ms();
 }
 

@@ -28,7 +28,9 @@
 // sample's arithmetic and the sum's are as with one sample per launch, and so the bits.
 // RenderSettings::path_samples_per_launch (RILL_PATH_REGENERATE=off: 1) sets how many samples
 // a launch takes; with 1, or where the film keeps no sums or also the squares, each launch is
-// one sample that the film adds.
+// one sample that the film adds. The AOVs a launch writes are its first sample's camera ray's
+// (FirstHit::only_if): sample 0's in the launch that traces it, which render() hands to the
+// film at once (Film::read_aovs).
 //
 // The loop has two shapes (MegakernelLoop, Tracer.h), with the same operations in the same
 // order and so the same bits:
@@ -87,6 +89,8 @@ class Megakernel final : public RenderStrategy {
   struct PathLoop;
   struct Aovs;
   struct Buffers;  // a backend's output streams (PerBackend.h: buffers_for)
+  // A resumed frame's AOVs: sample 0's camera rays traced once more (Frame::retrace_aovs).
+  void retrace_aovs(rill::Kernel& k, Buffers& out, const Film::Sums& film_sums, RenderResult& r);
   rill::Program capture(MegakernelLoop loop) const;
   rill::Program capture_path() const;
   bool path() const { return S_.options.integrator == Integrator::Path; }

@@ -223,6 +223,17 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
     K.shadow_acc.bind("local", B.local);
   }
   Stopwatch since_samples;
+  // Sample 0's camera rays, traced once more in a resumed frame that asks for AOVs: the
+  // surface pass of the first bounce writes them (the film adds nothing).
+  const AovStreams aovs = aov_streams(B.aov);
+  if (frame.retrace_aovs()) {
+    S_.camera.offset.set(sample_offset(0));
+    S_.camera.lens_sample.set(0);
+    run(K.raygen, kRaygen, std::nullopt);
+    if (F.geometry) trace(B.ray, B.hit, false);
+    run(K.surface, kSurface, where(path_state, {kPathAlive, kPathSurface}));
+    film.read_aovs(aovs, rs.outputs, r);
+  }
   for (int sample = frame.first_sample; sample < spp; ++sample) {
     S_.camera.offset.set(sample_offset(sample));
     S_.camera.lens_sample.set(sample);
@@ -244,10 +255,12 @@ void Multipass::render(const Frame& frame, RenderResult& r) {
     Stopwatch reduce;
     r.rays += rill::sum(path_rays);
     r.times.reduce += reduce.ms();
+    // Sample 0's AOVs, before the next sample's passes write over them.
+    if (sample == 0) film.read_aovs(aovs, rs.outputs, r);
     film.add_sample(B.path.field<Float3>("color"), sample);
     if (!frame.more_after(sample)) break;
   }
-  finish_passes(film, B.aov, rs.outputs, r);
+  finish_passes(film, rs.outputs, r);
   r.trace_ms = since_samples.ms();
 }
 

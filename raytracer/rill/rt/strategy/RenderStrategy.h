@@ -35,6 +35,10 @@ struct Frame {
   int first_sample = 0;
   // After sample s was handed to the film: whether to go on (settings.after_pass).
   bool more_after(int s) const { return !settings.after_pass || settings.after_pass(s + 1); }
+  // Whether the frame is resumed and asks for AOVs: sample 0 was traced by the render it
+  // resumes, so the strategy traces sample 0's camera rays once more, for their AOVs alone
+  // (Film::read_aovs), without adding anything to the film.
+  bool retrace_aovs() const { return first_sample > 0 && wants_aovs(settings.outputs); }
   // Whether the film must keep running sums even for one sample (to resume from, or to be
   // resumed): a strategy then does not encode a one-sample frame itself.
   bool summing() const {
@@ -58,15 +62,20 @@ inline int64_t run_pass(rill::Kernel& k, const std::optional<rill::StateMask>& m
   return written;
 }
 
-// The end of such a frame: the launch time is its passes', and the film finishes with the
-// camera ray's AOVs in `aov`.
-inline void finish_passes(Film& film, const rill::Stream<Aov>& aov, const FrameOutputs& want,
-                          RenderResult& r, const rill::Stream<rill::Float3>* albedo = nullptr) {
+// The AOV streams of such a strategy: the camera ray's AOVs in `aov` (and the path
+// integrator's albedo).
+inline AovStreams aov_streams(const rill::Stream<Aov>& aov,
+                              const rill::Stream<rill::Float3>* albedo = nullptr) {
+  return AovStreams{aov.field<rill::Float>("depth"), aov.field<rill::Int>("prim"),
+                    aov.field<rill::Float3>("normal"), albedo};
+}
+
+// The end of such a frame: the launch time is its passes', and the film finishes (with the
+// AOVs read after sample 0, Film::read_aovs).
+inline void finish_passes(Film& film, const FrameOutputs& want, RenderResult& r) {
   r.times.launch = 0;
   for (const PassStats& p : r.passes) r.times.launch += p.ms;
-  film.finish(AovStreams{aov.field<rill::Float>("depth"), aov.field<rill::Int>("prim"),
-                         aov.field<rill::Float3>("normal"), albedo},
-              want, r);
+  film.finish(want, r);
 }
 
 class RenderStrategy {

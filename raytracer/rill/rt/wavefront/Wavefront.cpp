@@ -155,6 +155,17 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
   };
 
   Stopwatch since_samples;
+  // Sample 0's camera rays, traced once more in a resumed frame that asks for AOVs: the
+  // camera stage and the first shade stage write them (the film adds nothing).
+  const AovStreams aovs = aov_streams(B.aov, &B.albedo);
+  if (frame.retrace_aovs()) {
+    S_.camera.offset.set(sample_offset(0));
+    S_.camera.lens_sample.set(0);
+    path_->sample_index.set(0);
+    run(K.camera, kCamera, std::nullopt);
+    if (geometry && run(K.intersect, kIntersect, alive) > 0) run(K.shade, kShade, alive);
+    film.read_aovs(aovs, rs.outputs, r);
+  }
   for (int s = frame.first_sample; s < spp; ++s) {
     S_.camera.offset.set(sample_offset(s));
     S_.camera.lens_sample.set(s);
@@ -178,10 +189,12 @@ void Wavefront::render(const Frame& frame, RenderResult& r) {
     Stopwatch reduce;
     r.rays += rill::sum(ints).z;  // on the device: only the total comes back
     r.times.reduce += reduce.ms();
+    // Sample 0's AOVs, before the next sample's stages write over them.
+    if (s == 0) film.read_aovs(aovs, rs.outputs, r);
     film.add_sample(B.path.field<Float3>("radiance"), s);
     if (!frame.more_after(s)) break;
   }
-  finish_passes(film, B.aov, rs.outputs, r, &B.albedo);
+  finish_passes(film, rs.outputs, r);
   r.trace_ms = since_samples.ms();
 }
 
