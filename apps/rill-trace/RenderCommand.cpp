@@ -138,18 +138,36 @@ int render(RenderOptions o) {
 
   // --bench-frames: the same frame again, each timed as the user's program would see it
   // (Tracer::render from call to return: launch, kernel, reductions, read-back, host work).
+  // --overlap on: a repeat's read-back runs beside the next repeat's trace where the backend
+  // allows (RenderSettings::read_back_later); a repeat's time is then its render and the wait
+  // for the repeat before's read-back, and each repeat's read-back step includes its wait.
   std::vector<double> frame_ms, frame_trace_ms;
   std::vector<rt::FrameTimes> frame_times;
+  rt::RenderSettings bench_rs = rs;
+  bench_rs.read_back_later = o.overlap;
   rt::RenderResult frame;  // one result for every frame: its image memory is reused
+  rt::RenderResult ahead;  // --overlap on: the repeat before, its read-back in flight
+  auto wait_ahead = [&] {
+    ahead.wait_outputs();
+    frame_trace_ms.back() = ahead.trace_ms;
+    frame_times.back().read_back = ahead.times.read_back;
+  };
   for (int f = 0; f < o.bench_frames; ++f) {
     if (interrupted() != 0)
       return stopped("after " + std::to_string(f) + " of " + std::to_string(o.bench_frames) +
                      " --bench-frames repeats; nothing written");
     const auto t_frame = Clock::now();
-    tracer.render(rs, first_camera, frame);
+    tracer.render(bench_rs, first_camera, frame);
+    if (o.overlap && f > 0) wait_ahead();
     frame_ms.push_back(ms_since(t_frame));
     frame_trace_ms.push_back(frame.trace_ms);
     frame_times.push_back(frame.times);
+    if (o.overlap) std::swap(frame, ahead);
+  }
+  if (o.overlap && o.bench_frames > 0) {
+    const auto t_last = Clock::now();
+    wait_ahead();
+    frame_ms.back() += ms_since(t_last);
   }
   const int64_t bench_rays = frame.rays;  // each repeat's (frame goes on to --frames' frames)
   std::vector<double> sorted = frame_ms;  // for the min and max
@@ -188,8 +206,29 @@ int render(RenderOptions o) {
   std::mutex spare_mutex;
   std::vector<rt::RenderResult> spare;
   FrameWriter writer;
+  // --overlap on: frame k - 1's read-back also runs beside frame k's trace where the backend
+  // allows (RenderSettings::read_back_later): it waits here in `previous` until frame k has
+  // rendered, then goes to the writer; its wait is added to its trace time.
+  rt::RenderSettings sequence_rs = frame_rs;
+  sequence_rs.read_back_later = o.overlap;
+  rt::RenderResult previous;
+  int previous_k = -1;  // none waiting
+  auto write_previous = [&] {
+    if (previous_k < 0) return;
+    previous.wait_outputs();
+    frame_stats.back().trace_ms = previous.trace_ms;
+    writer.wait_in_flight(1);
+    writer.post([&, k = previous_k, image = std::move(previous)]() mutable {
+      for (const std::string& w : write_outputs(o, p, image, frame_file(k))) written.push_back(w);
+      std::lock_guard<std::mutex> lock(spare_mutex);
+      spare.push_back(std::move(image));
+    });
+    previous = rt::RenderResult();
+    previous_k = -1;
+  };
   // A frame stopped by a signal is dropped; those before it are written and stay.
   auto stopped_in_frame = [&](int k, bool in_flight) {
+    write_previous();
     writer.finish();
     progress.finish();
     return stopped((in_flight ? "in frame " : "before frame ") + std::to_string(k) + " of " +
@@ -208,7 +247,7 @@ int render(RenderOptions o) {
     if (animated) fs.update = tracer.set_time(fs.time, bvh_update);
     const rt::Camera camera = rt::camera_at(scene, fs.time);
     rt::check_camera(camera, frame_camera_where(o.scene, scene, k));
-    tracer.render(frame_rs, camera, frame);
+    tracer.render(sequence_rs, camera, frame);
     if (interrupted() != 0) return stopped_in_frame(k, true);
     fs.trace_ms = frame.trace_ms;
     fs.compile_ms = frame.compile_ms;
@@ -218,12 +257,9 @@ int render(RenderOptions o) {
     fs.rays = frame.rays;
     fs.launches = frame.launches;
     if (o.overlap) {
-      writer.wait_in_flight(1);
-      writer.post([&, k, image = std::move(frame)]() mutable {
-        for (const std::string& w : write_outputs(o, p, image, frame_file(k))) written.push_back(w);
-        std::lock_guard<std::mutex> lock(spare_mutex);
-        spare.push_back(std::move(image));
-      });
+      write_previous();  // frame k - 1, now that frame k has rendered
+      previous = std::move(frame);
+      previous_k = k;
       std::lock_guard<std::mutex> lock(spare_mutex);
       frame = rt::RenderResult();
       if (!spare.empty()) {
@@ -237,7 +273,8 @@ int render(RenderOptions o) {
     frame_stats.push_back(fs);
     progress.update(k - span.first + 1, fs.trace_ms);
   }
-  writer.finish();  // the last frames' writes, and the first error of any
+  write_previous();  // the last frame
+  writer.finish();   // the last frames' writes, and the first error of any
   progress.finish();
   if (interrupted() != 0)
     return stopped(

@@ -200,8 +200,9 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       ->default_str("on");
   add_parsed_option(
       r, "--overlap", o.overlap, on_off("--overlap"),
-      "--frames: write each frame's outputs while the next one renders (on|off); images do "
-      "not depend on it")
+      "--frames: write each frame's outputs while the next one renders, and (--frames, "
+      "--bench-frames) read each frame back from the device while the next one traces where the "
+      "backend can (opencl, glsl-compute) (on|off); images do not depend on it")
       ->default_str("on");
   return r;
 }

@@ -46,7 +46,8 @@ struct RenderOptions {
   // Frame-rate mode: after the first render (which compiles), render this many more frames
   // of the same scene back to back and report their times.
   int bench_frames = 0;
-  // --frames: write frame n's outputs on a thread of their own while frame n + 1 renders.
+  // --frames: write frame n's outputs on a thread of their own while frame n + 1 renders;
+  // --frames and --bench-frames: read frame n back while frame n + 1 traces (read_back_later).
   bool overlap = true;
   // Distributed rendering (docs/distributed.md): tile size and the size of the last tiles
   // (-1: half the tile size; 0: not cut), how long a silent rank or a slow tile is waited

@@ -145,6 +145,11 @@ class ComputeBackend : public GLBackend {
     std::lock_guard<std::recursive_mutex> lock(mutex());
     buffers_.read_back(current(), s, host);
   }
+  std::unique_ptr<PendingReadBack> read_back_async(const detail::Storage& s,
+                                                   uint32_t* host) override {
+    std::lock_guard<std::recursive_mutex> lock(mutex());
+    return buffers_.read_back_async(current(), s, host);
+  }
 
   // Deletes the backend's GL objects and destroys the context (see GLSession.h).
   void shutdown() noexcept override {

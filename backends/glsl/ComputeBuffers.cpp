@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "GLSession.h"
 
@@ -118,6 +120,96 @@ void ComputeBuffers::read_back(const GL& gl, const detail::Storage& s, uint32_t*
   std::memcpy(host, mapped, static_cast<size_t>(bytes));
   gl.glUnmapBuffer(GL_COPY_WRITE_BUFFER);
   check(gl, "reading a buffer back", kComputeWho);
+}
+
+// Staging buffers of read-backs that ended, by size (a frame's outputs, two frames in flight:
+// a few; the oldest go beyond that). Used under the session's lock.
+struct ComputeBuffers::StagingPool {
+  static constexpr size_t kKept = 16;
+  std::vector<std::unique_ptr<Buffer>> free;
+  void give_back(std::unique_ptr<Buffer> b) {
+    free.push_back(std::move(b));
+    if (free.size() > kKept) free.erase(free.begin());  // deleted by ~Buffer
+  }
+};
+
+namespace {
+
+// One read-back in flight: the staging buffer the device copies into.
+class ComputePendingReadBack : public PendingReadBack {
+ public:
+  ComputePendingReadBack(std::shared_ptr<Session> session,
+                         std::shared_ptr<ComputeBuffers::StagingPool> pool,
+                         std::unique_ptr<Buffer> staging, uint32_t* host)
+      : session_(std::move(session)),
+        pool_(std::move(pool)),
+        staging_(std::move(staging)),
+        host_(host) {}
+  ~ComputePendingReadBack() override {
+    std::lock_guard<std::recursive_mutex> lock(session_->mutex);
+    if (staging_) pool_->give_back(std::move(staging_));
+  }
+  ComputePendingReadBack(const ComputePendingReadBack&) = delete;
+  ComputePendingReadBack& operator=(const ComputePendingReadBack&) = delete;
+
+  void wait() override {
+    std::lock_guard<std::recursive_mutex> lock(session_->mutex);
+    const GL* gl = session_->current_if_alive();
+    if (!gl)
+      throw Error(std::string(kComputeWho) +
+                  ": the context ended (or cannot be made current here) before a read-back did");
+    const auto bytes = static_cast<GLsizeiptr>(staging_->bytes);
+    gl->glBindBuffer(GL_COPY_WRITE_BUFFER, staging_->buf);
+    const void* mapped = gl->glMapBufferRange(GL_COPY_WRITE_BUFFER, 0, bytes, GL_MAP_READ_BIT);
+    if (!mapped) {
+      check(*gl, "mapping the read-back buffer", kComputeWho);
+      throw Error(std::string(kComputeWho) + ": mapping the read-back buffer failed");
+    }
+    std::memcpy(host_, mapped, static_cast<size_t>(bytes));
+    gl->glUnmapBuffer(GL_COPY_WRITE_BUFFER);
+    check(*gl, "reading a buffer back", kComputeWho);
+    pool_->give_back(std::move(staging_));
+  }
+
+ private:
+  std::shared_ptr<Session> session_;
+  std::shared_ptr<ComputeBuffers::StagingPool> pool_;
+  std::unique_ptr<Buffer> staging_;
+  uint32_t* host_;
+};
+
+}  // namespace
+
+std::unique_ptr<PendingReadBack> ComputeBuffers::read_back_async(const GL& gl,
+                                                                 const detail::Storage& s,
+                                                                 uint32_t* host) {
+  auto* b = s.device_buffer<Buffer>(&owner_);
+  if (s.words() == 0) return nullptr;
+  const auto bytes = static_cast<int64_t>(s.words() * 4);
+  if (!pool_) pool_ = std::make_shared<StagingPool>();
+  std::unique_ptr<Buffer> st;
+  for (auto it = pool_->free.begin(); it != pool_->free.end(); ++it)
+    if ((*it)->bytes == bytes) {
+      st = std::move(*it);
+      pool_->free.erase(it);
+      break;
+    }
+  if (!st) {
+    st = std::make_unique<Buffer>();
+    st->session = session_;
+    gl.glGenBuffers(1, &st->buf);
+    gl.glBindBuffer(GL_COPY_WRITE_BUFFER, st->buf);
+    gl.glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(bytes), nullptr, GL_STREAM_READ);
+    check(gl, "allocating a read-back buffer", kComputeWho);
+    st->bytes = bytes;
+  }
+  gl.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl.glBindBuffer(GL_COPY_READ_BUFFER, b->buf);
+  gl.glBindBuffer(GL_COPY_WRITE_BUFFER, st->buf);
+  gl.glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0,
+                         static_cast<GLsizeiptr>(bytes));
+  check(gl, "copying a buffer for its read-back", kComputeWho);
+  return std::make_unique<ComputePendingReadBack>(session_, pool_, std::move(st), host);
 }
 
 }  // namespace rill::glsl

@@ -44,6 +44,13 @@ class ComputeBuffers {
   // Copies s's buffer to host (s.words() words): with glGetBufferSubData, or (staging) copied
   // on the device into a buffer the driver keeps in host memory (GL_STREAM_READ), then mapped.
   void read_back(const GL& gl, const detail::Storage& s, uint32_t* host);
+  // The same, returning at once (Backend::read_back_async, rill/ReadBack.h): the device
+  // copies s's buffer, in the order of the context's commands, into a staging buffer of the
+  // read-back's own (GL_STREAM_READ: the driver keeps it in host memory), so that dispatches
+  // launched next may write s; the wait maps it (which waits for the copy) and copies out.
+  std::unique_ptr<PendingReadBack> read_back_async(const GL& gl, const detail::Storage& s,
+                                                   uint32_t* host);
+  struct StagingPool;  // staging buffers free for later read-backs, shared with those in flight
   // How read_back copies: RILL_GLSL_READBACK=get (default) or staging, for measuring which
   // the driver streams faster (issue 52 item 2). Throws for another value.
   static bool staging_from_environment();
@@ -51,8 +58,9 @@ class ComputeBuffers {
  private:
   GLBackend& owner_;
   std::shared_ptr<Session> session_;
-  int staging_ = -1;       // staging_from_environment(), read at the first read-back
-  Buffer staging_buffer_;  // grown to the largest read-back (staging only)
+  int staging_ = -1;                   // staging_from_environment(), read at the first read-back
+  Buffer staging_buffer_;              // grown to the largest read-back (staging only)
+  std::shared_ptr<StagingPool> pool_;  // read_back_async's, made at its first use
 };
 
 }  // namespace rill::glsl

@@ -55,6 +55,13 @@ void ClMemory::read_back(const detail::Storage& s, uint32_t* host) {
           "clEnqueueReadBuffer");
 }
 
+std::unique_ptr<PendingReadBack> ClMemory::read_back_async(const detail::Storage& s,
+                                                           uint32_t* host) {
+  auto* buf = s.device_buffer<ClBuffer>(&owner_);
+  if (s.words() == 0) return nullptr;
+  return read_backs_.start(buf->mem, s.words() * 4, host);
+}
+
 cl_mem ClMemory::scratch(size_t bytes, const void* data) {
   Device& d = device_;
   cl_int e = CL_SUCCESS;

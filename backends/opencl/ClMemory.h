@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ClDevice.h"
+#include "ClReadBack.h"
 #include "rill/Backend.h"
 #include "rill/Stream.h"
 
@@ -27,13 +28,15 @@ struct ClTable {
 class ClMemory {
  public:
   // owner: the backend whose buffers these are (Storage keeps one per backend).
-  ClMemory(Backend& owner, Device& device) : owner_(owner), device_(device) {}
+  ClMemory(Backend& owner, Device& device) : owner_(owner), device_(device), read_backs_(device) {}
   Backend& owner() const { return owner_; }
 
   // Makes the device copy of s current and returns its buffer.
   cl_mem to_device(detail::Storage& s);
   // Copies s's device buffer to host (s.words() words).
   void read_back(const detail::Storage& s, uint32_t* host);
+  // The same, returning at once (ClReadBack.h).
+  std::unique_ptr<PendingReadBack> read_back_async(const detail::Storage& s, uint32_t* host);
   // A new buffer holding a copy of `bytes` bytes of data (at least 8 bytes: kernels always
   // get a buffer, even for an empty table); the caller releases it.
   cl_mem scratch(size_t bytes, const void* data);
@@ -44,6 +47,7 @@ class ClMemory {
  private:
   Backend& owner_;
   Device& device_;
+  ClReadBacks read_backs_;
 };
 
 }  // namespace rill::opencl

@@ -82,6 +82,10 @@ class OpenCLBackend : public Backend {
   }
 
   void read_back(const detail::Storage& s, uint32_t* host) override { memory().read_back(s, host); }
+  std::unique_ptr<PendingReadBack> read_back_async(const detail::Storage& s,
+                                                   uint32_t* host) override {
+    return memory().read_back_async(s, host);
+  }
 
   Device& device() {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -51,6 +51,15 @@ void Storage::read_into(uint32_t* dst) {
   device_owner_->read_back(*this, dst);
 }
 
+std::unique_ptr<PendingReadBack> Storage::read_into_async(uint32_t* dst) {
+  if (host_valid_) {
+    read_into(dst);
+    return nullptr;
+  }
+  if (!device_owner_ || !device_) throw Error("internal: stream has no valid copy");
+  return device_owner_->read_back_async(*this, dst);
+}
+
 uint32_t* Storage::host_data_for_write() {
   sync_to_host();
   return host_data_for_overwrite();

@@ -622,6 +622,65 @@ TEST_P(LaunchTest, LargeReadBacksOfGrowingSize) {
   EXPECT_THROW(small.download_into(std::span(into)), rill::Error);  // sizes differ
 }
 
+// download_async (rill/ReadBack.h) reads the words of the moment it was called, even when
+// the next launches write the stream before the transfer ends: OpenCL keeps a copy on the
+// device for its transfer queue; the other backends copy at once. Under
+// RILL_OPENCL_READBACK=late the transfer starts only at wait(), after both later launches
+// have run, so a read-back that read the stream itself would get their words (3i + 3), not
+// its own. A ReadBack destroyed unwaited has waited.
+TEST_P(LaunchTest, AsyncReadBackKeepsTheWordsOfItsStart) {
+  Uniform<Int> add(0, "add");
+  Program p = program("indices_plus", [&] {
+    Output<Int> idx("idx");
+    idx = element_index() * 3 + add;
+  });
+  Kernel k = compile(p);
+  const int64_t n = 300001;
+  const size_t count = static_cast<size_t>(n);
+  auto expect_words = [&](const std::vector<int32_t>& v, int32_t plus, const char* what) {
+    ASSERT_EQ(v.size(), count) << what;
+    for (size_t i = 0; i < count; ++i)
+      ASSERT_EQ(v[i], static_cast<int32_t>(i) * 3 + plus) << what << ", element " << i;
+  };
+  for (const char* mode : {"overlap", "late"}) {
+    SCOPED_TRACE(std::string("RILL_OPENCL_READBACK=") + mode);
+    ASSERT_EQ(setenv("RILL_OPENCL_READBACK", mode, 1), 0);
+    Stream<Int> out(n);
+    k.outputs(out);
+    std::vector<int32_t> first(count, -1), second(count, -1), third(count, -1);
+    add.set(1);
+    k.execute();
+    ReadBack a = out.download_async(std::span(first));
+    add.set(2);
+    k.execute();  // writes the stream while `a` may be in flight
+    ReadBack b = out.download_async(std::span(second));
+    add.set(3);
+    k.execute();
+    { ReadBack c = out.download_async(std::span(third)); }  // destroyed unwaited: it waits
+    expect_words(third, 3, "the read-back destroyed unwaited");
+    a.wait();
+    b.wait();
+    a.wait();  // again: nothing in flight
+    EXPECT_FALSE(a.in_flight());
+    expect_words(first, 1, "the first read-back");
+    expect_words(second, 2, "the second read-back");
+    expect_words(out.download(), 3, "the stream now");
+    std::vector<int32_t> small(10);
+    EXPECT_THROW(out.download_async(std::span(small)), rill::Error);  // sizes differ
+  }
+  unsetenv("RILL_OPENCL_READBACK");
+  if (backend_name() == "opencl") {
+    ASSERT_EQ(setenv("RILL_OPENCL_READBACK", "soon", 1), 0);
+    Stream<Int> out(n);
+    k.outputs(out);
+    k.execute();
+    std::vector<int32_t> into(count);
+    expect_error([&] { out.download_async(std::span(into)).wait(); },
+                 {"RILL_OPENCL_READBACK='soon'", "overlap, late"});
+    unsetenv("RILL_OPENCL_READBACK");
+  }
+}
+
 TEST_P(LaunchTest, LargeStreamWithDiscards) {
   const int64_t n = 1000000;
   std::vector<float> xs(static_cast<size_t>(n));

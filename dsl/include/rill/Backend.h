@@ -131,6 +131,16 @@ class Backend {
   // copy is newer; Storage then marks the host copy current. Backends that keep no device
   // copies (cpu) need not implement it.
   virtual void read_back(const detail::Storage& /*s*/, uint32_t* /*host*/) {}
+  // The same, returning at once where the backend can transfer while its later kernels run
+  // (ReadBack.h): the words copied are the device copy's now, even if a kernel launched
+  // afterwards writes it; `host` stays in place until the result's wait(). The default reads
+  // back at once and returns null (nothing in flight): the CPU backends, whose read-back is a
+  // copy on the cores that trace, would gain nothing.
+  virtual std::unique_ptr<PendingReadBack> read_back_async(const detail::Storage& s,
+                                                           uint32_t* host) {
+    read_back(s, host);
+    return nullptr;
+  }
 };
 
 // Backends by name. The CPU backend is always present.

@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "rill/ReadBack.h"
 #include "rill/Value.h"
 
 namespace rill {
@@ -66,6 +67,10 @@ class Storage {
   // is the newer one (one transfer, nothing through the host copy, which stays as it was),
   // else from the host copy.
   void read_into(uint32_t* dst);
+  // The same, returning at once where the device copy is the newer one and its backend can
+  // read back asynchronously (ReadBack.h): the words are those of now, even if a kernel writes
+  // the stream before the transfer ends. dst must stay in place until the result's wait().
+  std::unique_ptr<PendingReadBack> read_into_async(uint32_t* dst);
   // The host copy, current, for changing in place (a kernel writing some elements and
   // keeping the others): the device copy becomes stale.
   uint32_t* host_data_for_write();
@@ -177,6 +182,15 @@ void copy_out(Storage& s, std::span<HostOf<V>> out) {
 }
 
 template <class V>
+ReadBack copy_out_async(Storage& s, std::span<HostOf<V>> out) {
+  if (static_cast<int64_t>(out.size()) != s.count())
+    throw Error("download of a stream of " + std::to_string(s.count()) + " elements into " +
+                std::to_string(out.size()));
+  if (s.words() == 0) return ReadBack();
+  return ReadBack(s.read_into_async(reinterpret_cast<uint32_t*>(out.data())));
+}
+
+template <class V>
 std::vector<HostOf<V>> copy_out(Storage& s) {
   std::vector<HostOf<V>> out(static_cast<size_t>(s.count()));
   copy_out<V>(s, std::span<HostOf<V>>(out));
@@ -257,6 +271,12 @@ class Stream {
   std::vector<host_type> download() const { return detail::copy_out<V>(*s_); }
   // The same into memory of the caller's (size() elements), for frames that reuse it.
   void download_into(std::span<host_type> out) const { detail::copy_out<V>(*s_, out); }
+  // The same, returning at once (ReadBack.h): `out` holds the elements of now once the
+  // result's wait() returns, whatever kernels write the stream meanwhile; it must stay in
+  // place until then. Backends that cannot overlap a read-back copy before returning.
+  ReadBack download_async(std::span<host_type> out) const {
+    return detail::copy_out_async<V>(*s_, out);
+  }
   // Sets every element to v.
   void fill(const host_type& v) { upload(std::vector<host_type>(static_cast<size_t>(size()), v)); }
 

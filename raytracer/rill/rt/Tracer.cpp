@@ -321,7 +321,9 @@ RenderResult Tracer::render(const RenderSettings& rs, const Camera& camera) {
 }
 
 void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult& r) {
-  // A fresh frame's result, but with the memory of the last frame's images.
+  // A fresh frame's result, but with the memory of the last frame's images (whose read-back
+  // must have ended first).
+  r.wait_outputs();
   RenderResult fresh;
   fresh.color.swap(r.color);
   fresh.rgb8.swap(r.rgb8);
@@ -385,7 +387,13 @@ void Tracer::render(const RenderSettings& rs, const Camera& camera, RenderResult
                                  rill::accuracy_name(rs.accuracy) + "/" +
                                  megakernel_loop_name(rs.loop) + "/" + std::to_string(win.width) +
                                  "x" + std::to_string(win.height);
-  I.strategy(rs.strategy).render(frame, r);
+  I.film.read_back_later(rs.read_back_later);
+  try {
+    I.strategy(rs.strategy).render(frame, r);
+  } catch (...) {
+    I.film.wait_read_backs();  // read into r, which the caller may drop now
+    throw;
+  }
   r.cold = I.traced.insert(traced_key).second;
 }
 

@@ -112,7 +112,9 @@ class Tracer {
   // the kernels generate that kind of ray; another kind throws std::runtime_error.
   RenderResult render(const RenderSettings& settings, const Camera& camera);
   // The same into `result`, whose image memory is reused: frame after frame into one
-  // RenderResult allocates nothing on the host.
+  // RenderResult allocates nothing on the host. With settings.read_back_later the images may
+  // still be in flight when it returns (result.wait_outputs() waits; a render into a result
+  // whose images are in flight waits for them first).
   void render(const RenderSettings& settings, const Camera& camera, RenderResult& result);
   // The megakernel's generated source on a backend (compiles if needed). Outputs and samples
   // per pixel select no variant: every render on that backend, accuracy and loop runs this

@@ -14,6 +14,7 @@
 #include "rill/rt/film/Srgb8.h"
 #include "rill/rt/kernel/Compile.h"
 #include "rill/rt/kernel/PerBackend.h"
+#include "rill/rt/render/OutputsInFlight.h"
 
 namespace rt {
 
@@ -98,11 +99,16 @@ namespace {
 
 // An output asked for, read straight into the result (whose memory a caller that renders
 // frame after frame into one RenderResult keeps); one not asked for is emptied.
+// With `flight`, the read-back is started and left there (the backend keeps a copy of what
+// it reads, so later launches may write the stream at once: rill/ReadBack.h).
 template <typename S, typename V>
-void read_into(const S& stream, V& into, bool wanted) {
+void read_into(const S& stream, V& into, bool wanted, OutputsInFlight* flight = nullptr) {
   if (!wanted) return into.clear();
   into.resize(static_cast<size_t>(stream.size()));
-  stream.download_into(std::span(into));
+  if (flight)
+    flight->reads.push_back(stream.download_async(std::span(into)));
+  else
+    stream.download_into(std::span(into));
 }
 
 // Element i makes pixels 4i .. 4i + 3 into 12 bytes, R G B R G B ..., as three little-endian
@@ -190,6 +196,13 @@ void Film::begin(const std::string& backend, Accuracy a, int width, int height, 
   single_.reset();
   accumulate_ms_ = 0;
   aovs_read_ = false;
+  flight_.reset();
+}
+
+OutputsInFlight* Film::flight(const FrameOutputs& want) {
+  if (!later_ || want.variance || want.accumulation) return nullptr;
+  if (!flight_) flight_ = std::make_shared<OutputsInFlight>();
+  return flight_.get();
 }
 
 Film::Sums Film::sums() {
@@ -235,11 +248,12 @@ bool wants_aovs(const FrameOutputs& want) {
 
 void Film::read_aovs(const AovStreams& aovs, const FrameOutputs& want, RenderResult& r) {
   Stopwatch step;
-  read_into(aovs.depth, r.depth, want.depth);
-  read_into(aovs.prim, r.prim, want.prim);
-  read_into(aovs.normal, r.normal, want.normal);
+  OutputsInFlight* later = flight(want);
+  read_into(aovs.depth, r.depth, want.depth, later);
+  read_into(aovs.prim, r.prim, want.prim, later);
+  read_into(aovs.normal, r.normal, want.normal, later);
   if (aovs.albedo)
-    read_into(*aovs.albedo, r.albedo, want.albedo);
+    read_into(*aovs.albedo, r.albedo, want.albedo, later);
   else
     r.albedo.clear();
   aovs_read_ = true;
@@ -267,7 +281,8 @@ void Film::finish(const FrameOutputs& want, RenderResult& r) {
     r.normal.clear();
     r.albedo.clear();
   }
-  read_into(color, r.color, want.color);
+  OutputsInFlight* later = flight(want);
+  read_into(color, r.color, want.color, later);
   r.variance.clear();
   if (want.variance && squares_) {
     // (squares / n - mean^2) n / (n - 1) / n, in double on the host; 0 below 2 samples.
@@ -309,11 +324,24 @@ void Film::finish(const FrameOutputs& want, RenderResult& r) {
     // Read straight into the image's memory (a frame of the last one's size keeps it and
     // does not clear it), with room for the last group's padding, then cut to 3 n bytes.
     r.rgb8.resize(static_cast<size_t>(groups) * 12);
-    now_->packed->download_into(
-        std::span(reinterpret_cast<glm::ivec3*>(r.rgb8.data()), static_cast<size_t>(groups)));
-    r.rgb8.resize(static_cast<size_t>(n) * 3);
+    const std::span<glm::ivec3> words(reinterpret_cast<glm::ivec3*>(r.rgb8.data()),
+                                      static_cast<size_t>(groups));
+    if (later) {
+      later->reads.push_back(now_->packed->download_async(words));
+      later->rgb8_bytes = static_cast<size_t>(n) * 3;
+    } else {
+      now_->packed->download_into(words);
+      r.rgb8.resize(static_cast<size_t>(n) * 3);
+    }
   }
   r.times.read_back += step.ms();
+  if (flight_) {
+    // Nothing left in flight (a backend that reads back at once): finished here.
+    const bool any = std::any_of(flight_->reads.begin(), flight_->reads.end(),
+                                 [](const ReadBack& b) { return b.in_flight(); });
+    r.in_flight = std::move(flight_);
+    if (!any) r.wait_outputs();
+  }
 }
 
 }  // namespace rt

@@ -93,6 +93,13 @@ class Film {
   // the AOVs read_aovs read; r.spp is their count. Adds the time it took to r.times. Throws
   // std::logic_error where `want` asks for an AOV and read_aovs was not called.
   void finish(const FrameOutputs& want, RenderResult& r);
+  // Whether read_aovs() and finish() may leave the read-backs in flight
+  // (RenderSettings::read_back_later, set by the Tracer per frame): finish() then puts them in
+  // r.in_flight. The variance and the accumulation are read at once.
+  void read_back_later(bool later) { later_ = later; }
+  // Waits for the read-backs a frame that did not finish left in flight (its strategy threw),
+  // so that the result's memory may go.
+  void wait_read_backs() { flight_.reset(); }
 
  private:
   struct Buffers;
@@ -115,6 +122,13 @@ class Film {
   bool aovs_read_ = false;  // read_aovs was called in this frame
   std::optional<rill::Stream<rill::Float3>> single_;  // spp == 1: the sample itself
   double accumulate_ms_ = 0;
+  bool later_ = false;
+  // The frame's read-backs started so far when they may stay in flight (later_), handed to
+  // the result by finish().
+  std::shared_ptr<OutputsInFlight> flight_;
+  // The read-backs in flight for `want`, made at the frame's first; null when they are read
+  // at once.
+  OutputsInFlight* flight(const FrameOutputs& want);
 };
 
 }  // namespace rt

@@ -6,6 +6,7 @@
 #include <rill/rill.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,9 @@ struct PassStats {
   double ms = 0;
 };
 
+// A render's read-backs in flight (render/OutputsInFlight.h).
+struct OutputsInFlight;
+
 // The image and AOVs of a render: those RenderSettings::outputs asked for (the others are
 // left empty).
 struct RenderResult {
@@ -94,6 +98,13 @@ struct RenderResult {
   std::vector<PassStats> passes;  // multipass and wavefront: per pass
   std::string backend;
   std::string loop;  // the megakernel's loop as run ("ray" or "segment"); empty for multipass
+  // The read-backs of the images still in flight (RenderSettings::read_back_later): until
+  // wait_outputs(), the image vectors are being written and must not be read, resized or
+  // copied. Null when none are.
+  std::shared_ptr<OutputsInFlight> in_flight;
+  // Waits for the images in flight, if any; adds the wait to times.read_back and trace_ms.
+  // Throws rill::Error if a read-back failed.
+  void wait_outputs();
 };
 
 // Adds one kernel's compile stages to r.stages.

@@ -109,6 +109,13 @@ struct RenderSettings {
   // scatterings into it (render/BounceRays.h): the wavefront strategy only; for the others
   // the Tracer throws. It costs a read-back of the paths per sample; the image is the same.
   BounceRays* bounce_rays = nullptr;
+  // Whether Tracer::render may return with the outputs' read-back still in flight, so that a
+  // frame sequence overlaps frame n's read-back with frame n + 1's trace: the result's images
+  // are there once RenderResult::wait_outputs() returns (docs/raytracer.md, "First use and
+  // overlap"). Only a backend that reads back asynchronously (OpenCL) leaves anything in
+  // flight; the variance and the accumulation are read before render returns. The bytes are
+  // the same either way.
+  bool read_back_later = false;
 };
 
 }  // namespace rt
