@@ -8,11 +8,21 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
+#include <vector>
 
 #include "rill/rt/Tracer.h"
 
 namespace rt::testing {
+
+// The same bytes, denormals included (an empty vector's data() may be null, which memcmp
+// must not get even for 0 bytes).
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
 
 // Bitwise equality, flushing denormals on both sides (docs/accuracy.md: a backend may flush
 // them).

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "RenderCompare.h"
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
@@ -33,22 +34,17 @@ RenderSettings settings(const std::string& backend, int width, int height, int s
   return rs;
 }
 
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
 // The same image, AOVs (sample 0's camera ray's) and samples, byte for byte; and the
 // same rays where both traced all their samples.
 void expect_same(const RenderResult& a, const RenderResult& b, const std::string& what,
                  bool rays = true) {
   ASSERT_FALSE(a.color.empty()) << what;
   ASSERT_FALSE(a.depth.empty()) << what;
-  EXPECT_TRUE(same_bytes(a.color, b.color)) << what << ": colour";
-  EXPECT_TRUE(same_bytes(a.depth, b.depth)) << what << ": depth";
-  EXPECT_TRUE(same_bytes(a.prim, b.prim)) << what << ": prim";
-  EXPECT_TRUE(same_bytes(a.normal, b.normal)) << what << ": normal";
-  EXPECT_TRUE(same_bytes(a.albedo, b.albedo)) << what << ": albedo";
+  EXPECT_TRUE(testing::same_bytes(a.color, b.color)) << what << ": colour";
+  EXPECT_TRUE(testing::same_bytes(a.depth, b.depth)) << what << ": depth";
+  EXPECT_TRUE(testing::same_bytes(a.prim, b.prim)) << what << ": prim";
+  EXPECT_TRUE(testing::same_bytes(a.normal, b.normal)) << what << ": normal";
+  EXPECT_TRUE(testing::same_bytes(a.albedo, b.albedo)) << what << ": albedo";
   EXPECT_EQ(a.spp, b.spp) << what;
   if (rays) {
     EXPECT_EQ(a.rays, b.rays) << what;

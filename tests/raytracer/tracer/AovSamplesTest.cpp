@@ -74,21 +74,16 @@ RenderSettings settings(const std::string& backend, const Way& way, int spp) {
   return rs;
 }
 
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
 // The AOVs of `got` are those of `want`, byte for byte (albedo: the path integrator's).
 void expect_same_aovs(const RenderResult& want, const RenderResult& got, bool path,
                       const std::string& what) {
   const size_t n = static_cast<size_t>(want.width) * static_cast<size_t>(want.height);
   ASSERT_EQ(want.depth.size(), n) << what;
   EXPECT_EQ(want.albedo.size(), path ? n : 0u) << what;
-  EXPECT_TRUE(same_bytes(want.depth, got.depth)) << what << ": depth";
-  EXPECT_TRUE(same_bytes(want.prim, got.prim)) << what << ": prim";
-  EXPECT_TRUE(same_bytes(want.normal, got.normal)) << what << ": normal";
-  EXPECT_TRUE(same_bytes(want.albedo, got.albedo)) << what << ": albedo";
+  EXPECT_TRUE(testing::same_bytes(want.depth, got.depth)) << what << ": depth";
+  EXPECT_TRUE(testing::same_bytes(want.prim, got.prim)) << what << ": prim";
+  EXPECT_TRUE(testing::same_bytes(want.normal, got.normal)) << what << ": normal";
+  EXPECT_TRUE(testing::same_bytes(want.albedo, got.albedo)) << what << ": albedo";
 }
 
 // 4 samples per pixel: the AOVs of the render of sample 0 alone.
@@ -100,7 +95,7 @@ void expect_sample_zeros_aovs(const Scene& s, const std::vector<Way>& ways, bool
     const RenderResult one = t.render(settings(backend, way, 1), s.camera);
     const RenderResult four = t.render(settings(backend, way, 4), s.camera);
     ASSERT_EQ(four.spp, 4) << what;
-    EXPECT_FALSE(same_bytes(one.color, four.color)) << what << ": the samples differ";
+    EXPECT_FALSE(testing::same_bytes(one.color, four.color)) << what << ": the samples differ";
     expect_same_aovs(one, four, path, what + ", 4 samples");
   }
 }
@@ -134,7 +129,7 @@ void expect_resumed_aovs(const Scene& s, const std::vector<Way>& ways, bool path
     const RenderResult one = t.render(settings(backend, way, 1), s.camera);
     const RenderResult whole = t.render(rs, s.camera);
     const RenderResult after_two = resumed(t, s.camera, rs, 2, 5);
-    EXPECT_TRUE(same_bytes(whole.color, after_two.color)) << what << ": resumed colour";
+    EXPECT_TRUE(testing::same_bytes(whole.color, after_two.color)) << what << ": resumed colour";
     expect_same_aovs(one, after_two, path, what + ", resumed after 2 samples");
 
     // Without an AOV asked for, sample 0 is not traced again: one launch (Whitted
@@ -143,7 +138,8 @@ void expect_resumed_aovs(const Scene& s, const std::vector<Way>& ways, bool path
     plain.outputs.depth = plain.outputs.prim = plain.outputs.normal = false;
     plain.outputs.albedo = false;
     const RenderResult no_aovs = resumed(t, s.camera, plain, 2, 5);
-    EXPECT_TRUE(same_bytes(whole.color, no_aovs.color)) << what << ": resumed colour, no AOVs";
+    EXPECT_TRUE(testing::same_bytes(whole.color, no_aovs.color))
+        << what << ": resumed colour, no AOVs";
     EXPECT_TRUE(no_aovs.depth.empty() && no_aovs.prim.empty() && no_aovs.albedo.empty()) << what;
     if (way.strategy == Strategy::Megakernel)
       EXPECT_EQ(after_two.launches, no_aovs.launches + 1) << what;
@@ -153,7 +149,7 @@ void expect_resumed_aovs(const Scene& s, const std::vector<Way>& ways, bool path
     // Resumed from all 5 samples: nothing left to trace but sample 0's camera rays.
     const RenderResult nothing_left = resumed(t, s.camera, rs, 5, 5);
     EXPECT_EQ(nothing_left.spp, 5) << what;
-    EXPECT_TRUE(same_bytes(whole.color, nothing_left.color)) << what << ": colour, 5 of 5";
+    EXPECT_TRUE(testing::same_bytes(whole.color, nothing_left.color)) << what << ": colour, 5 of 5";
     expect_same_aovs(one, nothing_left, path, what + ", resumed with 5 of 5 samples");
 
     // A window resumed from its own sums, as a distributed render's tile in a later round.
