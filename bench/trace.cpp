@@ -176,16 +176,6 @@ struct Options {
   int width = 0, height = 0;
 };
 
-// One entry of --grids: 0 for auto, else the resolution, 1..512.
-int parse_grid_res(const std::string& g) {
-  if (g == "auto") return 0;
-  char* end = nullptr;
-  const long res = std::strtol(g.c_str(), &end, 10);
-  if (g.empty() || *end != '\0' || res < 1 || res > 512)
-    throw rt::SceneError("--grids: 'auto' or 1..512 (got '" + g + "')");
-  return static_cast<int>(res);
-}
-
 // --depths FIRST-LAST, within 0..64.
 void parse_depths(const std::string& s, int& first, int& last) {
   if (std::sscanf(s.c_str(), "%d-%d", &first, &last) != 2 || first < 0 || last < first || last > 64)
@@ -816,7 +806,7 @@ class Bench {
     const std::vector<glm::vec3> origins(n, scene.camera.eye);
     for (const auto& g : split_list(o_.grids)) {
       Point p;
-      p.res = parse_grid_res(g);
+      p.res = rt::parse_grid_resolution(g, "--grids");
       for (int r = 0; r < o_.repeats; ++r) {  // the build time is a median too
         p.grid = rt::build_grid(
             scene, p.res, rt::subgrid_min_for(scene.options.subgrid_min, "cpu"),
@@ -1241,7 +1231,7 @@ int main(int argc, char** argv) {
         throw rt::SceneError("--loops: unknown loop '" + l + "' (auto, ray, segment)");
       }
     }
-    for (const std::string& g : split_list(o.grids)) parse_grid_res(g);
+    for (const std::string& g : split_list(o.grids)) rt::parse_grid_resolution(g, "--grids");
     int first = 0, last = 0;
     parse_depths(o.depths, first, last);
     if (!o.subgrids.empty()) rt::parse_subgrid_min(o.subgrids);

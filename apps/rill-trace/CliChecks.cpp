@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "rill/rt/accel/Grid.h"
 #include "rill/rt/scene/Scene.h"
 
 namespace trace_cli {
@@ -74,13 +75,7 @@ std::string checked_size(const std::string& s) {
 }
 
 int parse_grid(const std::string& s) {
-  if (s.empty() || s == "auto") return 0;
-  char* end = nullptr;
-  long v = std::strtol(s.c_str(), &end, 10);
-  if (end == s.c_str() || *end != '\0' || v < 1 || v > 512)
-    throw rt::SceneError("--grid expects 'auto' or a number of voxels per axis in 1..512 (got '" +
-                         s + "')");
-  return static_cast<int>(v);
+  return rt::parse_grid_resolution(s, "--grid");
 }
 
 std::vector<std::string> split_list(const std::string& s) {

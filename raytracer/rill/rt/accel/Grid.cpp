@@ -196,6 +196,16 @@ int32_t parse_subgrid_min(const std::string& s) {
   return static_cast<int32_t>(v);
 }
 
+int parse_grid_resolution(const std::string& s, const std::string& option) {
+  if (s.empty() || s == "auto") return 0;
+  char* end = nullptr;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (end == s.c_str() || *end != '\0' || v < 1 || v > 512)
+    throw SceneError(option + " expects 'auto' or a number of voxels per axis in 1..512 (got '" +
+                     s + "')");
+  return static_cast<int>(v);
+}
+
 double checked_grid_density(double d) {
   if (!(d >= kGridDensityMin && d <= kGridDensityMax)) {
     char buf[64];

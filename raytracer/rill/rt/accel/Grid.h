@@ -94,6 +94,10 @@ void build_subgrids(Grid& g, const Scene& s, int32_t min_count = kSubgridMin);
 void compute_empty_distances(Grid& g);
 constexpr int32_t kMaxSkip = 1 << 16;
 
+// A grid resolution as a command line gives it (rill-trace's --grid, rill-bench-trace's
+// --grids): "auto" (or empty) is 0, else voxels per axis in 1..512; throws SceneError naming
+// `option` and the bad value.
+int parse_grid_resolution(const std::string& s, const std::string& option);
 // The --subgrids value: "auto" (kSubgridsAuto), "off" (kNoSubgrids) or a triangle count in
 // 1..2^20; throws SceneError naming the option and the bad value.
 int32_t parse_subgrid_min(const std::string& s);
