@@ -1,9 +1,11 @@
 #include "Outputs.h"
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "Doing.h"
 #include "rill/rt/accel/LightBuffer.h"
+#include "rill/rt/megakernel/Megakernel.h"
 #include "rill/rt/render/ResultFiles.h"
 #include "rill/rt/scene/Image.h"
 #include "rill/rt/scene/NameList.h"
@@ -57,6 +59,19 @@ std::vector<std::string> write_outputs(const RenderOptions& o, const Prepared& p
   return written;
 }
 
+PathLaunches path_launches(const RenderOptions& o, const Prepared& p) {
+  if (p.scene.options.integrator != rt::Integrator::Path ||
+      !(o.strategy == rt::Strategy::Megakernel))
+    return {};
+  // As Progressive.cpp and the megakernel decide, in that order.
+  if (o.time_limit > 0) return {1, "--time-limit"};
+  if (p.rs.outputs.variance) return {1, "--variance"};
+  const char* env = std::getenv("RILL_PATH_REGENERATE");
+  const int n = rt::path_samples_per_launch(p.rs.path_samples_per_launch, o.backend);
+  return {n, env != nullptr ? "RILL_PATH_REGENERATE=" + std::string(env)
+                            : "the " + o.backend + " backend's default"};
+}
+
 nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, int height,
                           int64_t rays) {
   const rt::Scene& scene = p.scene;
@@ -71,13 +86,15 @@ nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, 
   j["strategy"] = o.strategy.name;
   if (o.strategy == rt::Strategy::Megakernel)
     j["megakernel_loop"] = rt::megakernel_loop_name(rt::megakernel_loop_for(p.rs.loop, o.backend));
+  if (const PathLaunches pl = path_launches(o, p); pl.per_launch > 0)
+    j["path_samples_per_launch"] = {{"samples", pl.per_launch}, {"why", pl.why}};
   j["knobs"] = o.knobs.str();
   j["spp"] = scene.options.spp;
   j["max_depth"] = scene.options.max_depth;
   j["features"] = p.tracer->features().str();
   j["grid"] = {{"resolution", {grid.res.x, grid.res.y, grid.res.z}},
                {"density", rt::grid_density_for(scene.options.grid_density, o.backend,
-                                                scene.triangle_count())},
+                                                scene.triangle_count(), scene.options.integrator)},
                {"subgrids", grid.subgrids},
                {"references", grid.elements.size()},
                {"triangles", grid.usable},

@@ -27,6 +27,16 @@ std::vector<std::string> write_outputs(
 nlohmann::json stats_json(const RenderOptions& o, const Prepared& p, int width, int height,
                           int64_t rays);
 
+// The path megakernel's samples per launch as this render runs them (path regeneration: more
+// than 1), and why: "--time-limit", "--variance", "RILL_PATH_REGENERATE=on|off" or "the
+// backend's default" (rt::path_samples_per_launch). per_launch is 0 for a render that does
+// not run the path megakernel (Whitted's tracer, another strategy).
+struct PathLaunches {
+  int per_launch = 0;
+  std::string why;
+};
+PathLaunches path_launches(const RenderOptions& o, const Prepared& p);
+
 // Writes j to path, indented, through the checked writer (rt/scene/OutputFile.h); throws
 // naming the file when it cannot.
 void write_json(const std::string& path, const nlohmann::json& j);

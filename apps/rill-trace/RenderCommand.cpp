@@ -380,6 +380,10 @@ int render(RenderOptions o) {
         r.kernels, rill::origin_name(r.stages.origin), r.stages.capture_ms, r.stages.optimize_ms,
         r.stages.codegen_ms, r.stages.backend_compile_ms, r.stages.driver_finish_ms,
         r.stages.compile_ms);
+  if (const PathLaunches pl = path_launches(o, p); o.stats && pl.per_launch > 0)
+    std::printf("path regeneration: %s, %d sample%s per launch (%s)\n",
+                pl.per_launch > 1 ? "on" : "off", pl.per_launch, pl.per_launch > 1 ? "s" : "",
+                pl.why.c_str());
   if (o.stats && o.strategy == rt::Strategy::Wavefront)
     std::printf("%-14s %8s %14s %14s %10s   (%lld pixels a launch)\n", "stage", "calls",
                 "processed", "written", "ms", static_cast<long long>(r.width) * r.height);

@@ -189,8 +189,8 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   r->add_flag("--debug-nonfinite", o.debug_nonfinite,
               "--debug, and report the first statement that produced a NaN or infinity");
   r->add_flag("--stats", o.stats,
-              "print the compile stages; multipass and wavefront: per-pass calls, elements and "
-              "time");
+              "print the compile stages; the path megakernel: its samples per launch and why; "
+              "multipass and wavefront: per-pass calls, elements and time");
   r->add_option("--wait-threshold", o.wait_threshold,
                 "multipass: rerun the intersector while this fraction of rays waits (0..1]")
       ->default_str("0.2")

@@ -304,6 +304,13 @@ TEST(Grid, DensityLeftOpenFollowsTheBackendAndTheScene) {
   EXPECT_EQ(build_grid_for(c, "simd").res, build_grid_for(c16, "simd").res);
   EXPECT_EQ(build_grid_for(c, "cpu").res, build_grid_for(c4, "cpu").res);
   EXPECT_NE(build_grid_for(c, "simd").res, build_grid_for(c, "cpu").res);
+  // Under the path integrator simd keeps kGridDensity, on thesis C as on any scene; a density
+  // asked for by number is kept.
+  EXPECT_EQ(grid_density_for(kGridDensityAuto, "simd", large, Integrator::Path), kGridDensity);
+  EXPECT_EQ(grid_density_for(16.0, "simd", large, Integrator::Path), 16.0);
+  Scene cp = c;
+  cp.options.integrator = Integrator::Path;
+  EXPECT_EQ(build_grid_for(cp, "simd").res, build_grid_for(c4, "simd").res);
   Scene a = builtin_scene("thesis-a");
   ASSERT_LT(a.triangle_count(), kGridDensityLargeScene);
   Scene a4 = a;

@@ -8,7 +8,9 @@
 // and one stopped by after_pass count their samples as before.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@
 #include "TestUtil.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
+#include "rill/rt/megakernel/Megakernel.h"
 
 namespace rt {
 namespace {
@@ -115,6 +118,33 @@ TEST_P(PathRegeneration, ResumedAndStoppedRendersCountTheirSamples) {
   EXPECT_EQ(calls, (std::vector<int>{2, 4}));
   EXPECT_EQ(four.spp, 4);
   expect_same(t.render(settings(GetParam(), 16, 12, 4, 1), s.camera), four, "stopped after 4");
+}
+
+// With path_samples_per_launch 0 and RILL_PATH_REGENERATE unset a backend takes its own
+// default: one sample per launch on simd, 16 elsewhere
+// (docs/benchmarks/2026-12-08-simd-path-default.md); the variable overrides it either way; and
+// the default's image is bitwise the other choice's, in the launches each choice says.
+TEST_P(PathRegeneration, TheDefaultIsTheBackendsAndChangesNoBit) {
+  RT_REQUIRE_BACKEND(GetParam());
+  const std::string& b = GetParam();
+  const bool regenerates = b != "simd";
+  EXPECT_EQ(path_regeneration_default(b), regenerates) << b;
+  EXPECT_EQ(path_samples_per_launch(0, b, nullptr), regenerates ? kPathSamplesPerLaunch : 1) << b;
+  EXPECT_EQ(path_samples_per_launch(0, b, "on"), kPathSamplesPerLaunch) << b;
+  EXPECT_EQ(path_samples_per_launch(0, b, "off"), 1) << b;
+  EXPECT_EQ(path_samples_per_launch(3, b, "off"), 3) << b << ": a setting beats the variable";
+  EXPECT_THROW(path_samples_per_launch(0, b, "maybe"), std::invalid_argument) << b;
+  if (std::getenv("RILL_PATH_REGENERATE") != nullptr)
+    GTEST_SKIP() << "RILL_PATH_REGENERATE is set: a render's default is the variable's";
+  const Scene s = builtin_scene("cornell-path");
+  Tracer t(s, build_grid_for(s));
+  const int spp = 5;
+  const RenderResult by_default = t.render(settings(b, 16, 12, spp, 0), s.camera);
+  EXPECT_EQ(by_default.launches, regenerates ? 1 : spp) << b;
+  const int other_choice = regenerates ? 1 : kPathSamplesPerLaunch;
+  const RenderResult other = t.render(settings(b, 16, 12, spp, other_choice), s.camera);
+  EXPECT_EQ(other.launches, regenerates ? spp : 1) << b;
+  expect_same(by_default, other, b + ": the default against the other choice");
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, PathRegeneration, ::testing::ValuesIn(testing::backend_names()),

@@ -353,15 +353,19 @@ int32_t subgrid_min_for(int32_t subgrid_min, const std::string& backend) {
   return rill::backend(backend).runs_on_gpu() ? kNoSubgrids : kSubgridMin;
 }
 
-double grid_density_for(double density, const std::string& backend, size_t triangles) {
+double grid_density_for(double density, const std::string& backend, size_t triangles,
+                        Integrator integrator) {
   if (density != kGridDensityAuto) return density;
-  return backend == "simd" && triangles >= kGridDensityLargeScene ? kGridDensitySimdLarge
-                                                                  : kGridDensity;
+  return backend == "simd" && triangles >= kGridDensityLargeScene &&
+                 integrator == Integrator::Whitted
+             ? kGridDensitySimdLarge
+             : kGridDensity;
 }
 
 Grid build_grid_for(const Scene& s, const std::string& backend) {
-  return build_grid(s, s.options.grid, subgrid_min_for(s.options.subgrid_min, backend),
-                    grid_density_for(s.options.grid_density, backend, s.triangle_count()));
+  return build_grid(
+      s, s.options.grid, subgrid_min_for(s.options.subgrid_min, backend),
+      grid_density_for(s.options.grid_density, backend, s.triangle_count(), s.options.integrator));
 }
 
 uint64_t grid_memory_limit() {

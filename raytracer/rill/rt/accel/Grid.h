@@ -112,11 +112,16 @@ double checked_grid_density(double d);  // the same range check on a number
 // 0.54 against 0.44 of Embree's speed on primary rays), every other case kGridDensity: denser
 // grids did not pay on scenes of a few thousand triangles, nor for `cpu` (thesis C slower),
 // and cost NVIDIA's OpenCL (docs/gpu.md). Images never depend on it: the grid is exact.
+// Under the path integrator simd keeps kGridDensity: its bounces' rays are incoherent, and
+// the 8 lanes of a group wait for the longest walk, which a denser grid lengthens in cells
+// (thesis C, with or without an area light: 1.2-1.4x the frame at 16;
+// docs/benchmarks/2026-12-08-simd-path-default.md).
 constexpr double kGridDensitySimdLarge = 16.0;
 constexpr size_t kGridDensityLargeScene = 10000;
 // The density a grid for `backend` gets: `density` itself unless it is kGridDensityAuto, then
-// the rule above for a scene of `triangles` triangles.
-double grid_density_for(double density, const std::string& backend, size_t triangles);
+// the rule above for a scene of `triangles` triangles rendered by `integrator`.
+double grid_density_for(double density, const std::string& backend, size_t triangles,
+                        Integrator integrator = Integrator::Whitted);
 
 // The subgrid threshold a grid for `backend` gets: `subgrid_min` itself unless it is
 // kSubgridsAuto, then kSubgridMin when the backend runs on the CPU and kNoSubgrids when it

@@ -529,16 +529,23 @@ void Megakernel::pop_or_finish(PathLoop& L) const {
   RILL_ENDIF;
 }
 
-int path_samples_per_launch(int setting) {
+bool path_regeneration_default(const std::string& backend) {
+  return backend != "simd";
+}
+
+int path_samples_per_launch(int setting, const std::string& backend, const char* regenerate) {
   if (setting > 0) return std::min(setting, kPathSamplesPerLaunch);
-  static const int from_environment = [] {
-    const char* v = std::getenv("RILL_PATH_REGENERATE");
-    if (v == nullptr || std::string(v) == "on") return kPathSamplesPerLaunch;
-    if (std::string(v) == "off") return 1;
-    throw std::invalid_argument("RILL_PATH_REGENERATE='" + std::string(v).substr(0, 40) +
-                                "': expected on or off");
-  }();
-  return from_environment;
+  if (regenerate == nullptr) return path_regeneration_default(backend) ? kPathSamplesPerLaunch : 1;
+  if (std::string(regenerate) == "on") return kPathSamplesPerLaunch;
+  if (std::string(regenerate) == "off") return 1;
+  throw std::invalid_argument("RILL_PATH_REGENERATE='" + std::string(regenerate).substr(0, 40) +
+                              "': expected on or off");
+}
+
+int path_samples_per_launch(int setting, const std::string& backend) {
+  // Read once: a render's setting does not change with the environment mid-run.
+  static const char* const regenerate = std::getenv("RILL_PATH_REGENERATE");
+  return path_samples_per_launch(setting, backend, regenerate);
 }
 
 // "backend/accuracy/loop": a compiled kernel's key, and its warm-up's.
@@ -665,7 +672,8 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   // The path program adds its samples into the film's sums where the film keeps them (and no
   // squares) and a launch takes more than one; otherwise it writes one sample's colour (and a
   // carry of zeros) for the film to add.
-  const int per_launch = path() ? path_samples_per_launch(rs.path_samples_per_launch) : 1;
+  const int per_launch =
+      path() ? path_samples_per_launch(rs.path_samples_per_launch, rs.backend) : 1;
   const Film::Sums film_sums = per_launch > 1 ? film.sums() : Film::Sums{};
   const bool sums = film_sums.sum != nullptr;
   if (path()) {

@@ -26,7 +26,7 @@
 // different depths. The kernel adds each sample to the pixel's running sum itself, with the
 // film's operations in the film's order (film_add), into the film's sum streams: every
 // sample's arithmetic and the sum's are as with one sample per launch, and so the bits.
-// RenderSettings::path_samples_per_launch (RILL_PATH_REGENERATE=off: 1) sets how many samples
+// RenderSettings::path_samples_per_launch (path_samples_per_launch below) sets how many samples
 // a launch takes; with 1, or where the film keeps no sums or also the squares, each launch is
 // one sample that the film adds. The AOVs a launch writes are its first sample's camera ray's
 // (FirstHit::only_if): sample 0's in the launch that traces it, which render() hands to the
@@ -67,9 +67,19 @@ namespace rt {
 // set a launch's length; few enough that a render's after_pass (progress, a time limit, an
 // interrupt) comes every few seconds at most.
 constexpr int kPathSamplesPerLaunch = 16;
-// RenderSettings::path_samples_per_launch as resolved (Megakernel.h): 1 or more. Throws for
-// a RILL_PATH_REGENERATE other than on or off, naming it.
-int path_samples_per_launch(int setting);
+// RenderSettings::path_samples_per_launch as resolved for `backend`: 1 or more. A setting of
+// 0 takes RILL_PATH_REGENERATE (`regenerate`: its value, or null where it is unset): on, 16;
+// off, 1; unset, the backend's default, path_regeneration_default. Throws for a value other
+// than on or off, naming it.
+int path_samples_per_launch(int setting, const std::string& backend, const char* regenerate);
+// The same, with RILL_PATH_REGENERATE read from the environment (once).
+int path_samples_per_launch(int setting, const std::string& backend);
+// Whether a backend regenerates paths by default: everywhere but on `simd`, where one sample
+// per launch measured as fast or faster on every built-in scene under the path integrator
+// (docs/benchmarks/2026-12-08-simd-path-default.md): with one sample per launch a lockstep
+// group's 8 camera rays start together and walk the grid alike for a bounce or two, which
+// regeneration gives up by mixing camera rays and later bounces in one group.
+bool path_regeneration_default(const std::string& backend);
 
 class Megakernel final : public RenderStrategy {
  public:

@@ -75,7 +75,8 @@ struct RenderSettings {
   // The path megakernel's samples per launch (path regeneration, megakernel/Megakernel.h):
   // within a launch, a pixel whose path ended starts its next sample at once. 1: one sample
   // per launch, summed by the film; more: up to kPathSamplesPerLaunch (16); 0:
-  // RILL_PATH_REGENERATE's choice (off: 1, on or unset: 16). `after_pass` is called after each
+  // RILL_PATH_REGENERATE's choice (off: 1, on: 16), or where it is unset the backend's (1 on
+  // simd, 16 elsewhere: rt::path_samples_per_launch). `after_pass` is called after each
   // launch. Images have the same bits whatever it is.
   int path_samples_per_launch = 0;
   rill::Accuracy accuracy = rill::Accuracy::Strict;
