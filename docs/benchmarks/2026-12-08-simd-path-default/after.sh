@@ -6,6 +6,7 @@
 # MODE=wall: the median of --bench-frames 3, 2 threads, as a user runs it.
 # MODE=cpu: CPU time (user + sys), one thread, (T(--bench-frames 3) - T(--bench-frames 0)) / 3,
 # a frame's CPU time with the start, scene, grid and first frame taken off.
+# EXTRA: more render options for every run (e.g. "--max-depth 8").
 # Usage: BEFORE=path/to/old/rill-trace MODE=wall|cpu after.sh (from the repository root).
 AFTER=${AFTER:-build/apps/rill-trace/rill-trace}
 BEFORE=${BEFORE:?the rill-trace of main before the change}
@@ -27,14 +28,14 @@ for round in $(seq 1 "$ROUNDS"); do
       IFS=: read -r be st bin <<<"$c"
       B=$AFTER; [[ $bin == before ]] && B=$BEFORE
       cmd=(env -u RILL_PATH_REGENERATE "$B" render "$s" "${extra[@]}" --size 320x240 --spp 4
-           --backend "$be" --strategy "$st")
+           --backend "$be" --strategy "$st" $EXTRA)
       if [[ $MODE == wall ]]; then
         v="$(wall "${cmd[@]}") ms"
       else
         t0=$(cpu "${cmd[@]}" --bench-frames 0); t3=$(cpu "${cmd[@]}" --bench-frames 3)
         v="$(echo "scale=3; ($t3 - $t0) / 3" | bc) s a frame"
       fi
-      echo "$(basename "$s" .json) $be $st $bin round $round: $v"
+      echo "$(basename "$s" .json)${EXTRA:+ ($EXTRA)} $be $st $bin round $round: $v"
     done
   done
 done
