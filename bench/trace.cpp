@@ -9,6 +9,7 @@
 //                    [--packets auto|on|off,...] [--embree-modes auto|4,8,16,1M]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu]
 //                    [--path-scenes default|S,...] [--bounce 2] [--spp 1] [--seed N]
+//                    [--whitted-frames full,camera]
 //                    [--md F] [--csv F]
 //
 // Sections (each a table; all timings are medians of R interleaved repeats, after an
@@ -47,7 +48,9 @@
 //               over tiles, the shading formulas of WhittedFormulas.h), interleaved: ms per
 //               frame, the rays of each (Embree's by kind: camera, shadow, secondary), Mrays/s,
 //               Rill/Embree, and how many pixels of Embree's linear image agree with Rill's cpu
-//               image (every channel within 1e-4; at least 99% must). Needs Embree.
+//               image (every channel within 1e-4; at least 99% must). --whitted-frames
+//               full,camera adds each scene with shadows off and max depth 0: the camera rays'
+//               hits and their shading alone. Needs Embree.
 //   bounce      (not in the default list) the path tracer's incoherent rays: per path scene
 //               (--path-scenes; default cornell-path, thesis C with an area light and, where
 //               ../shared/meshes has it, the bunny under one), the rays leaving the second
@@ -179,6 +182,8 @@ struct Options {
   int bounce = 2;
   int spp = 1;
   int64_t seed = -1;  // -1: the scene's
+  // The whitted section's frames: full (the scene's), camera (no shadows, max depth 0).
+  std::string whitted_frames = "full";
   // The shared section's child: measure this backend alone and write the figures here.
   std::string shared_alone, shared_out;
   std::string md, csv;
@@ -803,12 +808,28 @@ class Bench {
                 " renderer, " + size_str() + ", Rill " + rill::accuracy_name(o_.acc) + ", " +
                 std::to_string(tbb::info::default_concurrency()) + " threads, median of " +
                 std::to_string(o_.repeats),
-            {"scene", "triangles", "max depth", "backend", "Rill ms", "Rill rays", "Rill Mrays/s",
-             "Embree ms", "Embree rays (camera + shadow + secondary)", "Embree Mrays/s",
-             "Rill/Embree", "pixels agree", "same bytes"},
+            {"scene", "triangles", "frame", "max depth", "backend", "Rill ms", "Rill rays",
+             "Rill Mrays/s", "Embree ms", "Embree rays (camera + shadow + secondary)",
+             "Embree Mrays/s", "Rill/Embree", "pixels agree", "same bytes"},
             {}};
-    for (const auto& spec : split_list(o_.scenes)) {
-      const rt::Scene scene = load(spec, o_);
+    for (const auto& spec : split_list(o_.scenes))
+      for (const auto& kind : split_list(o_.whitted_frames)) {
+        rt::Scene scene = load(spec, o_);
+        if (kind == "camera") {  // hit finding and shading alone: no shadow or secondary rays
+          scene.options.shadows = false;
+          scene.options.max_depth = 0;
+        }
+        whitted_frame(scene, kind, bes, t);
+      }
+    add(t);
+#endif
+  }
+
+#ifdef RILL_BENCH_HAVE_EMBREE
+  // One scene's rows of the whitted section: frame `kind` (full or camera).
+  void whitted_frame(const rt::Scene& scene, const std::string& kind,
+                     const std::vector<std::string>& bes, Table& t) {
+    {
       // Each backend with the grid rill-trace builds for it (build_grid_for: cpu and simd may
       // get different densities; images do not depend on it).
       std::vector<std::unique_ptr<rt::Grid>> grids;
@@ -879,21 +900,20 @@ class Bench {
         }
         const double rm = median(rill_ms[b]);
         const double rays = static_cast<double>(results[b].rays);
-        t.rows.push_back({scene.name, std::to_string(scene.triangle_count()), std::to_string(depth),
-                          bes[b], fmt("%.1f", rm), std::to_string(results[b].rays),
-                          fmt("%.3f", mrays(rays, rm)), fmt("%.1f", emm),
-                          std::to_string(er.total()) + " (" + std::to_string(er.camera) + " + " +
-                              std::to_string(er.shadow) + " + " + std::to_string(er.secondary) +
-                              ")",
-                          fmt("%.3f", mrays(static_cast<double>(er.total()), emm)),
-                          fmt("%.3f", emm / rm), fmt("%.4f%%", 100.0 * frac),
-                          fmt("%.4f%%", 100.0 * static_cast<double>(same_bytes) /
-                                            static_cast<double>(std::max<size_t>(n, 1)))});
+        t.rows.push_back(
+            {scene.name, std::to_string(scene.triangle_count()), kind, std::to_string(depth),
+             bes[b], fmt("%.1f", rm), std::to_string(results[b].rays), fmt("%.3f", mrays(rays, rm)),
+             fmt("%.1f", emm),
+             std::to_string(er.total()) + " (" + std::to_string(er.camera) + " + " +
+                 std::to_string(er.shadow) + " + " + std::to_string(er.secondary) + ")",
+             fmt("%.3f", mrays(static_cast<double>(er.total()), emm)), fmt("%.3f", emm / rm),
+             fmt("%.4f%%", 100.0 * frac),
+             fmt("%.4f%%", 100.0 * static_cast<double>(same_bytes) /
+                               static_cast<double>(std::max<size_t>(n, 1)))});
       }
     }
-    add(t);
-#endif
   }
+#endif
 
   // Time against grid resolution. Every grid's tracer is set up first, so that the timed
   // repeats can interleave the resolutions (the machine's load drifts).
@@ -1313,6 +1333,10 @@ int main(int argc, char** argv) {
       ->default_str("1");
   app.add_option("--seed", o.seed, "the bounce section's path seed (default: the scene's)")
       ->check(CLI::Range(int64_t{0}, int64_t{0xffffffff}));
+  app.add_option("--whitted-frames", o.whitted_frames,
+                 "the whitted section's frames, a comma list: full (the scene as it is), camera "
+                 "(shadows off and max depth 0: the camera rays' hits and their shading alone)")
+      ->default_str(o.whitted_frames);
   app.add_option("--min-agree", o.min_agree, "fraction of rays Embree and Rill must agree on")
       ->check(CLI::Range(0.0, 1.0))
       ->default_str("0.999");
@@ -1356,6 +1380,11 @@ int main(int argc, char** argv) {
     for (const std::string& p : split_list(o.packets))
       o.packets_list.push_back(rt::parse_packets(p));
     if (o.packets_list.empty()) throw rt::SceneError("--packets: name at least one setting");
+    const std::vector<std::string> frames = split_list(o.whitted_frames);
+    if (frames.empty()) throw rt::SceneError("--whitted-frames: name at least one frame");
+    for (const std::string& f : frames)
+      if (f != "full" && f != "camera")
+        throw rt::SceneError("--whitted-frames: unknown frame '" + f + "' (full, camera)");
     sections = split_list(o.sections);
     for (const auto& s : sections)
       if (s != "throughput" && s != "embree" && s != "grid" && s != "depth" && s != "spec" &&
