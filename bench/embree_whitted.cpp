@@ -10,6 +10,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -113,30 +114,38 @@ glm::vec3 EmbreeWhitted::local_light(const whitted::Surface& s, const Mat& m, Co
       local += whitted::phong_reflected(s, m.phong, s.V, glm::vec3(1.0f), true, F_.specular);
     return local;
   }
+  if (!F_.shadows) {  // Shading::unshadowed_light: the lights' sum, then added
+    glm::vec3 sum(0.0f);
+    for (const rt::Light& light : scene_.lights)
+      if (phong_light)
+        sum += whitted::phong_reflected(s, m.phong, whitted::normalize(light.position - s.P),
+                                        light.color, false, F_.specular);
+    return local + sum;
+  }
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   for (const rt::Light& light : scene_.lights) {
-    if (F_.shadows) {
-      const whitted::ShadowRay sr = whitted::shadow_ray(s, light.position, eps_, scaled_);
-      if (!sr.active) continue;
-      RTCRay ray;
-      ray.org_x = sr.o.x;
-      ray.org_y = sr.o.y;
-      ray.org_z = sr.o.z;
-      ray.dir_x = sr.d.x;
-      ray.dir_y = sr.d.y;
-      ray.dir_z = sr.d.z;
-      ray.tnear = 0.0f;
-      ray.tfar = sr.tmax;
-      ray.time = 0.0f;
-      ray.mask = 0xffffffffu;
-      ray.id = 0;
-      ray.flags = 0;
-      rtcOccluded1(embree_.handle(), &ctx, &ray);
-      ++n.shadow;
-      if (ray.tfar < 0.0f) continue;  // Embree sets tfar to -inf where something blocks
-    }
-    // The shadow ray, and the light's share: Shading::light's direction from P.
+    const whitted::ShadowRay sr = whitted::shadow_ray(s, light.position, eps_, scaled_);
+    if (!sr.active) continue;
+    RTCRay ray;
+    ray.org_x = sr.o.x;
+    ray.org_y = sr.o.y;
+    ray.org_z = sr.o.z;
+    ray.dir_x = sr.d.x;
+    ray.dir_y = sr.d.y;
+    ray.dir_z = sr.d.z;
+    ray.tnear = 0.0f;
+    ray.tfar = sr.tmax;
+    ray.time = 0.0f;
+    ray.mask = 0xffffffffu;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(embree_.handle(), &ctx, &ray);
+    ++n.shadow;
+    // Embree sets tfar to -inf where something blocks (a ray of tmax < 0, a light within eps
+    // of the surface, is skipped and keeps its tfar: not blocked, as in the kernel).
+    if (ray.tfar == -std::numeric_limits<float>::infinity()) continue;
+    // Not blocked: the light's share (Shading::light's direction from P).
     if (phong_light) {
       const glm::vec3 L = whitted::normalize(light.position - s.P);
       local += whitted::phong_reflected(s, m.phong, L, light.color, false, F_.specular);

@@ -804,6 +804,11 @@ class Bench {
     std::printf("note: built without Embree 3 (libembree-dev): no Whitted comparison\n");
 #else
     const std::vector<std::string> bes = usable_backends("cpu,simd");
+    if (bes.empty() || bes[0] != "cpu") {  // cpu's image is the one compared
+      ok = false;
+      std::printf("error: the whitted section needs the cpu backend\n");
+      return;
+    }
     Table t{"Whitted frames: rill-trace render against a plain Embree " + embree_version() +
                 " renderer, " + size_str() + ", Rill " + rill::accuracy_name(o_.acc) + ", " +
                 std::to_string(tbb::info::default_concurrency()) + " threads, median of " +
@@ -829,88 +834,86 @@ class Bench {
   // One scene's rows of the whitted section: frame `kind` (full or camera).
   void whitted_frame(const rt::Scene& scene, const std::string& kind,
                      const std::vector<std::string>& bes, Table& t) {
-    {
-      // Each backend with the grid rill-trace builds for it (build_grid_for: cpu and simd may
-      // get different densities; images do not depend on it).
-      std::vector<std::unique_ptr<rt::Grid>> grids;
-      std::vector<std::unique_ptr<rt::Tracer>> tracers;
-      for (const auto& be : bes) {
-        grids.push_back(std::make_unique<rt::Grid>(rt::build_grid_for(scene, be)));
-        tracers.push_back(std::make_unique<rt::Tracer>(scene, *grids.back()));
-      }
-      const int depth = scene.options.max_depth;
-      const bench::EmbreeScene ebr(scene);
-      const bench::EmbreeWhitted plain(scene, ebr, tracers[0]->features(), rt::TracerOptions{},
-                                       depth);
-      std::printf("%s: %zu triangles, max depth %d, features: %s\n", scene.name.c_str(),
-                  scene.triangle_count(), depth, tracers[0]->features().str().c_str());
-      std::fflush(stdout);
-      // The images compared: cpu's linear colour (an untimed render) and Embree's.
-      const rt::FrameOutputs colour{.color = true, .depth = false, .prim = false, .normal = false};
-      const rt::RenderResult reference =
-          tracers[0]->render(settings("cpu", scene, -1, o_.acc, colour), scene.camera);
-      // Timed: each backend's frames into one result, as rill-trace's --bench-frames renders;
-      // each warmed up (compiled) first.
-      std::vector<rt::RenderResult> results(bes.size());
-      std::vector<std::vector<double>> rill_ms(bes.size());
-      std::vector<double> embree_ms;
-      bench::WhittedImage image;
-      for (size_t b = 0; b < bes.size(); ++b)
-        tracers[b]->render(settings(bes[b], scene, -1, o_.acc), scene.camera, results[b]);
-      plain.render(scene.width, scene.height, image);
-      const size_t sides = bes.size() + 1;  // the backends, then Embree
-      for (int r = 0; r < o_.repeats; ++r)
-        for (size_t k = 0; k < sides; ++k) {
-          const size_t x = (k + static_cast<size_t>(r)) % sides;
-          if (x == bes.size()) {
-            const auto t0 = Clock::now();
-            plain.render(scene.width, scene.height, image);
-            embree_ms.push_back(ms_since(t0));
-          } else {
-            tracers[x]->render(settings(bes[x], scene, -1, o_.acc), scene.camera, results[x]);
-            rill_ms[x].push_back(results[x].trace_ms);
-          }
+    // Each backend with the grid rill-trace builds for it (build_grid_for: cpu and simd may
+    // get different densities; images do not depend on it).
+    std::vector<std::unique_ptr<rt::Grid>> grids;
+    std::vector<std::unique_ptr<rt::Tracer>> tracers;
+    for (const auto& be : bes) {
+      grids.push_back(std::make_unique<rt::Grid>(rt::build_grid_for(scene, be)));
+      tracers.push_back(std::make_unique<rt::Tracer>(scene, *grids.back()));
+    }
+    const int depth = scene.options.max_depth;
+    const bench::EmbreeScene ebr(scene);
+    const bench::EmbreeWhitted plain(scene, ebr, tracers[0]->features(), rt::TracerOptions{},
+                                     depth);
+    std::printf("%s: %zu triangles, max depth %d, features: %s\n", scene.name.c_str(),
+                scene.triangle_count(), depth, tracers[0]->features().str().c_str());
+    std::fflush(stdout);
+    // The images compared: cpu's linear colour (an untimed render) and Embree's.
+    const rt::FrameOutputs colour{.color = true, .depth = false, .prim = false, .normal = false};
+    const rt::RenderResult reference =
+        tracers[0]->render(settings("cpu", scene, -1, o_.acc, colour), scene.camera);
+    // Timed: each backend's frames into one result, as rill-trace's --bench-frames renders;
+    // each warmed up (compiled) first.
+    std::vector<rt::RenderResult> results(bes.size());
+    std::vector<std::vector<double>> rill_ms(bes.size());
+    std::vector<double> embree_ms;
+    bench::WhittedImage image;
+    for (size_t b = 0; b < bes.size(); ++b)
+      tracers[b]->render(settings(bes[b], scene, -1, o_.acc), scene.camera, results[b]);
+    plain.render(scene.width, scene.height, image);
+    const size_t sides = bes.size() + 1;  // the backends, then Embree
+    for (int r = 0; r < o_.repeats; ++r)
+      for (size_t k = 0; k < sides; ++k) {
+        const size_t x = (k + static_cast<size_t>(r)) % sides;
+        if (x == bes.size()) {
+          const auto t0 = Clock::now();
+          plain.render(scene.width, scene.height, image);
+          embree_ms.push_back(ms_since(t0));
+        } else {
+          tracers[x]->render(settings(bes[x], scene, -1, o_.acc), scene.camera, results[x]);
+          rill_ms[x].push_back(results[x].trace_ms);
         }
-      // Agreement: a pixel agrees when every channel is within kWhittedSame (why: see
-      // kWhittedSame in embree_whitted.h).
-      const size_t n = image.color.size();
-      size_t agree = 0, same_bytes = 0;
-      for (size_t p = 0; p < n; ++p) {
-        const glm::vec3 d = glm::abs(reference.color[p] - image.color[p]);
-        agree += std::max({d.x, d.y, d.z}) <= bench::kWhittedSame;
       }
-      for (size_t p = 0; p < n; ++p)
-        same_bytes += std::memcmp(&results[0].rgb8[3 * p], &image.rgb8[3 * p], 3) == 0;
-      const double frac = static_cast<double>(agree) / static_cast<double>(std::max<size_t>(n, 1));
-      if (frac < bench::kWhittedMinAgree) {
+    // Agreement: a pixel agrees when every channel is within kWhittedSame (why: see
+    // kWhittedSame in embree_whitted.h).
+    const size_t n = image.color.size();
+    size_t agree = 0, same_bytes = 0;
+    for (size_t p = 0; p < n; ++p) {
+      const glm::vec3 d = glm::abs(reference.color[p] - image.color[p]);
+      agree += std::max({d.x, d.y, d.z}) <= bench::kWhittedSame;
+    }
+    for (size_t p = 0; p < n; ++p)
+      same_bytes += std::memcmp(&results[0].rgb8[3 * p], &image.rgb8[3 * p], 3) == 0;
+    const double frac = static_cast<double>(agree) / static_cast<double>(std::max<size_t>(n, 1));
+    if (frac < bench::kWhittedMinAgree) {
+      ok = false;
+      std::printf(
+          "error: %s: Embree's Whitted image agrees with Rill's on %.4f%% of the "
+          "pixels (at least %.0f%% must)\n",
+          scene.name.c_str(), 100.0 * frac, 100.0 * bench::kWhittedMinAgree);
+    }
+    const double emm = median(embree_ms);
+    const bench::WhittedRays& er = image.rays;
+    for (size_t b = 0; b < bes.size(); ++b) {
+      // Under strict every backend's bytes are cpu's.
+      if (b > 0 && results[b].rgb8 != results[0].rgb8 && o_.acc == rill::Accuracy::Strict) {
         ok = false;
-        std::printf(
-            "error: %s: Embree's Whitted image agrees with Rill's on %.4f%% of the "
-            "pixels (at least %.0f%% must)\n",
-            scene.name.c_str(), 100.0 * frac, 100.0 * bench::kWhittedMinAgree);
+        std::printf("error: %s: %s's image differs from cpu's\n", scene.name.c_str(),
+                    bes[b].c_str());
       }
-      const double emm = median(embree_ms);
-      const bench::WhittedRays& er = image.rays;
-      for (size_t b = 0; b < bes.size(); ++b) {
-        // Under strict every backend's bytes are cpu's.
-        if (b > 0 && results[b].rgb8 != results[0].rgb8 && o_.acc == rill::Accuracy::Strict) {
-          ok = false;
-          std::printf("error: %s: %s's image differs from cpu's\n", scene.name.c_str(),
-                      bes[b].c_str());
-        }
-        const double rm = median(rill_ms[b]);
-        const double rays = static_cast<double>(results[b].rays);
-        t.rows.push_back(
-            {scene.name, std::to_string(scene.triangle_count()), kind, std::to_string(depth),
-             bes[b], fmt("%.1f", rm), std::to_string(results[b].rays), fmt("%.3f", mrays(rays, rm)),
-             fmt("%.1f", emm),
-             std::to_string(er.total()) + " (" + std::to_string(er.camera) + " + " +
-                 std::to_string(er.shadow) + " + " + std::to_string(er.secondary) + ")",
-             fmt("%.3f", mrays(static_cast<double>(er.total()), emm)), fmt("%.3f", emm / rm),
-             fmt("%.4f%%", 100.0 * frac),
-             fmt("%.4f%%", 100.0 * static_cast<double>(same_bytes) /
-                               static_cast<double>(std::max<size_t>(n, 1)))});
-      }
+      const double rm = median(rill_ms[b]);
+      const double rays = static_cast<double>(results[b].rays);
+      t.rows.push_back({scene.name, std::to_string(scene.triangle_count()), kind,
+                        std::to_string(depth), bes[b], fmt("%.1f", rm),
+                        std::to_string(results[b].rays), fmt("%.3f", mrays(rays, rm)),
+                        fmt("%.1f", emm),
+                        std::to_string(er.total()) + " (" + std::to_string(er.camera) + " + " +
+                            std::to_string(er.shadow) + " + " + std::to_string(er.secondary) + ")",
+                        fmt("%.3f", mrays(static_cast<double>(er.total()), emm)),
+                        fmt("%.3f", emm / rm), fmt("%.4f%%", 100.0 * frac),
+                        fmt("%.4f%%", 100.0 * static_cast<double>(same_bytes) /
+                                          static_cast<double>(std::max<size_t>(n, 1)))});
     }
   }
 #endif
