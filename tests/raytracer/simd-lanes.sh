@@ -9,31 +9,24 @@
 set -eu
 exe=$1; work=$2
 mkdir -p "$work"
+tag=simd-lanes
+. "$(dirname "$0")/same-outputs.sh"
 render() {  # NAME BACKEND LANES SCENE ARGS...
-  name=$1; backend=$2; lanes=$3; scene=$4; shift 4
-  RILL_SIMD_LANES=$lanes "$exe" render "builtin:$scene" --backend "$backend" --quiet "$@" \
-    --out "$work/$name.png" --pfm "$work/$name.pfm" --depth "$work/$name.depth.pfm" > /dev/null
-}
-same() {  # A B
-  for ext in pfm depth.pfm; do
-    if ! cmp -s "$work/$1.$ext" "$work/$2.$ext"; then
-      echo "simd-lanes: $1.$ext and $2.$ext differ"
-      exit 1
-    fi
-  done
+  r_name=$1; r_backend=$2; r_lanes=$3; r_scene=$4; shift 4
+  render_outputs "$r_name" "RILL_SIMD_LANES=$r_lanes" "builtin:$r_scene" --backend "$r_backend" "$@"
 }
 for scene in thesis-b thesis-c glass textured; do
   render "$scene-cpu" cpu auto "$scene" --size 37x23
   render "$scene-8" simd 8 "$scene" --size 37x23
   render "$scene-auto" simd auto "$scene" --size 37x23
-  same "$scene-cpu" "$scene-8"
-  same "$scene-cpu" "$scene-auto"
+  same_outputs "$scene-cpu" "$scene-8"
+  same_outputs "$scene-cpu" "$scene-auto"
 done
 for strategy in megakernel wavefront; do
   render "path-$strategy-cpu" cpu auto cornell-path --size 30x21 --spp 2 --strategy "$strategy"
   render "path-$strategy-8" simd 8 cornell-path --size 30x21 --spp 2 --strategy "$strategy"
   render "path-$strategy-auto" simd auto cornell-path --size 30x21 --spp 2 --strategy "$strategy"
-  same "path-$strategy-cpu" "path-$strategy-8"
-  same "path-$strategy-cpu" "path-$strategy-auto"
+  same_outputs "path-$strategy-cpu" "path-$strategy-8"
+  same_outputs "path-$strategy-cpu" "path-$strategy-auto"
 done
 echo "simd-lanes: images the same at 8 lanes, at the default lanes and on cpu"
