@@ -12,7 +12,7 @@
 #     strict and fast runs (control.group_independent among them), and the packet traversal
 #     against its brute-force closest-hit oracle on glsl_compute;
 #   - "same bits" for rill-trace --packets on, glsl-compute (subgroups, and a group of one)
-#     against cpu;
+#     against cpu, and the subgroups' kernel using subgroupMin (the shared walk);
 #   - table.md: frames with packets on and off, subgroups on and off (information, not a goal).
 source scripts/gpu-setup.sh
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee $OUT/info.txt
@@ -33,9 +33,10 @@ for scene in builtin:thesis-a builtin:thesis-c builtin:cornell; do
   n=$(basename "$scene" | tr ':' '_')
   timeout 300 $B/rill-trace render $scene --backend cpu --packets on --size 640x480 --out /tmp/p-$n-cpu.png > $OUT/render-$n.txt 2>&1
   for s in on off; do
-    RILL_GLSL_SUBGROUPS=$s timeout 300 $B/rill-trace render $scene --backend glsl-compute --packets on --size 640x480 --out /tmp/p-$n-$s.png >> $OUT/render-$n.txt 2>&1
+    RILL_GLSL_SUBGROUPS=$s timeout 300 $B/rill-trace render $scene --backend glsl-compute --packets on --size 640x480 --out /tmp/p-$n-$s.png --source /tmp/p-$n-$s.glsl >> $OUT/render-$n.txt 2>&1
     if cmp -s /tmp/p-$n-cpu.png /tmp/p-$n-$s.png; then v="same bits"; else v="DIFFERENT (see render-$n.txt)"; fi
-    echo "rill-trace $scene --packets on, glsl-compute RILL_GLSL_SUBGROUPS=$s vs cpu: $v" | tee -a $OUT/info.txt
+    # With subgroups the kernel's walk uses them (subgroupMin: expect > 0 for on, 0 for off).
+    echo "rill-trace $scene --packets on, glsl-compute RILL_GLSL_SUBGROUPS=$s vs cpu: $v; subgroupMin in the kernel: $(grep -c 'subgroupMin(' /tmp/p-$n-$s.glsl)" | tee -a $OUT/info.txt
   done
 done
 # Frames, side by side in one run (frame_row from gpu-setup.sh: medians of 20 frames at 1080p).
