@@ -1,6 +1,7 @@
 // rill-bench-trace: the ray tracer's benchmarks (issue #6, docs/raytracer.md, Performance).
 //
-//   rill-bench-trace [--sections throughput,embree,grid,depth,spec,bounce,shared] [--size WxH]
+//   rill-bench-trace [--sections throughput,embree,grid,depth,spec,bounce,whitted,shared]
+//                    [--size WxH]
 //                    [--scenes builtin:thesis-a,...,FILE.obj] [--backends
 //                    all|cpu,simd,opencl,glsl,glsl-compute]
 //                    [--repeats R] [--subgrids N|off|auto] [--grid-density D|auto] [--grid-scene S]
@@ -8,6 +9,7 @@
 //                    [--packets auto|on|off,...] [--embree-modes auto|4,8,16,1M]
 //                    [--depth-scene S] [--depths 1-8] [--sweep-backends cpu]
 //                    [--path-scenes default|S,...] [--bounce 2] [--spp 1] [--seed N]
+//                    [--whitted-frames full,camera]
 //                    [--md F] [--csv F]
 //
 // Sections (each a table; all timings are medians of R interleaved repeats, after an
@@ -39,6 +41,16 @@
 //               for) against one with every effect on (specular, reflection, refraction with
 //               its ray stack, vertex normals and colours, the lights and shadows the scene
 //               has), same scene, interleaved: trace times, ratio, and pixels that differ.
+//   whitted     (not in the default list) full Whitted frames: per scene, Rill's frame as
+//               `rill-trace render` makes it with its defaults (Tracer::render, the megakernel,
+//               reading back the 8-bit image) on cpu and simd, and a plain Whitted renderer on
+//               Embree 3 (embree_whitted.h: rtcIntersect1 and rtcOccluded1 ray by ray, oneTBB
+//               over tiles, the shading formulas of WhittedFormulas.h), interleaved: ms per
+//               frame, the rays of each (Embree's by kind: camera, shadow, secondary), Mrays/s,
+//               Rill/Embree, and how many pixels of Embree's linear image agree with Rill's cpu
+//               image (every channel within 1e-4; at least 99% must). --whitted-frames
+//               full,camera adds each scene with shadows off and max depth 0: the camera rays'
+//               hits and their shading alone. Needs Embree.
 //   bounce      (not in the default list) the path tracer's incoherent rays: per path scene
 //               (--path-scenes; default cornell-path, thesis C with an area light and, where
 //               ../shared/meshes has it, the bunny under one), the rays leaving the second
@@ -54,7 +66,9 @@
 // Exit status 1 if a check fails: Embree and Rill agree on fewer than --min-agree of the
 // rays (primary or bounce), a backend's hits differ from the CPU's (strict: they must be
 // identical), or the every-effect kernel's image differs from the specialized one by more than
-// the tracer's weight cut-off (1e-3) or one of its camera rays hits another primitive.
+// the tracer's weight cut-off (1e-3) or one of its camera rays hits another primitive, or the
+// plain Embree renderer's Whitted image agrees with Rill's on fewer than 99% of the pixels
+// (simd's image must be cpu's under strict).
 #include <rill/rill.h>
 #include <tbb/info.h>
 #include <CLI/CLI.hpp>
@@ -83,6 +97,7 @@
 #include "CommaList.h"
 #include "HitAgreement.h"
 #include "Timing.h"
+#include "embree_whitted.h"
 #include "rill/rt/Tracer.h"
 #include "rill/rt/accel/Grid.h"
 #include "rill/rt/kernel/DeviceArrays.h"
@@ -169,6 +184,8 @@ struct Options {
   int bounce = 2;
   int spp = 1;
   int64_t seed = -1;  // -1: the scene's
+  // The whitted section's frames: full (the scene's), camera (no shadows, max depth 0).
+  std::string whitted_frames = "full";
   // The shared section's child: measure this backend alone and write the figures here.
   std::string shared_alone, shared_out;
   std::string md, csv;
@@ -781,6 +798,128 @@ class Bench {
 #endif
   }
 
+  // Full Whitted frames against the plain Embree renderer (embree_whitted.h): Rill's frame as
+  // `rill-trace render` makes it on cpu and simd, and Embree's, interleaved round by round
+  // (each round starting one later), each on the cores oneTBB gives it.
+  void whitted_frames() {
+#ifndef RILL_BENCH_HAVE_EMBREE
+    std::printf("note: built without Embree 3 (libembree-dev): no Whitted comparison\n");
+#else
+    const std::vector<std::string> bes = usable_backends("cpu,simd");
+    if (bes.empty() || bes[0] != "cpu") {  // cpu's image is the one compared
+      ok = false;
+      std::printf("error: the whitted section needs the cpu backend\n");
+      return;
+    }
+    Table t{"Whitted frames: rill-trace render against a plain Embree " + embree_version() +
+                " renderer, " + size_str() + ", Rill " + rill::accuracy_name(o_.acc) + ", " +
+                std::to_string(tbb::info::default_concurrency()) + " threads, median of " +
+                std::to_string(o_.repeats),
+            {"scene", "triangles", "frame", "max depth", "backend", "Rill ms", "Rill rays",
+             "Rill Mrays/s", "Embree ms", "Embree rays (camera + shadow + secondary)",
+             "Embree Mrays/s", "Rill/Embree", "pixels agree", "same bytes"},
+            {}};
+    for (const auto& spec : split_list(o_.scenes))
+      for (const auto& kind : split_list(o_.whitted_frames)) {
+        rt::Scene scene = load(spec, o_);
+        if (kind == "camera") {  // hit finding and shading alone: no shadow or secondary rays
+          scene.options.shadows = false;
+          scene.options.max_depth = 0;
+        }
+        whitted_frame(scene, kind, bes, t);
+      }
+    add(t);
+#endif
+  }
+
+#ifdef RILL_BENCH_HAVE_EMBREE
+  // One scene's rows of the whitted section: frame `kind` (full or camera).
+  void whitted_frame(const rt::Scene& scene, const std::string& kind,
+                     const std::vector<std::string>& bes, Table& t) {
+    // Each backend with the grid rill-trace builds for it (build_grid_for: cpu and simd may
+    // get different densities; images do not depend on it).
+    std::vector<std::unique_ptr<rt::Grid>> grids;
+    std::vector<std::unique_ptr<rt::Tracer>> tracers;
+    for (const auto& be : bes) {
+      grids.push_back(std::make_unique<rt::Grid>(rt::build_grid_for(scene, be)));
+      tracers.push_back(std::make_unique<rt::Tracer>(scene, *grids.back()));
+    }
+    const int depth = scene.options.max_depth;
+    const bench::EmbreeScene ebr(scene);
+    const bench::EmbreeWhitted plain(scene, ebr, tracers[0]->features(), rt::TracerOptions{},
+                                     depth);
+    std::printf("%s: %zu triangles, max depth %d, features: %s\n", scene.name.c_str(),
+                scene.triangle_count(), depth, tracers[0]->features().str().c_str());
+    std::fflush(stdout);
+    // The images compared: cpu's linear colour (an untimed render) and Embree's.
+    const rt::FrameOutputs colour{.color = true, .depth = false, .prim = false, .normal = false};
+    const rt::RenderResult reference =
+        tracers[0]->render(settings("cpu", scene, -1, o_.acc, colour), scene.camera);
+    // Timed: each backend's frames into one result, as rill-trace's --bench-frames renders;
+    // each warmed up (compiled) first.
+    std::vector<rt::RenderResult> results(bes.size());
+    std::vector<std::vector<double>> rill_ms(bes.size());
+    std::vector<double> embree_ms;
+    bench::WhittedImage image;
+    for (size_t b = 0; b < bes.size(); ++b)
+      tracers[b]->render(settings(bes[b], scene, -1, o_.acc), scene.camera, results[b]);
+    plain.render(scene.width, scene.height, image);
+    const size_t sides = bes.size() + 1;  // the backends, then Embree
+    for (int r = 0; r < o_.repeats; ++r)
+      for (size_t k = 0; k < sides; ++k) {
+        const size_t x = (k + static_cast<size_t>(r)) % sides;
+        if (x == bes.size()) {
+          const auto t0 = Clock::now();
+          plain.render(scene.width, scene.height, image);
+          embree_ms.push_back(ms_since(t0));
+        } else {
+          tracers[x]->render(settings(bes[x], scene, -1, o_.acc), scene.camera, results[x]);
+          rill_ms[x].push_back(results[x].trace_ms);
+        }
+      }
+    // Agreement: a pixel agrees when every channel is within kWhittedSame (why: see
+    // kWhittedSame in embree_whitted.h).
+    const size_t n = image.color.size();
+    size_t agree = 0, same_bytes = 0;
+    for (size_t p = 0; p < n; ++p) {
+      const glm::vec3 d = glm::abs(reference.color[p] - image.color[p]);
+      agree += std::max({d.x, d.y, d.z}) <= bench::kWhittedSame;
+    }
+    for (size_t p = 0; p < n; ++p)
+      same_bytes += std::memcmp(&results[0].rgb8[3 * p], &image.rgb8[3 * p], 3) == 0;
+    const double frac = static_cast<double>(agree) / static_cast<double>(std::max<size_t>(n, 1));
+    if (frac < bench::kWhittedMinAgree) {
+      ok = false;
+      std::printf(
+          "error: %s: Embree's Whitted image agrees with Rill's on %.4f%% of the "
+          "pixels (at least %.0f%% must)\n",
+          scene.name.c_str(), 100.0 * frac, 100.0 * bench::kWhittedMinAgree);
+    }
+    const double emm = median(embree_ms);
+    const bench::WhittedRays& er = image.rays;
+    for (size_t b = 0; b < bes.size(); ++b) {
+      // Under strict every backend's bytes are cpu's.
+      if (b > 0 && results[b].rgb8 != results[0].rgb8 && o_.acc == rill::Accuracy::Strict) {
+        ok = false;
+        std::printf("error: %s: %s's image differs from cpu's\n", scene.name.c_str(),
+                    bes[b].c_str());
+      }
+      const double rm = median(rill_ms[b]);
+      const double rays = static_cast<double>(results[b].rays);
+      t.rows.push_back({scene.name, std::to_string(scene.triangle_count()), kind,
+                        std::to_string(depth), bes[b], fmt("%.1f", rm),
+                        std::to_string(results[b].rays), fmt("%.3f", mrays(rays, rm)),
+                        fmt("%.1f", emm),
+                        std::to_string(er.total()) + " (" + std::to_string(er.camera) + " + " +
+                            std::to_string(er.shadow) + " + " + std::to_string(er.secondary) + ")",
+                        fmt("%.3f", mrays(static_cast<double>(er.total()), emm)),
+                        fmt("%.3f", emm / rm), fmt("%.4f%%", 100.0 * frac),
+                        fmt("%.4f%%", 100.0 * static_cast<double>(same_bytes) /
+                                          static_cast<double>(std::max<size_t>(n, 1)))});
+    }
+  }
+#endif
+
   // Time against grid resolution. Every grid's tracer is set up first, so that the timed
   // repeats can interleave the resolutions (the machine's load drifts).
   void grid_sweep() {
@@ -1140,8 +1279,9 @@ int main(int argc, char** argv) {
       "throughput, Embree, grid and depth sweeps, kernel specialization, the path tracer's "
       "bounce rays against Embree)"};
   app.add_option("--sections", o.sections,
-                 "comma list of throughput,embree,grid,depth,spec,bounce,shared (shared: the GPU "
-                 "backends in one process against each alone)")
+                 "comma list of throughput,embree,grid,depth,spec,bounce,whitted,shared (whitted: "
+                 "full Whitted frames against a plain Embree renderer; shared: the GPU backends in "
+                 "one process against each alone)")
       ->default_str(o.sections);
   app.add_option("--size", o.size, "image size WxH")->default_str(o.size);
   app.add_option("--scenes", o.scenes, "comma list: builtin:NAME, OBJ or JSON files")
@@ -1198,6 +1338,10 @@ int main(int argc, char** argv) {
       ->default_str("1");
   app.add_option("--seed", o.seed, "the bounce section's path seed (default: the scene's)")
       ->check(CLI::Range(int64_t{0}, int64_t{0xffffffff}));
+  app.add_option("--whitted-frames", o.whitted_frames,
+                 "the whitted section's frames, a comma list: full (the scene as it is), camera "
+                 "(shadows off and max depth 0: the camera rays' hits and their shading alone)")
+      ->default_str(o.whitted_frames);
   app.add_option("--min-agree", o.min_agree, "fraction of rays Embree and Rill must agree on")
       ->check(CLI::Range(0.0, 1.0))
       ->default_str("0.999");
@@ -1241,12 +1385,17 @@ int main(int argc, char** argv) {
     for (const std::string& p : split_list(o.packets))
       o.packets_list.push_back(rt::parse_packets(p));
     if (o.packets_list.empty()) throw rt::SceneError("--packets: name at least one setting");
+    const std::vector<std::string> frames = split_list(o.whitted_frames);
+    if (frames.empty()) throw rt::SceneError("--whitted-frames: name at least one frame");
+    for (const std::string& f : frames)
+      if (f != "full" && f != "camera")
+        throw rt::SceneError("--whitted-frames: unknown frame '" + f + "' (full, camera)");
     sections = split_list(o.sections);
     for (const auto& s : sections)
       if (s != "throughput" && s != "embree" && s != "grid" && s != "depth" && s != "spec" &&
-          s != "bounce" && s != "shared")
+          s != "bounce" && s != "whitted" && s != "shared")
         throw rt::SceneError("--sections: unknown section '" + s +
-                             "' (throughput, embree, grid, depth, spec, bounce, shared)");
+                             "' (throughput, embree, grid, depth, spec, bounce, whitted, shared)");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rill-bench-trace: %s\n", e.what());
     return 2;
@@ -1265,6 +1414,7 @@ int main(int argc, char** argv) {
     if (has("depth")) b.depth_sweep();
     if (has("spec")) b.specialization();
     if (has("bounce")) b.bounce_rays();
+    if (has("whitted")) b.whitted_frames();
     if (has("shared")) b.shared_process();
     if (!o.md.empty()) {
       std::ofstream f(o.md);

@@ -226,9 +226,11 @@ float rill_abs_f(float x) { return abs(x); }
    -0 included): rounding to an integer and the square root are correctly rounded
    instructions. Strict code would otherwise call floorf, ceilf, truncf and sqrtf lane by
    lane. The rounding immediates are _MM_FROUND_TO_NEG_INF, _TO_POS_INF and _TO_ZERO, each
-   with _MM_FROUND_NO_EXC (8). */
+   with _MM_FROUND_NO_EXC (8); with 16 lanes, AVX-512's vrndscaleps takes the same ones. */
 #ifdef RILL_AVX2
 RILL_FN rill_vr rill_v_floor(rill_vr a) { return __builtin_ia32_roundps256(a, 1 | 8); }
+#elif defined(RILL_AVX512)
+RILL_FN rill_vr rill_v_floor(rill_vr a) { return RILL_ROUND16(a, 1 | 8); }
 #else
 RILL_LANES1(rill_v_floor, rill_vr, rill_vr, rill_floor)
 #endif)"}}},
@@ -237,6 +239,8 @@ RILL_LANES1(rill_v_floor, rill_vr, rill_vr, rill_floor)
         {Glsl, R"(float rill_ceil(float x) { return ceil(x); })"},
         {Lockstep, R"(#ifdef RILL_AVX2
 RILL_FN rill_vr rill_v_ceil(rill_vr a) { return __builtin_ia32_roundps256(a, 2 | 8); }
+#elif defined(RILL_AVX512)
+RILL_FN rill_vr rill_v_ceil(rill_vr a) { return RILL_ROUND16(a, 2 | 8); }
 #else
 RILL_LANES1(rill_v_ceil, rill_vr, rill_vr, rill_ceil)
 #endif)"}}},
@@ -245,6 +249,8 @@ RILL_LANES1(rill_v_ceil, rill_vr, rill_vr, rill_ceil)
         {Glsl, R"(float rill_trunc(float x) { return trunc(x); })"},
         {Lockstep, R"(#ifdef RILL_AVX2
 RILL_FN rill_vr rill_v_trunc(rill_vr a) { return __builtin_ia32_roundps256(a, 3 | 8); }
+#elif defined(RILL_AVX512)
+RILL_FN rill_vr rill_v_trunc(rill_vr a) { return RILL_ROUND16(a, 3 | 8); }
 #else
 RILL_LANES1(rill_v_trunc, rill_vr, rill_vr, rill_trunc)
 #endif)"}}},
@@ -396,6 +402,8 @@ float rill_residual(float a, float q, float b) { RILL_PRECISE float r = fma(-q, 
         {Glsl, kLeanSqrtGlsl, Variant::Lean},
         {Lockstep, R"(#ifdef RILL_AVX2
 RILL_FN rill_vr rill_v_sqrt(rill_vr a) { return __builtin_ia32_sqrtps256(a); }
+#elif defined(RILL_AVX512)
+RILL_FN rill_vr rill_v_sqrt(rill_vr a) { return RILL_SQRT16(a); }
 #else
 RILL_LANES1(rill_v_sqrt, rill_vr, rill_vr, rill_sqrt)
 #endif)"}}},

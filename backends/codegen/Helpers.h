@@ -10,7 +10,8 @@
 //   C, OpenCL C, lockstep C: rill_real (float, or double in the `double` accuracy mode),
 //     RILL_M(fn) (the math library function for rill_real: sqrtf / sqrt), RILL_FN (the
 //     storage class of helpers, "static inline"), int32_t, uint32_t, int64_t; lockstep C
-//     also its vector types, rill_sel_i/r, RILL_CMP, RILL_AVX2 and RILL_LANES1/2.
+//     also its vector types, rill_sel_i/r, RILL_CMP, RILL_AVX2, RILL_AVX512 (RILL_ROUND16,
+//     RILL_SQRT16) and RILL_LANES1/2.
 //   GLSL: RILL_PRECISE, RILL_ONE, RILL_ZERO_I, RILL_NATIVE_COMPARE, RILL_FLUSHES_DENORMALS,
 //   RILL_ABS_ON_BITS (the Vulkan dialect).
 // An op's HELPER form (dsl/include/rill/ir/Ops.def) names its entry; tests/backends/

@@ -88,7 +88,7 @@ struct Selection {
 class HostKernel : public CompiledKernel {
  public:
   // lanes: 0 for scalar C (emit_c), else the lockstep kernel's lanes (simd's
-  // emit_c_lockstep, which runs unmasked 2D launches in row pairs and indexes arrays with
+  // emit_c_lockstep, which runs unmasked 2D launches in tiles and indexes arrays with
   // 32-bit lanes).
   HostKernel(std::string source, SharedObject so, int lanes)
       : CompiledKernel(so.from_disk_cache),
@@ -146,11 +146,12 @@ class HostKernel : public CompiledKernel {
     const int64_t threads = std::max(1, tbb::this_task_arena::max_concurrency());
     const int64_t grain = std::clamp<int64_t>(a.count / (16 * threads), 64, 1024);
     // Ranges count units of `unit` elements: single elements, or, for the lockstep kernel on
-    // an unmasked 2D stream, whole row pairs, which it runs in tiles of two rows
-    // (rill_next_group).
-    const bool row_pairs = lanes_ > 0 && !mask && a.height >= 2 && a.width >= lanes_ / 2 &&
-                           a.count == a.width * a.height;
-    const int64_t unit = row_pairs ? 2 * a.width : 1;
+    // an unmasked 2D stream, whole tile rows (lockstep_tile_rows rows), which it runs in tiles
+    // (rill_next_group, which checks the same condition).
+    const int tile_rows = lockstep_tile_rows(lanes_);
+    const bool tiled = lanes_ > 0 && !mask && a.height >= 2 && a.width >= lanes_ / tile_rows &&
+                       a.count == a.width * a.height;
+    const int64_t unit = tiled ? tile_rows * a.width : 1;
     const int64_t units = (a.count + unit - 1) / unit;
     const int64_t range_units = std::max<int64_t>(1, grain / unit);
     auto run_range = [&](const tbb::blocked_range<int64_t>& r, Counts acc) {

@@ -17,7 +17,9 @@
 //     counts of elements written and selected come back through a small storage buffer
 //     (reading it is the launch's only wait);
 //   - a masked launch passes the state stream and the selected values to the same program,
-//     which returns early for elements not selected.
+//     which returns early for elements not selected;
+//   - lane groups (rill/Group.h) are the driver's subgroups where it has GL_KHR_shader_subgroup's
+//     operations in compute shaders (Subgroups.h; RILL_GLSL_SUBGROUPS=off: a group of one).
 // Strict kernels follow the same rules as on the fragment stage: `precise`, constants in a
 // uniform, and corrected division and square root where the driver needs it (DivSqrt.h).
 //
@@ -41,6 +43,7 @@
 #include "GLContext.h"
 #include "GLSLEmitter.h"
 #include "GLSession.h"
+#include "Subgroups.h"
 #include "rill/StateMask.h"
 #include "rill/Stopwatch.h"
 
@@ -72,7 +75,8 @@ class ComputeBackend : public GLBackend {
            "; strict / and sqrt: " +
            divsqrt_description(driver_.rules.divsqrt, driver_.rules.fused_fma, driver_.rules.lean) +
            ", comparisons: " + compare_name(driver_.rules.native_compare) +
-           "; denormals: " + (device_.flushes_denormals ? "flushed" : "kept") + "; " +
+           "; denormals: " + (device_.flushes_denormals ? "flushed" : "kept") +
+           "; lane groups: " + lane_groups_text(subgroups_, driver_.rules.subgroups) + "; " +
            std::to_string(device_.limits.storage_blocks) + " storage buffers, " +
            std::to_string(device_.limits.texture_units) + " array units; disk cache: " +
            (driver_.binary_formats > 0 ? "program binaries"
@@ -188,9 +192,13 @@ class ComputeBackend : public GLBackend {
     gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, device_.counter);
     gl.glBufferData(GL_SHADER_STORAGE_BUFFER, 16, nullptr, GL_DYNAMIC_READ);
     device_.flushes_denormals = probe_flushes_denormals(gl, driver_, kWho);
+    const bool wanted = subgroups_wanted();  // a bad value is an error on every driver
+    subgroups_ = query_subgroups(gl);
+    driver_.rules.subgroups = subgroups_.usable && wanted;
   }
 
   ComputeDevice device_;
+  GLSubgroups subgroups_;  // what the driver has; driver_.rules.subgroups: whether it is used
   ComputeBuffers buffers_;
 };
 

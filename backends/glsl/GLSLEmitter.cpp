@@ -56,9 +56,9 @@ class GLSLDialect : public codegen::Dialect {
         subgroups_(subgroups) {}
 
   // Lane-group ops as GL_KHR_shader_subgroup operations over the invocations that reach them
-  // together (VulkanTarget::subgroups), else a group of one. Inactive invocations take no
-  // part in a subgroup operation, which gives the identities Group.h promises; a broadcast
-  // from an inactive or out-of-range lane keeps the element's own value.
+  // together (DriverRules::subgroups, both compute dialects), else a group of one. Inactive
+  // invocations take no part in a subgroup operation, which gives the identities Group.h promises;
+  // a broadcast from an inactive or out-of-range lane keeps the element's own value.
   std::string group(Op op, ScalarKind k, int c,
                     const std::vector<std::string>& args) const override {
     if (!subgroups_) return codegen::Dialect::group(op, k, c, args);
@@ -255,7 +255,7 @@ class GLSLDialect : public codegen::Dialect {
   bool subgroups_;
 };
 
-// group_broadcast's helpers under VulkanTarget::subgroups: the lane's x where that lane is
+// group_broadcast's helpers under DriverRules::subgroups: the lane's x where that lane is
 // active and in range, else the element's own (a shuffle from an inactive invocation is
 // undefined, so its result is not used).
 const char kSubgroupBroadcast[] = R"(#define RILL_G_BCAST(name, T) T name(T x, int lane) { \
@@ -481,14 +481,15 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
                              bool counts, const DriverRules& rules, bool flushes_denormals,
                              int local_size, const VulkanTarget* vulkan, bool source_map) {
   GLSLDialect d(accuracy, vulkan ? Stage::Vulkan : Stage::Compute, outputs, rules.loop_guard,
-                vulkan && vulkan->subgroups);
+                rules.subgroups);
   codegen::CFamilyPrinter p(f, d, source_map);
   std::string body = p.declarations(1) + p.body(1);
   d.sort_constants();  // as in emit_glsl
   body = p.declarations(1) + p.body(1);
   const ComputeBindings bind = compute_bindings(f, outputs.size());
   // Counting one atomic per subgroup where the driver has ballots (NVIDIA, recent Mesa); an
-  // extension the driver lacks is a warning, and its macro stays undefined.
+  // extension the driver lacks is a warning, and its macro stays undefined. The lane-group
+  // ops' extensions are required: rules.subgroups says the driver has them.
   // In Vulkan, a device without ballots gets no such extension (its module would need the
   // capability), and the float-controls execution modes follow.
   const std::string subgroups =
@@ -502,13 +503,13 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   std::string src =
       vulkan
           ? header(f, accuracy, "compute, Vulkan",
-                   (vulkan->ballot || vulkan->subgroups ? subgroups : "") +
-                       (vulkan->subgroups ? group_ops : "") +
+                   (vulkan->ballot || rules.subgroups ? subgroups : "") +
+                       (rules.subgroups ? group_ops : "") +
                        (vulkan->params_uniform ? "#extension GL_EXT_scalar_block_layout : require\n"
                                                : "") +
                        vulkan->execution_modes + "#define RILL_ABS_ON_BITS\n",
                    true)
-          : header(f, accuracy, "compute", subgroups);
+          : header(f, accuracy, "compute", subgroups + (rules.subgroups ? group_ops : ""));
   src += "layout(local_size_x = " + std::to_string(local_size) + ") in;\n";
   const std::string set = vulkan ? "set = 0, " : "";
   auto block = [&](const std::string& name, int binding, ScalarKind k, bool readonly) {
@@ -549,7 +550,7 @@ GLSLShader emit_glsl_compute(const Function& f, Accuracy accuracy, const std::ve
   if (!counts)
     src += "#undef RILL_COUNT\n#define RILL_COUNT(field)  // counted by the kernel's first pass\n";
   src += helper_definitions(f, accuracy, rules, flushes_denormals);
-  if (vulkan && vulkan->subgroups && body.find("rill_g_bcast_") != std::string::npos)
+  if (rules.subgroups && body.find("rill_g_bcast_") != std::string::npos)
     src += kSubgroupBroadcast;  // only into kernels that broadcast
   if (!vulkan) src += "uniform int rill_tiled;\n";
   src += "\nvoid main() {\n";

@@ -36,6 +36,11 @@ struct DriverRules {
   // sets a word the backend reads after the launch (the fragment stage's rill_guard buffer,
   // binding kGuardBinding; the compute stage's counters) and reports as an error.
   bool loop_guard = false;
+  // The compute stages (glsl-compute, vulkan): lane-group ops (rill/Group.h) as
+  // GL_KHR_shader_subgroup operations, where the device has basic, vote, ballot, arithmetic
+  // and shuffle operations in compute shaders (glsl/Subgroups.h, vk::DeviceInfo::group_ops).
+  // Else, and always on the fragment stage, a group of one.
+  bool subgroups = false;
 };
 // The fragment stage's storage buffer for DriverRules::loop_guard.
 constexpr int kGuardBinding = 0;
@@ -66,9 +71,6 @@ GLSLShader emit_glsl(const ir::Function& optimized, Accuracy accuracy,
 // vulkan_params_layout() says.
 struct VulkanTarget {
   bool ballot = false;  // GL_KHR_shader_subgroup_ballot in compute shaders (else one atomic each)
-  // Lane-group ops (rill/Group.h) as subgroup operations: the device has basic, vote, ballot,
-  // arithmetic and shuffle operations in compute shaders. Else a group of one.
-  bool subgroups = false;
   // Lines placed after #version: GL_EXT_spirv_intrinsics float-controls execution modes.
   std::string execution_modes;
   // The parameters as a uniform buffer in scalar layout (GL_EXT_scalar_block_layout) rather

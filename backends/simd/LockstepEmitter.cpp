@@ -13,10 +13,10 @@
 // conversions saturate, gathers clamp their indices and arrays are never empty). Each lane
 // computes exactly the operations of the scalar code, in the same order and precision, so
 // results are bit for bit those of emit_c().
-// A group is RILL_W consecutive elements, or a RILL_W/2 x 2 tile of a 2D stream when the
-// launch range is whole rows (the backend hands the lockstep kernel ranges of row pairs;
-// rill_next_group). A group shorter than RILL_W repeats its last element in the spare lanes
-// and stores only the real ones.
+// A group is RILL_W consecutive elements, or a tile of a 2D stream when the launch range is
+// whole rows: RILL_W/2 x 2 at 8 lanes, 4 x 4 at 16 (the backend hands the lockstep kernel
+// ranges of whole tile rows, cpu::lockstep_tile_rows; rill_next_group). A group shorter
+// than RILL_W repeats its last element in the spare lanes and stores only the real ones.
 #include "LockstepEmitter.h"
 
 #include <string_view>
@@ -25,6 +25,7 @@
 #include "../codegen/Helpers.h"
 #include "../codegen/SourceMap.h"
 #include "../cpu/CEmitter.h"
+#include "../cpu/HostKernel.h"
 #include "VectorDialect.h"
 #include "rill/ir/Visitor.h"
 #include "rill/passes/Passes.h"
@@ -66,6 +67,25 @@ typedef int32_t rill_v2i_u __attribute__((vector_size(8), aligned(4)));
 typedef long long rill_v4q __attribute__((vector_size(32)));
 #endif
 #endif
+/* RILL_AVX512: 16 lanes in AVX-512 registers (zmm), the simd backend's strict kernels where
+   the CPU has AVX-512 F, VL, BW and DQ (SimdBackend.cpp). The builtins have the same names
+   in GCC and clang. Without them (or at other widths) the generic code serves. */
+#if defined(__AVX512F__) && RILL_W == 16 && defined(__has_builtin)
+#if __has_builtin(__builtin_ia32_cmpd512_mask) && __has_builtin(__builtin_ia32_gathersiv16sf) && \
+    __has_builtin(__builtin_ia32_gathersiv16si) && __has_builtin(__builtin_ia32_rndscaleps_mask)
+#define RILL_AVX512 1
+/* vrndscaleps and vsqrtps on all 16 lanes (rill_v_floor, rill_v_sqrt and kin), exact as
+   their 8-lane AVX forms; the square root's builtin is named differently in GCC and clang.
+   4 is _MM_FROUND_CUR_DIRECTION. */
+#define RILL_ROUND16(a, imm) \
+  __builtin_ia32_rndscaleps_mask((a), (imm), (a), (unsigned short)0xffff, 4)
+#if __has_builtin(__builtin_ia32_sqrtps512_mask)
+#define RILL_SQRT16(a) __builtin_ia32_sqrtps512_mask((a), (a), (unsigned short)0xffff, 4)
+#else
+#define RILL_SQRT16(a) __builtin_ia32_sqrtps512((a), 4)
+#endif
+#endif
+#endif
 /* Each lane's element of a stream: p[lane[l] * stride] (p points at the component). */
 #if RILL_W == 8
 RILL_FN rill_vr rill_lanes_r(const float* p, const int64_t* lane, int64_t n) {
@@ -75,6 +95,19 @@ RILL_FN rill_vr rill_lanes_r(const float* p, const int64_t* lane, int64_t n) {
 RILL_FN rill_vi rill_lanes_i(const int32_t* p, const int64_t* lane, int64_t n) {
   return (rill_vi){p[lane[0] * n], p[lane[1] * n], p[lane[2] * n], p[lane[3] * n],
                    p[lane[4] * n], p[lane[5] * n], p[lane[6] * n], p[lane[7] * n]};
+}
+#elif RILL_W == 16
+RILL_FN rill_vr rill_lanes_r(const float* p, const int64_t* lane, int64_t n) {
+  return (rill_vr){p[lane[0] * n],  p[lane[1] * n],  p[lane[2] * n],  p[lane[3] * n],
+                   p[lane[4] * n],  p[lane[5] * n],  p[lane[6] * n],  p[lane[7] * n],
+                   p[lane[8] * n],  p[lane[9] * n],  p[lane[10] * n], p[lane[11] * n],
+                   p[lane[12] * n], p[lane[13] * n], p[lane[14] * n], p[lane[15] * n]};
+}
+RILL_FN rill_vi rill_lanes_i(const int32_t* p, const int64_t* lane, int64_t n) {
+  return (rill_vi){p[lane[0] * n],  p[lane[1] * n],  p[lane[2] * n],  p[lane[3] * n],
+                   p[lane[4] * n],  p[lane[5] * n],  p[lane[6] * n],  p[lane[7] * n],
+                   p[lane[8] * n],  p[lane[9] * n],  p[lane[10] * n], p[lane[11] * n],
+                   p[lane[12] * n], p[lane[13] * n], p[lane[14] * n], p[lane[15] * n]};
 }
 #else
 RILL_FN rill_vr rill_lanes_r(const float* p, const int64_t* lane, int64_t n) {
@@ -86,6 +119,11 @@ RILL_FN rill_vi rill_lanes_i(const int32_t* p, const int64_t* lane, int64_t n) {
 #endif
 #ifdef RILL_AVX2
 RILL_FN int rill_any(rill_vi m) { return !__builtin_ia32_ptestz256((rill_v4q)m, (rill_v4q)m); }
+#elif defined(RILL_AVX512)
+/* vpcmpd into a mask register, compared with 0 (_mm512_cmpneq_epi32_mask). */
+RILL_FN int rill_any(rill_vi m) {
+  return __builtin_ia32_cmpd512_mask(m, (rill_vi){0}, 4, (unsigned short)0xffff) != 0;
+}
 #else
 RILL_FN int rill_any(rill_vi m) {
   int32_t r = 0;
@@ -94,17 +132,19 @@ RILL_FN int rill_any(rill_vi m) {
 }
 #endif
 /* The groups of a launch range [begin, end). A range of whole rows of a 2D stream goes in
-   tiles of RILL_W/2 x 2 elements (rows paired from the range's first row, an odd last row in
-   runs of RILL_W): neighbouring pixels take similar paths through a kernel, and a tile's
-   lanes lie closer together than RILL_W along one row, so they diverge less. Any other
-   range goes in runs of RILL_W consecutive elements. The spare lanes of a short group repeat
-   its last element; the return value is the group's element count, 0 after the last.
+   tiles of RILL_W/RILL_TILE_ROWS x RILL_TILE_ROWS elements (4 x 2 at 8 lanes, 4 x 4 at 16;
+   rows taken from the range's first row; the last rows of a range, fewer than
+   RILL_TILE_ROWS, in tiles of as many rows, a single row in runs of RILL_W): neighbouring
+   pixels take similar paths through a kernel, and a tile's lanes lie closer together than
+   RILL_W along one row, so they diverge less. Any other range goes in runs of RILL_W
+   consecutive elements. The spare lanes of a short group repeat its last element; the return
+   value is the group's element count, 0 after the last.
    A compacted launch (rill_run_list) goes instead through positions [begin, end) of a list of
    element indices, RILL_W at a time, so that its lanes run only the selected elements. */
 typedef struct { int64_t next, end, width; int tiled; const int64_t* list; } rill_groups;
 RILL_FN rill_groups rill_groups_of(const rill_launch* L, int64_t begin, int64_t end) {
   rill_groups g = {begin, end, L->width, 0, 0};
-  g.tiled = RILL_W >= 4 && L->height >= 2 && L->width >= RILL_W / 2 &&
+  g.tiled = RILL_W >= 4 && L->height >= 2 && L->width >= RILL_W / RILL_TILE_ROWS &&
             L->count == L->width * L->height && begin % L->width == 0 && end % L->width == 0;
   return g;
 }
@@ -112,15 +152,17 @@ RILL_FN int rill_next_group(rill_groups* g, int64_t lane[RILL_W]) {
   if (g->next >= g->end) return 0;
   int n = 0;
   const int64_t x = g->next % g->width, row = g->next - x;
+  const int64_t rows_left = (g->end - row) / g->width;
+  const int64_t rows = rows_left < RILL_TILE_ROWS ? rows_left : RILL_TILE_ROWS;
   if (g->list) {
     n = g->end - g->next < RILL_W ? (int)(g->end - g->next) : RILL_W;
     for (int l = 0; l < n; ++l) lane[l] = g->list[g->next + l];
     g->next += n;
-  } else if (g->tiled && g->end - row >= 2 * g->width) {
-    const int64_t cols = g->width - x < RILL_W / 2 ? g->width - x : RILL_W / 2;
-    for (int j = 0; j < 2; ++j)
+  } else if (g->tiled && rows >= 2) {
+    const int64_t cols = g->width - x < RILL_W / rows ? g->width - x : RILL_W / rows;
+    for (int64_t j = 0; j < rows; ++j)
       for (int64_t i = 0; i < cols; ++i) lane[n++] = row + j * g->width + x + i;
-    g->next = x + cols < g->width ? g->next + cols : row + 2 * g->width;
+    g->next = x + cols < g->width ? g->next + cols : row + rows * g->width;
   } else {
     n = g->end - g->next < RILL_W ? (int)(g->end - g->next) : RILL_W;
     for (int l = 0; l < n; ++l) lane[l] = g->next + l;
@@ -158,6 +200,15 @@ RILL_FN rill_vi rill_mask(rill_vi c) { return -(c != 0); }
 #define RILL_GATHER_D(base, i) \
   __builtin_ia32_gatherd_d256((rill_vi){0}, (const int*)(base), (i), rill_splat_i(-1), 4)
 #endif
+#endif
+/* 16 lanes: vgatherdps / vpgatherdd on zmm, all 16 lanes on (mask 0xffff); the same names in
+   GCC and clang (RILL_AVX512 checked them). */
+#if defined(RILL_AVX512) && !defined(RILL_NO_HW_GATHER)
+#define RILL_HW_GATHER 1
+#define RILL_GATHER_PS(base, i) \
+  __builtin_ia32_gathersiv16sf((rill_vr){0}, (base), (i), (unsigned short)0xffff, 4)
+#define RILL_GATHER_D(base, i) \
+  __builtin_ia32_gathersiv16si((rill_vi){0}, (const int*)(base), (i), (unsigned short)0xffff, 4)
 #endif
 #ifdef RILL_HW_GATHER
 /* Whether every lane has the same index (lanes that are off included: they may not, and then
@@ -210,40 +261,13 @@ RILL_FN void rill_transpose_lanes(const rill_v4f q[8], rill_vr* x, rill_vr* y, r
   *z = __builtin_shufflevector(t2, t3, 0, 1, 8, 9, 4, 5, 12, 13);
   if (w) *w = __builtin_shufflevector(t2, t3, 2, 3, 10, 11, 6, 7, 14, 15);
 }
-#ifdef RILL_HW_GATHER
-/* With gather instructions, a gather per component (measured faster than the load and
-   transpose below for vec3; vec4 keeps the transpose, unmeasured). */
-RILL_FN void rill_gather3_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z) {
-  if (rill_same_index(i)) {
-    const float* p = base + i[0];
-    *x = rill_splat_r(p[0]);
-    *y = rill_splat_r(p[1]);
-    *z = rill_splat_r(p[2]);
-    return;
-  }
-  *x = rill_gather_r(base, i);
-  *y = rill_gather_r(base + 1, i);
-  *z = rill_gather_r(base + 2, i);
-}
-#else
+#ifndef RILL_HW_GATHER
 RILL_FN void rill_gather3_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z) {
   const rill_v4i m = {-1, -1, -1, 0};
   rill_v4f q[8];
   for (int l = 0; l < 8; ++l) q[l] = __builtin_ia32_maskloadps((const rill_v4f*)(base + i[l]), m);
   rill_transpose_lanes(q, x, y, z, 0);
 }
-#endif
-RILL_FN void rill_gather4_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
-  rill_v4f q[8];
-  for (int l = 0; l < 8; ++l) q[l] = *(const rill_v4f_u*)(base + i[l]);
-  rill_transpose_lanes(q, x, y, z, w);
-}
-#ifdef RILL_HW_GATHER
-RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi* y) {
-  *x = rill_gather_i(base, i);
-  *y = rill_gather_i(base + 1, i);
-}
-#else
 /* Two consecutive ints per lane (an ivec2 element): one 8-byte load per lane and a transpose
    (the shuffles of _mm_unpacklo_epi64, _mm256_insertf128_si256, _mm256_shuffle_ps 0x88/0xdd). */
 RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi* y) {
@@ -259,6 +283,42 @@ RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi*
   *y = __builtin_shufflevector(lo, hi, 1, 3, 9, 11, 5, 7, 13, 15);
 }
 #endif
+RILL_FN void rill_gather4_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
+  rill_v4f q[8];
+  for (int l = 0; l < 8; ++l) q[l] = *(const rill_v4f_u*)(base + i[l]);
+  rill_transpose_lanes(q, x, y, z, w);
+}
+#endif
+#ifdef RILL_HW_GATHER
+/* With gather instructions, a gather per component (measured faster than the load and
+   transpose above for vec3; vec4 keeps the transpose at 8 lanes, unmeasured). */
+RILL_FN void rill_gather3_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z) {
+  if (rill_same_index(i)) {
+    const float* p = base + i[0];
+    *x = rill_splat_r(p[0]);
+    *y = rill_splat_r(p[1]);
+    *z = rill_splat_r(p[2]);
+    return;
+  }
+  *x = rill_gather_r(base, i);
+  *y = rill_gather_r(base + 1, i);
+  *z = rill_gather_r(base + 2, i);
+}
+RILL_FN void rill_gather2_i(const int32_t* base, rill_vi i, rill_vi* x, rill_vi* y) {
+  *x = rill_gather_i(base, i);
+  *y = rill_gather_i(base + 1, i);
+}
+#ifndef RILL_AVX2
+/* 16 lanes: a gather per component for vec4 too (no transpose of 16 lanes). */
+RILL_FN void rill_gather4_r(const float* base, rill_vi i, rill_vr* x, rill_vr* y, rill_vr* z, rill_vr* w) {
+  *x = rill_gather_r(base, i);
+  *y = rill_gather_r(base + 1, i);
+  *z = rill_gather_r(base + 2, i);
+  *w = rill_gather_r(base + 3, i);
+}
+#endif
+#endif
+#if defined(RILL_AVX2) || defined(RILL_HW_GATHER)
 #define RILL_HAVE_GATHER34 1
 #endif
 
@@ -377,8 +437,12 @@ std::string emit_c_lockstep(const Function& optimized, Accuracy accuracy, int la
   std::string src =
       "#if defined(__GNUC__) && !defined(__clang__)\n"
       "#pragma GCC optimize(\"ira-region=one\")\n#endif\n";
-  src += "#define RILL_W " + std::to_string(lanes) + "\n#define RILL_SPLAT(x) " + splat + "}\n" +
-         c_head(f, accuracy);
+  // The tile's rows (rill_next_group) as the host launcher cuts ranges (HostKernel.cpp);
+  // overridable (-DRILL_TILE_ROWS=2 from a RILL_CC wrapper) to measure other tiles.
+  src += "#define RILL_W " + std::to_string(lanes) +
+         "\n#ifndef RILL_TILE_ROWS\n#define RILL_TILE_ROWS " +
+         std::to_string(cpu::lockstep_tile_rows(lanes)) + "\n#endif\n#define RILL_SPLAT(x) " +
+         splat + "}\n" + c_head(f, accuracy);
   src += kVectorPrelude;
   src += lockstep_helpers();
   src += codegen::on_demand_bodies(codegen::Language::Lockstep, f, lane_wise);

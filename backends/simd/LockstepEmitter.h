@@ -8,8 +8,10 @@
 
 namespace rill::simd {
 
-// Lanes per group: 8 binary32 values fill one AVX register.
+// Lanes per group: 8 binary32 values fill one AVX register; 16 fill an AVX-512 register,
+// the simd backend's strict kernels where the CPU has AVX-512 (SimdBackend.cpp).
 constexpr int kLockstepLanes = 8;
+constexpr int kWideLanes = 16;
 
 // The kernel as C over `lanes` elements at a time: every variable becomes a GCC/Clang vector
 // of `lanes` values, control flow becomes masks, and each element computes exactly the

@@ -1,6 +1,7 @@
 // The simd backend (SimdBackend.h).
 #include "SimdBackend.h"
 
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,15 +42,42 @@ bool avx512_registers(Accuracy a) {
   return have && a == Accuracy::Strict;
 }
 
+// The lanes of a lockstep kernel: 16 (one AVX-512 register of binary32) for strict kernels
+// where the CPU has AVX-512 (avx512_registers), else 8. RILL_SIMD_LANES=8 or 16 asks for
+// one (16 is granted only where the rule above allows it; elsewhere 8), `auto` or unset
+// is the rule; read per compile, so that a program can measure both.
+int lockstep_lanes(Accuracy a) {
+  const bool wide = avx512_registers(a);
+  const char* v = std::getenv("RILL_SIMD_LANES");
+  const std::string s = v ? v : "auto";
+  if (s == "auto") return wide ? kWideLanes : kLockstepLanes;
+  if (s == "8") return kLockstepLanes;
+  if (s == "16") return wide ? kWideLanes : kLockstepLanes;
+  throw Error("RILL_SIMD_LANES='" + s.substr(0, 40) + "': expected 8, 16 or auto");
+}
+
 class SimdBackend : public Backend {
  public:
   std::string name() const override { return "simd"; }
+  // A bad RILL_SIMD_LANES makes the backend unavailable with the reason (rill-info lists it),
+  // and compiling on it an error that says the same.
+  std::string unavailable_reason() const override {
+    try {
+      lockstep_lanes(Accuracy::Strict);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return {};
+  }
   std::string description() const override {
-    const std::string isa =
-        vector_isa() +
-        (avx512_registers(Accuracy::Strict) ? "; AVX-512VL registers in strict" : "");
-    return cpu::host_backend_description(name(), "lockstep C, " + std::to_string(kLockstepLanes) +
-                                                     " lanes (" + isa + "), compiled by ");
+    const int strict = lockstep_lanes(Accuracy::Strict), fast = lockstep_lanes(Accuracy::Fast);
+    std::string lanes = std::to_string(strict) + " lanes (" + vector_isa() + ")";
+    if (avx512_registers(Accuracy::Strict))
+      lanes = strict == fast
+                  ? std::to_string(strict) + " lanes (AVX2; AVX-512VL registers in strict)"
+                  : std::to_string(strict) + " lanes in strict (AVX-512), " + std::to_string(fast) +
+                        " in fast (AVX2)";
+    return cpu::host_backend_description(name(), "lockstep C, " + lanes + ", compiled by ");
   }
   bool supports(Accuracy) const override { return true; }
   std::string accuracy_note(Accuracy a) const override {
@@ -63,16 +91,17 @@ class SimdBackend : public Backend {
       return k;
     }
     Stopwatch stage;
-    std::string source = emit_c_lockstep(f, o.accuracy, kLockstepLanes, o.source_map);
+    const int lanes = lockstep_lanes(o.accuracy);
+    std::string source = emit_c_lockstep(f, o.accuracy, lanes, o.source_map);
     const double codegen_ms = stage.lap();
     std::vector<std::string> flags = cpu::compiler_flags(o.accuracy);
     if (vector_isa() == "AVX2") flags.push_back("-mavx2");
     if (avx512_registers(o.accuracy))
       flags.insert(flags.end(), {"-mavx512f", "-mavx512vl", "-mavx512bw", "-mavx512dq"});
     cpu::SharedObject so = codegen::reporting_user_lines(
-        source, [&] { return emit_c_lockstep(f, o.accuracy, kLockstepLanes, true); },
+        source, [&] { return emit_c_lockstep(f, o.accuracy, lanes, true); },
         [&] { return cpu::compile_shared_object(name(), f.name, source, flags, "rill_run"); });
-    auto k = cpu::make_host_kernel(std::move(source), std::move(so), kLockstepLanes);
+    auto k = cpu::make_host_kernel(std::move(source), std::move(so), lanes);
     k->set_build_times(codegen_ms, stage.lap());
     return k;
   }

@@ -115,7 +115,8 @@ class VectorDialect : public codegen::CDialect {
   // Each lane loads its own element at the scalar gather's clamped index. The index is
   // computed on vectors in 32 bits (the backend refuses arrays of 2^31 words or more, see
   // CpuBackend.cpp). A whole vec3/vec4/ivec2 element is loaded once per lane and transposed
-  // (rill_gather3_r and kin, AVX2); otherwise each component is a vector initializer from
+  // (rill_gather3_r and kin: AVX2 at 8 lanes, gathers per component with AVX-512 at 16; the
+  // prelude says which, RILL_HAVE_GATHER34); otherwise each component is a vector initializer from
   // scalar loads (rill_gather_r): writing lanes one by one to memory and reading the vector
   // back would stall on store forwarding.
   std::string gather(const ir::Function& f, const ir::Stmt& s,
@@ -147,7 +148,7 @@ class VectorDialect : public codegen::CDialect {
       out += "  const rill_vi rill_inside = " + inside + ";\n";
     }
     const bool whole =
-        lanes_ == 8 && dst.size() >= 2 &&
+        (lanes_ == 8 || lanes_ == 16) && dst.size() >= 2 &&
         (a.elem.is_float() ? a.elem.width == 3 || a.elem.width == 4 : a.elem.width == 2);
     const std::string kind = a.elem.is_float() ? "_r" : "_i";
     if (whole) {

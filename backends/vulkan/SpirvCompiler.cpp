@@ -84,6 +84,19 @@ std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::
   return spirv;
 }
 
+std::string gl_compute_errors(const std::string& glsl) {
+  initialize_glslang();
+  const char* text = glsl.c_str();
+  glslang::TShader shader(EShLangCompute);
+  shader.setStrings(&text, 1);
+  // No client: GLSL as OpenGL takes it (loose uniforms, no descriptor sets); #version decides.
+  if (!shader.parse(GetDefaultResources(), 100, false, EShMsgDefault)) return shader.getInfoLog();
+  glslang::TProgram program;
+  program.addShader(&shader);
+  if (!program.link(EShMsgDefault)) return program.getInfoLog();
+  return "";
+}
+
 std::string spirv_compiler_version() {
   return "glslang " + std::to_string(GLSLANG_VERSION_MAJOR) + "." +
          std::to_string(GLSLANG_VERSION_MINOR) + "." + std::to_string(GLSLANG_VERSION_PATCH);

@@ -16,6 +16,12 @@ namespace rill::vk {
 std::vector<uint32_t> compile_compute_spirv(const std::string& glsl, const std::string& kernel,
                                             bool scalar_layout = false);
 
+// glslang's front end on a compute shader in the GL dialect (glsl-compute's GLSL, as an
+// OpenGL driver compiles it; no SPIR-V): its log when the shader does not compile and link,
+// else empty. For tests of GLSL that the local GL driver cannot compile (an extension it
+// lacks, GL_KHR_shader_subgroup on Mesa 22's llvmpipe).
+std::string gl_compute_errors(const std::string& glsl);
+
 // "glslang 12.0.0", for the disk cache's key and rill-info.
 std::string spirv_compiler_version();
 

@@ -196,10 +196,10 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
            glsl::divsqrt_description(rules_.divsqrt, rules_.fused_fma, rules_.lean) +
            ", comparisons: " + glsl::compare_name(rules_.native_compare) +
            "; float controls: " + modes + "; denormals: " + denormals_ + "; lane groups: " +
-           (group_ops_ ? "subgroups of " + std::to_string(d.subgroup_size)
-                       : std::string("one element") +
-                             (d.group_ops ? " (RILL_VULKAN_SUBGROUPS=off)"
-                                          : " (the device lacks subgroup operations)")) +
+           (rules_.subgroups ? "subgroups of " + std::to_string(d.subgroup_size)
+                             : std::string("one element") +
+                                   (d.group_ops ? " (RILL_VULKAN_SUBGROUPS=off)"
+                                                : " (the device lacks subgroup operations)")) +
            "; " + std::to_string(d.limits.maxPerStageDescriptorStorageBuffers) +
            " storage buffers; memory: " + memory_description(d) + "; parameters: " +
            (setup_.params_uniform ? "uniform buffer (RILL_VULKAN_PARAMS=uniform)"
@@ -245,7 +245,6 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
                   "which Rill needs for counts, masks and parameters");
     glsl::VulkanTarget target;
     target.ballot = c.info.ballot;
-    target.subgroups = group_ops_;
     target.params_uniform = setup_.params_uniform;
     if (o.accuracy != Accuracy::Fast) target.execution_modes = float_modes_;
     Stopwatch stage;
@@ -404,12 +403,12 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
     setup_.loop_guard = rules_.loop_guard;
     // RILL_VULKAN_SUBGROUPS = on (default) | off: lane groups as subgroups where the device
     // has the operations, or a group of one (both pass the group tests).
-    group_ops_ = d.group_ops;
+    rules_.subgroups = d.group_ops;
     if (const char* g = std::getenv("RILL_VULKAN_SUBGROUPS"); g && *g) {
       const std::string v = g;
       if (v != "on" && v != "off")
         throw Error("RILL_VULKAN_SUBGROUPS='" + v + "' is not one of on, off");
-      group_ops_ = group_ops_ && v == "on";
+      rules_.subgroups = rules_.subgroups && v == "on";
     }
     counter_ = make_buffer(session_, 16, "the launch counters");
     setup_.counter = counter_.get();
@@ -622,7 +621,6 @@ class VulkanBackend : public Backend, public glsl::SessionOwner {
   bool flushes_denormals_ = true;  // strict kernels flush denormals (choose_denormals())
   bool emulate_flush_ = false;     // ... in the kernels themselves (rill/ir/FlushModel.h)
   std::string denormals_;          // how, for description()
-  bool group_ops_ = false;         // lane groups are subgroups
   std::string float_modes_;        // the strict kernels' execution-mode lines
   std::unique_ptr<Buffer> counter_;
   Staging staging_;

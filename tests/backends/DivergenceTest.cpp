@@ -173,8 +173,9 @@ TEST_P(DivergenceTest, EveryStreamLengthAroundTheLaneCount) {
 }
 
 TEST_P(DivergenceTest, EveryImageShapeInTiles) {
-  // 2D streams: simd runs whole rows in tiles of two rows (4 x 2 lanes), with narrow images,
-  // partial tiles at the right edge, an odd last row and several threads' ranges. Each
+  // 2D streams: simd runs whole rows in tiles (4 x 2 lanes at 8 lanes, 4 x 4 at 16), with
+  // narrow images, partial tiles at the right edge, last rows short of a tile and several
+  // threads' ranges. Each
   // element's results depend on its own input, index and coordinates, and some elements
   // discard, so a lane reading, computing or storing another element's value is caught.
   Program p = program("shapes", [] {

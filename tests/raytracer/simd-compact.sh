@@ -8,27 +8,20 @@
 set -eu
 exe=$1; work=$2
 mkdir -p "$work"
+tag=simd-compact
+. "$(dirname "$0")/same-outputs.sh"
 render() {  # NAME COMPACT SCENE ARGS...
   name=$1; compact=$2; scene=$3; shift 3
-  RILL_SIMD_COMPACT=$compact "$exe" render "builtin:$scene" --backend simd --quiet "$@" \
-    --out "$work/$name.png" --pfm "$work/$name.pfm" --depth "$work/$name.depth.pfm" > /dev/null
-}
-same() {  # A B
-  for ext in pfm depth.pfm; do
-    if ! cmp -s "$work/$1.$ext" "$work/$2.$ext"; then
-      echo "simd-compact: $1.$ext and $2.$ext differ"
-      exit 1
-    fi
-  done
+  render_outputs "$name" "RILL_SIMD_COMPACT=$compact" "builtin:$scene" --backend simd "$@"
 }
 render wave-on on cornell-path --size 64x48 --spp 2 --strategy wavefront
 render wave-off off cornell-path --size 64x48 --spp 2 --strategy wavefront
 render mega on cornell-path --size 64x48 --spp 2 --strategy megakernel
-same wave-on wave-off
-same wave-on mega
+same_outputs wave-on wave-off
+same_outputs wave-on mega
 render multi-on on thesis-a --size 64x48 --strategy multipass
 render multi-off off thesis-a --size 64x48 --strategy multipass
-same multi-on multi-off
+same_outputs multi-on multi-off
 # A bad setting is an error that names it.
 if RILL_SIMD_COMPACT=maybe "$exe" render builtin:cornell-path --backend simd --size 8x6 \
     --strategy wavefront --quiet --out "$work/bad.png" 2> "$work/bad.txt"; then

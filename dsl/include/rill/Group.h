@@ -2,11 +2,12 @@
 // with it (its lane group), as a SIMD backend's lanes or a GPU's sub-group.
 //
 // Which elements form a group, and how many, is the backend's (docs/programming-model.md has
-// the table): the simd backend's lanes, and today a group of one (the element alone)
-// everywhere else; OpenCL and GLSL sub-groups may come where a device has them. A lane is active
-// when it holds an element that runs the operation, under the same control flow; inactive lanes
-// contribute the identity: false to group_any, true to group_all, bit 0 to group_ballot and
-// group_count, INT32_MAX to group_min, INT32_MIN to group_max, 0 to group_sum.
+// the table): the simd backend's lanes, the device's subgroups on vulkan and glsl-compute where
+// the driver has the operations, and a group of one (the element alone) everywhere else;
+// OpenCL sub-groups may come where a device has them. A lane is active when it holds an
+// element that runs the operation, under the same control flow; inactive lanes contribute the
+// identity: false to group_any, true to group_all, bit 0 to group_ballot and group_count,
+// INT32_MAX to group_min, INT32_MIN to group_max, 0 to group_sum.
 //
 // Results are exact for the group the backend reports: a program whose outputs do not depend
 // on the group (or that uses group_size() and lane_index() to make them not) gives the same

@@ -633,7 +633,9 @@ void Megakernel::render(const Frame& frame, RenderResult& r) {
   const std::string megakernel_key = kernel_key(rs.backend, rs.accuracy, loop);
   std::future<Kernel> building;
   if (!kernels_.count(megakernel_key) && !rill::backend(rs.backend).single_threaded()) {
-    const Program& p = program(loop);
+    // The packets choice as kernel() makes it: with program(loop) alone a first frame ran the
+    // walk without packets whatever TracerOptions::packets said.
+    const Program& p = program(loop, packets_for(S_.K.packets, rs.backend));
     building = std::async(std::launch::async,
                           [&p, &rs] { return compile_for(p, rs.backend, rs.accuracy); });
   }
