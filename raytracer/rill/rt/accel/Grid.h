@@ -113,7 +113,7 @@ double checked_grid_density(double d);  // the same range check on a number
 // grids did not pay on scenes of a few thousand triangles, nor for `cpu` (thesis C slower),
 // and cost NVIDIA's OpenCL (docs/gpu.md). Images never depend on it: the grid is exact.
 // Under the path integrator simd keeps kGridDensity: its bounces' rays are incoherent, and
-// the 8 lanes of a group wait for the longest walk, which a denser grid lengthens in cells
+// the lanes of a group (8 or 16) wait for the longest walk, which a denser grid lengthens
 // (thesis C, with or without an area light: 1.2-1.4x the frame at 16;
 // docs/benchmarks/2026-12-08-simd-path-default.md).
 constexpr double kGridDensitySimdLarge = 16.0;

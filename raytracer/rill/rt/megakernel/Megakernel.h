@@ -74,11 +74,13 @@ constexpr int kPathSamplesPerLaunch = 16;
 int path_samples_per_launch(int setting, const std::string& backend, const char* regenerate);
 // The same, with RILL_PATH_REGENERATE read from the environment (once).
 int path_samples_per_launch(int setting, const std::string& backend);
-// Whether a backend regenerates paths by default: everywhere but on `simd`, where one sample
-// per launch measured as fast or faster on every built-in scene under the path integrator
-// (docs/benchmarks/2026-12-08-simd-path-default.md): with one sample per launch a lockstep
-// group's 8 camera rays start together and walk the grid alike for a bounce or two, which
-// regeneration gives up by mixing camera rays and later bounces in one group.
+// Whether a backend regenerates paths by default: everywhere but on `simd`. There one sample
+// per launch measured faster on most built-in scenes under the path integrator (glass, bounce,
+// textured, thesis B and C: 1.03-1.14x) and slower on three with short walks (cornell-path,
+// cornell, thesis A: up to 1.18x; docs/benchmarks/2026-12-08-simd-path-default.md): with one
+// sample per launch a lockstep group's camera rays start together and walk the grid alike for
+// a bounce or two, which regeneration gives up by mixing camera rays and later bounces in one
+// group.
 bool path_regeneration_default(const std::string& backend);
 
 class Megakernel final : public RenderStrategy {
