@@ -168,6 +168,9 @@ int render(RenderOptions o) {
     const auto t_last = Clock::now();
     wait_ahead();
     frame_ms.back() += ms_since(t_last);
+    // The last repeat is `ahead` after its swap: back into `frame`, whose rays are counted
+    // below (after one repeat `frame` would otherwise be the empty result, and 0 Mrays/s).
+    std::swap(frame, ahead);
   }
   const int64_t bench_rays = frame.rays;  // each repeat's (frame goes on to --frames' frames)
   std::vector<double> sorted = frame_ms;  // for the min and max
