@@ -29,8 +29,9 @@ std::string vector_isa() {
   return avx2 ? "AVX2" : "SSE2";
 }
 
-// Whether strict kernels also get AVX-512 (F, VL, BW, DQ). The lanes stay 8 binary32 in
-// 256-bit registers, but AVX-512VL gives 32 of them instead of 16, mask registers and
+// Whether strict kernels also get AVX-512 (F, VL, BW, DQ): 16 lanes in 512-bit registers
+// (lockstep_lanes below; 8 in 256-bit ones with RILL_SIMD_LANES=8, where AVX-512VL still gives
+// 32 registers instead of 16, mask registers and
 // three-input logic: a lockstep kernel keeps hundreds of vectors live, and the ray tracer's
 // traversal spilled a third fewer of them (docs/benchmarks/2026-12-07-simd-gathers.md).
 // The same IEEE operations in the same order, so the same bits. Not for `fast`: with
